@@ -1,0 +1,543 @@
+/* elasticity.c: P1 linear elasticity: element kernels, assembly of K and the load, energy, stresses, manufactured solution. */
+#include "signorini.h"
+
+/* Lame constants (plane strain in 2D) from Young's modulus and Poisson's ratio. */
+PetscErrorCode SgLame(PetscReal E, PetscReal nu, PetscReal *lambda, PetscReal *mu)
+{
+  PetscFunctionBeginUser;
+  *mu     = E / (2 * (1 + nu));
+  *lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  PetscFunctionReturn(0);
+}
+
+/* Gradients G[a*dim+d] of the barycentric functions of a simplex and its measure. */
+PetscErrorCode SgSimplexGradients(PetscInt dim, const PetscReal x[], PetscReal G[], PetscReal *vol)
+{
+  PetscReal J[3][3], Ji[3][3], det;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < dim; a++)
+    for (PetscInt d = 0; d < dim; d++) J[d][a] = x[(a + 1) * dim + d] - x[d];
+  if (dim == 2) {
+    det      = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    Ji[0][0] = J[1][1] / det;
+    Ji[0][1] = -J[0][1] / det;
+    Ji[1][0] = -J[1][0] / det;
+    Ji[1][1] = J[0][0] / det;
+    *vol     = 0.5 * PetscAbsReal(det);
+  } else {
+    det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = 0; j < 3; j++) {
+        const PetscInt i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+        Ji[i][j] = (J[i1][j1] * J[i2][j2] - J[i1][j2] * J[i2][j1]) / det;
+      }
+    *vol = PetscAbsReal(det) / 6.0;
+  }
+  PetscCheck(det != 0 && PetscIsNormalReal(det), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "degenerate simplex (zero measure) in the mesh");
+  /* grad phi_a (a >= 1) is row a-1 of J^{-1}; grad phi_0 = -sum of the others */
+  for (PetscInt d = 0; d < dim; d++) {
+    G[d] = 0;
+    for (PetscInt a = 1; a <= dim; a++) {
+      G[a * dim + d] = Ji[a - 1][d];
+      G[d] -= Ji[a - 1][d];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* P1 element stiffness Ke[(a*dim+i)*(n*dim)+(b*dim+j)] = int lambda div(phi_b e_j) div(phi_a e_i) + 2 mu eps:eps. */
+PetscErrorCode SgElementStiffness(PetscInt dim, const PetscReal x[], PetscReal lambda, PetscReal mu, PetscReal Ke[], PetscReal *vol)
+{
+  PetscReal      G[12];
+  const PetscInt nv = dim + 1, n = nv * dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgSimplexGradients(dim, x, G, vol));
+  for (PetscInt a = 0; a < nv; a++)
+    for (PetscInt b = 0; b < nv; b++) {
+      PetscReal gg = 0;
+      for (PetscInt k = 0; k < dim; k++) gg += G[a * dim + k] * G[b * dim + k];
+      for (PetscInt i = 0; i < dim; i++)
+        for (PetscInt j = 0; j < dim; j++) Ke[(a * dim + i) * n + b * dim + j] = *vol * (lambda * G[a * dim + i] * G[b * dim + j] + mu * (G[a * dim + j] * G[b * dim + i] + (i == j ? gg : 0)));
+    }
+  PetscFunctionReturn(0);
+}
+
+/* Manufactured solution u_k = A sin(pi a_k.x + phi_k) and the body force -div sigma(u) that produces it. */
+static const PetscReal MMS_A = 0.01, MMS_a[3][3] = {
+  {1.0,  0.5,  0.25},
+  {0.5,  1.0,  0.75},
+  {0.25, 0.75, 1.0 }
+},
+                       MMS_phi[3] = {0.1, 0.3, 0.7};
+
+static void MMSExact(PetscInt dim, const PetscReal x[], PetscReal u[], PetscReal grad[])
+{
+  for (PetscInt k = 0; k < dim; k++) {
+    PetscReal th = MMS_phi[k];
+    for (PetscInt j = 0; j < dim; j++) th += PETSC_PI * MMS_a[k][j] * x[j];
+    u[k] = MMS_A * PetscSinReal(th);
+    if (grad)
+      for (PetscInt j = 0; j < dim; j++) grad[k * dim + j] = MMS_A * PETSC_PI * MMS_a[k][j] * PetscCosReal(th);
+  }
+}
+
+static void MMSForce(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal x[], PetscReal f[])
+{
+  PetscReal s[3];
+  for (PetscInt k = 0; k < dim; k++) {
+    PetscReal th = MMS_phi[k];
+    for (PetscInt j = 0; j < dim; j++) th += PETSC_PI * MMS_a[k][j] * x[j];
+    s[k] = MMS_A * PETSC_PI * PETSC_PI * PetscSinReal(th);
+  }
+  /* f_l = mu |a_l|^2 s_l + (lambda+mu) sum_k a_kk a_kl s_k */
+  for (PetscInt l = 0; l < dim; l++) {
+    PetscReal al2 = 0, gd = 0;
+    for (PetscInt j = 0; j < dim; j++) al2 += MMS_a[l][j] * MMS_a[l][j];
+    for (PetscInt k = 0; k < dim; k++) gd += MMS_a[k][k] * MMS_a[k][l] * s[k];
+    f[l] = mu * al2 * s[l] + (lambda + mu) * gd;
+  }
+}
+
+/* Quadrature on a simplex of dimension dim, exact to degree 5: barycentric points and weights summing to 1. */
+static PetscErrorCode SimplexQuadrature(PetscInt dim, PetscInt *nq, PetscReal **lam, PetscReal **w)
+{
+  PetscQuadrature  q;
+  const PetscReal *pts, *wts;
+  PetscReal        wsum = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscDTStroudConicalQuadrature(dim, 1, 3, -1.0, 1.0, &q));
+  PetscCall(PetscQuadratureGetData(q, NULL, NULL, nq, &pts, &wts));
+  PetscCall(PetscMalloc2(*nq * (dim + 1), lam, *nq, w));
+  for (PetscInt i = 0; i < *nq; i++) wsum += wts[i];
+  for (PetscInt i = 0; i < *nq; i++) {
+    PetscReal s = 0;
+    for (PetscInt d = 0; d < dim; d++) {
+      (*lam)[i * (dim + 1) + d + 1] = 0.5 * (pts[i * dim + d] + 1);
+      s += (*lam)[i * (dim + 1) + d + 1];
+    }
+    (*lam)[i * (dim + 1)] = 1 - s;
+    (*w)[i]               = wts[i] / wsum;
+  }
+  PetscCall(PetscQuadratureDestroy(&q));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ProblemOptions(SgProblem p)
+{
+  PetscInt  nbf = 3;
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  p->E  = 1.0;
+  p->nu = 0.3;
+  PetscOptionsBegin(p->comm, NULL, "Linear elasticity", NULL);
+  PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, p->E, &p->E, NULL));
+  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio (plane strain in 2D)", NULL, p->nu, &p->nu, NULL));
+  PetscCall(PetscOptionsRealArray("-body_force", "Constant body force f (dim numbers)", NULL, p->body_force, &nbf, &flg));
+  PetscCall(PetscOptionsBool("-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", NULL, p->mms, &p->mms, NULL));
+  p->dirichlet.what = "dirichlet";
+  p->neumann.what   = "neumann";
+  PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
+  PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
+  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->dirichlet, 0, NULL, "Dirichlet"));
+  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->neumann, 0, NULL, "Neumann (traction)"));
+  PetscOptionsEnd();
+  PetscCheck(PetscIsNormalReal(p->E) && p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E: Young's modulus must be positive and finite, got %g", (double)p->E);
+  PetscCheck(PetscIsNormalReal(p->nu) && p->nu > 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in (0, 0.5), got %g", (double)p->nu);
+  PetscCheck(!flg || nbf == 2 || nbf == 3, p->comm, PETSC_ERR_USER_INPUT, "-body_force: give one number per dimension, got %" PetscInt_FMT, nbf);
+  for (PetscInt d = 0; d < 3; d++) PetscCheck(PetscIsNormalReal(p->body_force[d]) || p->body_force[d] == 0, p->comm, PETSC_ERR_USER_INPUT, "-body_force: entry %" PetscInt_FMT " is %g, must be finite", d, (double)p->body_force[d]);
+  PetscCall(SgLame(p->E, p->nu, &p->lambda, &p->mu));
+  PetscFunctionReturn(0);
+}
+
+/* The values options of the boundary parts need the dimension, known only once the mesh exists. */
+static PetscErrorCode BoundaryValueOptions(SgProblem p)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(p->comm, NULL, "Boundary data", NULL);
+  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->dirichlet, p->dim, "values", "Dirichlet displacement"));
+  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->neumann, p->dim, "traction", "Neumann traction"));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+/* A clone of the mesh with ncomp unconstrained values per cell (height 0) or per vertex (height dim). */
+static PetscErrorCode CreateFieldDM(DM dm, PetscInt height, PetscInt ncomp, const char name[], DM *sdm)
+{
+  PetscSection s;
+  PetscInt     pStart, pEnd, sStart, sEnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMClone(dm, sdm));
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  if (height == 0) PetscCall(DMPlexGetHeightStratum(dm, 0, &sStart, &sEnd));
+  else PetscCall(DMPlexGetDepthStratum(dm, 0, &sStart, &sEnd));
+  PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), &s));
+  PetscCall(PetscSectionSetNumFields(s, 1));
+  PetscCall(PetscSectionSetFieldName(s, 0, name));
+  PetscCall(PetscSectionSetFieldComponents(s, 0, ncomp));
+  PetscCall(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt p = sStart; p < sEnd; p++) {
+    PetscCall(PetscSectionSetDof(s, p, ncomp));
+    PetscCall(PetscSectionSetFieldDof(s, p, 0, ncomp));
+  }
+  PetscCall(PetscSectionSetUp(s));
+  PetscCall(DMSetLocalSection(*sdm, s));
+  PetscCall(PetscSectionDestroy(&s));
+  PetscFunctionReturn(0);
+}
+
+/* Dirichlet value of vertex v (local number) */
+static void DirichletValue(SgProblem p, PetscInt v, PetscReal u[])
+{
+  const PetscInt g = p->mesh.bcgroup[v];
+  if (p->mms) MMSExact(p->dim, &p->mesh.x[v * p->dim], u, NULL);
+  else
+    for (PetscInt d = 0; d < p->dim; d++) u[d] = p->dirichlet.nvalues ? p->dirichlet.values[g * p->dim + d] : 0.0;
+}
+
+static PetscErrorCode Assemble(SgProblem p)
+{
+  const SgMesh   *m = &p->mesh;
+  const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
+  Vec             floc, mloc, xg, xloc;
+  PetscScalar    *fa, *ma, *ua, *xa;
+  PetscReal       shift = 0, *lq = NULL, *wq = NULL;
+  PetscInt        nq = 0, nfac, *facets, *part;
+  PetscLogDouble  t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_Assembly, 0, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  PetscCall(DMCreateMatrix(p->dm, &p->K));
+  PetscCall(PetscObjectSetName((PetscObject)p->K, "K"));
+  PetscCall(DMCreateGlobalVector(p->dm, &p->b));
+  PetscCall(PetscObjectSetName((PetscObject)p->b, "load"));
+  PetscCall(VecDuplicate(p->b, &p->mass));
+  PetscCall(DMCreateLocalVector(p->dm, &p->ubc));
+  PetscCall(DMGetLocalVector(p->dm, &floc));
+  PetscCall(DMGetLocalVector(p->dm, &mloc));
+  PetscCall(VecZeroEntries(floc));
+  PetscCall(VecZeroEntries(mloc));
+  PetscCall(VecZeroEntries(p->ubc));
+  if (p->mms) PetscCall(SimplexQuadrature(dim, &nq, &lq, &wq));
+
+  PetscCall(VecGetArray(p->ubc, &ua));
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (m->bcgroup[v] >= 0) {
+      PetscReal u[3];
+      DirichletValue(p, v, u);
+      for (PetscInt d = 0; d < dim; d++) ua[m->loff[v] + d] = u[d];
+    }
+  PetscCall(VecGetArray(floc, &fa));
+  PetscCall(VecGetArray(mloc, &ma));
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    PetscReal       xe[12], Ke[144], fe[12], ud[12], vol;
+    PetscInt        gb[4];
+    PetscBool       lift = PETSC_FALSE;
+
+    for (PetscInt a = 0; a < nv; a++) {
+      gb[a] = m->gblock[cv[a]];
+      for (PetscInt d = 0; d < dim; d++) {
+        xe[a * dim + d] = m->x[cv[a] * dim + d];
+        ud[a * dim + d] = PetscRealPart(ua[m->loff[cv[a]] + d]);
+      }
+      if (gb[a] < 0) lift = PETSC_TRUE;
+    }
+    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    PetscCall(MatSetValuesBlocked(p->K, nv, gb, nv, gb, Ke, ADD_VALUES));
+    if (p->mms) {
+      PetscCall(PetscArrayzero(fe, ne));
+      for (PetscInt q = 0; q < nq; q++) {
+        PetscReal xq[3] = {0, 0, 0}, f[3];
+        for (PetscInt a = 0; a < nv; a++)
+          for (PetscInt d = 0; d < dim; d++) xq[d] += lq[q * nv + a] * xe[a * dim + d];
+        MMSForce(dim, p->lambda, p->mu, xq, f);
+        for (PetscInt a = 0; a < nv; a++)
+          for (PetscInt d = 0; d < dim; d++) fe[a * dim + d] += vol * wq[q] * lq[q * nv + a] * f[d];
+      }
+    } else
+      for (PetscInt a = 0; a < nv; a++)
+        for (PetscInt d = 0; d < dim; d++) fe[a * dim + d] = vol / nv * p->body_force[d];
+    if (lift) {
+      for (PetscInt i = 0; i < ne; i++) {
+        PetscReal Ku = 0;
+        for (PetscInt j = 0; j < ne; j++) Ku += Ke[i * ne + j] * ud[j];
+        shift += 0.5 * ud[i] * Ku - fe[i] * ud[i];
+        fe[i] -= Ku;
+      }
+    }
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) {
+        fa[m->loff[cv[a]] + d] += fe[a * dim + d];
+        ma[m->loff[cv[a]] + d] += vol / nv;
+      }
+  }
+  /* Neumann: constant traction per label value, exact P1 load on each facet */
+  if (p->neumann.nvalues) {
+    PetscCall(SgBoundaryGetFacets(p->dm, &p->neumann, &nfac, &facets, &part));
+    for (PetscInt i = 0; i < nfac; i++) {
+      PetscInt  fv[3], nfv;
+      PetscReal area, nrm[3];
+      PetscCall(SgFacetGeometry(p->dm, m, facets[i], &nfv, fv, &area, nrm));
+      for (PetscInt a = 0; a < nfv; a++)
+        for (PetscInt d = 0; d < dim; d++) {
+          const PetscReal t = area / nfv * p->neumann.values[part[i] * dim + d];
+          fa[m->loff[fv[a]] + d] += t;
+          shift -= t * PetscRealPart(ua[m->loff[fv[a]] + d]);
+        }
+    }
+    PetscCall(PetscFree2(facets, part));
+  }
+  PetscCall(VecRestoreArray(floc, &fa));
+  PetscCall(VecRestoreArray(mloc, &ma));
+  PetscCall(VecRestoreArray(p->ubc, &ua));
+  PetscCall(PetscFree2(lq, wq));
+  PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecZeroEntries(p->b));
+  PetscCall(VecZeroEntries(p->mass));
+  PetscCall(DMLocalToGlobal(p->dm, floc, ADD_VALUES, p->b));
+  PetscCall(DMLocalToGlobal(p->dm, mloc, ADD_VALUES, p->mass));
+  PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
+  PetscCall(DMRestoreLocalVector(p->dm, &floc));
+  PetscCall(DMRestoreLocalVector(p->dm, &mloc));
+  PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));
+  PetscCall(VecNorm(p->b, NORM_2, &p->bnorm));
+  PetscCall(MatSetOption(p->K, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(p->K, MAT_SPD, PETSC_TRUE));
+
+  /* rigid-body near null space from the coordinates of the free vertices */
+  PetscCall(DMGetLocalVector(p->dm, &xloc));
+  PetscCall(VecGetArray(xloc, &xa));
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) xa[m->loff[v] + d] = m->x[v * dim + d];
+  PetscCall(VecRestoreArray(xloc, &xa));
+  PetscCall(VecDuplicate(p->b, &xg));
+  PetscCall(DMLocalToGlobal(p->dm, xloc, INSERT_VALUES, xg));
+  PetscCall(DMRestoreLocalVector(p->dm, &xloc));
+  PetscCall(VecSetBlockSize(xg, dim));
+  PetscCall(MatNullSpaceCreateRigidBody(xg, &p->nearnull));
+  PetscCall(MatSetNearNullSpace(p->K, p->nearnull));
+  PetscCall(VecDestroy(&xg));
+  PetscCall(PetscTime(&t1));
+  p->t_assembly = t1 - t0;
+  PetscCall(PetscLogEventEnd(SG_Assembly, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
+{
+  SgProblem p;
+  PetscInt  bs;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&p));
+  p->comm = comm;
+  PetscCall(ProblemOptions(p));
+  PetscCall(SgMeshCreateDM(comm, &p->dm));
+  PetscCall(DMGetDimension(p->dm, &p->dim));
+  PetscCall(BoundaryValueOptions(p));
+  PetscCall(SgMeshSetUp(p->dm, &p->dirichlet, &p->mesh));
+  PetscCall(CreateFieldDM(p->dm, 0, 1, "cell", &p->dmCell));
+  PetscCall(CreateFieldDM(p->dm, p->dim, 1, "vertex", &p->dmVert));
+  PetscCall(CreateFieldDM(p->dm, p->dim, p->dim, "vector", &p->dmVec));
+  PetscCall(Assemble(p));
+  PetscCall(VecGetSize(p->b, &p->ndofs));
+  PetscCall(MatGetBlockSize(p->K, &bs));
+  PetscCheck(bs == p->dim, comm, PETSC_ERR_PLIB, "stiffness block size %" PetscInt_FMT " differs from the dimension", bs);
+  *prob = p;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemDestroy(SgProblem *prob)
+{
+  SgProblem p = *prob;
+
+  PetscFunctionBeginUser;
+  if (!p) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&p->K));
+  PetscCall(VecDestroy(&p->b));
+  PetscCall(VecDestroy(&p->mass));
+  PetscCall(VecDestroy(&p->ubc));
+  PetscCall(MatNullSpaceDestroy(&p->nearnull));
+  PetscCall(SgMeshDestroy(&p->mesh));
+  PetscCall(DMDestroy(&p->dmCell));
+  PetscCall(DMDestroy(&p->dmVert));
+  PetscCall(DMDestroy(&p->dmVec));
+  PetscCall(DMDestroy(&p->dm));
+  PetscCall(PetscFree(*prob));
+  PetscFunctionReturn(0);
+}
+
+/* V(y) = 1/2 a(y,y) - L(y) of the full field (free and Dirichlet parts). */
+PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
+{
+  Vec         Ky;
+  PetscScalar yKy, by;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(y, &Ky));
+  PetscCall(MatMult(p->K, y, Ky));
+  PetscCall(VecDot(y, Ky, &yKy));
+  PetscCall(VecDot(y, p->b, &by));
+  PetscCall(VecDestroy(&Ky));
+  *V = 0.5 * PetscRealPart(yKy) - PetscRealPart(by) + p->energy_shift;
+  PetscFunctionReturn(0);
+}
+
+/* Local vector of the full displacement: free values from y, Dirichlet values from the data. */
+PetscErrorCode SgProblemGlobalToLocal(SgProblem p, Vec y, Vec yloc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(p->ubc, yloc));
+  PetscCall(DMGlobalToLocal(p->dm, y, INSERT_VALUES, yloc));
+  PetscFunctionReturn(0);
+}
+
+/* The displacement on every vertex (Dirichlet ones included) as a global vector of dmVec, for output. */
+PetscErrorCode SgProblemFullDisplacement(SgProblem p, Vec y, Vec ufull)
+{
+  Vec                yloc, uloc;
+  const PetscScalar *ya;
+  PetscScalar       *ua;
+  PetscSection       s;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(DMGetLocalVector(p->dmVec, &uloc));
+  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(DMGetLocalSection(p->dmVec, &s));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArray(uloc, &ua));
+  for (PetscInt v = 0; v < p->mesh.nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, p->mesh.vStart + v, &off));
+    for (PetscInt d = 0; d < p->dim; d++) ua[off + d] = ya[p->mesh.loff[v] + d];
+  }
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(VecRestoreArray(uloc, &ua));
+  PetscCall(DMLocalToGlobal(p->dmVec, uloc, INSERT_VALUES, ufull));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscCall(DMRestoreLocalVector(p->dmVec, &uloc));
+  PetscFunctionReturn(0);
+}
+
+/* Discrete dual norm of a residual: sqrt(sum_j R_j^2 / m_j), m_j the lumped volume of dof j. */
+PetscErrorCode SgProblemDualNorm(SgProblem p, Vec R, PetscReal *nrm)
+{
+  Vec w;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(R, &w));
+  PetscCall(VecPointwiseMult(w, R, R));
+  PetscCall(VecPointwiseDivide(w, w, p->mass));
+  PetscCall(VecSum(w, nrm));
+  *nrm = PetscSqrtReal(PetscMax(*nrm, 0));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+/* Per-cell von Mises stress and elastic shear (distortion) energy density mu |dev eps|^2 (plane strain: eps_33 = 0). */
+PetscErrorCode SgProblemCellFields(SgProblem p, Vec y, Vec vm, Vec wshear)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  Vec                yloc, vml, wl;
+  const PetscScalar *ya;
+  PetscScalar       *va, *wa;
+  PetscSection       cs;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(DMGetLocalVector(p->dmCell, &vml));
+  PetscCall(DMGetLocalVector(p->dmCell, &wl));
+  PetscCall(DMGetLocalSection(p->dmCell, &cs));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArray(vml, &va));
+  PetscCall(VecGetArray(wl, &wa));
+  for (PetscInt c = 0; c < m->nc; c++) {
+    PetscReal xe[12], G[12], vol, eps[3][3] = {{0}}, sig[3][3], tr = 0, dev2 = 0;
+    PetscInt  off;
+
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) xe[a * dim + d] = m->x[m->cellv[c * nv + a] * dim + d];
+    PetscCall(SgSimplexGradients(dim, xe, G, &vol));
+    for (PetscInt a = 0; a < nv; a++) {
+      const PetscScalar *u = &ya[m->loff[m->cellv[c * nv + a]]];
+      for (PetscInt i = 0; i < dim; i++)
+        for (PetscInt j = 0; j < dim; j++) eps[i][j] += 0.5 * (PetscRealPart(u[i]) * G[a * dim + j] + PetscRealPart(u[j]) * G[a * dim + i]);
+    }
+    for (PetscInt i = 0; i < 3; i++) tr += eps[i][i];
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = 0; j < 3; j++) {
+        const PetscReal de = eps[i][j] - (i == j ? tr / 3 : 0);
+        sig[i][j]          = 2 * p->mu * eps[i][j] + (i == j ? p->lambda * tr : 0);
+        dev2 += de * de;
+      }
+    PetscCall(PetscSectionGetOffset(cs, m->cStart + c, &off));
+    va[off] = PetscSqrtReal(0.5 * (PetscSqr(sig[0][0] - sig[1][1]) + PetscSqr(sig[1][1] - sig[2][2]) + PetscSqr(sig[2][2] - sig[0][0])) + 3 * (PetscSqr(sig[0][1]) + PetscSqr(sig[1][2]) + PetscSqr(sig[0][2])));
+    wa[off] = p->mu * dev2;
+  }
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(VecRestoreArray(vml, &va));
+  PetscCall(VecRestoreArray(wl, &wa));
+  PetscCall(DMLocalToGlobal(p->dmCell, vml, INSERT_VALUES, vm));
+  PetscCall(DMLocalToGlobal(p->dmCell, wl, INSERT_VALUES, wshear));
+  PetscCall(DMRestoreLocalVector(p->dmCell, &vml));
+  PetscCall(DMRestoreLocalVector(p->dmCell, &wl));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscFunctionReturn(0);
+}
+
+/* L2 and H1-seminorm errors against the manufactured solution. */
+PetscErrorCode SgProblemMMSErrors(SgProblem p, Vec y, PetscReal *l2, PetscReal *h1)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  Vec                yloc;
+  const PetscScalar *ya;
+  PetscReal          e[2] = {0, 0}, *lq, *wq;
+  PetscInt           nq;
+
+  PetscFunctionBeginUser;
+  PetscCheck(p->mms, p->comm, PETSC_ERR_ARG_WRONGSTATE, "errors need -mms");
+  PetscCall(SimplexQuadrature(dim, &nq, &lq, &wq));
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  for (PetscInt c = 0; c < m->nc; c++) {
+    PetscReal xe[12], ue[12], G[12], vol, gh[9] = {0};
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) {
+        xe[a * dim + d] = m->x[m->cellv[c * nv + a] * dim + d];
+        ue[a * dim + d] = PetscRealPart(ya[m->loff[m->cellv[c * nv + a]] + d]);
+      }
+    PetscCall(SgSimplexGradients(dim, xe, G, &vol));
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt k = 0; k < dim; k++)
+        for (PetscInt j = 0; j < dim; j++) gh[k * dim + j] += ue[a * dim + k] * G[a * dim + j];
+    for (PetscInt q = 0; q < nq; q++) {
+      PetscReal xq[3] = {0, 0, 0}, u[3], g[9], uh[3] = {0, 0, 0};
+      for (PetscInt a = 0; a < nv; a++)
+        for (PetscInt d = 0; d < dim; d++) {
+          xq[d] += lq[q * nv + a] * xe[a * dim + d];
+          uh[d] += lq[q * nv + a] * ue[a * dim + d];
+        }
+      MMSExact(dim, xq, u, g);
+      for (PetscInt d = 0; d < dim; d++) e[0] += vol * wq[q] * PetscSqr(u[d] - uh[d]);
+      for (PetscInt d = 0; d < dim * dim; d++) e[1] += vol * wq[q] * PetscSqr(g[d] - gh[d]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscCall(PetscFree2(lq, wq));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPI_SUM, p->comm));
+  *l2 = PetscSqrtReal(e[0]);
+  *h1 = PetscSqrtReal(e[1]);
+  PetscFunctionReturn(0);
+}
