@@ -21,5 +21,11 @@ PetscErrorCode SgRegisterAll(void)
   PetscCall(PetscLogEventRegister("SgLinearSolve", cid, &SG_LinearSolve));
   PetscCall(PetscLogEventRegister("SgContStep", cid, &SG_ContStep));
   PetscCall(PetscLogEventRegister("SgOutput", cid, &SG_Output));
+  PetscCall(SgObstacleRegister("plane", SgObstacleCreate_Plane));
+  PetscCall(SgObstacleRegister("parabola", SgObstacleCreate_Parabola));
+  PetscCall(SgObstacleRegister("ball", SgObstacleCreate_Ball));
+  PetscCall(SgContRegister("none", SgContCreate_None));
+  PetscCall(SgContRegister("pdas", SgContCreate_PDAS));
+  PetscCall(SgContRegister("vi", SgContCreate_VI));
   PetscFunctionReturn(0);
 }

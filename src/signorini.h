@@ -3,8 +3,10 @@
 
 #include <petscdmplex.h>
 #include <petscsnes.h>
+#include <math.h>
 
 #define SG_MAX_IDS 32 /* label values per boundary part */
+#define SG_NAN     ((PetscReal)NAN) /* "not set" in tables and summaries */
 
 /* ------------------------------------------------------------------ events.c */
 extern PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
@@ -105,3 +107,151 @@ PetscErrorCode SgSummarySetRealArray(SgSummary, const char[], PetscInt, const Pe
 PetscErrorCode SgSummarySetIntArray(SgSummary, const char[], PetscInt, const PetscInt[]);
 PetscErrorCode SgSummaryWrite(MPI_Comm, SgSummary, const char[], const char[]);
 PetscErrorCode SgOutputWrite(SgProblem, const char[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+
+/* ------------------------------------------------------------------ obstacle.c */
+typedef struct _n_SgObstacle *SgObstacle;
+struct _n_SgObstacle {
+  MPI_Comm  comm;
+  char      type[64];
+  PetscInt  dim;
+  PetscReal p[16]; /* shape parameters */
+  PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+  PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
+};
+extern PetscFunctionList SgObstacleList;
+PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
+PetscErrorCode SgObstacleCreate(MPI_Comm, PetscInt, SgObstacle *);
+PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode SgObstacleDestroy(SgObstacle *);
+PetscErrorCode SgObstacleCreate_Plane(SgObstacle);
+PetscErrorCode SgObstacleCreate_Parabola(SgObstacle);
+PetscErrorCode SgObstacleCreate_Ball(SgObstacle);
+
+/* ------------------------------------------------------------------ contact.c */
+typedef struct _n_SgContact *SgContact;
+struct _n_SgContact {
+  SgProblem  prob;
+  SgBoundary bnd;
+  SgObstacle obs;
+  PetscInt   n, nglobal; /* contact vertices owned here / in all */
+  PetscInt  *vert;       /* local vertex number */
+  PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
+  PetscReal *normal;     /* outward unit normals, n*dim */
+  PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
+  PetscReal *d;          /* gap to the obstacle along the normal */
+  PetscReal *lamhat;     /* shift of (P_gamma) */
+  PetscReal  lamhat0, gamma, area;
+};
+
+/* Measures of the original problem (P) for a pair (y, lam):
+   equilibrium     ||K y - b + B^T W lam||_2 / max(||K y||, ||b||)        (relative)
+   infeasibility   ||max(0, g)||_{L2(Gamma_c)}                             (length)
+   complementarity ||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}, A = {lam > 0}, as an L2 sum of squares
+   dual            ||min(0, lam)|| / ||lam||
+   residual        max(equilibrium, dual, infeasibility, complementarity): the stopping measure */
+typedef struct {
+  PetscReal equilibrium, infeasibility, complementarity, dual, residual, rhoF, rhoC, force;
+  PetscInt  nactive;
+} SgKKT;
+
+PetscErrorCode SgContactCreate(SgProblem, SgContact *);
+PetscErrorCode SgContactDestroy(SgContact *);
+PetscErrorCode SgContactGap(SgContact, const PetscScalar[], PetscReal[]);
+PetscErrorCode SgContactAddForce(SgContact, const PetscReal[], PetscScalar[]);
+PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
+PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
+PetscErrorCode SgContactKKT(SgContact, Vec, const PetscReal[], SgKKT *);
+PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4]);
+PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
+
+/* ------------------------------------------------------------------ history.c */
+typedef struct {
+  char      kind; /* 's': an SSN iteration, 'o': the end of an outer (continuation) step */
+  PetscInt  outer, it, active, entered, left, ksp_its, ssn_its;
+  PetscReal gamma, fnorm, r1, r2, V, dV, C1, C2, Em, rhoF, rhoC, infeas, kkt, time;
+} SgHistoryRow;
+typedef struct _n_SgHistory *SgHistory;
+struct _n_SgHistory {
+  PetscInt      n, cap;
+  SgHistoryRow *rows;
+};
+PetscErrorCode SgHistoryCreate(SgHistory *);
+PetscErrorCode SgHistoryDestroy(SgHistory *);
+PetscErrorCode SgHistoryRowInit(SgHistoryRow *);
+PetscErrorCode SgHistoryAdd(SgHistory, const SgHistoryRow *);
+PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
+
+/* ------------------------------------------------------------------ ssn.c */
+typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_SNES_FAILED } SgSSNReason;
+extern const char *const SgSSNReasons[];
+typedef struct _n_SgSSN *SgSSN;
+struct _n_SgSSN {
+  SgProblem   prob;
+  SgContact   c;
+  SNES        snes;
+  Mat         J;
+  Vec         r;
+  PetscReal   gamma;
+  PetscReal  *g, *m;          /* gap and max(0, lamhat + gamma g) at the last residual evaluation */
+  char       *act, *actjac;   /* active set there, and the one the last Jacobian used */
+  PetscBool   havejac;
+  PetscInt    nact, nentered, nleft;
+  PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
+  PetscReal   r1, r2, fdual, fnorm0;
+  PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
+  PetscInt64 *hash;
+  PetscBool   residual_test;  /* inexact linear solves: also require a small residual */
+  PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
+  SgSSNReason reason;
+  PetscBool   monitor;
+  SgHistory   hist;
+  PetscInt    outer;
+  PetscLogDouble t0;
+};
+PetscErrorCode SgSSNCreate(SgProblem, SgContact, SgSSN *);
+PetscErrorCode SgSSNDestroy(SgSSN *);
+PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *);
+PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
+PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
+
+/* ------------------------------------------------------------------ cont.c and cont_*.c */
+typedef struct _n_SgCont *SgCont;
+struct _n_SgCont {
+  MPI_Comm   comm;
+  char       type[64];
+  SgProblem  prob;
+  SgContact  c;
+  SgSSN      ssn;
+  Vec        y;            /* the iterate, finally the solution */
+  PetscReal *lam;          /* the multiplier at y */
+  PetscReal  kkt_tol;
+  PetscInt   max_outer;
+  PetscInt   outer, ssn_its, ksp_its;
+  PetscInt   ngammas, capgammas;
+  PetscReal *gammas;       /* gamma of every outer step */
+  PetscBool  converged;
+  char       reason[512];
+  SgKKT      kkt;
+  PetscReal  V0, V;        /* energy of the unconstrained solution and of the result */
+  SgHistory  hist;
+  SgSummary  sum;
+  PetscLogDouble t0;
+  void      *data;
+  PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
+  PetscErrorCode (*solve)(SgCont);
+  PetscErrorCode (*destroy)(SgCont);
+};
+extern PetscFunctionList SgContList;
+PetscErrorCode SgContRegister(const char[], PetscErrorCode (*)(SgCont));
+PetscErrorCode SgContCreate(SgProblem, SgContact, SgCont *);
+PetscErrorCode SgContSolve(SgCont);
+PetscErrorCode SgContDestroy(SgCont *);
+PetscErrorCode SgContSolveUnconstrained(SgCont);
+PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
+PetscErrorCode SgContMeasure(SgCont, const PetscReal[]);
+PetscErrorCode SgContAddGamma(SgCont, PetscReal);
+PetscErrorCode SgContFail(SgCont, const char[], ...);
+PetscErrorCode SgContOuterRow(SgCont, PetscInt, PetscReal, PetscReal, PetscReal);
+PetscErrorCode SgContCreate_None(SgCont);
+PetscErrorCode SgContCreate_PDAS(SgCont);
+PetscErrorCode SgContCreate_VI(SgCont);

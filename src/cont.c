@@ -1,0 +1,234 @@
+/* cont.c: the continuation controller registry (-cont_type), what every controller shares, and the type "none". */
+#include "signorini.h"
+#include <stdarg.h>
+
+PetscFunctionList SgContList = NULL;
+
+PetscErrorCode SgContRegister(const char name[], PetscErrorCode (*create)(SgCont))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&SgContList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
+{
+  SgCont ct;
+  PetscErrorCode (*create)(SgCont) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&ct));
+  ct->comm      = p->comm;
+  ct->prob      = p;
+  ct->c         = c;
+  ct->kkt_tol   = 1e-10;
+  ct->max_outer = 50;
+  ct->converged = PETSC_FALSE;
+  PetscCall(PetscStrcpy(ct->type, "none"));
+  PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
+  PetscCall(SgHistoryCreate(&ct->hist));
+  PetscCall(SgSummaryCreate(&ct->sum));
+  PetscOptionsBegin(p->comm, NULL, "Continuation controller", NULL);
+  PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
+  PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of the original problem is below this", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
+  PetscCall(PetscOptionsInt("-cont_max_it", "Maximum number of outer (continuation) steps", NULL, ct->max_outer, &ct->max_outer, NULL));
+  PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
+  PetscCheck(create, p->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
+  PetscCall(create(ct));
+  if (ct->setfromoptions) PetscCall(ct->setfromoptions(ct, PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
+  PetscCheck(ct->max_outer > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
+  PetscCheck(c || !strcmp(ct->type, "none"), p->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
+  PetscCall(DMCreateGlobalVector(p->dm, &ct->y));
+  PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
+  PetscCall(PetscCalloc1(c ? c->n : 0, &ct->lam));
+  PetscCall(SgSSNCreate(p, c, &ct->ssn));
+  ct->ssn->hist = ct->hist;
+  *cont         = ct;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContDestroy(SgCont *cont)
+{
+  SgCont ct = *cont;
+
+  PetscFunctionBeginUser;
+  if (!ct) PetscFunctionReturn(0);
+  if (ct->destroy) PetscCall(ct->destroy(ct));
+  PetscCall(SgSSNDestroy(&ct->ssn));
+  PetscCall(VecDestroy(&ct->y));
+  PetscCall(PetscFree(ct->lam));
+  PetscCall(PetscFree(ct->gammas));
+  PetscCall(SgHistoryDestroy(&ct->hist));
+  PetscCall(SgSummaryDestroy(&ct->sum));
+  PetscCall(PetscFree(*cont));
+  PetscFunctionReturn(0);
+}
+
+/* Record a failure: the reason (printf-style) marks the run as not converged. */
+PetscErrorCode SgContFail(SgCont ct, const char fmt[], ...)
+{
+  va_list ap;
+
+  PetscFunctionBeginUser;
+  va_start(ap, fmt);
+  vsnprintf(ct->reason, sizeof(ct->reason), fmt, ap);
+  va_end(ap);
+  ct->converged = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
+{
+  PetscFunctionBeginUser;
+  if (ct->ngammas == ct->capgammas) {
+    PetscReal *g;
+    ct->capgammas = PetscMax(16, 2 * ct->capgammas);
+    PetscCall(PetscMalloc1(ct->capgammas, &g));
+    PetscCall(PetscArraycpy(g, ct->gammas, ct->ngammas));
+    PetscCall(PetscFree(ct->gammas));
+    ct->gammas = g;
+  }
+  ct->gammas[ct->ngammas++] = gamma;
+  PetscFunctionReturn(0);
+}
+
+/* y = the solution without contact (the paper's start); V0 its energy. */
+PetscErrorCode SgContSolveUnconstrained(SgCont ct)
+{
+  PetscInt its;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its));
+  ct->ksp_its += its;
+  PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V0));
+  PetscFunctionReturn(0);
+}
+
+/* One SSN solve of (P_gamma) (shift: c->lamhat) from the current y; lam = its multiplier. ok = PETSC_FALSE on failure. */
+PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
+{
+  PetscInt            its, kits;
+  SNESConvergedReason r;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContAddGamma(ct, gamma));
+  PetscCall(SgSSNSolve(ct->ssn, gamma, ct->outer, ct->y, &its, &kits, &r));
+  ct->ssn_its += its;
+  ct->ksp_its += kits;
+  PetscCall(PetscArraycpy(ct->lam, ct->ssn->m, ct->c->n));
+  *ok = (PetscBool)(r > 0);
+  if (!*ok) PetscCall(SgContFail(ct, "SSN_%s at gamma %g in outer step %" PetscInt_FMT " after %" PetscInt_FMT " iterations (SNES %s)", SgSSNReasons[ct->ssn->reason], (double)gamma, ct->outer, its, SNESConvergedReasons[r]));
+  PetscFunctionReturn(0);
+}
+
+/* KKT measures of (y, lam) for the original problem. */
+PetscErrorCode SgContMeasure(SgCont ct, const PetscReal lam[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContactKKT(ct->c, ct->y, lam, &ct->kkt));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContSolve(SgCont ct)
+{
+  PetscLogDouble t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&ct->t0));
+  ct->ssn->t0 = ct->t0;
+  PetscCall(ct->solve(ct));
+  PetscCall(PetscTime(&t1));
+  PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V));
+  PetscCall(SgSummarySetString(ct->sum, "cont_type", ct->type));
+  PetscCall(SgSummarySetBool(ct->sum, "converged", ct->converged));
+  PetscCall(SgSummarySetString(ct->sum, "reason", ct->reason));
+  PetscCall(SgSummarySetReal(ct->sum, "energy", ct->V));
+  PetscCall(SgSummarySetReal(ct->sum, "energy_unconstrained", ct->V0));
+  PetscCall(SgSummarySetInt(ct->sum, "ksp_iterations", ct->ksp_its));
+  PetscCall(SgSummarySetReal(ct->sum, "solve_time", t1 - ct->t0));
+  if (ct->c) {
+    PetscCall(SgContMeasure(ct, ct->lam));
+    PetscCall(SgSummarySetInt(ct->sum, "ssn_iterations", ct->ssn_its));
+    PetscCall(SgSummarySetInt(ct->sum, "outer_iterations", ct->outer));
+    PetscCall(SgSummarySetRealArray(ct->sum, "gammas", ct->ngammas, ct->gammas));
+    PetscCall(SgSummarySetReal(ct->sum, "kkt_residual", ct->kkt.residual));
+    PetscCall(SgSummarySetReal(ct->sum, "infeasibility", ct->kkt.infeasibility));
+    PetscCall(SgSummarySetReal(ct->sum, "complementarity", ct->kkt.complementarity));
+    PetscCall(SgSummarySetReal(ct->sum, "equilibrium", ct->kkt.equilibrium));
+    PetscCall(SgSummarySetReal(ct->sum, "dual_infeasibility", ct->kkt.dual));
+    PetscCall(SgSummarySetReal(ct->sum, "rho_F", ct->kkt.rhoF));
+    PetscCall(SgSummarySetReal(ct->sum, "rho_C", ct->kkt.rhoC));
+    PetscCall(SgSummarySetInt(ct->sum, "active_set_size", ct->kkt.nactive));
+    PetscCall(SgSummarySetReal(ct->sum, "contact_force", ct->kkt.force));
+    PetscCall(SgSummarySetInt(ct->sum, "contact_vertices", ct->c->nglobal));
+    PetscCall(SgSummarySetReal(ct->sum, "contact_area", ct->c->area));
+    PetscCall(SgSummarySetString(ct->sum, "obstacle", ct->c->obs->type));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Add the row closing an outer step to the history. */
+PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, PetscReal C1, PetscReal C2, PetscReal Em)
+{
+  SgHistoryRow   row;
+  PetscLogDouble t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t));
+  PetscCall(SgHistoryRowInit(&row));
+  row.kind    = 'o';
+  row.outer   = ct->outer;
+  row.gamma   = ct->ssn->gamma;
+  row.active  = ct->kkt.nactive;
+  row.fnorm   = ct->kkt.equilibrium;
+  row.V       = ct->ssn->V;
+  row.dV      = ct->ssn->dVdg;
+  row.ssn_its = ssn_its;
+  row.C1      = C1;
+  row.C2      = C2;
+  row.Em      = Em;
+  row.rhoF    = ct->kkt.rhoF;
+  row.rhoC    = ct->kkt.rhoC;
+  row.infeas  = ct->kkt.infeasibility;
+  row.kkt     = ct->kkt.residual;
+  row.time    = t - ct->t0;
+  PetscCall(SgHistoryAdd(ct->hist, &row));
+  PetscFunctionReturn(0);
+}
+
+/* ---- none: one regularized problem (P_gamma) for -contact_gamma and -contact_lamhat, from the unconstrained start */
+static PetscErrorCode Solve_None(SgCont ct)
+{
+  PetscBool ok;
+  PetscInt  its0 = ct->ssn_its;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContSolveUnconstrained(ct));
+  if (!ct->c) {
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscStrcpy(ct->reason, "LINEAR_SOLVE"));
+    PetscFunctionReturn(0);
+  }
+  ct->outer = 1;
+  PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
+  PetscCall(SgContSSN(ct, ct->c->gamma, &ok));
+  PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
+  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
+  if (ok) {
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "SSN_%s", SgSSNReasons[ct->ssn->reason]));
+  }
+  PetscCall(SgSummarySetReal(ct->sum, "path_value", ct->ssn->V));
+  PetscCall(SgSummarySetReal(ct->sum, "path_derivative", ct->ssn->dVdg));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate_None(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  ct->solve = Solve_None;
+  PetscFunctionReturn(0);
+}

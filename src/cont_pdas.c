@@ -1,0 +1,188 @@
+/* cont_pdas.c: baseline: the unregularized primal-dual active set method (Hintermueller-Ito-Kunisch, Hueber-Wohlmuth,
+   deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals. */
+#include "signorini.h"
+
+typedef struct {
+  PetscReal c;     /* weight of the gap in the active-set test lam + c g > 0 (0: E / contact mesh size) */
+  PetscInt  maxit;
+} PDAS;
+
+static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  PDAS *pd = (PDAS *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal("-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", NULL, pd->c, &pd->c, NULL));
+  PetscCall(PetscOptionsInt("-pdas_max_it", "Maximum number of active-set iterations", NULL, pd->maxit, &pd->maxit, NULL));
+  PetscCheck((PetscIsNormalReal(pd->c) || pd->c == 0) && pd->c >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_c: must be finite and >= 0, got %g", (double)pd->c);
+  PetscCheck(pd->maxit > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_max_it: must be positive, got %" PetscInt_FMT, pd->maxit);
+  PetscFunctionReturn(0);
+}
+
+/* Size of set a and (globally) the vertices entering and leaving from set a to set b. */
+static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], PetscInt *na, PetscInt *entered, PetscInt *left)
+{
+  PetscInt s[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < ct->c->n; i++) {
+    s[0] += a[i];
+    s[1] += (b[i] && !a[i]);
+    s[2] += (a[i] && !b[i]);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 3, MPIU_INT, MPI_SUM, ct->comm));
+  *na      = s[0];
+  *entered = s[1];
+  *left    = s[2];
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_PDAS(SgCont ct)
+{
+  PDAS              *pd = (PDAS *)ct->data;
+  SgContact          c  = ct->c;
+  SgProblem          p  = ct->prob;
+  const PetscInt     dim = p->dim;
+  Mat                A   = ct->ssn->J;
+  KSP                ksp;
+  Vec                rhs, x, diag;
+  PetscInt          *axis, *rows, rstart, N, k, nhash = 0;
+  PetscReal         *sign, *g, dmean, hc = 0;
+  PetscInt64        *hash;
+  char              *act, *next;
+  PetscBool          done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n, &rows));
+  PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
+  PetscCall(SgContactAxisAligned(c, "-cont_type pdas", axis, sign));
+  for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
+  hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
+  if (pd->c == 0) pd->c = p->E / hc;
+
+  PetscCall(SgContSolveUnconstrained(ct));
+  PetscCall(VecDuplicate(p->b, &rhs));
+  PetscCall(VecDuplicate(p->b, &x));
+  PetscCall(VecDuplicate(p->b, &diag));
+  PetscCall(MatGetDiagonal(p->K, diag));
+  PetscCall(VecGetSize(diag, &N));
+  PetscCall(VecSum(diag, &dmean));
+  dmean /= N;
+  PetscCall(VecDestroy(&diag));
+  PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
+  PetscCall(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  PetscCall(SNESGetKSP(ct->ssn->snes, &ksp));
+  {
+    const PetscScalar *ya;
+    PetscCall(VecGetArrayRead(ct->y, &ya));
+    PetscCall(SgContactGap(c, ya, g));
+    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  }
+  for (PetscInt i = 0; i < c->n; i++) {
+    ct->lam[i] = 0;
+    act[i]     = (char)(g[i] > 0);
+  }
+  ct->outer = 1;
+  PetscCall(SgContAddGamma(ct, SG_NAN));
+  for (k = 1; k <= pd->maxit && !done; k++) {
+    PetscInt           nrows = 0, nact = 0, entered = 0, left = 0, kits;
+    KSPConvergedReason kr;
+    PetscScalar       *xa;
+    const PetscScalar *ya;
+    SgHistoryRow       row;
+    PetscLogDouble     t;
+
+    PetscCall(SgSSNActiveSetHash(ct->ssn, act, &hash[nhash++]));
+    /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
+    PetscCall(MatCopy(p->K, A, SAME_NONZERO_PATTERN));
+    PetscCall(VecGetArray(x, &xa));
+    for (PetscInt i = 0; i < c->n; i++)
+      if (act[i]) {
+        rows[nrows++]             = rstart + c->off[i] + axis[i];
+        xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
+      }
+    PetscCall(VecRestoreArray(x, &xa));
+    PetscCall(VecCopy(p->b, rhs));
+    PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
+    PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
+    PetscCall(KSPSetOperators(ksp, A, A));
+    PetscCall(KSPSolve(ksp, rhs, ct->y));
+    PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
+    PetscCall(KSPGetIterationNumber(ksp, &kits));
+    PetscCall(KSPGetConvergedReason(ksp, &kr));
+    ct->ssn_its++;
+    ct->ksp_its += kits;
+    if (kr < 0) {
+      PetscCall(SgContFail(ct, "PDAS_LINEAR_SOLVE_FAILED: KSP %s in iteration %" PetscInt_FMT, KSPConvergedReasons[kr], k));
+      break;
+    }
+    /* multiplier from the equilibrium on the active set, then the next active set */
+    PetscCall(SgContactMultiplierFromResidual(c, ct->y, ct->lam));
+    PetscCall(VecGetArrayRead(ct->y, &ya));
+    PetscCall(SgContactGap(c, ya, g));
+    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+    for (PetscInt i = 0; i < c->n; i++) {
+      if (!act[i]) ct->lam[i] = 0;
+      next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
+    }
+    PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
+    PetscCall(PetscTime(&t));
+    PetscCall(SgHistoryRowInit(&row));
+    row.kind    = 's';
+    row.outer   = 1;
+    row.gamma   = SG_NAN;
+    row.it      = k;
+    row.active  = nact;
+    row.entered = entered;
+    row.left    = left;
+    PetscCall(SgProblemEnergy(p, ct->y, &row.V));
+    row.ksp_its = kits;
+    row.time    = t - ct->t0;
+    PetscCall(SgHistoryAdd(ct->hist, &row));
+    if (ct->ssn->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) V %.10e KSP %" PetscInt_FMT "\n", k, nact, entered, left, (double)row.V, kits));
+    if (entered + left == 0) {
+      done          = PETSC_TRUE;
+      ct->converged = PETSC_TRUE;
+      PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
+    } else {
+      PetscInt64 h;
+      PetscCall(SgSSNActiveSetHash(ct->ssn, next, &h));
+      for (PetscInt j = 0; j < nhash - 1; j++)
+        if (hash[j] == h) {
+          PetscCall(SgContFail(ct, "PDAS_ACTIVE_SET_CYCLING: the active set of iteration %" PetscInt_FMT " came back after iteration %" PetscInt_FMT, j + 1, k));
+          done = PETSC_TRUE;
+        }
+      PetscCall(PetscArraycpy(act, next, c->n));
+    }
+  }
+  if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
+  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(SgContOuterRow(ct, ct->ssn_its, SG_NAN, SG_NAN, SG_NAN));
+  PetscCall(VecDestroy(&rhs));
+  PetscCall(VecDestroy(&x));
+  PetscCall(PetscFree6(axis, sign, g, act, next, rows));
+  PetscCall(PetscFree(hash));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_PDAS(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(ct->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate_PDAS(SgCont ct)
+{
+  PDAS *pd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&pd));
+  pd->maxit          = 100;
+  ct->data           = pd;
+  ct->setfromoptions = SetFromOptions_PDAS;
+  ct->solve          = Solve_PDAS;
+  ct->destroy        = Destroy_PDAS;
+  PetscFunctionReturn(0);
+}

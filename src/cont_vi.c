@@ -1,0 +1,129 @@
+/* cont_vi.c: baseline: PETSc's own variational-inequality Newton solvers (SNESVINEWTONRSLS / SNESVINEWTONSSLS) on the
+   same discrete problem, as bounds on the normal displacement component (axis-aligned normals only). Options: -vi_snes_*, -vi_ksp_*. */
+#include "signorini.h"
+
+typedef struct {
+  SNES snes;
+  Mat  J; /* SNESVINEWTONSSLS scales its Jacobian in place: never hand it the stiffness itself */
+} VI;
+
+static PetscErrorCode Residual_VI(SNES snes, Vec y, Vec F, void *ctx)
+{
+  SgProblem p = (SgProblem)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(p->K, y, F));
+  PetscCall(VecAXPY(F, -1.0, p->b));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Jacobian_VI(SNES snes, Vec y, Mat J, Mat P, void *ctx)
+{
+  SgProblem p = (SgProblem)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCopy(p->K, P, SAME_NONZERO_PATTERN));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_VI(SgCont ct)
+{
+  VI                 *vi = (VI *)ct->data;
+  SgContact           c  = ct->c;
+  SgProblem           p  = ct->prob;
+  Vec                 xl, xu, r;
+  PetscInt           *axis, its, kits;
+  PetscReal          *sign;
+  PetscScalar        *la, *ua;
+  SNESConvergedReason reason;
+  SgHistoryRow        row;
+  PetscLogDouble      t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
+  PetscCall(SgContactAxisAligned(c, "-cont_type vi", axis, sign));
+  PetscCall(SgContSolveUnconstrained(ct));
+  PetscCall(VecDuplicate(p->b, &xl));
+  PetscCall(VecDuplicate(p->b, &xu));
+  PetscCall(VecDuplicate(p->b, &r));
+  PetscCall(VecSet(xl, PETSC_NINFINITY));
+  PetscCall(VecSet(xu, PETSC_INFINITY));
+  PetscCall(VecGetArray(xl, &la));
+  PetscCall(VecGetArray(xu, &ua));
+  for (PetscInt i = 0; i < c->n; i++) { /* sign * y_axis <= d */
+    if (sign[i] > 0) ua[c->off[i] + axis[i]] = c->d[i];
+    else la[c->off[i] + axis[i]] = -c->d[i];
+  }
+  PetscCall(VecRestoreArray(xl, &la));
+  PetscCall(VecRestoreArray(xu, &ua));
+  PetscCall(SNESCreate(ct->comm, &vi->snes));
+  PetscCall(SNESSetOptionsPrefix(vi->snes, "vi_"));
+  PetscCall(SNESSetType(vi->snes, SNESVINEWTONRSLS));
+  PetscCall(SNESSetTolerances(vi->snes, 1e-50, 1e-12, 0.0, 100, PETSC_DEFAULT));
+  PetscCall(SNESSetFunction(vi->snes, r, Residual_VI, p));
+  PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &vi->J));
+  PetscCall(SNESSetJacobian(vi->snes, vi->J, vi->J, Jacobian_VI, p));
+  PetscCall(SNESVISetVariableBounds(vi->snes, xl, xu));
+  PetscCall(SNESSetFromOptions(vi->snes));
+  ct->outer = 1;
+  PetscCall(SgContAddGamma(ct, SG_NAN));
+  PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
+  PetscCall(SNESSolve(vi->snes, NULL, ct->y));
+  PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
+  PetscCall(SNESGetIterationNumber(vi->snes, &its));
+  PetscCall(SNESGetLinearSolveIterations(vi->snes, &kits));
+  PetscCall(SNESGetConvergedReason(vi->snes, &reason));
+  ct->ssn_its += its;
+  ct->ksp_its += kits;
+  /* the multiplier balances the normal residual at the contact vertices */
+  PetscCall(SgContactMultiplierFromResidual(c, ct->y, ct->lam));
+  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(PetscTime(&t));
+  PetscCall(SgHistoryRowInit(&row));
+  row.kind    = 's';
+  row.outer   = 1;
+  row.it      = its;
+  row.active  = ct->kkt.nactive;
+  row.ksp_its = kits;
+  row.time    = t - ct->t0;
+  PetscCall(SgProblemEnergy(p, ct->y, &row.V));
+  PetscCall(SgHistoryAdd(ct->hist, &row));
+  PetscCall(SgContOuterRow(ct, its, SG_NAN, SG_NAN, SG_NAN));
+  if (reason > 0) {
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "VI_%s", SNESConvergedReasons[reason]));
+  } else PetscCall(SgContFail(ct, "VI_%s after %" PetscInt_FMT " iterations", SNESConvergedReasons[reason], its));
+  {
+    SNESType type;
+    PetscCall(SNESGetType(vi->snes, &type));
+    PetscCall(SgSummarySetString(ct->sum, "vi_type", type));
+  }
+  PetscCall(VecDestroy(&xl));
+  PetscCall(VecDestroy(&xu));
+  PetscCall(VecDestroy(&r));
+  PetscCall(PetscFree2(axis, sign));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_VI(SgCont ct)
+{
+  VI *vi = (VI *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&vi->snes));
+  PetscCall(MatDestroy(&vi->J));
+  PetscCall(PetscFree(ct->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate_VI(SgCont ct)
+{
+  VI *vi;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&vi));
+  ct->data    = vi;
+  ct->solve   = Solve_VI;
+  ct->destroy = Destroy_VI;
+  PetscFunctionReturn(0);
+}

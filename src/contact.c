@@ -1,0 +1,314 @@
+/* contact.c: contact geometry on Gamma_c (vertex normals, lumped weights, gaps) and the discrete contact terms. */
+#include "signorini.h"
+
+/* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
+   area-weighted normals are summed over the facets of every rank, then read by the owner. */
+PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
+{
+  SgContact        c;
+  const SgMesh    *m = &p->mesh;
+  const PetscInt   dim = p->dim;
+  PetscInt         nfac, *facets, *part, nloc = 0, nglob, nfglob;
+  Vec              wl, nl, wg, ng;
+  PetscScalar     *wa, *na;
+  PetscSection     ws, ns;
+  PetscBool        set_label, set_ids;
+  char             label[256] = "Face Sets";
+
+  PetscFunctionBeginUser;
+  *contact = NULL;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_label", &set_label));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_ids", &set_ids));
+  PetscCall(PetscNew(&c));
+  c->prob     = p;
+  c->bnd.what = "contact";
+  c->gamma    = 1e4;
+  PetscCall(PetscStrcpy(c->bnd.label, label));
+  PetscOptionsBegin(p->comm, NULL, "Contact boundary", NULL);
+  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
+  PetscCall(PetscOptionsReal("-contact_gamma", "Regularization parameter gamma of (P_gamma) (for -cont_type none)", NULL, c->gamma, &c->gamma, NULL));
+  c->lamhat0 = 0;
+  PetscCall(PetscOptionsReal("-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", NULL, c->lamhat0, &c->lamhat0, NULL));
+  PetscOptionsEnd();
+  if (!set_label && !set_ids) { /* no contact boundary: pure elasticity */
+    PetscCall(PetscFree(c));
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(PetscIsNormalReal(c->gamma) && c->gamma > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_gamma: gamma must be positive and finite, got %g", (double)c->gamma);
+  PetscCheck((PetscIsNormalReal(c->lamhat0) || c->lamhat0 == 0) && c->lamhat0 >= 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_lamhat: the shift must be finite and >= 0, got %g", (double)c->lamhat0);
+  PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
+  PetscCall(SgObstacleCreate(p->comm, dim, &c->obs));
+
+  PetscCall(SgBoundaryGetFacets(p->dm, &c->bnd, &nfac, &facets, &part));
+  nfglob = nfac;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscCheck(nfglob > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.label);
+  PetscCall(DMGetLocalVector(p->dmVert, &wl));
+  PetscCall(DMGetLocalVector(p->dmVec, &nl));
+  PetscCall(VecZeroEntries(wl));
+  PetscCall(VecZeroEntries(nl));
+  PetscCall(DMGetLocalSection(p->dmVert, &ws));
+  PetscCall(DMGetLocalSection(p->dmVec, &ns));
+  PetscCall(VecGetArray(wl, &wa));
+  PetscCall(VecGetArray(nl, &na));
+  for (PetscInt f = 0; f < nfac; f++) {
+    PetscInt  fv[3], nfv, off;
+    PetscReal area, nrm[3];
+    PetscCall(SgFacetGeometry(p->dm, m, facets[f], &nfv, fv, &area, nrm));
+    c->area += area;
+    for (PetscInt a = 0; a < nfv; a++) {
+      PetscCall(PetscSectionGetOffset(ws, m->vStart + fv[a], &off));
+      wa[off] += area / nfv;
+      PetscCall(PetscSectionGetOffset(ns, m->vStart + fv[a], &off));
+      for (PetscInt k = 0; k < dim; k++) na[off + k] += area / nfv * nrm[k];
+    }
+  }
+  PetscCall(VecRestoreArray(wl, &wa));
+  PetscCall(VecRestoreArray(nl, &na));
+  PetscCall(PetscFree2(facets, part));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &c->area, 1, MPIU_REAL, MPI_SUM, p->comm));
+  /* sum over ranks, then every rank reads the totals of its vertices */
+  PetscCall(DMGetGlobalVector(p->dmVert, &wg));
+  PetscCall(DMGetGlobalVector(p->dmVec, &ng));
+  PetscCall(VecZeroEntries(wg));
+  PetscCall(VecZeroEntries(ng));
+  PetscCall(DMLocalToGlobal(p->dmVert, wl, ADD_VALUES, wg));
+  PetscCall(DMLocalToGlobal(p->dmVec, nl, ADD_VALUES, ng));
+  PetscCall(DMGlobalToLocal(p->dmVert, wg, INSERT_VALUES, wl));
+  PetscCall(DMGlobalToLocal(p->dmVec, ng, INSERT_VALUES, nl));
+  PetscCall(DMRestoreGlobalVector(p->dmVert, &wg));
+  PetscCall(DMRestoreGlobalVector(p->dmVec, &ng));
+
+  PetscCall(VecGetArray(wl, &wa));
+  PetscCall(VecGetArray(nl, &na));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ws, m->vStart + v, &off));
+    if (PetscRealPart(wa[off]) > 0 && m->goff[v] >= 0) nloc++;
+  }
+  c->n = nloc;
+  PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
+  PetscCall(PetscCalloc1(nloc, &c->lamhat));
+  nloc = 0;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt  off, noff;
+    PetscReal nn = 0;
+    PetscCall(PetscSectionGetOffset(ws, m->vStart + v, &off));
+    if (!(PetscRealPart(wa[off]) > 0 && m->goff[v] >= 0)) continue;
+    PetscCall(PetscSectionGetOffset(ns, m->vStart + v, &noff));
+    c->vert[nloc] = v;
+    c->off[nloc]  = m->goff[v];
+    c->w[nloc]    = PetscRealPart(wa[off]);
+    for (PetscInt k = 0; k < dim; k++) nn += PetscSqr(PetscRealPart(na[noff + k]));
+    nn = PetscSqrtReal(nn);
+    PetscCheck(nn > 1e-12 * c->w[nloc], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "contact vertex %" PetscInt_FMT " has no defined normal (opposite facet normals cancel)", v);
+    for (PetscInt k = 0; k < dim; k++) c->normal[nloc * dim + k] = PetscRealPart(na[noff + k]) / nn;
+    PetscCall(SgObstacleGap(c->obs, &m->x[v * dim], &c->normal[nloc * dim], &c->d[nloc]));
+    c->lamhat[nloc] = c->lamhat0;
+    nloc++;
+  }
+  PetscCall(VecRestoreArray(wl, &wa));
+  PetscCall(VecRestoreArray(nl, &na));
+  PetscCall(DMRestoreLocalVector(p->dmVert, &wl));
+  PetscCall(DMRestoreLocalVector(p->dmVec, &nl));
+  nglob = c->n;
+  PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscCheck(c->nglobal > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
+  PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
+  *contact = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactDestroy(SgContact *c)
+{
+  PetscFunctionBeginUser;
+  if (!*c) PetscFunctionReturn(0);
+  PetscCall(PetscFree5((*c)->vert, (*c)->off, (*c)->normal, (*c)->w, (*c)->d));
+  PetscCall(PetscFree((*c)->lamhat));
+  PetscCall(SgObstacleDestroy(&(*c)->obs));
+  PetscCall(PetscFree(*c));
+  PetscFunctionReturn(0);
+}
+
+/* g_i = tau_N y - d at every contact vertex (ya: the local part of a global displacement vector). */
+PetscErrorCode SgContactGap(SgContact c, const PetscScalar ya[], PetscReal g[])
+{
+  const PetscInt dim = c->prob->dim;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal un = 0;
+    for (PetscInt k = 0; k < dim; k++) un += c->normal[i * dim + k] * PetscRealPart(ya[c->off[i] + k]);
+    g[i] = un - c->d[i];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* F += sum_i w_i lam_i n_i */
+PetscErrorCode SgContactAddForce(SgContact c, const PetscReal lam[], PetscScalar Fa[])
+{
+  const PetscInt dim = c->prob->dim;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < dim; k++) Fa[c->off[i] + k] += c->w[i] * lam[i] * c->normal[i * dim + k];
+  PetscFunctionReturn(0);
+}
+
+/* J += gamma w_i n_i n_i^T on the active vertices (J assembled afterwards by the caller). */
+PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
+{
+  const PetscInt dim = c->prob->dim;
+  PetscInt       rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscScalar    blk[9];
+    const PetscInt row = (rstart + c->off[i]) / dim;
+    if (!active[i]) continue;
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt b = 0; b < dim; b++) blk[a * dim + b] = gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
+    PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, blk, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Multiplier balancing the normal part of the equilibrium residual: lam_i = -(K y - b)_i . n_i / w_i. */
+PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam[])
+{
+  const PetscInt     dim = c->prob->dim;
+  Vec                R;
+  const PetscScalar *ra;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(y, &R));
+  PetscCall(MatMult(c->prob->K, y, R));
+  PetscCall(VecAXPY(R, -1.0, c->prob->b));
+  PetscCall(VecGetArrayRead(R, &ra));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal rn = 0;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    lam[i] = -rn / c->w[i];
+  }
+  PetscCall(VecRestoreArrayRead(R, &ra));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* KKT measures of the original problem (P) for a pair (y, lam), see SgKKT in signorini.h. */
+PetscErrorCode SgContactKKT(SgContact c, Vec y, const PetscReal lam[], SgKKT *kkt)
+{
+  SgProblem          p = c->prob;
+  Vec                R, Ky;
+  PetscScalar       *ra;
+  const PetscScalar *ya;
+  PetscReal         *g, s[8] = {0}, lmax = 0, nrm[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(c->n, &g));
+  PetscCall(VecDuplicate(y, &R));
+  PetscCall(VecDuplicate(y, &Ky));
+  PetscCall(MatMult(p->K, y, Ky));
+  PetscCall(VecWAXPY(R, -1.0, p->b, Ky));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(c, ya, g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) lmax = PetscMax(lmax, PetscAbsReal(lam[i]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPIU_REAL, MPI_MAX, p->comm));
+  PetscCall(VecGetArray(R, &ra));
+  PetscCall(SgContactAddForce(c, lam, ra));
+  PetscCall(VecRestoreArray(R, &ra));
+  for (PetscInt i = 0; i < c->n; i++) {
+    /* pressure counts as acting above a tiny fraction of the largest one (round-off of derived multipliers) */
+    const PetscBool act = (PetscBool)(lam[i] > 1e-10 * lmax);
+    s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                    /* infeasibility^2 */
+    s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
+    s[2] += c->w[i] * PetscSqr(PetscMin(0, lam[i]));                                  /* dual infeasibility^2 */
+    s[3] += c->w[i] * lam[i] * lam[i];
+    s[4] += c->w[i] * PetscMax(0, g[i]);                                              /* rho_F */
+    s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                 /* rho_C */
+    s[6] += c->w[i] * lam[i];                                                         /* contact force */
+    s[7] += (act ? 1 : 0);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, p->comm));
+  PetscCall(VecNorm(R, NORM_2, &nrm[0]));
+  PetscCall(VecNorm(Ky, NORM_2, &nrm[1]));
+  nrm[2]              = p->bnorm;
+  kkt->equilibrium    = nrm[0] / PetscMax(PetscMax(nrm[1], nrm[2]), PETSC_SMALL);
+  kkt->infeasibility  = PetscSqrtReal(s[0]);
+  kkt->complementarity = PetscSqrtReal(s[1]);
+  kkt->dual           = s[3] > 0 ? PetscSqrtReal(s[2] / s[3]) : 0;
+  kkt->rhoF           = s[4];
+  kkt->rhoC           = s[5];
+  kkt->force          = s[6];
+  kkt->nactive        = (PetscInt)s[7];
+  kkt->residual       = PetscMax(PetscMax(kkt->equilibrium, kkt->dual), PetscMax(kkt->infeasibility, kkt->complementarity));
+  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&Ky));
+  PetscCall(PetscFree(g));
+  PetscFunctionReturn(0);
+}
+
+/* Vertex fields for output: contact pressure, gap d - tau_N y, penetration max(0, tau_N y - d), active flag. */
+PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec flds[4])
+{
+  SgProblem          p = c->prob;
+  Vec                loc[4];
+  PetscScalar       *la[4];
+  const PetscScalar *ya;
+  PetscReal         *g;
+  PetscSection       s;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(c->n, &g));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(c, ya, g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCall(DMGetLocalSection(p->dmVert, &s));
+  for (PetscInt f = 0; f < 4; f++) {
+    PetscCall(DMGetLocalVector(p->dmVert, &loc[f]));
+    PetscCall(VecZeroEntries(loc[f]));
+    PetscCall(VecGetArray(loc[f], &la[f]));
+  }
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, p->mesh.vStart + c->vert[i], &off));
+    la[0][off] = lam[i];
+    la[1][off] = -g[i];
+    la[2][off] = PetscMax(0, g[i]);
+    la[3][off] = lam[i] > 0 ? 1 : 0;
+  }
+  for (PetscInt f = 0; f < 4; f++) {
+    PetscCall(VecRestoreArray(loc[f], &la[f]));
+    /* only owners hold contact vertices: adding the zeros of the other ranks keeps the owner's value */
+    PetscCall(VecZeroEntries(flds[f]));
+    PetscCall(DMLocalToGlobal(p->dmVert, loc[f], ADD_VALUES, flds[f]));
+    PetscCall(DMRestoreLocalVector(p->dmVert, &loc[f]));
+  }
+  PetscCall(PetscFree(g));
+  PetscFunctionReturn(0);
+}
+
+/* Every contact normal must be +-e_k (for the bound-constrained baselines); returns k and the sign per vertex. */
+PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis[], PetscReal sign[])
+{
+  const PetscInt dim = c->prob->dim;
+  PetscInt       bad = -1;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n && bad < 0; i++) {
+    axis[i] = -1;
+    for (PetscInt k = 0; k < dim; k++)
+      if (PetscAbsReal(PetscAbsReal(c->normal[i * dim + k]) - 1) < 1e-10) {
+        axis[i] = k;
+        sign[i] = c->normal[i * dim + k] > 0 ? 1 : -1;
+      }
+    if (axis[i] < 0) bad = i;
+  }
+  if (bad >= 0) {
+    const PetscReal *x = &c->prob->mesh.x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0));
+  }
+  PetscFunctionReturn(0);
+}

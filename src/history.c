@@ -1,0 +1,94 @@
+/* history.c: the per-iteration history (SSN iterations and outer steps), kept in memory and written as CSV. */
+#include "signorini.h"
+
+PetscErrorCode SgHistoryCreate(SgHistory *h)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(h));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgHistoryDestroy(SgHistory *h)
+{
+  PetscFunctionBeginUser;
+  if (!*h) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*h)->rows));
+  PetscCall(PetscFree(*h));
+  PetscFunctionReturn(0);
+}
+
+/* Every number unset (NaN, written as an empty field) */
+PetscErrorCode SgHistoryRowInit(SgHistoryRow *r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(r, sizeof(*r)));
+  r->gamma = r->fnorm = r->r1 = r->r2 = r->V = r->dV = r->C1 = r->C2 = r->Em = r->rhoF = r->rhoC = r->infeas = r->kkt = r->time = SG_NAN;
+  r->active = r->entered = r->left = r->ksp_its = r->ssn_its = -1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgHistoryAdd(SgHistory h, const SgHistoryRow *r)
+{
+  PetscFunctionBeginUser;
+  if (h->n == h->cap) {
+    SgHistoryRow *rows;
+    h->cap = PetscMax(64, 2 * h->cap);
+    PetscCall(PetscMalloc1(h->cap, &rows));
+    PetscCall(PetscArraycpy(rows, h->rows, h->n));
+    PetscCall(PetscFree(h->rows));
+    h->rows = rows;
+  }
+  h->rows[h->n++] = *r;
+  PetscFunctionReturn(0);
+}
+
+static void PutReal(FILE *fp, PetscReal v)
+{
+  if (PetscIsInfOrNanReal(v)) fprintf(fp, ",");
+  else fprintf(fp, ",%.10e", (double)v);
+}
+
+static void PutInt(FILE *fp, PetscInt v)
+{
+  if (v < 0) fprintf(fp, ",");
+  else fprintf(fp, ",%" PetscInt_FMT, v);
+}
+
+PetscErrorCode SgHistoryWrite(MPI_Comm comm, SgHistory h, const char option[], const char name[])
+{
+  FILE *fp;
+
+  PetscFunctionBeginUser;
+  if (!name[0]) PetscFunctionReturn(0);
+  PetscCall(SgFileOpen(comm, option, name, &fp));
+  if (fp) {
+    fprintf(fp, "kind,outer,gamma,it,active,entered,left,fnorm,r1,r2,V,dVdgamma,ksp_its,time,ssn_its,C1,C2,Emodel,rhoF,rhoC,infeasibility,kkt\n");
+    for (PetscInt i = 0; i < h->n; i++) {
+      const SgHistoryRow *r = &h->rows[i];
+      fprintf(fp, "%s,%" PetscInt_FMT, r->kind == 's' ? "ssn" : "outer", r->outer);
+      PutReal(fp, r->gamma);
+      PutInt(fp, r->it);
+      PutInt(fp, r->active);
+      PutInt(fp, r->entered);
+      PutInt(fp, r->left);
+      PutReal(fp, r->fnorm);
+      PutReal(fp, r->r1);
+      PutReal(fp, r->r2);
+      PutReal(fp, r->V);
+      PutReal(fp, r->dV);
+      PutInt(fp, r->ksp_its);
+      PutReal(fp, r->time);
+      PutInt(fp, r->ssn_its);
+      PutReal(fp, r->C1);
+      PutReal(fp, r->C2);
+      PutReal(fp, r->Em);
+      PutReal(fp, r->rhoF);
+      PutReal(fp, r->rhoC);
+      PutReal(fp, r->infeas);
+      PutReal(fp, r->kkt);
+      fprintf(fp, "\n");
+    }
+  }
+  PetscCall(SgFileClose(comm, name, &fp));
+  PetscFunctionReturn(0);
+}

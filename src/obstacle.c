@@ -1,0 +1,201 @@
+/* obstacle.c: rigid obstacles (registry): the gap d(x) measured from a boundary point along its outward normal. */
+#include "signorini.h"
+
+PetscFunctionList SgObstacleList = NULL;
+
+static PetscErrorCode CheckFinite(MPI_Comm comm, const char opt[], PetscInt n, const PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; i++) PetscCheck(PetscIsNormalReal(v[i]) || v[i] == 0, comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g, must be finite", opt, i, (double)v[i]);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadVector(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, const char opt[], const char text[], PetscInt dim, PetscReal v[])
+{
+  PetscInt  n = dim;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsRealArray(opt, text, NULL, v, &n, &set));
+  PetscCheck(!set || n == dim, comm, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, opt, n, dim);
+  PetscCall(CheckFinite(comm, opt, dim, v));
+  PetscFunctionReturn(0);
+}
+
+/* ---- plane: the surface through point p with unit normal m (pointing towards the body) */
+static PetscErrorCode Gap_Plane(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
+{
+  const PetscReal *p = o->p, *m = o->p + 3;
+  PetscReal        num = 0, den = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    num += (p[k] - x[k]) * m[k];
+    den += n[k] * m[k];
+  }
+  /* the ray x + t n meets the plane at t = num/den; a normal parallel to the plane never meets it */
+  *d = den < -1e-12 ? num / den : PETSC_MAX_REAL;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Plane(SgObstacle o, PetscOptionItems *PetscOptionsObject)
+{
+  PetscReal nrm = 0;
+
+  PetscFunctionBeginUser;
+  o->p[3 + o->dim - 1] = 1; /* default: the plane x_dim = 0 below the body */
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_plane_point", "A point of the obstacle plane", o->dim, o->p));
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_plane_normal", "Normal of the obstacle plane, pointing towards the body", o->dim, o->p + 3));
+  for (PetscInt k = 0; k < o->dim; k++) nrm += o->p[3 + k] * o->p[3 + k];
+  PetscCheck(nrm > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_plane_normal: the normal must be nonzero");
+  for (PetscInt k = 0; k < o->dim; k++) o->p[3 + k] /= PetscSqrtReal(nrm);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleCreate_Plane(SgObstacle o)
+{
+  PetscFunctionBeginUser;
+  o->gap            = Gap_Plane;
+  o->setfromoptions = SetFromOptions_Plane;
+  PetscFunctionReturn(0);
+}
+
+/* ---- parabola: d = a |x_t - c_t|^2 + offset, x_t the tangential part (Example 1: 0.003 (x1 - 1.5)^2 + 0.001) */
+static PetscErrorCode Gap_Parabola(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
+{
+  const PetscReal  a = o->p[0], off = o->p[1], *c = o->p + 2;
+  PetscReal        r[3], rn = 0, rt2 = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    r[k] = x[k] - c[k];
+    rn += r[k] * n[k];
+  }
+  for (PetscInt k = 0; k < o->dim; k++) rt2 += PetscSqr(r[k] - rn * n[k]);
+  *d = a * rt2 + off;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Parabola(SgObstacle o, PetscOptionItems *PetscOptionsObject)
+{
+  PetscFunctionBeginUser;
+  o->p[0] = 0.003;
+  o->p[1] = 0.001;
+  o->p[2] = 1.5;
+  PetscCall(PetscOptionsReal("-obstacle_parabola_a", "Curvature coefficient a of d = a |x_t - c_t|^2 + offset", NULL, o->p[0], &o->p[0], NULL));
+  PetscCall(PetscOptionsReal("-obstacle_parabola_offset", "Gap at the vertex of the parabola", NULL, o->p[1], &o->p[1], NULL));
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_parabola_center", "Vertex of the parabola (its normal component is ignored)", o->dim, o->p + 2));
+  PetscCheck(PetscIsNormalReal(o->p[0]) || o->p[0] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be finite, got %g", (double)o->p[0]);
+  PetscCheck(o->p[0] >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be >= 0 (an obstacle bending away from the body), got %g", (double)o->p[0]);
+  PetscCheck((PetscIsNormalReal(o->p[1]) || o->p[1] == 0) && o->p[1] >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_offset: the initial gap must be finite and >= 0, got %g", (double)o->p[1]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleCreate_Parabola(SgObstacle o)
+{
+  PetscFunctionBeginUser;
+  o->gap            = Gap_Parabola;
+  o->setfromoptions = SetFromOptions_Parabola;
+  PetscFunctionReturn(0);
+}
+
+/* ---- ball: the half-ball {|z - c| <= R, (z - c).u >= 0} (flat side down for u = e_dim) standing on the
+   plane (z - c).u = 0, which is the obstacle away from the ball (Example 2: c = (-0.3,0,-1), R = 0.5). */
+static PetscErrorCode Gap_Ball(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
+{
+  const PetscReal  R = o->p[0], *c = o->p + 1, *u = o->p + 4;
+  PetscReal        xc[3], b = 0, xc2 = 0, nu = 0, disc, t;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    xc[k] = x[k] - c[k];
+    b += n[k] * xc[k];
+    xc2 += xc[k] * xc[k];
+    nu += n[k] * u[k];
+  }
+  /* first intersection of the ray x + t n with the sphere, kept if it lies on the upper half */
+  disc = b * b - (xc2 - R * R);
+  if (disc >= 0) {
+    PetscReal h = 0;
+    t = -b - PetscSqrtReal(disc);
+    for (PetscInt k = 0; k < o->dim; k++) h += (xc[k] + t * n[k]) * u[k];
+    if (h >= 0) {
+      *d = t;
+      PetscFunctionReturn(0);
+    }
+  }
+  if (nu < -1e-12) {
+    PetscReal num = 0;
+    for (PetscInt k = 0; k < o->dim; k++) num -= xc[k] * u[k];
+    *d = num / nu;
+  } else *d = PETSC_MAX_REAL;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Ball(SgObstacle o, PetscOptionItems *PetscOptionsObject)
+{
+  PetscReal nrm = 0;
+
+  PetscFunctionBeginUser;
+  o->p[0]              = 0.5;
+  o->p[4 + o->dim - 1] = 1;
+  PetscCall(PetscOptionsReal("-obstacle_ball_radius", "Radius of the half-ball", NULL, o->p[0], &o->p[0], NULL));
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_ball_center", "Centre of the half-ball (on its flat side)", o->dim, o->p + 1));
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_ball_up", "Direction from the flat side towards the body", o->dim, o->p + 4));
+  PetscCheck(PetscIsNormalReal(o->p[0]) && o->p[0] > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_ball_radius: must be positive and finite, got %g", (double)o->p[0]);
+  for (PetscInt k = 0; k < o->dim; k++) nrm += o->p[4 + k] * o->p[4 + k];
+  PetscCheck(nrm > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_ball_up: the direction must be nonzero");
+  for (PetscInt k = 0; k < o->dim; k++) o->p[4 + k] /= PetscSqrtReal(nrm);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleCreate_Ball(SgObstacle o)
+{
+  PetscFunctionBeginUser;
+  o->gap            = Gap_Ball;
+  o->setfromoptions = SetFromOptions_Ball;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleRegister(const char name[], PetscErrorCode (*create)(SgObstacle))
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&SgObstacleList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleCreate(MPI_Comm comm, PetscInt dim, SgObstacle *obs)
+{
+  SgObstacle o;
+  PetscErrorCode (*create)(SgObstacle) = NULL;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&o));
+  o->comm = comm;
+  o->dim  = dim;
+  PetscCall(PetscStrcpy(o->type, "plane"));
+  PetscOptionsBegin(comm, NULL, "Rigid obstacle", NULL);
+  PetscCall(PetscOptionsFList("-obstacle_type", "Obstacle shape", NULL, SgObstacleList, o->type, o->type, sizeof(o->type), &set));
+  PetscCall(PetscFunctionListFind(SgObstacleList, o->type, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-obstacle_type: unknown obstacle '%s' (see -help for the list)", o->type);
+  PetscCall(create(o));
+  PetscCall(o->setfromoptions(o, PetscOptionsObject));
+  PetscOptionsEnd();
+  *obs = o;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleGap(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
+{
+  PetscFunctionBeginUser;
+  PetscCall(o->gap(o, x, n, d));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleDestroy(SgObstacle *o)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(*o));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,301 @@
+/* ssn.c: semismooth Newton (primal-dual active set) solver for (P_gamma), handed to SNES.
+   Residual F(y) = K y - b + sum_i w_i max(0, lamhat_i + gamma g_i(y)) n_i; Jacobian K + gamma sum_{A} w_i n_i n_i^T;
+   full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
+#include "signorini.h"
+
+const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "SNES_FAILED"};
+
+static inline PetscInt64 Mix64(PetscInt64 x)
+{
+  uint64_t z = (uint64_t)x + 0x9e3779b97f4a7c15ULL;
+  z          = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z          = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return (PetscInt64)(z ^ (z >> 31));
+}
+
+/* Order-independent hash of an active set (over global vertex numbers), identical on every rank. */
+PetscErrorCode SgSSNActiveSetHash(SgSSN s, const char act[], PetscInt64 *h)
+{
+  uint64_t loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < s->c->n; i++)
+    if (act[i]) loc += (uint64_t)Mix64(s->prob->mesh.gblock[s->c->vert[i]]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &loc, 1, MPI_UINT64_T, MPI_SUM, s->prob->comm));
+  *h = (PetscInt64)loc;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
+{
+  SgSSN              s = (SgSSN)ctx;
+  SgContact          c = s->c;
+  const PetscInt     dim = s->prob->dim;
+  const PetscScalar *ya;
+  PetscScalar       *fa, dots[2];
+  PetscReal          loc[7] = {0}, glob[7], r1corr2;
+  Vec                vecs[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
+  PetscCall(MatMult(s->prob->K, y, F));
+  vecs[0] = F;
+  vecs[1] = s->prob->b;
+  PetscCall(VecMDot(y, 2, vecs, dots));
+  PetscCall(VecAXPY(F, -1.0, s->prob->b));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(c, ya, s->g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCall(PetscLogEventBegin(SG_ActiveSet, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal z = c->lamhat[i] + s->gamma * s->g[i];
+    /* the multiplier of the last Newton step: lamhat + gamma g on the set it used, 0 elsewhere */
+    const PetscReal lj = s->havejac ? (s->actjac[i] ? z : 0) : PetscMax(0, z);
+    s->m[i]   = PetscMax(0, z);
+    s->act[i] = (char)(z > 0);
+    loc[0] += c->w[i] * s->m[i] * s->m[i];
+    loc[1] += c->w[i] * s->m[i] * s->g[i];
+    loc[2] += s->act[i];
+    if (s->havejac) {
+      loc[3] += (s->act[i] && !s->actjac[i]);
+      loc[4] += (!s->act[i] && s->actjac[i]);
+    }
+    loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
+  }
+  PetscCall(PetscLogEventEnd(SG_ActiveSet, 0, 0, 0, 0));
+  PetscCall(VecGetArray(F, &fa));
+  PetscCall(SgContactAddForce(c, s->m, fa));
+  /* r1 is the dual norm of K y - b + B^T W lam_jac = F - B^T W (m - lam_jac): only contact dofs differ from F */
+  r1corr2 = 0;
+  {
+    const PetscScalar *ma;
+    PetscCall(VecGetArrayRead(s->prob->mass, &ma));
+    for (PetscInt i = 0; i < c->n; i++) {
+      const PetscReal z = c->lamhat[i] + s->gamma * s->g[i], lj = s->havejac ? (s->actjac[i] ? z : 0) : s->m[i];
+      for (PetscInt k = 0; k < dim; k++) {
+        const PetscInt  j  = c->off[i] + k;
+        const PetscReal fj = PetscRealPart(fa[j]), r = fj - c->w[i] * (s->m[i] - lj) * c->normal[i * dim + k];
+        r1corr2 += (r * r - fj * fj) / PetscRealPart(ma[j]);
+      }
+    }
+    PetscCall(VecRestoreArrayRead(s->prob->mass, &ma));
+  }
+  loc[6] = r1corr2;
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->prob->comm));
+  PetscCall(SgProblemDualNorm(s->prob, F, &s->fdual));
+  s->r1       = PetscSqrtReal(PetscMax(0, s->fdual * s->fdual + glob[6]));
+  s->r2       = PetscSqrtReal(glob[5]);
+  s->nact     = (PetscInt)glob[2];
+  s->nentered = (PetscInt)glob[3];
+  s->nleft    = (PetscInt)glob[4];
+  s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->prob->energy_shift + glob[0] / (2 * s->gamma);
+  s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
+  PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
+{
+  SgSSN              s = (SgSSN)ctx;
+  SgContact          c = s->c;
+  const PetscScalar *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_Jacobian, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(c, ya, s->g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) s->actjac[i] = (char)(c->lamhat[i] + s->gamma * s->g[i] > 0);
+  s->havejac = PETSC_TRUE;
+  if (s->nhash == s->maxhash) {
+    PetscInt64 *h;
+    s->maxhash = PetscMax(64, 2 * s->maxhash);
+    PetscCall(PetscMalloc1(s->maxhash, &h));
+    PetscCall(PetscArraycpy(h, s->hash, s->nhash));
+    PetscCall(PetscFree(s->hash));
+    s->hash = h;
+  }
+  PetscCall(SgSSNActiveSetHash(s, s->actjac, &s->hash[s->nhash++]));
+  /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
+  PetscCall(MatCopy(s->prob->K, P, SAME_NONZERO_PATTERN));
+  PetscCall(SgContactAddJacobian(c, s->actjac, s->gamma, P));
+  PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(SG_Jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
+{
+  SgSSN     s = (SgSSN)ctx;
+  PetscReal atol, rtol;
+  PetscBool settled, small;
+
+  PetscFunctionBeginUser;
+  *reason   = SNES_CONVERGED_ITERATING;
+  s->reason = SG_SSN_ITERATING;
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, NULL, NULL, NULL));
+  if (PetscIsInfOrNanReal(fnorm)) {
+    *reason   = SNES_DIVERGED_FNORM_NAN;
+    s->reason = SG_SSN_NAN;
+    PetscFunctionReturn(0);
+  }
+  if (it == 0) {
+    s->fnorm0 = fnorm;
+    if (fnorm <= atol) {
+      *reason   = SNES_CONVERGED_FNORM_ABS;
+      s->reason = SG_SSN_ZERO_RESIDUAL;
+    }
+    PetscFunctionReturn(0);
+  }
+  settled = (PetscBool)(s->nentered + s->nleft == 0);
+  small   = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0));
+  if (settled && small) {
+    *reason   = SNES_CONVERGED_FNORM_ABS;
+    s->reason = SG_SSN_SETTLED;
+  } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma) && small) {
+    *reason   = SNES_CONVERGED_FNORM_ABS;
+    s->reason = SG_SSN_NEIGHBOURHOOD;
+  } else if (!settled) {
+    PetscInt64 h;
+    PetscCall(SgSSNActiveSetHash(s, s->act, &h));
+    for (PetscInt j = 0; j < s->nhash - 1; j++)
+      if (s->hash[j] == h) {
+        /* with exact solves the iterate is a function of the active set: a revisited set repeats forever */
+        *reason   = SNES_DIVERGED_LOCAL_MIN;
+        s->reason = SG_SSN_CYCLING;
+        PetscCall(PetscInfo(snes, "active set of Newton step %" PetscInt_FMT " revisited at iteration %" PetscInt_FMT "\n", j + 1, it));
+        break;
+      }
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx)
+{
+  SgSSN     s = (SgSSN)ctx;
+  KSP       ksp;
+  PetscInt  kits = 0;
+  PetscLogDouble t;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  if (it > 0) PetscCall(KSPGetIterationNumber(ksp, &kits));
+  PetscCall(PetscTime(&t));
+  if (s->monitor)
+    PetscCall(PetscPrintf(s->prob->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
+  if (it > 0 && s->hist) {
+    SgHistoryRow row;
+    PetscCall(SgHistoryRowInit(&row));
+    row.kind     = 's';
+    row.outer    = s->outer;
+    row.gamma    = s->gamma;
+    row.it       = it;
+    row.active   = s->nact;
+    row.entered  = s->nentered;
+    row.left     = s->nleft;
+    row.fnorm    = fnorm;
+    row.r1       = s->r1;
+    row.r2       = s->r2;
+    row.V        = s->V;
+    row.dV       = s->dVdg;
+    row.ksp_its  = kits;
+    row.time     = t - s->t0;
+    PetscCall(SgHistoryAdd(s->hist, &row));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
+{
+  SgSSN          s;
+  SNESLineSearch ls;
+  KSP            ksp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  s->prob  = p;
+  s->c     = c;
+  s->gamma = c ? c->gamma : 1;
+  PetscCall(PetscTime(&s->t0));
+  PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &s->J));
+  PetscCall(MatSetNearNullSpace(s->J, p->nearnull));
+  PetscCall(MatSetOption(s->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  PetscCall(VecDuplicate(p->b, &s->r));
+  if (c) PetscCall(PetscMalloc4(c->n, &s->g, c->n, &s->m, c->n, &s->act, c->n, &s->actjac));
+  PetscCall(SNESCreate(p->comm, &s->snes));
+  PetscCall(SNESSetType(s->snes, SNESNEWTONLS));
+  PetscCall(SNESGetLineSearch(s->snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCall(SNESSetFunction(s->snes, s->r, Residual, s));
+  PetscCall(SNESSetJacobian(s->snes, s->J, s->J, Jacobian, s));
+  PetscCall(SNESSetConvergenceTest(s->snes, Converged, s, NULL));
+  PetscCall(SNESMonitorSet(s->snes, Monitor, s, NULL));
+  PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(KSPSetOperators(ksp, s->J, s->J));
+  PetscOptionsBegin(p->comm, NULL, "Semismooth Newton (active set) solver", NULL);
+  PetscCall(PetscOptionsBool("-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", NULL, s->monitor, &s->monitor, NULL));
+  PetscOptionsEnd();
+  PetscCall(SNESSetFromOptions(s->snes));
+  {
+    PetscBool preonly;
+    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+    /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
+    s->residual_test = (PetscBool)!preonly;
+  }
+  *ssn = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNDestroy(SgSSN *ssn)
+{
+  SgSSN s = *ssn;
+
+  PetscFunctionBeginUser;
+  if (!s) PetscFunctionReturn(0);
+  PetscCall(SNESDestroy(&s->snes));
+  PetscCall(MatDestroy(&s->J));
+  PetscCall(VecDestroy(&s->r));
+  PetscCall(PetscFree4(s->g, s->m, s->act, s->actjac));
+  PetscCall(PetscFree(s->hash));
+  PetscCall(PetscFree(*ssn));
+  PetscFunctionReturn(0);
+}
+
+/* The elasticity solve without contact, with the solver of the SSN steps (so a factorization's symbolic phase is shared). */
+PetscErrorCode SgSSNSolveLinear(SgSSN s, Vec y, PetscInt *its)
+{
+  KSP                ksp;
+  KSPConvergedReason kr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(MatCopy(s->prob->K, s->J, SAME_NONZERO_PATTERN));
+  PetscCall(KSPSetOperators(ksp, s->J, s->J));
+  PetscCall(KSPSolve(ksp, s->prob->b, y));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  PetscCall(KSPGetConvergedReason(ksp, &kr));
+  PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
+  PetscCheck(kr > 0, s->prob->comm, PETSC_ERR_NOT_CONVERGED, "the linear elasticity solve failed: KSP reason %s after %" PetscInt_FMT " iterations (check -ksp_type/-pc_type)", KSPConvergedReasons[kr], *its);
+  PetscFunctionReturn(0);
+}
+
+/* Solve (P_gamma) with the current shift c->lamhat from the initial guess y (overwritten). */
+PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
+{
+  PetscFunctionBeginUser;
+  s->gamma   = gamma;
+  s->outer   = outer;
+  s->havejac = PETSC_FALSE;
+  s->nhash   = 0;
+  PetscCall(SNESSolve(s->snes, NULL, y));
+  PetscCall(SNESGetIterationNumber(s->snes, its));
+  PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
+  PetscCall(SNESGetConvergedReason(s->snes, reason));
+  if (*reason < 0 && s->reason == SG_SSN_ITERATING) s->reason = SG_SSN_SNES_FAILED;
+  /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
+  PetscFunctionReturn(0);
+}
