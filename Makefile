@@ -1,32 +1,49 @@
-# Signorini contact solver: build, run, test.  See README.md.
+# Signorini contact solver.  `make run` solves Example 1, `make test` runs the tests (README.md).
 PETSC_DIR ?= /usr/lib/petsc
 PETSC_VARIABLES := $(wildcard $(PETSC_DIR)/lib/petsc/conf/variables)
 ifneq ($(PETSC_VARIABLES),)
 include $(PETSC_VARIABLES)
 endif
-PYTHON ?= /usr/bin/python3
+PYTHON  ?= /usr/bin/python3
 MPIEXEC ?= mpiexec
+NP      ?= 1
 export OMPI_ALLOW_RUN_AS_ROOT = 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM = 1
 export OMPI_MCA_rmaps_base_oversubscribe = 1
 
-CC := mpicc
+CC     := mpicc
 CFLAGS ?= -O2 -g
 CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP $(PETSC_CC_INCLUDES)
-LDLIBS = $(PETSC_WITH_EXTERNAL_LIB) -lm
+LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
 
-SRC := $(wildcard src/*.c)
+SRC    := $(wildcard src/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
 
-.PHONY: all deps check-deps run test clean
-all: check-deps bin/signorini
+# Example 1 with its default controller and exact solves (options compose: later files override earlier ones)
+EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts
+TARGETS = all run test
 
-check-deps:
-	@if [ -z "$(PETSC_VARIABLES)" ]; then \
-	  if [ "$$(id -u)" = 0 ]; then $(MAKE) --no-print-directory deps; \
-	  else echo "PETSc is missing: run as root  sudo scripts/install-deps.sh"; exit 1; fi; \
-	  $(MAKE) --no-print-directory all; \
-	fi
+.PHONY: $(TARGETS) deps clean
+
+ifeq ($(PETSC_VARIABLES),)
+# PETSc is missing: install the Debian packages when root, otherwise say how.
+$(TARGETS):
+	@scripts/install-deps.sh
+	@$(MAKE) --no-print-directory $@
+else
+all: bin/signorini bin/unit_tests
+
+run: all
+	@scripts/install-deps.sh
+	@mkdir -p results
+	$(MPIEXEC) -n $(NP) bin/signorini $(EX1) -output_file results/ex1.h5 -summary_file results/ex1.json -history_file results/ex1.csv
+	$(PYTHON) scripts/plot_mesh.py results/ex1.h5 results/ex1.png
+	@echo "results: results/ex1.h5 (open results/ex1.xmf in ParaView), results/ex1.json, results/ex1.csv, results/ex1.png"
+
+test: all
+	@scripts/install-deps.sh
+	$(PYTHON) tests/harness.py tests/*.ini
+endif
 
 deps:
 	scripts/install-deps.sh
@@ -43,6 +60,6 @@ build bin:
 	mkdir -p $@
 
 clean:
-	rm -rf build bin
+	rm -rf build bin tests/output
 
 -include $(wildcard build/*.d)

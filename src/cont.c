@@ -123,11 +123,11 @@ PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
   PetscFunctionReturn(0);
 }
 
-/* KKT measures of (y, lam) for the original problem. */
-PetscErrorCode SgContMeasure(SgCont ct, const PetscReal lam[])
+/* KKT measures of the iterate for the original problem. */
+PetscErrorCode SgContMeasure(SgCont ct)
 {
   PetscFunctionBeginUser;
-  PetscCall(SgContactKKT(ct->c, ct->y, lam, &ct->kkt));
+  PetscCall(SgContactKKT(ct->c, ct->y, &ct->kkt));
   PetscFunctionReturn(0);
 }
 
@@ -148,8 +148,15 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscCall(SgSummarySetReal(ct->sum, "energy_unconstrained", ct->V0));
   PetscCall(SgSummarySetInt(ct->sum, "ksp_iterations", ct->ksp_its));
   PetscCall(SgSummarySetReal(ct->sum, "solve_time", t1 - ct->t0));
+  {
+    PetscReal nrm[2];
+    PetscCall(VecNorm(ct->y, NORM_2, &nrm[0]));
+    PetscCall(VecNorm(ct->y, NORM_INFINITY, &nrm[1]));
+    PetscCall(SgSummarySetReal(ct->sum, "displacement_norm", nrm[0]));
+    PetscCall(SgSummarySetReal(ct->sum, "displacement_max", nrm[1]));
+  }
   if (ct->c) {
-    PetscCall(SgContMeasure(ct, ct->lam));
+    PetscCall(SgContMeasure(ct));
     PetscCall(SgSummarySetInt(ct->sum, "ssn_iterations", ct->ssn_its));
     PetscCall(SgSummarySetInt(ct->sum, "outer_iterations", ct->outer));
     PetscCall(SgSummarySetRealArray(ct->sum, "gammas", ct->ngammas, ct->gammas));
@@ -215,7 +222,7 @@ static PetscErrorCode Solve_None(SgCont ct)
   PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
   PetscCall(SgContSSN(ct, ct->c->gamma, &ok));
   PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
-  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
   if (ok) {
     ct->converged = PETSC_TRUE;

@@ -157,7 +157,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     }
   }
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
-  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its, SG_NAN, SG_NAN, SG_NAN));
   PetscCall(VecDestroy(&rhs));
   PetscCall(VecDestroy(&x));

@@ -77,7 +77,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   ct->ksp_its += kits;
   /* the multiplier balances the normal residual at the contact vertices */
   PetscCall(SgContactMultiplierFromResidual(c, ct->y, ct->lam));
-  PetscCall(SgContMeasure(ct, ct->lam));
+  PetscCall(SgContMeasure(ct));
   PetscCall(PetscTime(&t));
   PetscCall(SgHistoryRowInit(&row));
   row.kind    = 's';

@@ -12,13 +12,10 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
   Vec              wl, nl, wg, ng;
   PetscScalar     *wa, *na;
   PetscSection     ws, ns;
-  PetscBool        set_label, set_ids;
   char             label[256] = "Face Sets";
 
   PetscFunctionBeginUser;
   *contact = NULL;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_label", &set_label));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-contact_ids", &set_ids));
   PetscCall(PetscNew(&c));
   c->prob     = p;
   c->bnd.what = "contact";
@@ -30,7 +27,7 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
   c->lamhat0 = 0;
   PetscCall(PetscOptionsReal("-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", NULL, c->lamhat0, &c->lamhat0, NULL));
   PetscOptionsEnd();
-  if (!set_label && !set_ids) { /* no contact boundary: pure elasticity */
+  if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(PetscFree(c));
     PetscFunctionReturn(0);
   }
@@ -196,17 +193,20 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   PetscFunctionReturn(0);
 }
 
-/* KKT measures of the original problem (P) for a pair (y, lam), see SgKKT in signorini.h. */
-PetscErrorCode SgContactKKT(SgContact c, Vec y, const PetscReal lam[], SgKKT *kkt)
+/* KKT measures of the original problem (P) for a displacement y. The multiplier is the one that balances the normal
+   residual at the contact vertices, lam_i = -(K y - b)_i.n_i / w_i: for the methods' own multipliers it agrees up to
+   round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure. */
+PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 {
-  SgProblem          p = c->prob;
+  SgProblem          p   = c->prob;
+  const PetscInt     dim = p->dim;
   Vec                R, Ky;
   PetscScalar       *ra;
   const PetscScalar *ya;
-  PetscReal         *g, s[8] = {0}, lmax = 0, nrm[3];
+  PetscReal         *g, *lam, s[8] = {0}, lmax = 0, nrm[2];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(c->n, &g));
+  PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
   PetscCall(VecDuplicate(y, &R));
   PetscCall(VecDuplicate(y, &Ky));
   PetscCall(MatMult(p->K, y, Ky));
@@ -214,44 +214,49 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, const PetscReal lam[], SgKKT *kk
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) lmax = PetscMax(lmax, PetscAbsReal(lam[i]));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPIU_REAL, MPI_MAX, p->comm));
   PetscCall(VecGetArray(R, &ra));
-  PetscCall(SgContactAddForce(c, lam, ra));
-  PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
-    /* pressure counts as acting above a tiny fraction of the largest one (round-off of derived multipliers) */
+    PetscReal rn = 0;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    lam[i] = -rn / c->w[i];
+    lmax   = PetscMax(lmax, PetscAbsReal(lam[i]));
+  }
+  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
+  PetscCall(VecRestoreArray(R, &ra));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPIU_REAL, MPI_MAX, p->comm));
+  for (PetscInt i = 0; i < c->n; i++) {
+    /* pressure counts as acting above a tiny fraction of the largest one (round-off of the derived multiplier) */
     const PetscBool act = (PetscBool)(lam[i] > 1e-10 * lmax);
-    s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                    /* infeasibility^2 */
+    s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
-    s[2] += c->w[i] * PetscSqr(PetscMin(0, lam[i]));                                  /* dual infeasibility^2 */
+    s[2] += c->w[i] * PetscSqr(PetscMin(0, lam[i]));                                    /* dual infeasibility^2 */
     s[3] += c->w[i] * lam[i] * lam[i];
-    s[4] += c->w[i] * PetscMax(0, g[i]);                                              /* rho_F */
-    s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                 /* rho_C */
-    s[6] += c->w[i] * lam[i];                                                         /* contact force */
+    s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
+    s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                   /* rho_C */
+    s[6] += c->w[i] * lam[i];                                                           /* contact force */
     s[7] += (act ? 1 : 0);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, p->comm));
   PetscCall(VecNorm(R, NORM_2, &nrm[0]));
   PetscCall(VecNorm(Ky, NORM_2, &nrm[1]));
-  nrm[2]              = p->bnorm;
-  kkt->equilibrium    = nrm[0] / PetscMax(PetscMax(nrm[1], nrm[2]), PETSC_SMALL);
-  kkt->infeasibility  = PetscSqrtReal(s[0]);
+  kkt->equilibrium     = nrm[0] / PetscMax(PetscMax(nrm[1], p->bnorm), PETSC_SMALL);
+  kkt->infeasibility   = PetscSqrtReal(s[0]);
   kkt->complementarity = PetscSqrtReal(s[1]);
-  kkt->dual           = s[3] > 0 ? PetscSqrtReal(s[2] / s[3]) : 0;
-  kkt->rhoF           = s[4];
-  kkt->rhoC           = s[5];
-  kkt->force          = s[6];
-  kkt->nactive        = (PetscInt)s[7];
-  kkt->residual       = PetscMax(PetscMax(kkt->equilibrium, kkt->dual), PetscMax(kkt->infeasibility, kkt->complementarity));
+  kkt->dual            = s[3] > 0 ? PetscSqrtReal(s[2] / s[3]) : 0;
+  kkt->rhoF            = s[4];
+  kkt->rhoC            = s[5];
+  kkt->force           = s[6];
+  kkt->nactive         = (PetscInt)s[7];
+  kkt->residual        = PetscMax(PetscMax(kkt->equilibrium, kkt->dual), PetscMax(kkt->infeasibility, kkt->complementarity));
   PetscCall(VecDestroy(&R));
   PetscCall(VecDestroy(&Ky));
-  PetscCall(PetscFree(g));
+  PetscCall(PetscFree2(g, lam));
   PetscFunctionReturn(0);
 }
 
-/* Vertex fields for output: contact pressure, gap d - tau_N y, penetration max(0, tau_N y - d), active flag. */
-PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec flds[4])
+/* Vertex fields for output: contact pressure, gap d - tau_N y, penetration max(0, tau_N y - d), active flag, and
+   the vector d n from each contact vertex to the obstacle (zero elsewhere; pictures draw the obstacle from it). */
+PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec flds[4], Vec obst)
 {
   SgProblem          p = c->prob;
   Vec                loc[4];
@@ -287,6 +292,25 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
     PetscCall(DMRestoreLocalVector(p->dmVert, &loc[f]));
   }
   PetscCall(PetscFree(g));
+  {
+    Vec          ol;
+    PetscScalar *oa;
+    PetscSection vs;
+    const PetscInt dim = p->dim;
+    PetscCall(DMGetLocalSection(p->dmVec, &vs));
+    PetscCall(DMGetLocalVector(p->dmVec, &ol));
+    PetscCall(VecZeroEntries(ol));
+    PetscCall(VecGetArray(ol, &oa));
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(vs, p->mesh.vStart + c->vert[i], &off));
+      for (PetscInt k = 0; k < dim; k++) oa[off + k] = PetscMin(c->d[i], 1e3 * c->area) * c->normal[i * dim + k];
+    }
+    PetscCall(VecRestoreArray(ol, &oa));
+    PetscCall(VecZeroEntries(obst));
+    PetscCall(DMLocalToGlobal(p->dmVec, ol, ADD_VALUES, obst));
+    PetscCall(DMRestoreLocalVector(p->dmVec, &ol));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -13,6 +13,7 @@ typedef struct {
 static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(o, sizeof(*o)));
   o->magnification = 20;
   PetscOptionsBegin(comm, NULL, "Output", NULL);
   PetscCall(PetscOptionsString("-output_file", "HDF5 result file (fields for ParaView; an .xmf file is written beside it)", NULL, o->outfile, o->outfile, sizeof(o->outfile), NULL));
@@ -31,7 +32,7 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
 static PetscErrorCode WriteFields(SgCont ct, const Output *o)
 {
   SgProblem   p = ct->prob;
-  Vec         vf[5], cf[2];
+  Vec         vf[6], cf[2];
   PetscInt    nv = 1;
   const char *cnames[2] = {"von_mises", "shear_energy_density"}, *vnames[4] = {"contact_pressure", "gap", "penetration", "active"};
 
@@ -50,8 +51,11 @@ static PetscErrorCode WriteFields(SgCont ct, const Output *o)
       PetscCall(DMCreateGlobalVector(p->dmVert, &vf[1 + i]));
       PetscCall(PetscObjectSetName((PetscObject)vf[1 + i], vnames[i]));
     }
-    PetscCall(SgContactFields(ct->c, ct->y, ct->lam, &vf[1]));
-    nv = 5;
+    PetscCall(DMCreateGlobalVector(p->dmVec, &vf[5]));
+    PetscCall(PetscObjectSetName((PetscObject)vf[5], "obstacle_offset"));
+    PetscCall(VecSetBlockSize(vf[5], p->dim));
+    PetscCall(SgContactFields(ct->c, ct->y, ct->lam, &vf[1], vf[5]));
+    nv = 6;
   }
   PetscCall(SgOutputWrite(p, o->outfile, nv, vf, 2, cf, o->magnification));
   for (PetscInt i = 0; i < nv; i++) PetscCall(VecDestroy(&vf[i]));

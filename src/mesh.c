@@ -225,11 +225,16 @@ PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBou
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_label", bnd->what));
   PetscCall(PetscSNPrintf(txt, sizeof(txt), "Label marking the %s boundary", help));
-  PetscCall(PetscOptionsString(opt, txt, NULL, bnd->label, bnd->label, sizeof(bnd->label), NULL));
+  PetscCall(PetscOptionsString(opt, txt, NULL, bnd->label, bnd->label, sizeof(bnd->label), &set));
+  if (set) bnd->active = PETSC_TRUE;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_ids", bnd->what));
   PetscCall(PetscSNPrintf(txt, sizeof(txt), "Values of the %s label making the %s boundary (none: every value)", bnd->what, help));
   PetscCall(PetscOptionsIntArray(opt, txt, NULL, bnd->ids, &n, &set));
-  if (set) bnd->nids = n;
+  if (set) {
+    bnd->nids   = n;
+    bnd->active = PETSC_TRUE;
+    PetscCheck(n > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: give at least one label value", opt);
+  }
   if (ncomp > 0) {
     PetscInt nv = 3 * SG_MAX_IDS, need = ncomp * PetscMax(bnd->nids, 1);
 
@@ -237,6 +242,7 @@ PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBou
     PetscCall(PetscSNPrintf(txt, sizeof(txt), "%s: %" PetscInt_FMT " numbers per label value", help, ncomp));
     PetscCall(PetscOptionsRealArray(opt, txt, NULL, bnd->values, &nv, &set));
     if (set) {
+      PetscCheck(bnd->active, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given, but no -%s_label or -%s_ids says where", opt, bnd->what, bnd->what);
       PetscCheck(nv == need, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT " (%" PetscInt_FMT " per value of %s_ids)", opt, nv, need, ncomp, bnd->what);
       bnd->nvalues = nv;
       for (PetscInt i = 0; i < nv; i++) PetscCheck(PetscIsNormalReal(bnd->values[i]) || bnd->values[i] == 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g, must be finite", opt, i, (double)bnd->values[i]);
@@ -272,6 +278,7 @@ static PetscErrorCode BoundaryForEachPoint(DM dm, const SgBoundary *bnd, PetscEr
   const PetscInt *vals;
 
   PetscFunctionBeginUser;
+  if (!bnd->active) PetscFunctionReturn(0);
   PetscCall(SgBoundaryGetLabel(dm, bnd, &label));
   if (bnd->nids) {
     nvals = bnd->nids;

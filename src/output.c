@@ -242,6 +242,22 @@ PetscErrorCode SgSummaryWrite(MPI_Comm comm, SgSummary s, const char option[], c
 }
 
 /* ---------------------------------------------------------------- HDF5 + XDMF */
+/* PETSc stores a field of vector "v" whose section field is "f" as <group>/v_f */
+static PetscErrorCode DatasetName(Vec v, char name[], size_t len)
+{
+  const char  *vname, *fname;
+  DM           dm;
+  PetscSection s;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetName((PetscObject)v, &vname));
+  PetscCall(VecGetDM(v, &dm));
+  PetscCall(DMGetLocalSection(dm, &s));
+  PetscCall(PetscSectionGetFieldName(s, 0, &fname));
+  PetscCall(PetscSNPrintf(name, len, "%s_%s", vname, fname));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode WriteXDMF(SgProblem p, const char h5name[], const char xname[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
   FILE       *fp;
@@ -268,23 +284,27 @@ static PetscErrorCode WriteXDMF(SgProblem p, const char h5name[], const char xna
     fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nvert, p->dim, h5base);
     for (PetscInt i = 0; i < nv; i++) {
       const char *name;
+      char        dset[256];
       PetscInt    bs;
       PetscCall(PetscObjectGetName((PetscObject)vf[i], &name));
+      PetscCall(DatasetName(vf[i], dset, sizeof(dset)));
       PetscCall(VecGetBlockSize(vf[i], &bs));
       fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, bs > 1 ? "Vector" : "Scalar");
       if (bs == 2) { /* ParaView wants 3-component vectors: pad the 2D displacement with a zero */
         fprintf(fp, "    <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0*$0)\" Dimensions=\"%" PetscInt_FMT " 3\">\n", nvert);
         for (PetscInt d = 0; d < 2; d++)
-          fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", nvert, d, nvert, nvert, h5base, name);
+          fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", nvert, d, nvert, nvert, h5base, dset);
         fprintf(fp, "    </DataItem>\n");
-      } else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", nvert, bs, h5base, name);
+      } else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", nvert, bs, h5base, dset);
       fprintf(fp, "   </Attribute>\n");
     }
     for (PetscInt i = 0; i < nc; i++) {
       const char *name;
+      char        dset[256];
       PetscCall(PetscObjectGetName((PetscObject)cf[i], &name));
+      PetscCall(DatasetName(cf[i], dset, sizeof(dset)));
       fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n", name);
-      fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n   </Attribute>\n", ncell, h5base, name);
+      fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n   </Attribute>\n", ncell, h5base, dset);
     }
     fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
   }

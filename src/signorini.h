@@ -13,10 +13,12 @@ extern PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG
 PetscErrorCode SgRegisterAll(void);
 
 /* ------------------------------------------------------------------ mesh.c */
-/* A boundary part: the points of one DMLabel with the given values (nids = 0: every value).
+/* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty
+   unless its -<what>_label or -<what>_ids option was given.
    values[] holds ncomp numbers per id (Dirichlet displacement, Neumann traction). */
 typedef struct {
   const char *what;       /* option prefix, e.g. "dirichlet" */
+  PetscBool   active;     /* given by the options */
   char        label[256]; /* label name */
   PetscInt    nids;
   PetscInt    ids[SG_MAX_IDS];
@@ -143,8 +145,8 @@ struct _n_SgContact {
   PetscReal  lamhat0, gamma, area;
 };
 
-/* Measures of the original problem (P) for a pair (y, lam):
-   equilibrium     ||K y - b + B^T W lam||_2 / max(||K y||, ||b||)        (relative)
+/* Measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i:
+   equilibrium     ||K y - b + B^T W lam||_2 / max(||K y||, ||b||)        (relative: interior and tangential part)
    infeasibility   ||max(0, g)||_{L2(Gamma_c)}                             (length)
    complementarity ||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}, A = {lam > 0}, as an L2 sum of squares
    dual            ||min(0, lam)|| / ||lam||
@@ -160,8 +162,8 @@ PetscErrorCode SgContactGap(SgContact, const PetscScalar[], PetscReal[]);
 PetscErrorCode SgContactAddForce(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
 PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
-PetscErrorCode SgContactKKT(SgContact, Vec, const PetscReal[], SgKKT *);
-PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4]);
+PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
+PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 
 /* ------------------------------------------------------------------ history.c */
@@ -182,7 +184,7 @@ PetscErrorCode SgHistoryAdd(SgHistory, const SgHistoryRow *);
 PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
 
 /* ------------------------------------------------------------------ ssn.c */
-typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_SNES_FAILED } SgSSNReason;
+typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED } SgSSNReason;
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN *SgSSN;
 struct _n_SgSSN {
@@ -248,7 +250,7 @@ PetscErrorCode SgContSolve(SgCont);
 PetscErrorCode SgContDestroy(SgCont *);
 PetscErrorCode SgContSolveUnconstrained(SgCont);
 PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
-PetscErrorCode SgContMeasure(SgCont, const PetscReal[]);
+PetscErrorCode SgContMeasure(SgCont);
 PetscErrorCode SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, PetscReal, PetscReal, PetscReal);

@@ -3,7 +3,7 @@
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
 #include "signorini.h"
 
-const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "SNES_FAILED"};
+const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED"};
 
 static inline PetscInt64 Mix64(PetscInt64 x)
 {
@@ -295,7 +295,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCall(SNESGetIterationNumber(s->snes, its));
   PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
   PetscCall(SNESGetConvergedReason(s->snes, reason));
-  if (*reason < 0 && s->reason == SG_SSN_ITERATING) s->reason = SG_SSN_SNES_FAILED;
+  if (*reason < 0 && s->reason == SG_SSN_ITERATING) s->reason = *reason == SNES_DIVERGED_MAX_IT ? SG_SSN_MAX_IT : (*reason == SNES_DIVERGED_LINEAR_SOLVE ? SG_SSN_LINEAR_SOLVE : (*reason == SNES_DIVERGED_FNORM_NAN ? SG_SSN_NAN : SG_SSN_SNES_FAILED));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }

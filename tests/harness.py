@@ -1,0 +1,218 @@
+#!/usr/bin/env python3
+"""Test harness in PETSc's test vocabulary.
+
+Each section of a tests/*.ini file is one test: a run of bin/signorini (or of a command given by `cmd`) with
+`nsize` MPI ranks and `args`, followed by `checks` on the quantities the run computed (its JSON summary and
+CSV history). A check is a Python expression; it may use
+    s            this test's summary (dict),        h   its history rows (list of dicts)
+    t[name]      the summary of another test,       H[name] its history
+    close(a, b, rtol, atol=0), between(x, lo, hi), order(e_coarse, e_fine, ratio), rel(a, b), ssn(rows)
+Tests with `expect_error = REGEX` must fail: nonzero exit, REGEX found in the output, and no result file left.
+Every run uses -options_left: an option the program did not use fails the test.
+
+usage: harness.py [-j JOBS] [-k PATTERN] FILE.ini ...
+"""
+import argparse
+import configparser
+import csv
+import glob
+import json
+import math
+import os
+import re
+import shlex
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "tests", "output")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_btl_vader_single_copy_mechanism="none")
+
+
+def close(a, b, rtol=1e-10, atol=0.0):
+    return a is not None and b is not None and abs(a - b) <= atol + rtol * max(abs(a), abs(b))
+
+
+def rel(a, b):
+    return abs(a - b) / max(abs(a), abs(b), 1e-300)
+
+
+def between(x, lo, hi):
+    return x is not None and lo <= x <= hi
+
+
+def order(e_coarse, e_fine, ratio=2.0):
+    return math.log(e_coarse / e_fine) / math.log(ratio)
+
+
+def ssn(rows):
+    return [r for r in rows if r["kind"] == "ssn"]
+
+
+def load_history(path):
+    if not os.path.exists(path):
+        return []
+    rows = []
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            rows.append({k: (v if k == "kind" else (float(v) if v != "" else None)) for k, v in r.items()})
+    return rows
+
+
+class Test:
+    def __init__(self, name, sec):
+        self.name = name
+        self.nsize = int(sec.get("nsize", "1"))
+        self.args = " ".join(sec.get("args", "").split())
+        self.cmd = sec.get("cmd", "bin/signorini")
+        self.checks = [c.strip() for c in sec.get("checks", "").splitlines() if c.strip()]
+        self.expect_error = sec.get("expect_error")
+        self.requires = sec.get("requires", "").split()
+        self.timeout = float(sec.get("timeout", "600"))
+        self.outputs = sec.get("outputs", "").split()  # files the run must not leave behind when it fails
+        self.returncode = None
+        self.output = ""
+        self.summary = {}
+        self.history = []
+        self.seconds = 0.0
+        self.failures = []
+
+    def files(self):
+        base = os.path.join(OUT, self.name)
+        return {"summary": base + ".json", "history": base + ".csv", "output": base + ".h5"}
+
+    def run(self):
+        f = self.files()
+        for p in glob.glob(os.path.join(OUT, self.name + ".*")):
+            os.remove(p)
+        args = self.args.replace("@OUT@", OUT).replace("@NAME@", self.name)
+        if self.cmd == "bin/signorini" or self.cmd.startswith("bin/"):
+            cmd = ["mpiexec", "-n", str(self.nsize), os.path.join(ROOT, self.cmd)] + shlex.split(args)
+            if self.cmd == "bin/signorini":
+                cmd += ["-summary_file", f["summary"], "-history_file", f["history"], "-options_left"]
+            else:
+                cmd += ["-summary_file", f["summary"]]
+        else:
+            cmd = shlex.split(self.cmd.replace("@OUT@", OUT).replace("@NAME@", self.name)) + shlex.split(args)
+        t0 = time.time()
+        try:
+            p = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               timeout=self.timeout, text=True)
+            self.returncode, self.output = p.returncode, p.stdout
+        except subprocess.TimeoutExpired as e:
+            self.returncode, self.output = -1, (e.stdout or "") if isinstance(e.stdout, str) else ""
+            self.failures.append("timed out after %g s" % self.timeout)
+        self.seconds = time.time() - t0
+        if os.path.exists(f["summary"]):
+            try:
+                with open(f["summary"]) as fp:
+                    self.summary = json.load(fp)
+            except ValueError as e:
+                self.failures.append("summary is not valid JSON: %s" % e)
+        self.history = load_history(f["history"])
+
+    def evaluate(self, tests):
+        if self.failures:
+            return
+        if self.expect_error is not None:
+            if self.returncode == 0:
+                self.failures.append("expected a failure, but the run exited 0")
+            if not re.search(self.expect_error, self.output, re.S):
+                self.failures.append("output does not match /%s/" % self.expect_error)
+            if re.search(r"Segmentation Violation|signal number 11|Caught signal", self.output):
+                self.failures.append("the run crashed instead of stopping with an error")
+            left = [p for p in self.outputs + [self.files()["output"]] if os.path.exists(os.path.join(ROOT, p.replace("@OUT@", OUT).replace("@NAME@", self.name)))]
+            left += glob.glob(os.path.join(OUT, self.name + "*.part"))
+            if left:
+                self.failures.append("result files left behind: %s" % " ".join(left))
+        elif self.returncode != 0:
+            self.failures.append("exit status %d" % self.returncode)
+        if self.cmd == "bin/signorini" and self.expect_error is None and "Option left:" in self.output:
+            self.failures.append("unused options: " + "; ".join(l.strip() for l in self.output.splitlines() if "Option left" in l))
+        ns = {"s": self.summary, "h": self.history, "t": {k: v.summary for k, v in tests.items()},
+              "H": {k: v.history for k, v in tests.items()}, "close": close, "rel": rel, "between": between,
+              "order": order, "ssn": ssn, "math": math, "out": self.output, "re": re}
+        for c in self.checks:
+            try:
+                ok = eval(c, ns)
+            except Exception as e:  # a missing key or test is a failed check
+                ok, c = False, "%s  [%s: %s]" % (c, type(e).__name__, e)
+            if not ok:
+                self.failures.append("check failed: %s" % c)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("files", nargs="+")
+    ap.add_argument("-j", "--jobs", type=int, default=2, help="MPI ranks to keep busy at once")
+    ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and what they require)")
+    opt = ap.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    tests = {}
+    for fn in opt.files:
+        cp = configparser.ConfigParser(interpolation=None)
+        cp.optionxform = str
+        with open(fn) as f:
+            cp.read_file(f)
+        for name in cp.sections():
+            if name in tests:
+                sys.exit("duplicate test name %s in %s" % (name, fn))
+            tests[name] = Test(name, cp[name])
+    if opt.match:
+        want = {n for n in tests if re.search(opt.match, n)}
+        grow = True
+        while grow:
+            need = {r for n in want for r in tests[n].requires} - want
+            grow = bool(need)
+            want |= need
+        tests = {n: t for n, t in tests.items() if n in want}
+    for t in tests.values():
+        for r in t.requires:
+            if r not in tests:
+                sys.exit("test %s requires unknown test %s" % (t.name, r))
+
+    # run: larger jobs first, never more ranks than --jobs at once
+    order_ = sorted(tests.values(), key=lambda t: -t.nsize)
+    t0 = time.time()
+    free = [opt.jobs]
+    cv = threading.Condition()
+
+    def go(t):
+        need = min(t.nsize, opt.jobs)
+        with cv:  # take all the ranks a test needs at once
+            cv.wait_for(lambda: free[0] >= need)
+            free[0] -= need
+        try:
+            t.run()
+        finally:
+            with cv:
+                free[0] += need
+                cv.notify_all()
+        return t
+    with ThreadPoolExecutor(max_workers=opt.jobs) as pool:
+        list(pool.map(go, order_))
+    passed = failed = 0
+    for name in tests:
+        t = tests[name]
+        t.evaluate(tests)
+        if t.failures:
+            failed += 1
+            print("not ok %s (np %d, %.1fs)" % (name, t.nsize, t.seconds))
+            for f in t.failures:
+                print("    # " + f)
+            tail = "\n".join(t.output.strip().splitlines()[-15:])
+            print("    # output (last lines):\n" + "\n".join("    #   " + l for l in tail.splitlines()))
+        else:
+            passed += 1
+            print("ok %s (np %d, %.1fs)" % (name, t.nsize, t.seconds))
+    print("# total %.1f s" % (time.time() - t0))
+    print("%d passed, %d failed" % (passed, failed))
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()

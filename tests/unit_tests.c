@@ -1,0 +1,166 @@
+/* unit_tests.c: unit tests of the kernels (element stiffness, rigid-body modes, obstacle gaps, model fit).
+   Each test computes its numbers and writes them to -summary_file; tests/unit.ini holds the expected values. */
+#include "signorini.h"
+
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit -summary_file FILE\n";
+
+/* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
+   K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
+static const PetscReal Kref2[36] = {2.0,  1.0,  -1.5, -0.5, -0.5, -0.5, 1.0,  2.0,  -0.5, -0.5, -0.5, -1.5, -1.5, -0.5, 1.5, 0.0, 0.0, 0.5,
+                                    -0.5, -0.5, 0.0,  0.5,  0.5,  0.0,  -0.5, -0.5, 0.0,  0.5,  0.5,  0.0,  -0.5, -1.5, 0.5, 0.0, 0.0, 1.5};
+
+static PetscErrorCode TestElement2D(SgSummary s)
+{
+  const PetscReal x[6] = {0, 0, 1, 0, 0, 1};
+  PetscReal       K[36], vol, err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElementStiffness(2, x, 1.0, 1.0, K, &vol));
+  for (PetscInt i = 0; i < 36; i++) err = PetscMax(err, PetscAbsReal(K[i] - Kref2[i]));
+  PetscCall(SgSummarySetReal(s, "max_error", err));
+  PetscCall(SgSummarySetReal(s, "volume", vol));
+  /* a translated, scaled copy: K scales as h^(d-2) = 1 in 2D, so it must be unchanged */
+  {
+    const PetscReal y[6] = {3, 2, 5, 2, 3, 4};
+    PetscReal       K2[36], e2 = 0;
+    PetscCall(SgElementStiffness(2, y, 1.0, 1.0, K2, &vol));
+    for (PetscInt i = 0; i < 36; i++) e2 = PetscMax(e2, PetscAbsReal(K2[i] - Kref2[i]));
+    PetscCall(SgSummarySetReal(s, "scaled_max_error", e2));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Reference tetrahedron, lambda = 2, mu = 1, vol = 1/6: selected entries by hand
+   K[(0x),(0x)] = (lambda + 4 mu)/6 = 1, K[(1x),(1x)] = (lambda + 2 mu)/6 = 2/3, K[(1x),(2y)] = lambda/6 = 1/3,
+   K[(1y),(2x)] = mu/6 = 1/6, K[(0x),(1x)] = -(lambda + 2 mu)/6 = -2/3, K[(3z),(3z)] = 2/3, K[(2x),(2x)] = mu/6 = 1/6. */
+static PetscErrorCode TestElement3D(SgSummary s)
+{
+  const PetscReal x[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const PetscInt  r[7] = {0, 3, 3, 4, 0, 11, 6}, c[7] = {0, 3, 7, 6, 3, 11, 6};
+  const PetscReal v[7] = {1.0, 2.0 / 3, 1.0 / 3, 1.0 / 6, -2.0 / 3, 2.0 / 3, 1.0 / 6};
+  PetscReal       K[144], vol, err = 0, asym = 0, rowsum = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElementStiffness(3, x, 2.0, 1.0, K, &vol));
+  for (PetscInt i = 0; i < 7; i++) err = PetscMax(err, PetscAbsReal(K[r[i] * 12 + c[i]] - v[i]));
+  for (PetscInt i = 0; i < 12; i++) {
+    for (PetscInt j = 0; j < 12; j++) asym = PetscMax(asym, PetscAbsReal(K[i * 12 + j] - K[j * 12 + i]));
+    for (PetscInt d = 0; d < 3; d++) { /* translations are in the kernel */
+      PetscReal t = 0;
+      for (PetscInt a = 0; a < 4; a++) t += K[i * 12 + a * 3 + d];
+      rowsum = PetscMax(rowsum, PetscAbsReal(t));
+    }
+  }
+  PetscCall(SgSummarySetReal(s, "max_error", err));
+  PetscCall(SgSummarySetReal(s, "asymmetry", asym));
+  PetscCall(SgSummarySetReal(s, "translation_residual", rowsum));
+  PetscCall(SgSummarySetReal(s, "volume", vol));
+  PetscFunctionReturn(0);
+}
+
+/* The assembled stiffness without Dirichlet conditions annihilates the rigid-body modes (and nothing else of them). */
+static PetscErrorCode TestRigid(SgSummary s)
+{
+  SgProblem        p;
+  PetscInt         nvec;
+  const Vec       *vecs;
+  PetscBool        has;
+  PetscReal        worst = 0, Knorm;
+  Vec              Kz;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &p));
+  PetscCall(MatNullSpaceGetVecs(p->nearnull, &has, &nvec, &vecs));
+  PetscCall(MatNorm(p->K, NORM_INFINITY, &Knorm));
+  PetscCall(VecDuplicate(p->b, &Kz));
+  for (PetscInt i = 0; i < nvec; i++) {
+    PetscReal r, z;
+    PetscCall(MatMult(p->K, vecs[i], Kz));
+    PetscCall(VecNorm(Kz, NORM_INFINITY, &r));
+    PetscCall(VecNorm(vecs[i], NORM_INFINITY, &z));
+    worst = PetscMax(worst, r / (Knorm * z));
+  }
+  PetscCall(SgSummarySetInt(s, "modes", nvec));
+  PetscCall(SgSummarySetReal(s, "max_relative_residual", worst));
+  PetscCall(VecDestroy(&Kz));
+  PetscCall(SgProblemDestroy(&p));
+  PetscFunctionReturn(0);
+}
+
+/* Gaps of the registered obstacles at points with known distances. */
+static PetscErrorCode GapAt(const char *type, const char *opts, PetscInt dim, const PetscReal x[], const PetscReal n[], PetscReal *d)
+{
+  SgObstacle o;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsInsertString(NULL, opts));
+  PetscCall(PetscOptionsSetValue(NULL, "-obstacle_type", type));
+  PetscCall(SgObstacleCreate(PETSC_COMM_WORLD, dim, &o));
+  PetscCall(SgObstacleGap(o, x, n, d));
+  PetscCall(SgObstacleDestroy(&o));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestGap(SgSummary s)
+{
+  const char     *ball = "-obstacle_ball_radius 0.5 -obstacle_ball_center -0.3,0,-1";
+  const PetscReal down[3] = {0, 0, -1}, tilt[3] = {0.6, 0, -0.8};
+  /* point, normal, expected: ball top, on the sphere 0.3 off axis (height -1 + 0.4), past the rim (floor plane),
+     and along a tilted normal aimed at the centre from distance 1 (gap 1 - R) */
+  const PetscReal p1[3] = {-0.3, 0, -0.5}, p2[3] = {0, 0, -0.5}, p3[3] = {0.5, 0.2, -0.5}, p4[3] = {-0.3 - 0.6, 0, -1 + 0.8};
+  PetscReal       d, err = 0, e2d = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(GapAt("ball", ball, 3, p1, down, &d));
+  err = PetscMax(err, PetscAbsReal(d - 0.0));
+  PetscCall(GapAt("ball", ball, 3, p2, down, &d));
+  err = PetscMax(err, PetscAbsReal(d - 0.1));
+  PetscCall(GapAt("ball", ball, 3, p3, down, &d));
+  err = PetscMax(err, PetscAbsReal(d - 0.5));
+  PetscCall(GapAt("ball", ball, 3, p4, tilt, &d));
+  err = PetscMax(err, PetscAbsReal(d - 0.5));
+  PetscCall(SgSummarySetReal(s, "ball_max_error", err));
+  {
+    const PetscReal x[2] = {2.5, 0}, n[2] = {0, -1}, y[2] = {1.5, 0};
+    PetscCall(GapAt("parabola", "-obstacle_parabola_a 0.003 -obstacle_parabola_offset 0.001 -obstacle_parabola_center 1.5,0", 2, x, n, &d));
+    e2d = PetscMax(e2d, PetscAbsReal(d - 0.004));
+    PetscCall(GapAt("parabola", "", 2, y, n, &d));
+    e2d = PetscMax(e2d, PetscAbsReal(d - 0.001));
+  }
+  PetscCall(SgSummarySetReal(s, "parabola_max_error", e2d));
+  {
+    const PetscReal x[3] = {1, 2, 3}, n[3] = {0, 0, -1}, n45[3] = {0, -PetscSqrtReal(0.5), -PetscSqrtReal(0.5)};
+    PetscReal       e = 0;
+    PetscCall(GapAt("plane", "-obstacle_plane_point 0,0,1 -obstacle_plane_normal 0,0,1", 3, x, n, &d));
+    e = PetscMax(e, PetscAbsReal(d - 2));
+    PetscCall(GapAt("plane", "", 3, x, n45, &d));
+    e = PetscMax(e, PetscAbsReal(d - 2 * PetscSqrtReal(2.0)));
+    PetscCall(SgSummarySetReal(s, "plane_max_error", e));
+  }
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
+  SgSummary s;
+  PetscBool eq;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(SgRegisterAll());
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Unit tests", NULL);
+  PetscCall(PetscOptionsString("-test", "Test to run", NULL, test, test, sizeof(test), NULL));
+  PetscCall(PetscOptionsString("-summary_file", "JSON file for the computed values", NULL, file, file, sizeof(file), NULL));
+  PetscOptionsEnd();
+  PetscCall(SgSummaryCreate(&s));
+  PetscCall(SgSummarySetString(s, "test", test));
+  if (PetscStrcmp(test, "element2d", &eq) == 0 && eq) PetscCall(TestElement2D(s));
+  else if (PetscStrcmp(test, "element3d", &eq) == 0 && eq) PetscCall(TestElement3D(s));
+  else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
+  else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
+  else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
+  PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
+  PetscCall(SgSummaryDestroy(&s));
+  PetscCall(PetscFinalize());
+  return 0;
+}
