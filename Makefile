@@ -19,8 +19,8 @@ LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
 SRC    := $(wildcard src/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
 
-# Example 1 with its default controller and exact solves (options compose: later files override earlier ones)
-EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts
+# Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
+EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
 TARGETS = all run test
 
 .PHONY: $(TARGETS) deps clean

@@ -23,6 +23,8 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   ct->c         = c;
   ct->kkt_tol   = 1e-10;
   ct->max_outer = 50;
+  ct->gamma_max = 1e20;
+  ct->stall_its = 10;
   ct->converged = PETSC_FALSE;
   PetscCall(PetscStrcpy(ct->type, "none"));
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
@@ -32,6 +34,8 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
   PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of the original problem is below this", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
   PetscCall(PetscOptionsInt("-cont_max_it", "Maximum number of outer (continuation) steps", NULL, ct->max_outer, &ct->max_outer, NULL));
+  PetscCall(PetscOptionsReal("-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", NULL, ct->gamma_max, &ct->gamma_max, NULL));
+  PetscCall(PetscOptionsInt("-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", NULL, ct->stall_its, &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, p->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
   PetscCall(create(ct));
@@ -39,6 +43,8 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   PetscOptionsEnd();
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
+  PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
+  PetscCheck(ct->stall_its > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
   PetscCheck(c || !strcmp(ct->type, "none"), p->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCall(DMCreateGlobalVector(p->dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
@@ -131,6 +137,38 @@ PetscErrorCode SgContMeasure(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+/* Path data per outer step (the history's outer rows) as summary arrays path_<quantity>. */
+static PetscErrorCode SummaryPath(SgCont ct)
+{
+  const char *names[] = {"path_gamma", "path_V", "path_dVdgamma", "path_C1", "path_C2", "path_E", "path_ssn_iterations", "path_rho_F", "path_rho_C", "path_infeasibility", "path_kkt_residual"};
+  PetscInt    n = 0;
+  PetscReal  *a[11];
+
+  PetscFunctionBeginUser;
+  for (PetscInt j = 0; j < 11; j++) PetscCall(PetscMalloc1(ct->hist->n + 1, &a[j]));
+  for (PetscInt i = 0; i < ct->hist->n; i++) {
+    const SgHistoryRow *r = &ct->hist->rows[i];
+    if (r->kind != 'o') continue;
+    a[0][n]  = r->gamma;
+    a[1][n]  = r->V;
+    a[2][n]  = r->dV;
+    a[3][n]  = r->C1;
+    a[4][n]  = r->C2;
+    a[5][n]  = r->Em;
+    a[6][n]  = r->ssn_its;
+    a[7][n]  = r->rhoF;
+    a[8][n]  = r->rhoC;
+    a[9][n]  = r->infeas;
+    a[10][n] = r->kkt;
+    n++;
+  }
+  for (PetscInt j = 0; j < 11; j++) {
+    PetscCall(SgSummarySetRealArray(ct->sum, names[j], n, a[j]));
+    PetscCall(PetscFree(a[j]));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContSolve(SgCont ct)
 {
   PetscLogDouble t1;
@@ -172,6 +210,7 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgSummarySetInt(ct->sum, "contact_vertices", ct->c->nglobal));
     PetscCall(SgSummarySetReal(ct->sum, "contact_area", ct->c->area));
     PetscCall(SgSummarySetString(ct->sum, "obstacle", ct->c->obs->type));
+    PetscCall(SummaryPath(ct));
   }
   PetscFunctionReturn(0);
 }
@@ -202,6 +241,45 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, PetscReal C1, PetscRe
   row.kkt     = ct->kkt.residual;
   row.time    = t - ct->t0;
   PetscCall(SgHistoryAdd(ct->hist, &row));
+  PetscFunctionReturn(0);
+}
+
+/* The model m(gamma) = C1 - C2/(E + gamma) through V(0), V(g) and V'(g), formula (9) of the paper.
+   Returns PETSC_FALSE (and NaNs) if the data admit no such model (E must be positive and finite). */
+PetscBool SgModelFit(PetscReal V0, PetscReal g, PetscReal V, PetscReal dV, PetscReal *C1, PetscReal *C2, PetscReal *E)
+{
+  const PetscReal den = V - V0 - g * dV;
+
+  *E  = den != 0 ? g * g * dV / den : SG_NAN;
+  *C2 = *E * (*E + g) * (V - V0) / g;
+  *C1 = V0 + *C2 / *E;
+  if (!(PetscIsNormalReal(*E) && *E > 0 && PetscIsNormalReal(*C1) && PetscIsNormalReal(*C2))) {
+    *E = *C1 = *C2 = SG_NAN;
+    return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* After an outer step: converged (KKT residual below the tolerance), or failed because the outer-step limit is
+   reached, the next gamma overflows, or the KKT residual has not improved for -cont_stall_it steps. */
+PetscErrorCode SgContCheck(SgCont ct, PetscReal gamma_next, PetscBool *stop)
+{
+  PetscFunctionBeginUser;
+  *stop = PETSC_TRUE;
+  if (ct->kkt.residual <= ct->kkt_tol) {
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer));
+    PetscFunctionReturn(0);
+  }
+  if (ct->kkt.residual < 0.99 * ct->best_kkt || ct->outer == 1) {
+    ct->best_kkt  = ct->kkt.residual;
+    ct->best_step = ct->outer;
+  }
+  if (PetscIsInfOrNanReal(ct->kkt.residual)) PetscCall(SgContFail(ct, "DIVERGED_NAN: the KKT residual is not a number after outer step %" PetscInt_FMT, ct->outer));
+  else if (ct->outer - ct->best_step >= ct->stall_its) PetscCall(SgContFail(ct, "STALLED: no progress in the KKT residual (%.3e, best %.3e at step %" PetscInt_FMT ") for %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->best_kkt, ct->best_step, ct->outer - ct->best_step));
+  else if (!(gamma_next <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)gamma_next, (double)ct->gamma_max, (double)ct->kkt.residual));
+  else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
+  else *stop = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

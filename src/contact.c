@@ -205,6 +205,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   const PetscScalar *ya;
   PetscReal         *g, *lam, s[8] = {0}, lmax = 0, nrm[2];
 
+
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
   PetscCall(VecDuplicate(y, &R));
@@ -224,9 +225,12 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
   PetscCall(VecRestoreArray(R, &ra));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPIU_REAL, MPI_MAX, p->comm));
+  PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   for (PetscInt i = 0; i < c->n; i++) {
-    /* pressure counts as acting above a tiny fraction of the largest one (round-off of the derived multiplier) */
-    const PetscBool act = (PetscBool)(lam[i] > 1e-10 * lmax);
+    /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
+       (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
+    const PetscReal noise = 1e-12 * (p->Knorm * nrm[1] + p->bnorm_inf) / c->w[i];
+    const PetscBool act   = (PetscBool)(lam[i] > PetscMax(1e-10 * lmax, noise));
     s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
     s[2] += c->w[i] * PetscSqr(PetscMin(0, lam[i]));                                    /* dual infeasibility^2 */
@@ -237,9 +241,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     s[7] += (act ? 1 : 0);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, p->comm));
-  PetscCall(VecNorm(R, NORM_2, &nrm[0]));
-  PetscCall(VecNorm(Ky, NORM_2, &nrm[1]));
-  kkt->equilibrium     = nrm[0] / PetscMax(PetscMax(nrm[1], p->bnorm), PETSC_SMALL);
+  /* normwise backward error of the equilibrium equations: ||R|| / (||K|| ||y|| + ||b||), infinity norms; it stays at
+     round-off level for nearly incompressible materials, where ||R|| / ||b|| cannot go below eps ||K|| ||y|| / ||b|| */
+  PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
+  kkt->equilibrium     = nrm[0] / PetscMax(p->Knorm * nrm[1] + p->bnorm_inf, PETSC_SMALL);
   kkt->infeasibility   = PetscSqrtReal(s[0]);
   kkt->complementarity = PetscSqrtReal(s[1]);
   kkt->dual            = s[3] > 0 ? PetscSqrtReal(s[2] / s[3]) : 0;

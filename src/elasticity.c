@@ -307,6 +307,8 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscCall(DMRestoreLocalVector(p->dm, &mloc));
   PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));
   PetscCall(VecNorm(p->b, NORM_2, &p->bnorm));
+  PetscCall(VecNorm(p->b, NORM_INFINITY, &p->bnorm_inf));
+  PetscCall(MatNorm(p->K, NORM_INFINITY, &p->Knorm));
   PetscCall(MatSetOption(p->K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(p->K, MAT_SPD, PETSC_TRUE));
 

@@ -25,6 +25,9 @@ PetscErrorCode SgRegisterAll(void)
   PetscCall(SgObstacleRegister("parabola", SgObstacleCreate_Parabola));
   PetscCall(SgObstacleRegister("ball", SgObstacleCreate_Ball));
   PetscCall(SgContRegister("none", SgContCreate_None));
+  PetscCall(SgContRegister("alm", SgContCreate_ALM));
+  PetscCall(SgContRegister("pf", SgContCreate_PF));
+  PetscCall(SgContRegister("ipf", SgContCreate_IPF));
   PetscCall(SgContRegister("pdas", SgContCreate_PDAS));
   PetscCall(SgContRegister("vi", SgContCreate_VI));
   PetscFunctionReturn(0);

@@ -68,7 +68,8 @@ struct _n_SgProblem {
   Vec          mass;         /* lumped volume of each free dof's vertex (for the discrete dual norm) */
   Vec          ubc;          /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
   PetscReal    energy_shift; /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
-  PetscReal    bnorm;        /* ||b||_2 */
+  PetscReal    bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
+  PetscReal    Knorm;        /* ||K||_inf */
   MatNullSpace nearnull;
   PetscInt     ndofs;
   PetscLogDouble t_assembly;
@@ -146,7 +147,7 @@ struct _n_SgContact {
 };
 
 /* Measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i:
-   equilibrium     ||K y - b + B^T W lam||_2 / max(||K y||, ||b||)        (relative: interior and tangential part)
+   equilibrium     ||K y - b + B^T W lam|| / (||K|| ||y|| + ||b||), infinity norms (backward error; interior and tangential part)
    infeasibility   ||max(0, g)||_{L2(Gamma_c)}                             (length)
    complementarity ||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}, A = {lam > 0}, as an L2 sum of squares
    dual            ||min(0, lam)|| / ||lam||
@@ -227,7 +228,10 @@ struct _n_SgCont {
   Vec        y;            /* the iterate, finally the solution */
   PetscReal *lam;          /* the multiplier at y */
   PetscReal  kkt_tol;
-  PetscInt   max_outer;
+  PetscInt   max_outer, stall_its;
+  PetscReal  gamma_max;
+  PetscReal  best_kkt;     /* progress watch */
+  PetscInt   best_step;
   PetscInt   outer, ssn_its, ksp_its;
   PetscInt   ngammas, capgammas;
   PetscReal *gammas;       /* gamma of every outer step */
@@ -254,6 +258,11 @@ PetscErrorCode SgContMeasure(SgCont);
 PetscErrorCode SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, PetscReal, PetscReal, PetscReal);
+PetscErrorCode SgContCheck(SgCont, PetscReal, PetscBool *);
+PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
+PetscErrorCode SgContCreate_ALM(SgCont);
+PetscErrorCode SgContCreate_PF(SgCont);
+PetscErrorCode SgContCreate_IPF(SgCont);
 PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_PDAS(SgCont);
 PetscErrorCode SgContCreate_VI(SgCont);

@@ -140,6 +140,30 @@ static PetscErrorCode TestGap(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* The model m(gamma) = C1 - C2/(E + gamma) is recovered exactly from V(0), V(g), V'(g) of a synthetic V = m. */
+static PetscErrorCode TestModelFit(SgSummary s)
+{
+  const PetscReal C1 = -0.0104, C2 = 3.7e-2, E = 350.0, g[3] = {1e2, 1e5, 1e9};
+  PetscReal       err = 0;
+  PetscBool       ok = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 3; i++) {
+    const PetscReal V0 = C1 - C2 / E, V = C1 - C2 / (E + g[i]), dV = C2 / PetscSqr(E + g[i]);
+    PetscReal       c1, c2, e;
+    ok  = (PetscBool)(ok && SgModelFit(V0, g[i], V, dV, &c1, &c2, &e));
+    err = PetscMax(err, PetscMax(PetscAbsReal(c1 - C1) / PetscAbsReal(C1), PetscMax(PetscAbsReal(c2 - C2) / C2, PetscAbsReal(e - E) / E)));
+  }
+  PetscCall(SgSummarySetBool(s, "fitted", ok));
+  PetscCall(SgSummarySetReal(s, "max_relative_error", err));
+  /* data no model of this form can fit (V decreasing in gamma) are refused */
+  {
+    PetscReal c1, c2, e;
+    PetscCall(SgSummarySetBool(s, "refuses_bad_data", (PetscBool)!SgModelFit(1.0, 10.0, 0.5, 0.1, &c1, &c2, &e)));
+  }
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -158,6 +182,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "element3d", &eq) == 0 && eq) PetscCall(TestElement3D(s));
   else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
+  else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

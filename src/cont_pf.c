@@ -1,0 +1,80 @@
+/* cont_pf.c: exact path-following (PF), lamhat = 0: solve (P_gamma) exactly by SSN, fit the model
+   m(gamma) = C1 - C2/(E + gamma) to V(0), V(gamma_k), V'(gamma_k) (formula (9)), then
+   gamma_{k+1} = C2/beta_k - E with beta_k = tau_k |C1 - V(gamma_k)| and tau_k = tau0^k (formula (12)). */
+#include "signorini.h"
+
+typedef struct {
+  PetscReal gamma1, tau0, fallback;
+} PF;
+
+static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  PF *pf = (PF *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal("-pf_gamma1", "gamma of the first path step", NULL, pf->gamma1, &pf->gamma1, NULL));
+  PetscCall(PetscOptionsReal("-pf_tau0", "tau_k = tau0^k: the model's predicted distance to V(infinity) shrinks by tau_k", NULL, pf->tau0, &pf->tau0, NULL));
+  PetscCall(PetscOptionsReal("-pf_fallback_factor", "gamma growth when the model cannot be fitted (never needed in our runs)", NULL, pf->fallback, &pf->fallback, NULL));
+  PetscCheck(PetscIsNormalReal(pf->gamma1) && pf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pf_gamma1: must be positive and finite, got %g", (double)pf->gamma1);
+  PetscCheck(PetscIsNormalReal(pf->tau0) && pf->tau0 > 0 && pf->tau0 < 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_tau0: must lie in (0, 1), got %g", (double)pf->tau0);
+  PetscCheck(PetscIsNormalReal(pf->fallback) && pf->fallback > 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_fallback_factor: must be > 1, got %g", (double)pf->fallback);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_PF(SgCont ct)
+{
+  PF       *pf    = (PF *)ct->data;
+  PetscReal gamma = pf->gamma1, tauk = 1;
+  PetscBool stop  = PETSC_FALSE, ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContSolveUnconstrained(ct)); /* V(0) */
+  for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
+  while (!stop) {
+    PetscInt  its0 = ct->ssn_its;
+    PetscReal V, dV, C1, C2, E, next;
+
+    ct->outer++;
+    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContSSN(ct, gamma, &ok));
+    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContMeasure(ct));
+    V  = ct->ssn->V;
+    dV = ct->ssn->dVdg;
+    tauk *= pf->tau0;
+    if (SgModelFit(ct->V0, gamma, V, dV, &C1, &C2, &E)) next = C2 / (tauk * PetscAbsReal(C1 - V)) - E;
+    else next = SG_NAN;
+    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, C1, C2, E));
+    if (!ok) break;
+    if (!(PetscIsNormalReal(next) && next > gamma)) {
+      PetscCall(PetscInfo(ct->ssn->snes, "PF step %" PetscInt_FMT ": no usable model update (%g), gamma grows by %g\n", ct->outer, (double)next, (double)pf->fallback));
+      next = gamma * pf->fallback;
+    }
+    gamma = next;
+    PetscCall(SgContCheck(ct, gamma, &stop));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_PF(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(ct->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate_PF(SgCont ct)
+{
+  PF *pf;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&pf));
+  pf->gamma1         = 1e2;
+  pf->tau0           = 0.1;
+  pf->fallback       = 10;
+  ct->data           = pf;
+  ct->setfromoptions = SetFromOptions_PF;
+  ct->solve          = Solve_PF;
+  ct->destroy        = Destroy_PF;
+  PetscFunctionReturn(0);
+}
