@@ -21,7 +21,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
 
 # Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
-TARGETS = all run test
+TARGETS = all run test table1 reproduce figures
 
 .PHONY: $(TARGETS) deps clean
 
@@ -43,6 +43,14 @@ run: all
 test: all
 	@scripts/install-deps.sh
 	$(PYTHON) tests/harness.py tests/*.ini
+
+# The paper's tables side by side with ours (results/*.md) and its figures (results/fig*.png)
+table1: all
+	$(PYTHON) scripts/reproduce.py --only table1 --out results/table1.md
+reproduce: all
+	$(PYTHON) scripts/reproduce.py
+figures: all
+	$(PYTHON) scripts/figures.py --only ex1
 endif
 
 deps:

@@ -138,13 +138,11 @@ static PetscErrorCode ProblemOptions(SgProblem p)
   PetscCall(PetscOptionsReal("-nu", "Poisson's ratio (plane strain in 2D)", NULL, p->nu, &p->nu, NULL));
   PetscCall(PetscOptionsRealArray("-body_force", "Constant body force f (dim numbers)", NULL, p->body_force, &nbf, &flg));
   PetscCall(PetscOptionsBool("-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", NULL, p->mms, &p->mms, NULL));
+  PetscOptionsEnd();
   p->dirichlet.what = "dirichlet";
   p->neumann.what   = "neumann";
   PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
   PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
-  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->dirichlet, 0, NULL, "Dirichlet"));
-  PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->neumann, 0, NULL, "Neumann (traction)"));
-  PetscOptionsEnd();
   PetscCheck(PetscIsNormalReal(p->E) && p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E: Young's modulus must be positive and finite, got %g", (double)p->E);
   PetscCheck(PetscIsNormalReal(p->nu) && p->nu > 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in (0, 0.5), got %g", (double)p->nu);
   PetscCheck(!flg || nbf == 2 || nbf == 3, p->comm, PETSC_ERR_USER_INPUT, "-body_force: give one number per dimension, got %" PetscInt_FMT, nbf);
@@ -153,7 +151,7 @@ static PetscErrorCode ProblemOptions(SgProblem p)
   PetscFunctionReturn(0);
 }
 
-/* The values options of the boundary parts need the dimension, known only once the mesh exists. */
+/* The boundary parts' options (their values need the dimension, known only once the mesh exists). */
 static PetscErrorCode BoundaryValueOptions(SgProblem p)
 {
   PetscFunctionBeginUser;
