@@ -2,7 +2,7 @@
 """Picture of the deformed mesh from a result file of bin/signorini (HDF5).
 
 2D: the deformed triangles coloured by a cell field, and the obstacle (gap magnified like the displacement).
-3D: the deformed boundary surface coloured by a cell field, seen from below-front, with the obstacle's contact patch.
+3D: the deformed boundary surface coloured by a cell field, seen from below (plot_pressure.py maps the contact pressure).
 The magnification defaults to the one stored by -output_magnification. The PNG is written atomically.
 
 usage: plot_mesh.py RESULT.h5 OUT.png [--field shear_energy_density|von_mises] [--magnify M] [--title TEXT]
@@ -75,11 +75,6 @@ def plot3d(d, field, mag, fig):
     cmap = plt.get_cmap("viridis")
     pc = Poly3DCollection(xd[faces], facecolors=cmap(norm(vals)), edgecolors=(0, 0, 0, 0.15), linewidths=0.1)
     ax.add_collection3d(pc)
-    if "active" in d:
-        act = d["active"] > 0.5
-        xo = d["x"][act] + mag * d["obstacle"][act]
-        ax.scatter(xo[:, 0], xo[:, 1], xo[:, 2], s=2, c="r", label="contact (on obstacle)")
-        ax.legend(loc="upper left", fontsize=8)
     lo, hi = xd.min(axis=0), xd.max(axis=0)
     ax.set_xlim(lo[0], hi[0])
     ax.set_ylim(lo[1], hi[1])

@@ -210,6 +210,17 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgSummarySetInt(ct->sum, "contact_vertices", ct->c->nglobal));
     PetscCall(SgSummarySetReal(ct->sum, "contact_area", ct->c->area));
     PetscCall(SgSummarySetString(ct->sum, "obstacle", ct->c->obs->type));
+    {
+      /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
+      const PetscInt dim = ct->prob->dim;
+      PetscReal      F[3] = {0, 0, 0}, R[3];
+      for (PetscInt i = 0; i < ct->c->n; i++)
+        for (PetscInt d = 0; d < dim; d++) F[d] += ct->c->w[i] * ct->lam[i] * ct->c->normal[i * dim + d];
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, F, 3, MPIU_REAL, MPI_SUM, ct->comm));
+      PetscCall(SgProblemReaction(ct->prob, ct->y, R));
+      PetscCall(SgSummarySetRealArray(ct->sum, "contact_force_vector", dim, F));
+      PetscCall(SgSummarySetRealArray(ct->sum, "reaction_force", dim, R));
+    }
     PetscCall(SummaryPath(ct));
   }
   PetscFunctionReturn(0);

@@ -494,6 +494,62 @@ PetscErrorCode SgProblemCellFields(SgProblem p, Vec y, Vec vm, Vec wshear)
   PetscFunctionReturn(0);
 }
 
+/* Total reaction force on the Dirichlet vertices, sum_D (K u - f)_D (u with its Dirichlet values). With the contact
+   forces it balances the loads: R = sum_i w_i lam_i n_i - sum f. */
+PetscErrorCode SgProblemReaction(SgProblem p, Vec y, PetscReal R[3])
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  Vec                yloc;
+  const PetscScalar *ya;
+  PetscReal          loc[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  /* every cell is on exactly one rank, so the element sums need no ownership bookkeeping */
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscBool       has = PETSC_FALSE;
+
+    for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcgroup[cv[a]] >= 0);
+    if (!has) continue;
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) {
+        xe[a * dim + d] = m->x[cv[a] * dim + d];
+        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
+      }
+    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    for (PetscInt a = 0; a < nv; a++) {
+      if (m->bcgroup[cv[a]] < 0) continue;
+      for (PetscInt i = 0; i < dim; i++) {
+        PetscReal r = -vol / nv * p->body_force[i];
+        for (PetscInt j = 0; j < nv * dim; j++) r += Ke[(a * dim + i) * nv * dim + j] * ue[j];
+        loc[i] += r;
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  if (p->neumann.nvalues) { /* traction on the Neumann facets' Dirichlet vertices */
+    PetscInt nfac, *facets, *part;
+    PetscCall(SgBoundaryGetFacets(p->dm, &p->neumann, &nfac, &facets, &part));
+    for (PetscInt f = 0; f < nfac; f++) {
+      PetscInt  fv[3], nfv;
+      PetscReal area, nrm[3];
+      PetscCall(SgFacetGeometry(p->dm, m, facets[f], &nfv, fv, &area, nrm));
+      for (PetscInt a = 0; a < nfv; a++)
+        if (m->bcgroup[fv[a]] >= 0)
+          for (PetscInt d = 0; d < dim; d++) loc[d] -= area / nfv * p->neumann.values[part[f] * dim + d];
+    }
+    PetscCall(PetscFree2(facets, part));
+  }
+  PetscCallMPI(MPI_Allreduce(loc, R, 3, MPIU_REAL, MPI_SUM, p->comm));
+  PetscFunctionReturn(0);
+}
+
 /* L2 and H1-seminorm errors against the manufactured solution. */
 PetscErrorCode SgProblemMMSErrors(SgProblem p, Vec y, PetscReal *l2, PetscReal *h1)
 {

@@ -89,6 +89,11 @@ int main(int argc, char **argv)
   PetscCall(SgSummarySetInt(cont->sum, "dofs", prob->ndofs));
   PetscCall(SgSummarySetInt(cont->sum, "ranks", size));
   PetscCall(SgSummarySetInt(cont->sum, "dim", prob->dim));
+  {
+    PetscInt nc = prob->mesh.nc;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCall(SgSummarySetInt(cont->sum, "cells", nc));
+  }
   PetscCall(SgSummarySetReal(cont->sum, "E", prob->E));
   PetscCall(SgSummarySetReal(cont->sum, "nu", prob->nu));
   PetscCall(SgSummarySetReal(cont->sum, "assembly_time", prob->t_assembly));

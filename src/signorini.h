@@ -83,6 +83,7 @@ PetscErrorCode SgProblemFullDisplacement(SgProblem, Vec, Vec);
 PetscErrorCode SgProblemCellFields(SgProblem, Vec, Vec, Vec);
 PetscErrorCode SgProblemMMSErrors(SgProblem, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgProblemDualNorm(SgProblem, Vec, PetscReal *);
+PetscErrorCode SgProblemReaction(SgProblem, Vec, PetscReal[3]);
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
 PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
@@ -200,7 +201,8 @@ struct _n_SgSSN {
   PetscBool   havejac;
   PetscInt    nact, nentered, nleft;
   PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
-  PetscReal   r1, r2, fdual, fnorm0;
+  PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
+  PetscBool   prev_settled;
   PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64 *hash;
   PetscBool   residual_test;  /* inexact linear solves: also require a small residual */

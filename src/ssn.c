@@ -142,7 +142,8 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     PetscFunctionReturn(0);
   }
   if (it == 0) {
-    s->fnorm0 = fnorm;
+    s->fnorm0       = fnorm;
+    s->prev_settled = PETSC_FALSE;
     if (fnorm <= atol) {
       *reason   = SNES_CONVERGED_FNORM_ABS;
       s->reason = SG_SSN_ZERO_RESIDUAL;
@@ -150,11 +151,17 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     PetscFunctionReturn(0);
   }
   settled = (PetscBool)(s->nentered + s->nleft == 0);
-  small   = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0));
+  /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
+     unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
+     lie below sqrt(rtol) max(||F_0||, ||b||) */
+  small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->prob->bnorm)));
+  s->prev_settled = settled;
+  s->prev_fnorm   = fnorm;
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
-  } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma) && small) {
+  } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma)) {
+    /* r1 measures the equilibrium residual, inexact linear solves included */
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_NEIGHBOURHOOD;
   } else if (!settled) {
