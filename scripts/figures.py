@@ -107,7 +107,7 @@ def ex2():
                     "--field", "von_mises", "--magnify", "1", "--title", "Example 2: deformed mesh coloured by von Mises stress"], check=True)
     subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_pressure.py"), os.path.join(RUNS, "fig8.h5"), os.path.join(RES, "fig8_pressure.png")], check=True)
     print("wrote results/fig8.png, results/fig8_pressure.png")
-    d = sweep(base.replace("ex2.opts", "ex2.opts -options_file options/solver/mumps.opts"), "fig7_ex2", np.arange(4, 14.01, 0.5))
+    d = sweep("-options_file options/ex2_problem.opts -options_file options/solver/mumps.opts", "fig7_ex2", np.arange(4, 14.01, 0.5))
     value_figure([("Example 2", d)], [1e6, 1e8, 1e10], "Example 2: path value V(gamma) and models m(gamma)", "fig7.png")
 
 

@@ -117,7 +117,7 @@ PetscErrorCode SgContCreate_IPF(SgCont ct)
   ipf->tau           = 1e6;
   ipf->tau1          = 5;
   ipf->q             = 1.5;
-  ipf->tau3          = 10;
+  ipf->tau3          = 100;
   ct->data           = ipf;
   ct->setfromoptions = SetFromOptions_IPF;
   ct->solve          = Solve_IPF;
