@@ -53,6 +53,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscBool          done = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  PetscCheck(!ct->ssn->cond, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_condense does not apply to -cont_type pdas (its solves eliminate the active normal dofs)");
   PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n, &rows));
   PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
   PetscCall(SgContactAxisAligned(c, "-cont_type pdas", axis, sign));

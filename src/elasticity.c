@@ -197,6 +197,88 @@ static void DirichletValue(SgProblem p, PetscInt v, PetscReal u[])
     for (PetscInt d = 0; d < p->dim; d++) u[d] = p->dirichlet.nvalues ? p->dirichlet.values[g * p->dim + d] : 0.0;
 }
 
+/* The stiffness (BAIJ, block size dim) with its nonzero pattern from the mesh graph: block row v couples v with the
+   vertices of its cells.
+   Rows of vertices shared between ranks get the counts of every rank added, an upper bound only there (the other
+   ranks' cells are not local). DMCreateMatrix() and MATPREALLOCATOR cost several times the assembly itself. */
+static PetscErrorCode CreateStiffness(SgProblem p)
+{
+  const SgMesh  *m = &p->mesh;
+  const PetscInt dim = p->dim, nv = dim + 1;
+  PetscInt       n, N, bstart, bend, *vcoff, *vcell, *mark, *dnz, *onz;
+  const PetscInt *ranges;
+  PetscMPIInt    size;
+  Vec            cloc, cglob;
+  PetscScalar   *ca;
+  PetscSection   vs;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, &n));
+  PetscCall(VecGetSize(p->b, &N));
+  PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
+  bstart /= dim;
+  bend /= dim;
+  PetscCall(VecGetOwnershipRanges(p->b, &ranges));
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  /* vertex -> cells */
+  PetscCall(PetscCalloc3(m->nv + 1, &vcoff, m->nc * nv, &vcell, m->nv, &mark));
+  for (PetscInt c = 0; c < m->nc * nv; c++) vcoff[m->cellv[c] + 1]++;
+  for (PetscInt v = 0; v < m->nv; v++) vcoff[v + 1] += vcoff[v];
+  for (PetscInt c = 0; c < m->nc; c++)
+    for (PetscInt a = 0; a < nv; a++) vcell[vcoff[m->cellv[c * nv + a]] + mark[m->cellv[c * nv + a]]++] = c;
+  for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
+  /* local counts of distinct free neighbours (diagonal / off-diagonal block columns), summed over ranks */
+  PetscCall(DMGetLocalVector(p->dmVec, &cloc));
+  PetscCall(VecZeroEntries(cloc));
+  PetscCall(DMGetLocalSection(p->dmVec, &vs));
+  PetscCall(VecGetArray(cloc, &ca));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off, d = 0, o = 0, lo, hi, r = 0;
+    if (m->gblock[v] < 0) continue;
+    /* diagonal or off-diagonal block is decided by the owner of row v */
+    while (r < size - 1 && m->gblock[v] * dim >= ranges[r + 1]) r++;
+    lo = ranges[r] / dim;
+    hi = ranges[r + 1] / dim;
+    for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
+      for (PetscInt a = 0; a < nv; a++) {
+        const PetscInt u = m->cellv[vcell[k] * nv + a], g = m->gblock[u];
+        if (g < 0 || mark[u] == v) continue;
+        mark[u] = v;
+        if (g >= lo && g < hi) d++;
+        else o++;
+      }
+    PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+    ca[off]     = d;
+    ca[off + 1] = o;
+  }
+  PetscCall(VecRestoreArray(cloc, &ca));
+  PetscCall(DMGetGlobalVector(p->dmVec, &cglob));
+  PetscCall(VecZeroEntries(cglob));
+  PetscCall(DMLocalToGlobal(p->dmVec, cloc, ADD_VALUES, cglob));
+  PetscCall(DMGlobalToLocal(p->dmVec, cglob, INSERT_VALUES, cloc));
+  PetscCall(DMRestoreGlobalVector(p->dmVec, &cglob));
+  PetscCall(PetscMalloc2(n / dim, &dnz, n / dim, &onz));
+  PetscCall(VecGetArray(cloc, &ca));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    if (m->goff[v] < 0) continue; /* owned free vertices have rows here */
+    PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+    dnz[m->goff[v] / dim] = PetscMin((PetscInt)PetscRealPart(ca[off]), bend - bstart);
+    onz[m->goff[v] / dim] = PetscMin((PetscInt)PetscRealPart(ca[off + 1]), N / dim - (bend - bstart));
+  }
+  PetscCall(VecRestoreArray(cloc, &ca));
+  PetscCall(DMRestoreLocalVector(p->dmVec, &cloc));
+  PetscCall(MatCreate(p->comm, &p->K));
+  PetscCall(MatSetSizes(p->K, n, n, N, N));
+  PetscCall(MatSetBlockSize(p->K, dim));
+  PetscCall(MatSetType(p->K, MATBAIJ)); /* blocked insertion; converted to AIJ (what MUMPS and hypre take) once assembled */
+  PetscCall(MatXAIJSetPreallocation(p->K, dim, dnz, onz, NULL, NULL));
+  PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(PetscFree2(dnz, onz));
+  PetscCall(PetscFree3(vcoff, vcell, mark));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Assemble(SgProblem p)
 {
   const SgMesh   *m = &p->mesh;
@@ -210,10 +292,10 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Assembly, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
-  PetscCall(DMCreateMatrix(p->dm, &p->K));
-  PetscCall(PetscObjectSetName((PetscObject)p->K, "K"));
   PetscCall(DMCreateGlobalVector(p->dm, &p->b));
   PetscCall(PetscObjectSetName((PetscObject)p->b, "load"));
+  PetscCall(CreateStiffness(p));
+  PetscCall(PetscObjectSetName((PetscObject)p->K, "K"));
   PetscCall(VecDuplicate(p->b, &p->mass));
   PetscCall(DMCreateLocalVector(p->dm, &p->ubc));
   PetscCall(DMGetLocalVector(p->dm, &floc));
@@ -301,6 +383,7 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscCall(DMLocalToGlobal(p->dm, floc, ADD_VALUES, p->b));
   PetscCall(DMLocalToGlobal(p->dm, mloc, ADD_VALUES, p->mass));
   PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatConvert(p->K, MATAIJ, MAT_INPLACE_MATRIX, &p->K));
   PetscCall(DMRestoreLocalVector(p->dm, &floc));
   PetscCall(DMRestoreLocalVector(p->dm, &mloc));
   PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));

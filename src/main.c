@@ -1,5 +1,6 @@
 /* main.c: driver: options, mesh and problem, contact, controller, output. */
 #include "signorini.h"
+#include <sys/resource.h>
 
 static const char help[] = "Frictionless contact of a linear elastic body with a rigid obstacle, solved with the semismooth Newton,\n"
                            "augmented Lagrangian and path-following methods of G. Stadler (J. Comput. Appl. Math. 203, 2007).\n"
@@ -97,6 +98,19 @@ int main(int argc, char **argv)
   PetscCall(SgSummarySetReal(cont->sum, "E", prob->E));
   PetscCall(SgSummarySetReal(cont->sum, "nu", prob->nu));
   PetscCall(SgSummarySetReal(cont->sum, "assembly_time", prob->t_assembly));
+  /* one linear elasticity solve with the same solver, in this run: the yardstick of the contact solve's cost */
+  PetscCall(SgSummarySetReal(cont->sum, "linear_setup_time", cont->ssn->t_linear_setup));
+  PetscCall(SgSummarySetReal(cont->sum, "linear_solve_time", cont->ssn->t_linear_setup + cont->ssn->t_linear_solve));
+  {
+    struct rusage ru;
+    PetscReal     mb[2];
+    getrusage(RUSAGE_SELF, &ru);
+    mb[0] = mb[1] = ru.ru_maxrss / 1024.0; /* Linux: kilobytes */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[0], 1, MPIU_REAL, MPI_SUM, comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mb[1], 1, MPIU_REAL, MPI_MAX, comm));
+    PetscCall(SgSummarySetReal(cont->sum, "peak_rss_mb", mb[0]));
+    PetscCall(SgSummarySetReal(cont->sum, "peak_rss_mb_max_rank", mb[1]));
+  }
   if (prob->mms) {
     PetscReal l2, h1;
     PetscCall(SgProblemMMSErrors(prob, cont->y, &l2, &h1));

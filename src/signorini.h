@@ -188,7 +188,8 @@ PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
 /* ------------------------------------------------------------------ ssn.c */
 typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED } SgSSNReason;
 extern const char *const SgSSNReasons[];
-typedef struct _n_SgSSN *SgSSN;
+typedef struct _n_SgSSN      *SgSSN;
+typedef struct _n_SgCondense *SgCondense;
 struct _n_SgSSN {
   SgProblem   prob;
   SgContact   c;
@@ -206,17 +207,23 @@ struct _n_SgSSN {
   PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64 *hash;
   PetscBool   residual_test;  /* inexact linear solves: also require a small residual */
+  PetscInt    pc_reuse_its;   /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
+  SgCondense  cond;           /* -ssn_condense: linear solves condensed onto the contact dofs */
   PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason reason;
   PetscBool   monitor;
   SgHistory   hist;
   PetscInt    outer;
-  PetscLogDouble t0;
+  PetscLogDouble t0, t_linear_setup, t_linear_solve; /* the unconstrained solve: preconditioner setup and solve */
 };
 PetscErrorCode SgSSNCreate(SgProblem, SgContact, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *);
 PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
+
+/* ------------------------------------------------------------------ condense.c */
+PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
+PetscErrorCode SgCondenseDestroy(SgCondense *);
 PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 
 /* ------------------------------------------------------------------ cont.c and cont_*.c */

@@ -117,6 +117,16 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     s->hash = h;
   }
   PetscCall(SgSSNActiveSetHash(s, s->actjac, &s->hash[s->nhash++]));
+  /* within one (P_gamma) the Jacobians differ in the few vertices whose state changed: optionally keep the previous
+     preconditioner (a factorization, or an AMG hierarchy) while the Krylov solver converges fast with it */
+  if (s->pc_reuse_its > 0) {
+    KSP      ksp;
+    PetscInt kits = 0;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    if (s->nhash > 1) PetscCall(KSPGetIterationNumber(ksp, &kits));
+    /* SNES decides the reuse after this callback from its lag: -1 reuses, -2 rebuilds once */
+    PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && kits <= s->pc_reuse_its ? -1 : -2));
+  }
   /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
   PetscCall(MatCopy(s->prob->K, P, SAME_NONZERO_PATTERN));
   PetscCall(SgContactAddJacobian(c, s->actjac, s->gamma, P));
@@ -219,6 +229,7 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   SgSSN          s;
   SNESLineSearch ls;
   KSP            ksp;
+  PetscBool      condense = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -244,13 +255,18 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   PetscCall(KSPSetOperators(ksp, s->J, s->J));
   PetscOptionsBegin(p->comm, NULL, "Semismooth Newton (active set) solver", NULL);
   PetscCall(PetscOptionsBool("-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", NULL, s->monitor, &s->monitor, NULL));
+  PetscCall(PetscOptionsBool("-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", NULL, condense, &condense, NULL));
+  PetscCall(PetscOptionsInt("-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", NULL, s->pc_reuse_its, &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SNESSetFromOptions(s->snes));
+  if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   {
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
     s->residual_test = (PetscBool)!preonly;
+    PetscCheck(s->pc_reuse_its >= 0, p->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
+    PetscCheck(!(s->pc_reuse_its > 0 && preonly), p->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
   *ssn = s;
   PetscFunctionReturn(0);
@@ -263,6 +279,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
   PetscCall(SNESDestroy(&s->snes));
+  PetscCall(SgCondenseDestroy(&s->cond));
   PetscCall(MatDestroy(&s->J));
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree4(s->g, s->m, s->act, s->actjac));
@@ -277,12 +294,20 @@ PetscErrorCode SgSSNSolveLinear(SgSSN s, Vec y, PetscInt *its)
   KSP                ksp;
   KSPConvergedReason kr;
 
+  PetscLogDouble     t0, t1, t2;
+
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
   PetscCall(SNESGetKSP(s->snes, &ksp));
   PetscCall(MatCopy(s->prob->K, s->J, SAME_NONZERO_PATTERN));
   PetscCall(KSPSetOperators(ksp, s->J, s->J));
+  PetscCall(PetscTime(&t0));
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PetscTime(&t1));
   PetscCall(KSPSolve(ksp, s->prob->b, y));
+  PetscCall(PetscTime(&t2));
+  s->t_linear_setup = t1 - t0;
+  s->t_linear_solve = t2 - t1;
   PetscCall(KSPGetIterationNumber(ksp, its));
   PetscCall(KSPGetConvergedReason(ksp, &kr));
   PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));

@@ -1,0 +1,140 @@
+/* condense.c: SSN linear solves condensed onto the contact dofs (-ssn_condense, one rank, MUMPS).
+   K is factored once, with its Schur complement S_K on the contact dofs; a contact Jacobian K + gamma sum_A w n n^T
+   differs from K only there, so its Schur complement is S_K + the contact blocks: each SSN step factors that small
+   dense matrix instead of the whole stiffness, and MUMPS's condensation/expansion solves do the rest. */
+#include "signorini.h"
+
+struct _n_SgCondense {
+  SgSSN      ssn;
+  Mat        F;     /* MUMPS factor of K with the Schur complement on the contact dofs */
+  Mat        S0;    /* S_K, kept to restart every update from */
+  PetscInt   ncomp; /* 1: the normal component of each contact vertex (axis-aligned normals), dim: all components */
+  PetscInt  *axis;  /* axis of each contact vertex's normal (ncomp = 1) */
+  PetscBool  ready;
+};
+
+static PetscErrorCode CondenseUpdate(SgCondense cd)
+{
+  SgSSN          s   = cd->ssn;
+  SgContact      c   = s->c;
+  const PetscInt dim = s->prob->dim;
+  Mat                  S;
+  MatFactorSchurStatus status;
+  PetscScalar         *sa;
+  const PetscScalar   *s0;
+  PetscInt             lda, lda0, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatFactorGetSchurComplement(cd->F, &S, &status));
+  PetscCall(MatSetUnfactored(S)); /* it holds the factors of the previous step: start again from S_K */
+  PetscCall(MatGetSize(S, &n, NULL));
+  PetscCall(MatDenseGetLDA(S, &lda));
+  PetscCall(MatDenseGetLDA(cd->S0, &lda0));
+  PetscCall(MatDenseGetArray(S, &sa));
+  PetscCall(MatDenseGetArrayRead(cd->S0, &s0));
+  for (PetscInt j = 0; j < n; j++) PetscCall(PetscArraycpy(sa + j * lda, s0 + j * lda0, n));
+  PetscCall(MatDenseRestoreArrayRead(cd->S0, &s0));
+  if (s->havejac)
+    for (PetscInt i = 0; i < c->n; i++) {
+      if (!s->actjac[i]) continue;
+      if (cd->ncomp == 1) sa[i * lda + i] += s->gamma * c->w[i];
+      else
+        for (PetscInt a = 0; a < dim; a++)
+          for (PetscInt b = 0; b < dim; b++) sa[(i * dim + b) * lda + i * dim + a] += s->gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
+    }
+  PetscCall(MatDenseRestoreArray(S, &sa));
+  PetscCall(MatFactorRestoreSchurComplement(cd->F, &S, MAT_FACTOR_SCHUR_UNFACTORED));
+  PetscCall(MatFactorFactorizeSchurComplement(cd->F));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PCSetUp_Condense(PC pc)
+{
+  SgCondense cd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &cd));
+  if (!cd->ready) { /* the one sparse factorization, with the Schur complement on the contact dofs */
+    const PetscInt dim = cd->ssn->prob->dim;
+    SgContact      c   = cd->ssn->c;
+    PetscInt      *idx, rstart;
+    IS             is;
+    MatFactorInfo  info;
+    MatFactorSchurStatus status;
+
+    PetscCall(MatGetOwnershipRange(cd->ssn->prob->K, &rstart, NULL));
+    PetscCall(PetscMalloc1(c->n * cd->ncomp, &idx));
+    for (PetscInt i = 0; i < c->n; i++)
+      for (PetscInt k = 0; k < cd->ncomp; k++) idx[i * cd->ncomp + k] = rstart + c->off[i] + (cd->ncomp == 1 ? cd->axis[i] : k);
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, c->n * cd->ncomp, idx, PETSC_OWN_POINTER, &is));
+    PetscCall(MatGetFactor(cd->ssn->prob->K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
+    PetscCall(MatFactorSetSchurIS(cd->F, is));
+    PetscCall(ISDestroy(&is));
+    PetscCall(MatFactorInfoInitialize(&info));
+    PetscCall(MatCholeskyFactorSymbolic(cd->F, cd->ssn->prob->K, NULL, &info));
+    PetscCall(MatCholeskyFactorNumeric(cd->F, cd->ssn->prob->K, &info));
+    PetscCall(MatFactorCreateSchurComplement(cd->F, &cd->S0, &status));
+    cd->ready = PETSC_TRUE;
+    (void)dim;
+  }
+  PetscCall(CondenseUpdate(cd));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PCApply_Condense(PC pc, Vec r, Vec x)
+{
+  SgCondense cd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &cd));
+  PetscCall(MatSolve(cd->F, r, x));
+  PetscFunctionReturn(0);
+}
+
+/* Replace the SSN's linear solver by the condensed one. */
+PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
+{
+  SgCondense  cd;
+  PetscMPIInt size;
+  KSP         ksp;
+  PC          pc;
+  PetscBool   aligned = PETSC_TRUE;
+  const PetscInt dim = s->prob->dim;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(s->prob->comm, &size));
+  PetscCheck(size == 1, s->prob->comm, PETSC_ERR_SUP, "-ssn_condense runs on one rank (PETSc's MUMPS interface has no distributed Schur complements); got %d ranks", size);
+  PetscCheck(s->c, s->prob->comm, PETSC_ERR_USER_INPUT, "-ssn_condense needs a contact boundary");
+  PetscCall(PetscNew(&cd));
+  cd->ssn = s;
+  PetscCall(PetscMalloc1(s->c->n, &cd->axis));
+  for (PetscInt i = 0; i < s->c->n; i++) {
+    cd->axis[i] = -1;
+    for (PetscInt k = 0; k < dim; k++)
+      if (PetscAbsReal(PetscAbsReal(s->c->normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
+    if (cd->axis[i] < 0) aligned = PETSC_FALSE;
+  }
+  /* axis-aligned normals: the contact block only touches the normal components, so only they are condensed */
+  cd->ncomp = aligned ? 1 : dim;
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, cd));
+  PetscCall(PCShellSetSetUp(pc, PCSetUp_Condense));
+  PetscCall(PCShellSetApply(pc, PCApply_Condense));
+  PetscCall(PCShellSetName(pc, "contact-boundary condensation (MUMPS Schur complement)"));
+  *cond = cd;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCondenseDestroy(SgCondense *cond)
+{
+  PetscFunctionBeginUser;
+  if (!*cond) PetscFunctionReturn(0);
+  PetscCall(MatDestroy(&(*cond)->F));
+  PetscCall(MatDestroy(&(*cond)->S0));
+  PetscCall(PetscFree((*cond)->axis));
+  PetscCall(PetscFree(*cond));
+  PetscFunctionReturn(0);
+}
