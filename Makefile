@@ -24,7 +24,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
 
 # Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
-TARGETS = all run test table1 reproduce figures meshes
+TARGETS = all run test table1 reproduce figures meshes bench
 
 .PHONY: $(TARGETS) deps clean
 
@@ -59,6 +59,9 @@ reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
 	$(PYTHON) scripts/figures.py --only ex1,ex2
+# Benchmarks (not tests): bench/results.md and bench/results.json; about an hour on 2 cores
+bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
+	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
 endif
 
 deps:

@@ -294,6 +294,19 @@ PetscErrorCode SgContCheck(SgCont ct, PetscReal gamma_next, PetscBool *stop)
   PetscFunctionReturn(0);
 }
 
+/* A baseline that solves (P) itself (pdas, vi) has converged only if its result meets the KKT tolerance too:
+   a settled active set after inexact linear solves can still be far from it. */
+PetscErrorCode SgContCheckBaseline(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  if (ct->converged && !(ct->kkt.residual <= ct->kkt_tol)) {
+    char was[sizeof(ct->reason)];
+    PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
+    PetscCall(SgContFail(ct, "KKT_RESIDUAL_ABOVE_TOL: %.3e > %.3e (-cont_kkt_tol) after %s; tighten the linear solves", (double)ct->kkt.residual, (double)ct->kkt_tol, was));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* ---- none: one regularized problem (P_gamma) for -contact_gamma and -contact_lamhat, from the unconstrained start */
 static PetscErrorCode Solve_None(SgCont ct)
 {

@@ -160,6 +160,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
   PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its, SG_NAN, SG_NAN, SG_NAN));
+  PetscCall(SgContCheckBaseline(ct));
   PetscCall(VecDestroy(&rhs));
   PetscCall(VecDestroy(&x));
   PetscCall(PetscFree6(axis, sign, g, act, next, rows));

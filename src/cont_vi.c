@@ -93,6 +93,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "VI_%s", SNESConvergedReasons[reason]));
   } else PetscCall(SgContFail(ct, "VI_%s after %" PetscInt_FMT " iterations", SNESConvergedReasons[reason], its));
+  PetscCall(SgContCheckBaseline(ct));
   {
     SNESType type;
     PetscCall(SNESGetType(vi->snes, &type));

@@ -137,6 +137,8 @@ static PetscErrorCode ProblemOptions(SgProblem p)
   PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, p->E, &p->E, NULL));
   PetscCall(PetscOptionsReal("-nu", "Poisson's ratio (plane strain in 2D)", NULL, p->nu, &p->nu, NULL));
   PetscCall(PetscOptionsRealArray("-body_force", "Constant body force f (dim numbers)", NULL, p->body_force, &nbf, &flg));
+  p->use_nearnull = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-elasticity_near_null_space", "Attach the rigid-body modes to the stiffness as near null space (used by GAMG; hypre's use of them crashes in Debian's build)", NULL, p->use_nearnull, &p->use_nearnull, NULL));
   PetscCall(PetscOptionsBool("-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", NULL, p->mms, &p->mms, NULL));
   PetscOptionsEnd();
   p->dirichlet.what = "dirichlet";
@@ -404,7 +406,7 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscCall(DMRestoreLocalVector(p->dm, &xloc));
   PetscCall(VecSetBlockSize(xg, dim));
   PetscCall(MatNullSpaceCreateRigidBody(xg, &p->nearnull));
-  PetscCall(MatSetNearNullSpace(p->K, p->nearnull));
+  if (p->use_nearnull) PetscCall(MatSetNearNullSpace(p->K, p->nearnull));
   PetscCall(VecDestroy(&xg));
   PetscCall(PetscTime(&t1));
   p->t_assembly = t1 - t0;

@@ -70,7 +70,8 @@ struct _n_SgProblem {
   PetscReal    energy_shift; /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
   PetscReal    bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
   PetscReal    Knorm;        /* ||K||_inf */
-  MatNullSpace nearnull;
+  MatNullSpace nearnull;     /* rigid-body modes */
+  PetscBool    use_nearnull; /* attached to K and the Jacobians */
   PetscInt     ndofs;
   PetscLogDouble t_assembly;
 };
@@ -268,6 +269,7 @@ PetscErrorCode SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, PetscReal, PetscReal, PetscReal);
 PetscErrorCode SgContCheck(SgCont, PetscReal, PetscBool *);
+PetscErrorCode SgContCheckBaseline(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);

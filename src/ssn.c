@@ -238,7 +238,7 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   s->gamma = c ? c->gamma : 1;
   PetscCall(PetscTime(&s->t0));
   PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &s->J));
-  PetscCall(MatSetNearNullSpace(s->J, p->nearnull));
+  if (p->use_nearnull) PetscCall(MatSetNearNullSpace(s->J, p->nearnull));
   PetscCall(MatSetOption(s->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   PetscCall(VecDuplicate(p->b, &s->r));
   if (c) PetscCall(PetscMalloc4(c->n, &s->g, c->n, &s->m, c->n, &s->act, c->n, &s->actjac));

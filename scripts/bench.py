@@ -1,0 +1,265 @@
+#!/usr/bin/python3
+"""Benchmarks (`make bench`): writes bench/results.md (for people) and bench/results.json (for machines).
+
+Sections: (A) linear elasticity from 1e4 to 1e6 unknowns in 2D and 3D (assembly, setup, solve, iterations, memory);
+(B) Example 2 from the paper's mesh to 1e6 unknowns on 1 and 2 ranks; (C) the contact solver: mesh independence,
+cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave.
+Every ratio is of two numbers measured in the same run or in runs made one after the other here. Runs are kept in
+bench/runs/; --reuse skips runs whose summary exists. Not a test: timings depend on the machine's load.
+
+usage: bench.py [--reuse] [--only A,B,C,D] [--quick]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sgrun  # noqa: E402
+
+BENCH = os.path.join(sgrun.ROOT, "bench")
+RUNS = os.path.join(BENCH, "runs")
+MUMPS = "-options_file options/solver/mumps.opts"
+COND = "-options_file options/solver/mumps_condensed.opts"
+HYPRE = "-options_file options/solver/hypre.opts"
+HYPRE_NOAGG = HYPRE + " -pc_hypre_boomeramg_agg_nl 0"
+EX1 = "-options_file options/ex1.opts"
+EX2P = "-options_file options/ex2_problem.opts"
+IPF2 = "-options_file options/cont/ipf.opts"
+IPF3 = "-options_file options/cont/ipf.opts -ipf_tau 1e8"
+VI = "-options_file options/cont/vi.opts"
+
+
+class Bench:
+    def __init__(self, reuse):
+        self.reuse = reuse
+        self.data = {}
+
+    def run(self, name, args, np=1, check=True):
+        path = os.path.join(RUNS, name + ".json")
+        if self.reuse and os.path.exists(path):
+            s = json.load(open(path))
+        else:
+            t0 = time.time()
+            print("bench: %-40s np %d ..." % (name, np), end="", flush=True)
+            s, _ = sgrun.run(args, name, RUNS, np=np, check=False)  # failed runs still write their summary
+            if not s.get("converged"):
+                print(" (did not converge: %s)" % s.get("reason", "no summary")[:100], end="")
+            print(" %.0f s" % (time.time() - t0))
+        self.data[name] = s
+        return s
+
+
+def fmt(x, f="%.3g"):
+    return "-" if x is None else (f % x)
+
+
+def table(head, rows):
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    out += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
+    return out + [""]
+
+
+def elasticity(b, quick):
+    out = ["## A. Linear elasticity, 1e4 to 1e6 unknowns (issue 2)", "",
+           "2D: Example 1's body and loads without contact (box [0,3]x[0,1], nu = 0.4). 3D: the block of Example 2 "
+           "(nu = 0.45, E = 1e6), bottom clamped, top moved by (0,0,-0.2). Times in seconds: assembly of K and the load; "
+           "solver setup (factorization or AMG hierarchy) and the whole solve (setup included); KSP iterations; peak "
+           "resident memory of the run.", ""]
+    res = {}
+    cases2 = [41, 129] if quick else [41, 129, 408]
+    cases3 = [12, 26] if quick else [12, 26, 56]
+    rows = []
+    for k in cases2:
+        base = "-box_dim 2 -box_faces %d,%d -box_upper 3,1 -E 5000 -nu 0.4 -dirichlet_ids 4 -neumann_ids 2 -neumann_traction 0,-2" % (3 * k, k)
+        for sname, sopt in (("MUMPS", MUMPS), ("BoomerAMG", HYPRE)):
+            s = b.run("A2_%s_k%d" % (sname, k), base + " " + sopt)
+            rows.append(("2D", s.get("dofs"), sname, fmt(s.get("assembly_time")), fmt(s.get("linear_setup_time")), fmt(s.get("linear_solve_time")),
+                         s.get("ksp_iterations"), fmt(s.get("assembly_time", 0) / max(s.get("linear_solve_time", 1e-300), 1e-300), "%.2f"), fmt(s.get("peak_rss_mb"), "%.0f")))
+            res["2d_%s_%d" % (sname, s.get("dofs", 0))] = s
+    for k in cases3:
+        base = "-box_dim 3 -box_faces %d,%d,%d -box_lower -0.5,-1,-0.5 -box_upper 0.5,1,0.5 -E 1e6 -nu 0.45 -dirichlet_ids 1,2 -dirichlet_values 0,0,0,0,0,-0.2" % (k, 2 * k, k)
+        variants = [("BoomerAMG", HYPRE), ("BoomerAMG, no aggressive coarsening", HYPRE_NOAGG), ("BoomerAMG, nodal coarsening", HYPRE_NOAGG + " -pc_hypre_boomeramg_nodal_coarsen 1"),
+                    ("GAMG, near null space", "-ksp_type cg -ksp_rtol 1e-6 -pc_type gamg"), ("GAMG, no near null space", "-ksp_type cg -ksp_rtol 1e-6 -pc_type gamg -elasticity_near_null_space 0"),
+                    ("MUMPS", MUMPS)]
+        for sname, sopt in variants:
+            s = b.run("A3_%s_k%d" % (sname.replace(" ", "").replace(",", "_"), k), base + " " + sopt)
+            rows.append(("3D", s.get("dofs"), sname, fmt(s.get("assembly_time")), fmt(s.get("linear_setup_time")), fmt(s.get("linear_solve_time")),
+                         s.get("ksp_iterations"), fmt(s.get("assembly_time", 0) / max(s.get("linear_solve_time", 1e-300), 1e-300), "%.2f"), fmt(s.get("peak_rss_mb"), "%.0f")))
+            res["3d_%s_%d" % (sname, s.get("dofs", 0))] = s
+    out += table(["dim", "unknowns", "solver", "assembly", "setup", "solve", "KSP its", "assembly/solve", "peak MB"], rows)
+    # targets
+    amg = [(s["dofs"], s["ksp_iterations"]) for k, s in sorted(res.items()) if k.startswith("3d_BoomerAMG_") and "dofs" in s]
+    amg.sort()
+    noagg = sorted((s["dofs"], s["ksp_iterations"]) for k, s in res.items() if k.startswith("3d_BoomerAMG, no aggressive") and "dofs" in s)
+    grow = (amg[-1][1] / amg[0][1] - 1) if len(amg) > 1 else None
+    grow0 = (noagg[-1][1] / noagg[0][1] - 1) if len(noagg) > 1 else None
+    # the target at the largest size of each dimension (at 1e4 unknowns fixed costs dominate either number)
+    big = {}
+    for k, s in res.items():
+        if s.get("linear_solve_time") and s.get("dofs", 0) >= big.get(k[:2], {}).get("dofs", 0):
+            big[k[:2]] = s
+    worst = max((s.get("assembly_time", 0) / s["linear_solve_time"], k) for k, s in res.items() if s.get("linear_solve_time") and s.get("dofs") == big[k[:2]]["dofs"])
+    out += ["Targets: BoomerAMG iterations in 3D (nu = 0.45) grow by %s from %s to %s unknowns with options/solver/hypre.opts "
+            "(%s without aggressive coarsening; target at most 30 %%). On the largest meshes assembly takes at most %.0f %% of "
+            "a solve (%s; target at most 25 %%)." % (fmt(None if grow is None else 100 * grow, "%.0f %%"), amg[0][0] if amg else "-", amg[-1][0] if amg else "-",
+                                 fmt(None if grow0 is None else 100 * grow0, "%.0f %%"), 100 * worst[0], worst[1]), ""]
+    return out, {"elasticity": {k: {f: v.get(f) for f in ("dofs", "assembly_time", "linear_setup_time", "linear_solve_time", "ksp_iterations", "peak_rss_mb")} for k, v in res.items()},
+                 "amg_iteration_growth_3d": grow, "amg_iteration_growth_3d_no_aggressive": grow0, "worst_assembly_over_solve": worst[0]}
+
+
+def example2(b, quick):
+    out = ["## B. Example 2 from the paper's mesh to 1e6 unknowns (issue 5)", "",
+           "IPF (tau = 1e8) with CG + BoomerAMG; meshes from meshes/ex2.geo with scale 1, 2 and 4.2. Times in seconds.", ""]
+    meshes = [("1", "meshes/ex2.msh"), ("2", "meshes/ex2_s2.msh")] + ([] if quick else [("4.2", "meshes/ex2_s4.2.msh")])
+    rows, res = [], {}
+    for sc, mesh in meshes:
+        for np in (1, 2):
+            s = b.run("B_ex2_s%s_np%d" % (sc, np), "-options_file options/ex2.opts -dm_plex_filename %s" % mesh, np=np)
+            res["s%s_np%d" % (sc, np)] = s
+            kpers = "%.1f" % (s["ksp_iterations"] / max(1, s["ssn_iterations"] + 1)) if s.get("ssn_iterations") is not None else "-"
+            rows.append((sc, s.get("dofs"), np, s.get("outer_iterations"), s.get("ssn_iterations"), s.get("ksp_iterations"), kpers,
+                         fmt(s.get("linear_setup_time")), fmt(s.get("linear_solve_time")), fmt(s.get("solve_time")), fmt(s.get("peak_rss_mb"), "%.0f"), "yes" if s.get("converged") else "NO"))
+    out += table(["mesh scale", "unknowns", "ranks", "outer", "SSN", "KSP total", "KSP per solve", "AMG setup", "linear solve", "contact solve", "peak MB", "converged"], rows)
+    return out, {"example2": {k: {f: v.get(f) for f in ("dofs", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time", "linear_solve_time", "solve_time", "peak_rss_mb", "converged")} for k, v in res.items()}}
+
+
+def contact(b, quick):
+    out = ["## C. The contact solver (issue 6)", ""]
+    js = {}
+    meshes = ["120,40", "240,80", "480,160"] + ([] if quick else ["960,320", "1920,640"])
+    # 1. mesh independence: exact solves condensed onto the contact dofs (same iterates as plain MUMPS, faster)
+    ctl = [("SSN gamma = 1e10", "-options_file options/cont/none.opts"), ("ALM (gamma 1e3, x10)", "-options_file options/cont/alm.opts -alm_gamma_factor 10"),
+           ("PF", "-options_file options/cont/pf.opts"), ("IPF", IPF2)]
+    rows = []
+    mi = {c: {} for c, _ in ctl}
+    for m in meshes:
+        row = [m]
+        for cname, copt in ctl:
+            s = b.run("C1_%s_%s" % (cname.split()[0], m.replace(",", "x")), "%s %s %s -box_faces %s" % (EX1, COND, copt, m))
+            mi[cname][m] = (s.get("outer_iterations"), s.get("ssn_iterations"))
+            row.append("%s / %s" % (s.get("outer_iterations"), s.get("ssn_iterations")))
+        rows.append(row)
+    out += ["### 1. Mesh independence, Example 1 (outer / SSN iterations)", ""] + table(["mesh"] + [c for c, _ in ctl], rows)
+    ipf_counts = [v[1] for v in mi["IPF"].values() if v[1] is not None]
+    out += ["IPF SSN iterations vary by %d across the meshes (target at most 2)." % (max(ipf_counts) - min(ipf_counts)), ""]
+    js["mesh_independence_ipf"] = {m: v[1] for m, v in mi["IPF"].items()}
+    js["mesh_independence"] = {c: {m: {"outer": v[0], "ssn": v[1]} for m, v in d.items()} for c, d in mi.items()}
+
+    # 2. cost ratio and 3. peers, largest meshes
+    big2 = meshes[-1]
+    big3 = "meshes/ex2_s2.msh" if quick else "meshes/ex2_s4.2.msh"
+    cases = [
+        ("2D IPF, MUMPS", "%s %s %s -box_faces %s" % (EX1, MUMPS, IPF2, big2)),
+        ("2D IPF, MUMPS condensed", "%s %s %s -box_faces %s" % (EX1, COND, IPF2, big2)),
+        ("2D penalty gamma = 1e10, MUMPS condensed", "%s %s -options_file options/cont/none.opts -box_faces %s" % (EX1, COND, big2)),
+        ("2D PDAS, MUMPS", "%s %s -options_file options/cont/pdas.opts -box_faces %s" % (EX1, MUMPS, big2)),
+        ("2D SNESVINEWTONRSLS, MUMPS", "%s %s %s -vi_snes_type vinewtonrsls -box_faces %s" % (EX1, MUMPS, VI, big2)),
+        ("2D SNESVINEWTONSSLS, MUMPS", "%s %s %s -vi_snes_type vinewtonssls -box_faces %s" % (EX1, MUMPS, VI, big2)),
+        ("3D IPF, BoomerAMG", "%s -dm_plex_filename %s %s %s" % (EX2P, big3, HYPRE, IPF3)),
+        ("3D penalty gamma = 1e10, BoomerAMG", "%s -dm_plex_filename %s %s -options_file options/cont/none.opts" % (EX2P, big3, HYPRE)),
+        ("3D PDAS, BoomerAMG (rtol 1e-12)", "%s -dm_plex_filename %s %s -ksp_rtol 1e-12 -options_file options/cont/pdas.opts" % (EX2P, big3, HYPRE)),
+        ("3D SNESVINEWTONRSLS, BoomerAMG", "%s -dm_plex_filename %s %s %s -vi_snes_type vinewtonrsls -vi_ksp_type cg -vi_ksp_rtol 1e-10 -vi_pc_type hypre -vi_pc_hypre_boomeramg_strong_threshold 0.5 -vi_pc_hypre_boomeramg_coarsen_type HMIS -vi_pc_hypre_boomeramg_interp_type ext+i -vi_pc_hypre_boomeramg_agg_nl 1" % (EX2P, big3, HYPRE, VI)),
+        ("3D IPF, MUMPS condensed", "%s -dm_plex_filename %s %s %s" % (EX2P, "meshes/ex2_s2.msh", COND, IPF3)),
+    ]
+    res = {}
+    for cname, args in cases:
+        s = b.run("C2_" + "".join(ch for ch in cname if ch.isalnum()), args)
+        res[cname] = s
+    ipf2, ipf3 = res["2D IPF, MUMPS condensed"], res["3D IPF, BoomerAMG"]
+    rows = []
+    for cname, s in res.items():
+        ref = ipf2 if cname.startswith("2D") else ipf3
+        rows.append((cname, s.get("dofs"), s.get("outer_iterations"), s.get("ssn_iterations"), s.get("ksp_iterations"), fmt(s.get("kkt_residual"), "%.1e"),
+                     fmt(s.get("solve_time")), fmt(s.get("linear_solve_time")), fmt(s.get("solve_time", 0) / s["linear_solve_time"] if s.get("linear_solve_time") else None, "%.2f"),
+                     fmt(s.get("solve_time", 0) / ref["solve_time"] if ref.get("solve_time") and s.get("solve_time") else None, "%.2f"),
+                     fmt(s.get("peak_rss_mb"), "%.0f"), "yes" if s.get("converged") else "NO"))
+    out += ["### 2-3. Cost against one linear solve, and the peers (largest meshes)", "",
+            "contact solve: the controller's whole solve; linear solve: the first (unconstrained) elasticity solve of the same "
+            "run with the same solver (factorization or AMG setup included). KKT: the KKT residual of (P) at the end "
+            "(the same tolerance 1e-10 for our controllers; SNESVI stops on its own residual). Time ratios against IPF of "
+            "the same dimension.", ""]
+    out += table(["case", "unknowns", "outer", "SSN/Newton its", "KSP its", "KKT", "contact solve [s]", "linear solve [s]", "cost ratio", "time / IPF", "peak MB", "converged"], rows)
+    js["cost_ratio"] = {c: (s["solve_time"] / s["linear_solve_time"] if s.get("linear_solve_time") else None) for c, s in res.items() if "IPF" in c}
+    js["peers"] = {c: {f: s.get(f) for f in ("dofs", "ssn_iterations", "ksp_iterations", "kkt_residual", "solve_time", "linear_solve_time", "peak_rss_mb", "converged")} for c, s in res.items()}
+    rs2, rs3 = res["2D SNESVINEWTONRSLS, MUMPS"], res["3D SNESVINEWTONRSLS, BoomerAMG"]
+    js["ipf_speedup_over_rsls"] = {"2D": rs2.get("solve_time", 0) / ipf2["solve_time"] if ipf2.get("solve_time") else None,
+                                   "3D": rs3.get("solve_time", 0) / ipf3["solve_time"] if ipf3.get("solve_time") else None}
+    out += ["IPF against SNESVINEWTONRSLS: %s times faster in 2D, %s in 3D (target at least 2)." % (fmt(js["ipf_speedup_over_rsls"]["2D"], "%.1f"), fmt(js["ipf_speedup_over_rsls"]["3D"], "%.1f")),
+            "Cost ratios (target at most 3): %s." % "; ".join("%s %.2f" % (c, r) for c, r in js["cost_ratio"].items() if r), ""]
+
+    # 4. parallel speedup (Example 2, 1 and 2 ranks; from section B)
+    b1, b2 = b.data.get("B_ex2_s4.2_np1") or b.data.get("B_ex2_s2_np1"), b.data.get("B_ex2_s4.2_np2") or b.data.get("B_ex2_s2_np2")
+    if b1 and b2 and b1.get("solve_time") and b2.get("solve_time"):
+        sp = b1["solve_time"] / b2["solve_time"]
+        spw = b1["wall_time"] / b2["wall_time"]
+        js["speedup_np2_3d"] = {"unknowns": b1["dofs"], "contact_solve": sp, "whole_run": spw}
+        out += ["### 4. Parallel, Example 2 (%d unknowns)" % b1["dofs"], "",
+                "1 rank: contact solve %.1f s, whole run %.1f s; 2 ranks: %.1f s, %.1f s. Speedup %.2f (contact solve), %.2f "
+                "(whole run); target at least 1.6. Same outer/SSN iterations: %s." % (b1["solve_time"], b1["wall_time"], b2["solve_time"], b2["wall_time"], sp, spw,
+                                                                                    "yes" if (b1["outer_iterations"], b1["ssn_iterations"]) == (b2["outer_iterations"], b2["ssn_iterations"]) else "no"), ""]
+    # 5. memory against one linear solve: elasticity-only runs on the same meshes and solvers
+    e2 = b.run("C5_elastic2d", "-box_dim 2 -box_faces %s -box_upper 3,1 -E 5000 -nu 0.4 -dirichlet_ids 4 -neumann_ids 2 -neumann_traction 0,-2 %s" % (big2, MUMPS))
+    e3 = b.run("C5_elastic3d", "-dm_plex_filename %s -dm_plex_gmsh_use_regions -E 1e6 -nu 0.45 -dirichlet_label top -dirichlet_values 0,0,-0.2 %s" % (big3, HYPRE))
+    rows = []
+    for cname, s in res.items():
+        ref = e2 if cname.startswith("2D") else e3
+        if cname.startswith("3D IPF, MUMPS"):
+            continue
+        rows.append((cname, fmt(s.get("peak_rss_mb"), "%.0f"), fmt(ref.get("peak_rss_mb"), "%.0f"), fmt(s.get("peak_rss_mb", 0) / ref["peak_rss_mb"] if ref.get("peak_rss_mb") else None, "%.2f")))
+    out += ["### 5. Peak memory against one linear solve on the same mesh", ""] + table(["case", "peak MB", "linear solve alone, peak MB", "ratio"], rows)
+    js["memory_ratio"] = {r[0]: r[3] for r in rows}
+    return out, js
+
+
+def levers(b):
+    out = ["## D. What each lever gave", ""]
+    rows = []
+    s1, s2 = b.data.get("C2_2DIPFMUMPS"), b.data.get("C2_2DIPFMUMPScondensed")
+    if s1 and s2 and s1.get("solve_time") and s2.get("solve_time"):
+        rows.append(("condensation onto the contact dofs (2D IPF, largest mesh)", "%.1f s -> %.1f s, cost ratio %.2f -> %.2f" % (s1["solve_time"], s2["solve_time"], s1["solve_time"] / s1["linear_solve_time"], s2["solve_time"] / s2["linear_solve_time"])))
+    # AMG hierarchy reuse and KSP tolerance on Example 2, paper's mesh
+    base = "-options_file options/ex2.opts"
+    r0 = b.run("D_ex2_base", base)
+    r1 = b.run("D_ex2_pcreuse", base + " -ssn_pc_reuse_its 30")
+    r2 = b.run("D_ex2_rtol1e-10", base + " -ksp_rtol 1e-10")
+    r4 = b.run("D_ex2_rtol1e-6", base + " -ksp_rtol 1e-6")
+    r3 = b.run("D_ex2_noagg", base + " -pc_hypre_boomeramg_agg_nl 0")
+    rows.append(("AMG hierarchy kept within a (P_gamma) while CG needs <= 30 its (Example 2)", "%.2f s -> %.2f s, KSP its %d -> %d" % (r0["solve_time"], r1["solve_time"], r0["ksp_iterations"], r1["ksp_iterations"])))
+    rows.append(("KSP rtol relative to the SSN residual, 1e-10 / 1e-8 (our choice) / 1e-6 (Example 2)", "%.2f s / %.2f s / %.2f s, KSP its %d / %d / %d, SSN its %d / %d / %d" % (
+        r2["solve_time"], r0["solve_time"], r4["solve_time"], r2["ksp_iterations"], r0["ksp_iterations"], r4["ksp_iterations"], r2["ssn_iterations"], r0["ssn_iterations"], r4["ssn_iterations"])))
+    rows.append(("aggressive coarsening in BoomerAMG (Example 2)", "%.2f s -> %.2f s" % (r3["solve_time"], r0["solve_time"])))
+    p1 = b.run("D_ex1_mumps_reuse", "%s -options_file options/solver/mumps_reuse.opts %s -box_faces 480,160" % (EX1, IPF2))
+    p00 = b.run("D_ex1_mumps_plain", "%s %s %s -box_faces 480,160" % (EX1, MUMPS, IPF2))
+    rows.append(("factorization kept as CG preconditioner within a (P_gamma) (2D IPF 480x160)", "%.2f s -> %.2f s (%s)" % (p00["solve_time"], p1.get("solve_time", float("nan")), "converged" if p1.get("converged") else "FAILED: " + p1.get("reason", "")[:80])))
+    rows.append(("K assembled once, only the contact block added per step; symbolic factorization reused", "see -log_view: one MatCholFctrSym per run, one MatCholFctrNum per SSN step"))
+    out += table(["lever", "effect"], rows)
+    return out, {}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--quick", action="store_true", help="small meshes only (a smoke test of this script)")
+    ap.add_argument("--only", default="A,B,C,D")
+    opt = ap.parse_args()
+    b = Bench(opt.reuse)
+    t0 = time.time()
+    lines = ["# Benchmarks", "", "Machine: %s. Generated by `make bench` (scripts/bench.py)%s. One BLAS thread per rank." % (sgrun.machine(), " with --quick" if opt.quick else ""), ""]
+    js = {"machine": sgrun.machine()}
+    parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b)}
+    for p in opt.only.split(","):
+        o, j = parts[p]()
+        lines += o
+        js.update(j)
+    lines += ["Total benchmark time %.0f s." % (time.time() - t0)]
+    os.makedirs(BENCH, exist_ok=True)
+    sgrun.write_atomic(os.path.join(BENCH, "results.md"), "\n".join(lines) + "\n")
+    sgrun.write_atomic(os.path.join(BENCH, "results.json"), json.dumps(js, indent=1, default=str) + "\n")
+    print("wrote bench/results.md and bench/results.json")
+
+
+if __name__ == "__main__":
+    main()
