@@ -35,6 +35,8 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of the original problem is below this", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
   PetscCall(PetscOptionsInt("-cont_max_it", "Maximum number of outer (continuation) steps", NULL, ct->max_outer, &ct->max_outer, NULL));
   PetscCall(PetscOptionsReal("-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", NULL, ct->gamma_max, &ct->gamma_max, NULL));
+  PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
+  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
   PetscCall(PetscOptionsInt("-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", NULL, ct->stall_its, &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, p->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
@@ -46,6 +48,7 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
   PetscCheck(ct->stall_its > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
   PetscCheck(c || !strcmp(ct->type, "none"), p->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
+  PetscCall(SgFileCheckWritable(p->comm, "-checkpoint_file", ct->ckfile));
   PetscCall(DMCreateGlobalVector(p->dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(c ? c->n : 0, &ct->lam));
@@ -100,15 +103,24 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
   PetscFunctionReturn(0);
 }
 
-/* y = the solution without contact (the paper's start); V0 its energy. */
-PetscErrorCode SgContSolveUnconstrained(SgCont ct)
+/* The start of every controller: y = the solution without contact (the paper's start) and V0 its energy, unless the
+   state was read from -restart_file. ok = PETSC_FALSE (and the run failed) if that linear solve fails. */
+PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
 {
-  PetscInt its;
+  PetscInt           its;
+  KSPConvergedReason kr;
 
   PetscFunctionBeginUser;
-  PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its));
+  *ok = PETSC_TRUE;
+  if (ct->restarted) PetscFunctionReturn(0);
+  PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
   ct->ksp_its += its;
   PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V0));
+  if (kr < 0) {
+    *ok = PETSC_FALSE;
+    PetscCall(SgContFail(ct, "LINEAR_SOLVE_FAILED: the elasticity solve without contact stopped with KSP %s after %" PetscInt_FMT " iterations (check -ksp_type, -pc_type)", KSPConvergedReasons[kr], its));
+    if (ct->c) PetscCall(SgContMeasure(ct));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -176,6 +188,7 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&ct->t0));
   ct->ssn->t0 = ct->t0;
+  PetscCall(SgCheckpointRead(ct));
   PetscCall(ct->solve(ct));
   PetscCall(PetscTime(&t1));
   PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V));
@@ -271,15 +284,19 @@ PetscBool SgModelFit(PetscReal V0, PetscReal g, PetscReal V, PetscReal dV, Petsc
   return PETSC_TRUE;
 }
 
-/* After an outer step: converged (KKT residual below the tolerance), or failed because the outer-step limit is
-   reached, the next gamma overflows, or the KKT residual has not improved for -cont_stall_it steps. */
-PetscErrorCode SgContCheck(SgCont ct, PetscReal gamma_next, PetscBool *stop)
+/* After an outer step (ct->gamma and ct->state already hold the next step's): converged (KKT residual below the
+   tolerance), or failed because the outer-step limit is reached, the next gamma overflows, or the KKT residual has not
+   improved for -cont_stall_it steps. Then the checkpoint, if asked for. */
+PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
 {
+  const PetscReal gamma_next = ct->gamma;
+
   PetscFunctionBeginUser;
   *stop = PETSC_TRUE;
   if (ct->kkt.residual <= ct->kkt_tol) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer));
+    PetscCall(SgCheckpointWrite(ct));
     PetscFunctionReturn(0);
   }
   if (ct->kkt.residual < 0.99 * ct->best_kkt || ct->outer == 1) {
@@ -291,6 +308,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscReal gamma_next, PetscBool *stop)
   else if (!(gamma_next <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)gamma_next, (double)ct->gamma_max, (double)ct->kkt.residual));
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;
+  PetscCall(SgCheckpointWrite(ct));
   PetscFunctionReturn(0);
 }
 
@@ -314,7 +332,8 @@ static PetscErrorCode Solve_None(SgCont ct)
   PetscInt  its0 = ct->ssn_its;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContSolveUnconstrained(ct));
+  PetscCall(SgContStart(ct, &ok));
+  if (!ok) PetscFunctionReturn(0);
   if (!ct->c) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscStrcpy(ct->reason, "LINEAR_SOLVE"));

@@ -20,28 +20,30 @@ static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptio
 
 static PetscErrorCode Solve_ALM(SgCont ct)
 {
-  ALM      *alm   = (ALM *)ct->data;
-  SgContact c     = ct->c;
-  PetscReal gamma = alm->gamma;
-  PetscBool stop  = PETSC_FALSE, ok;
+  ALM      *alm  = (ALM *)ct->data;
+  SgContact c    = ct->c;
+  PetscBool stop = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContSolveUnconstrained(ct));
-  for (PetscInt i = 0; i < c->n; i++) c->lamhat[i] = 0; /* lam^0 = 0 */
-  while (!stop) {
+  if (!ct->restarted) {
+    ct->gamma = alm->gamma;
+    for (PetscInt i = 0; i < c->n; i++) c->lamhat[i] = 0; /* lam^0 = 0 */
+  }
+  PetscCall(SgContStart(ct, &ok));
+  while (ok && !stop) {
     PetscInt its0 = ct->ssn_its;
 
     ct->outer++;
     PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContSSN(ct, gamma, &ok));
+    PetscCall(SgContSSN(ct, ct->gamma, &ok));
     PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
     PetscCall(SgContMeasure(ct));
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
     if (!ok) break;
     /* the multiplier update: the SSN multiplier max(0, lamhat + gamma g) is lam^{l+1} */
     PetscCall(PetscArraycpy(c->lamhat, ct->lam, c->n));
-    gamma *= alm->factor;
-    PetscCall(SgContCheck(ct, gamma, &stop));
+    ct->gamma *= alm->factor;
+    PetscCall(SgContCheck(ct, &stop));
   }
   PetscFunctionReturn(0);
 }

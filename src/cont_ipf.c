@@ -49,18 +49,24 @@ static PetscErrorCode Measures(SgCont ct, PetscReal *rhoF, PetscReal *rhoC)
 
 static PetscErrorCode Solve_IPF(SgCont ct)
 {
-  IPF      *ipf   = (IPF *)ct->data;
-  PetscReal gamma = ipf->gamma1, Jprev;
-  PetscBool stop  = PETSC_FALSE, ok;
+  IPF       *ipf   = (IPF *)ct->data;
+  PetscReal *Jprev = &ct->state[0], *nbhd = &ct->state[1]; /* J of the previous step; the neighbourhood tau (0: exact) */
+  PetscBool  stop  = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContSolveUnconstrained(ct));
-  for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
-  Jprev              = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
-  ct->ssn->nbhd_tau = ipf->tau;
-  while (!stop) {
-    PetscInt  its0 = ct->ssn_its, cuts = 0;
-    PetscReal J, dJ, C1, C2, E, rhoF, rhoC, next, dJk, cap;
+  if (!ct->restarted) {
+    ct->gamma = ipf->gamma1;
+    *nbhd     = ipf->tau;
+    for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
+  }
+  PetscCall(SgContStart(ct, &ok));
+  if (!ct->restarted) *Jprev = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
+  while (ok && !stop) {
+    const PetscReal gamma = ct->gamma;
+    PetscInt        its0  = ct->ssn_its, cuts = 0;
+    PetscReal       J, dJ, C1, C2, E, rhoF, rhoC, next, dJk, cap;
+
+    ct->ssn->nbhd_tau = *nbhd;
 
     ct->outer++;
     PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
@@ -80,7 +86,7 @@ static PetscErrorCode Solve_IPF(SgCont ct)
     next = PetscMax(gamma * PetscMax(ipf->tau1, rhoC > 0 ? rhoF / rhoC : PETSC_MAX_REAL), PetscMax(rhoF, rhoC) > 0 ? PetscPowReal(PetscMax(rhoF, rhoC), -ipf->q) : PETSC_MAX_REAL);
     next = PetscMin(next, PETSC_MAX_REAL);
     /* safeguard (16): while much larger than tau1 gamma, halve log(next/gamma) until the tangent and the model agree */
-    dJk = PetscAbsReal(J - Jprev);
+    dJk = PetscAbsReal(J - *Jprev);
     while (next > ipf->tau1 * gamma) {
       const PetscReal t = J + dJ * (next - gamma), mval = PetscIsNormalReal(E) ? C1 - C2 / (E + next) : SG_NAN;
       if (PetscAbsReal(t - mval) <= ipf->tau3 * dJk) break;
@@ -88,13 +94,13 @@ static PetscErrorCode Solve_IPF(SgCont ct)
       cuts++;
     }
     if (next >= cap && cap > gamma) {
-      next              = cap;
-      ct->ssn->nbhd_tau = 0; /* the last problem: solved exactly */
-    } else if (cap <= gamma) ct->ssn->nbhd_tau = 0;
+      next  = cap;
+      *nbhd = 0; /* the last problem: solved exactly */
+    } else if (cap <= gamma) *nbhd = 0;
     PetscCall(PetscInfo(ct->ssn->snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)\n", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
-    Jprev = J;
-    gamma = next;
-    PetscCall(SgContCheck(ct, gamma, &stop));
+    *Jprev    = J;
+    ct->gamma = next;
+    PetscCall(SgContCheck(ct, &stop));
   }
   ct->ssn->nbhd_tau = 0;
   PetscFunctionReturn(0);

@@ -50,7 +50,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscReal         *sign, *g, dmean, hc = 0;
   PetscInt64        *hash;
   char              *act, *next;
-  PetscBool          done = PETSC_FALSE;
+  PetscBool          done = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
   PetscCheck(!ct->ssn->cond, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_condense does not apply to -cont_type pdas (its solves eliminate the active normal dofs)");
@@ -62,7 +62,12 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
   if (pd->c == 0) pd->c = p->E / hc;
 
-  PetscCall(SgContSolveUnconstrained(ct));
+  PetscCall(SgContStart(ct, &ok));
+  if (!ok) {
+    PetscCall(PetscFree6(axis, sign, g, act, next, rows));
+    PetscCall(PetscFree(hash));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecDuplicate(p->b, &rhs));
   PetscCall(VecDuplicate(p->b, &x));
   PetscCall(VecDuplicate(p->b, &diag));

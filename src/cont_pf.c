@@ -24,15 +24,20 @@ static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOption
 static PetscErrorCode Solve_PF(SgCont ct)
 {
   PF       *pf    = (PF *)ct->data;
-  PetscReal gamma = pf->gamma1, tauk = 1;
+  PetscReal *tauk = &ct->state[0]; /* tau0^k */
   PetscBool stop  = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContSolveUnconstrained(ct)); /* V(0) */
-  for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
-  while (!stop) {
-    PetscInt  its0 = ct->ssn_its;
-    PetscReal V, dV, C1, C2, E, next;
+  if (!ct->restarted) {
+    ct->gamma = pf->gamma1;
+    *tauk     = 1;
+    for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
+  }
+  PetscCall(SgContStart(ct, &ok)); /* V(0) */
+  while (ok && !stop) {
+    const PetscReal gamma = ct->gamma;
+    PetscInt        its0  = ct->ssn_its;
+    PetscReal       V, dV, C1, C2, E, next;
 
     ct->outer++;
     PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
@@ -41,8 +46,8 @@ static PetscErrorCode Solve_PF(SgCont ct)
     PetscCall(SgContMeasure(ct));
     V  = ct->ssn->V;
     dV = ct->ssn->dVdg;
-    tauk *= pf->tau0;
-    if (SgModelFit(ct->V0, gamma, V, dV, &C1, &C2, &E)) next = C2 / (tauk * PetscAbsReal(C1 - V)) - E;
+    *tauk *= pf->tau0;
+    if (SgModelFit(ct->V0, gamma, V, dV, &C1, &C2, &E)) next = C2 / (*tauk * PetscAbsReal(C1 - V)) - E;
     else next = SG_NAN;
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, C1, C2, E));
     if (!ok) break;
@@ -50,8 +55,8 @@ static PetscErrorCode Solve_PF(SgCont ct)
       PetscCall(PetscInfo(ct->ssn->snes, "PF step %" PetscInt_FMT ": no usable model update (%g), gamma grows by %g\n", ct->outer, (double)next, (double)pf->fallback));
       next = gamma * pf->fallback;
     }
-    gamma = next;
-    PetscCall(SgContCheck(ct, gamma, &stop));
+    ct->gamma = next;
+    PetscCall(SgContCheck(ct, &stop));
   }
   PetscFunctionReturn(0);
 }

@@ -36,13 +36,18 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscReal          *sign;
   PetscScalar        *la, *ua;
   SNESConvergedReason reason;
+  PetscBool           ok;
   SgHistoryRow        row;
   PetscLogDouble      t;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
   PetscCall(SgContactAxisAligned(c, "-cont_type vi", axis, sign));
-  PetscCall(SgContSolveUnconstrained(ct));
+  PetscCall(SgContStart(ct, &ok));
+  if (!ok) {
+    PetscCall(PetscFree2(axis, sign));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecDuplicate(p->b, &xl));
   PetscCall(VecDuplicate(p->b, &xu));
   PetscCall(VecDuplicate(p->b, &r));

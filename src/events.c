@@ -3,6 +3,14 @@
 
 PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
 
+static PetscErrorCode SgFinalizePackage(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&SgObstacleList));
+  PetscCall(PetscFunctionListDestroy(&SgContList));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgRegisterAll(void)
 {
   static PetscBool done = PETSC_FALSE;
@@ -11,6 +19,7 @@ PetscErrorCode SgRegisterAll(void)
   PetscFunctionBeginUser;
   if (done) PetscFunctionReturn(0);
   done = PETSC_TRUE;
+  PetscCall(PetscRegisterFinalize(SgFinalizePackage));
   PetscCall(PetscClassIdRegister("Signorini", &cid));
   PetscCall(PetscLogEventRegister("SgMeshSetUp", cid, &SG_MeshSetUp));
   PetscCall(PetscLogEventRegister("SgAssembly", cid, &SG_Assembly));

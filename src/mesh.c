@@ -183,8 +183,20 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscOptionsEnd();
 
   if (file) {
+    PetscErrorCode ierr;
+    const char    *msg = NULL;
+    char           why[512] = "";
+
     PetscCall(CheckMeshFile(comm, fname));
-    PetscCall(DMPlexCreateFromFile(comm, fname, "signorini", PETSC_TRUE, dm));
+    /* a reader error (truncated or foreign file) is reported with the file's name instead of a bare traceback */
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = DMPlexCreateFromFile(comm, fname, "signorini", PETSC_TRUE, dm);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      PetscErrorMessage(ierr, NULL, (char **)&msg);
+      if (msg) PetscCall(PetscStrncpy(why, msg, sizeof(why)));
+      SETERRQ(comm, PETSC_ERR_FILE_READ, "-dm_plex_filename: cannot read mesh file '%s': %s", fname, why[0] ? why : "the reader failed");
+    }
   } else {
     for (PetscInt d = 0; d < dim; d++) {
       PetscCheck(faces[d] > 0, comm, PETSC_ERR_USER_INPUT, "-box_faces: entry %" PetscInt_FMT " is %" PetscInt_FMT ", must be positive", d, faces[d]);

@@ -2,6 +2,7 @@
 #include "signorini.h"
 #include <petscviewerhdf5.h>
 #include <errno.h>
+#include <sys/stat.h>
 
 /* Every result file is written to "<name>.part" and renamed once complete: a failed or killed run leaves
    the previous result intact and never a half-written file under the final name. */
@@ -85,6 +86,15 @@ PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const cha
 
   PetscFunctionBeginUser;
   if (!name[0]) PetscFunctionReturn(0);
+  {
+    PetscMPIInt rank;
+    int         isdir = 0;
+    struct stat st;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank && !stat(name, &st) && S_ISDIR(st.st_mode)) isdir = 1;
+    PetscCallMPI(MPI_Bcast(&isdir, 1, MPI_INT, 0, comm));
+    PetscCheck(!isdir, comm, PETSC_ERR_FILE_OPEN, "%s: '%s' is a directory, not a file name", option, name);
+  }
   PetscCall(SgFileOpen(comm, option, name, &fp));
   if (fp) fclose(fp);
   PetscCall(SgFileAbandon(comm, name));

@@ -219,7 +219,7 @@ struct _n_SgSSN {
 };
 PetscErrorCode SgSSNCreate(SgProblem, SgContact, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
-PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *);
+PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *, KSPConvergedReason *);
 PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
 
 /* ------------------------------------------------------------------ condense.c */
@@ -238,6 +238,10 @@ struct _n_SgCont {
   Vec        y;            /* the iterate, finally the solution */
   PetscReal *lam;          /* the multiplier at y */
   PetscReal  kkt_tol;
+  PetscReal  gamma;        /* gamma of the next outer step */
+  PetscReal  state[4];     /* a controller's own state between outer steps (checkpointed) */
+  PetscBool  restarted;    /* the state comes from -restart_file */
+  char       ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
   PetscInt   max_outer, stall_its;
   PetscReal  gamma_max;
   PetscReal  best_kkt;     /* progress watch */
@@ -262,13 +266,15 @@ PetscErrorCode SgContRegister(const char[], PetscErrorCode (*)(SgCont));
 PetscErrorCode SgContCreate(SgProblem, SgContact, SgCont *);
 PetscErrorCode SgContSolve(SgCont);
 PetscErrorCode SgContDestroy(SgCont *);
-PetscErrorCode SgContSolveUnconstrained(SgCont);
+PetscErrorCode SgContStart(SgCont, PetscBool *);
 PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
 PetscErrorCode SgContMeasure(SgCont);
 PetscErrorCode SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, PetscReal, PetscReal, PetscReal);
-PetscErrorCode SgContCheck(SgCont, PetscReal, PetscBool *);
+PetscErrorCode SgContCheck(SgCont, PetscBool *);
+PetscErrorCode SgCheckpointWrite(SgCont);
+PetscErrorCode SgCheckpointRead(SgCont);
 PetscErrorCode SgContCheckBaseline(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode SgContCreate_ALM(SgCont);

@@ -96,6 +96,7 @@ class Test:
                 cmd += ["-summary_file", f["summary"], "-history_file", f["history"], "-options_left"]
             else:
                 cmd += ["-summary_file", f["summary"]]
+            cmd += ["-malloc_debug", "-malloc_dump"]  # PETSc lists what was not freed: a leak fails the test
         else:
             cmd = shlex.split(self.cmd.replace("@OUT@", OUT).replace("@NAME@", self.name)) + shlex.split(args)
         t0 = time.time()
@@ -131,6 +132,8 @@ class Test:
                 self.failures.append("result files left behind: %s" % " ".join(left))
         elif self.returncode != 0:
             self.failures.append("exit status %d" % self.returncode)
+        if self.expect_error is None and re.search(r"^\[\s*\d+\]\s*\d+ bytes ", self.output, re.M):
+            self.failures.append("memory not freed (-malloc_dump): " + "; ".join(l.strip() for l in self.output.splitlines() if re.search(r"\d+ bytes", l))[:400])
         if self.cmd == "bin/signorini" and self.expect_error is None and "Option left:" in self.output:
             self.failures.append("unused options: " + "; ".join(l.strip() for l in self.output.splitlines() if "Option left" in l))
         ns = {"s": self.summary, "h": self.history, "t": {k: v.summary for k, v in tests.items()},
@@ -175,13 +178,28 @@ def main():
             if r not in tests:
                 sys.exit("test %s requires unknown test %s" % (t.name, r))
 
-    # run: larger jobs first, never more ranks than --jobs at once
-    order_ = sorted(tests.values(), key=lambda t: -t.nsize)
+    # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it requires (so a
+    # restart can read a checkpoint), which come earlier in this order and are thus already taken by a worker
+    pending = sorted(tests.values(), key=lambda t: -t.nsize)
+    order_, placed = [], set()
+    while pending:
+        for t in pending:
+            if all(r in placed for r in t.requires):
+                order_.append(t)
+                placed.add(t.name)
+                pending.remove(t)
+                break
+        else:
+            sys.exit("circular requires among: " + " ".join(t.name for t in pending))
+    for t in order_:
+        t.done = threading.Event()
     t0 = time.time()
     free = [opt.jobs]
     cv = threading.Condition()
 
     def go(t):
+        for r in t.requires:
+            tests[r].done.wait()
         need = min(t.nsize, opt.jobs)
         with cv:  # take all the ranks a test needs at once
             cv.wait_for(lambda: free[0] >= need)
@@ -192,6 +210,7 @@ def main():
             with cv:
                 free[0] += need
                 cv.notify_all()
+            t.done.set()
         return t
     with ThreadPoolExecutor(max_workers=opt.jobs) as pool:
         list(pool.map(go, order_))

@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Atomic results: kill runs with SIGTERM and SIGKILL at many moments and check that the result files of the previous
+complete run (HDF5, XDMF, summary, history, checkpoint) are never left half-written.
+
+usage: kill_test.py --out PREFIX      (writes PREFIX.json with the counts; used by tests/reliability.ini)
+"""
+import argparse
+import csv
+import json
+import os
+import shutil
+import signal
+import subprocess
+import time
+import xml.etree.ElementTree as ET
+
+import h5py
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+
+
+def valid(path):
+    """A complete result file of its kind, or the reason it is not."""
+    if not os.path.exists(path):
+        return "missing"
+    try:
+        if path.endswith(".json"):
+            d = json.load(open(path))
+            return None if "converged" in d and "wall_time" in d else "incomplete summary"
+        if path.endswith(".csv"):
+            rows = list(csv.reader(open(path)))
+            return None if rows and rows[0][0] == "kind" and all(len(r) == len(rows[0]) for r in rows) and rows[-1][0] == "outer" else "incomplete history"
+        if path.endswith(".xmf"):
+            ET.parse(path)
+            return None
+        if path.endswith(".h5"):
+            with h5py.File(path, "r") as f:
+                if "checkpoint" in f:
+                    return None if "displacement" in f["checkpoint"] and "cont_type" in f["checkpoint"].attrs else "incomplete checkpoint"
+                return None if "vertex_fields" in f and "cell_fields" in f and "viz" in f else "incomplete fields"
+    except Exception as e:  # any read error is a broken file
+        return "%s: %s" % (type(e).__name__, e)
+    return "unknown kind"
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", required=True)
+    opt = ap.parse_args()
+    work = opt.out + "_files"
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    names = {k: os.path.join(work, "r" + k) for k in (".h5", ".xmf", ".json", ".csv")}
+    names["ck"] = os.path.join(work, "ck.h5")
+    cmd = [os.path.join(ROOT, "bin", "signorini"), "-options_file", "tests/opts/ex1_coarse.opts", "-options_file", "options/cont/ipf.opts",
+           "-box_faces", "240,80", "-output_file", names[".h5"], "-summary_file", names[".json"], "-history_file", names[".csv"],
+           "-checkpoint_file", names["ck"]]
+    t0 = time.time()
+    base = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
+    T = time.time() - t0
+    result = {"baseline_exit": base.returncode, "baseline_seconds": T, "kills": 0, "killed_running": 0, "invalid": [], "left_part_files": 0}
+    files = list(names.values())
+    result["baseline_invalid"] = [f for f in files if valid(f)]
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        for frac in (0.02, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.85, 0.9, 0.95, 1.0):
+            p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+            time.sleep(frac * T)
+            running = p.poll() is None
+            if running:
+                os.killpg(p.pid, sig)
+            p.wait()
+            result["kills"] += 1
+            result["killed_running"] += int(running)
+            for f in files:
+                why = valid(f)
+                if why:
+                    result["invalid"].append("%s at %.0f%% of the run: %s %s" % (signal.Signals(sig).name, 100 * frac, os.path.basename(f), why))
+            result["left_part_files"] += sum(1 for f in os.listdir(work) if f.endswith(".part"))
+    with open(opt.out + ".json", "w") as f:
+        json.dump(result, f, indent=1)
+    print(json.dumps(result, indent=1))
+
+
+if __name__ == "__main__":
+    main()
