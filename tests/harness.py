@@ -63,6 +63,9 @@ def load_history(path):
     return rows
 
 
+VALGRIND = []  # --valgrind: the memcheck command put in front of our executables
+
+
 class Test:
     def __init__(self, name, sec):
         self.name = name
@@ -72,7 +75,7 @@ class Test:
         self.checks = [c.strip() for c in sec.get("checks", "").splitlines() if c.strip()]
         self.expect_error = sec.get("expect_error")
         self.requires = sec.get("requires", "").split()
-        self.timeout = float(sec.get("timeout", "600"))
+        self.timeout = float(sec.get("timeout", "600")) * (20 if VALGRIND else 1)
         self.outputs = sec.get("outputs", "").split()  # files the run must not leave behind when it fails
         self.returncode = None
         self.output = ""
@@ -91,12 +94,13 @@ class Test:
             os.remove(p)
         args = self.args.replace("@OUT@", OUT).replace("@NAME@", self.name)
         if self.cmd == "bin/signorini" or self.cmd.startswith("bin/"):
-            cmd = ["mpiexec", "-n", str(self.nsize), os.path.join(ROOT, self.cmd)] + shlex.split(args)
+            cmd = ["mpiexec", "-n", str(self.nsize)] + VALGRIND + [os.path.join(ROOT, self.cmd)] + shlex.split(args)
             if self.cmd == "bin/signorini":
                 cmd += ["-summary_file", f["summary"], "-history_file", f["history"], "-options_left"]
             else:
                 cmd += ["-summary_file", f["summary"]]
-            cmd += ["-malloc_debug", "-malloc_dump"]  # PETSc lists what was not freed: a leak fails the test
+            if not VALGRIND:
+                cmd += ["-malloc_debug", "-malloc_dump"]  # PETSc lists what was not freed: a leak fails the test
         else:
             cmd = shlex.split(self.cmd.replace("@OUT@", OUT).replace("@NAME@", self.name)) + shlex.split(args)
         t0 = time.time()
@@ -117,6 +121,8 @@ class Test:
         self.history = load_history(f["history"])
 
     def evaluate(self, tests):
+        if VALGRIND and self.returncode == 66:
+            self.failures.append("valgrind memcheck found errors or definite leaks")
         if self.failures:
             return
         if self.expect_error is not None:
@@ -153,8 +159,14 @@ def main():
     ap.add_argument("files", nargs="+")
     ap.add_argument("-j", "--jobs", type=int, default=2, help="MPI ranks to keep busy at once")
     ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and what they require)")
+    ap.add_argument("-x", "--exclude", default="", help="leave out tests whose name matches this regex")
+    ap.add_argument("--valgrind", action="store_true", help="run our executables under valgrind memcheck (tests/valgrind.supp)")
     opt = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
+    if opt.valgrind:
+        VALGRIND.extend(["valgrind", "-q", "--leak-check=full", "--errors-for-leak-kinds=definite", "--show-leak-kinds=definite",
+                         "--error-exitcode=66", "--suppressions=/usr/share/openmpi/openmpi-valgrind.supp",
+                         "--suppressions=" + os.path.join(ROOT, "tests", "valgrind.supp")])
     tests = {}
     for fn in opt.files:
         cp = configparser.ConfigParser(interpolation=None)
@@ -173,6 +185,10 @@ def main():
             grow = bool(need)
             want |= need
         tests = {n: t for n, t in tests.items() if n in want}
+    if opt.exclude:  # and what requires a left-out test
+        tests = {n: t for n, t in tests.items() if not re.search(opt.exclude, n)}
+        while any(r not in tests for t in tests.values() for r in t.requires):
+            tests = {n: t for n, t in tests.items() if all(r in tests for r in t.requires)}
     for t in tests.values():
         for r in t.requires:
             if r not in tests:
