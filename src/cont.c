@@ -64,7 +64,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
 
   PetscFunctionBeginUser;
   if (!ct) PetscFunctionReturn(0);
-  if (ct->destroy) PetscCall(ct->destroy(ct));
+  if (ct->destroy) PetscCall(ct->destroy(ct)); /* what the controller's data holds */
+  PetscCall(PetscFree(ct->data));
   PetscCall(SgSSNDestroy(&ct->ssn));
   PetscCall(VecDestroy(&ct->y));
   PetscCall(PetscFree(ct->lam));

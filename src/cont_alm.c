@@ -48,13 +48,6 @@ static PetscErrorCode Solve_ALM(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_ALM(SgCont ct)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(ct->data));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SgContCreate_ALM(SgCont ct)
 {
   ALM *alm;
@@ -66,6 +59,5 @@ PetscErrorCode SgContCreate_ALM(SgCont ct)
   ct->data           = alm;
   ct->setfromoptions = SetFromOptions_ALM;
   ct->solve          = Solve_ALM;
-  ct->destroy        = Destroy_ALM;
   PetscFunctionReturn(0);
 }

@@ -106,13 +106,6 @@ static PetscErrorCode Solve_IPF(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_IPF(SgCont ct)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(ct->data));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SgContCreate_IPF(SgCont ct)
 {
   IPF *ipf;
@@ -127,6 +120,5 @@ PetscErrorCode SgContCreate_IPF(SgCont ct)
   ct->data           = ipf;
   ct->setfromoptions = SetFromOptions_IPF;
   ct->solve          = Solve_IPF;
-  ct->destroy        = Destroy_IPF;
   PetscFunctionReturn(0);
 }

@@ -173,13 +173,6 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_PDAS(SgCont ct)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(ct->data));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SgContCreate_PDAS(SgCont ct)
 {
   PDAS *pd;
@@ -190,6 +183,5 @@ PetscErrorCode SgContCreate_PDAS(SgCont ct)
   ct->data           = pd;
   ct->setfromoptions = SetFromOptions_PDAS;
   ct->solve          = Solve_PDAS;
-  ct->destroy        = Destroy_PDAS;
   PetscFunctionReturn(0);
 }

@@ -61,13 +61,6 @@ static PetscErrorCode Solve_PF(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Destroy_PF(SgCont ct)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(ct->data));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SgContCreate_PF(SgCont ct)
 {
   PF *pf;
@@ -80,6 +73,5 @@ PetscErrorCode SgContCreate_PF(SgCont ct)
   ct->data           = pf;
   ct->setfromoptions = SetFromOptions_PF;
   ct->solve          = Solve_PF;
-  ct->destroy        = Destroy_PF;
   PetscFunctionReturn(0);
 }

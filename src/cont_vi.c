@@ -118,7 +118,6 @@ static PetscErrorCode Destroy_VI(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(SNESDestroy(&vi->snes));
   PetscCall(MatDestroy(&vi->J));
-  PetscCall(PetscFree(ct->data));
   PetscFunctionReturn(0);
 }
 

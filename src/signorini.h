@@ -259,7 +259,7 @@ struct _n_SgCont {
   void      *data;
   PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
   PetscErrorCode (*solve)(SgCont);
-  PetscErrorCode (*destroy)(SgCont);
+  PetscErrorCode (*destroy)(SgCont); /* optional: frees what data holds; SgContDestroy frees data itself */
 };
 extern PetscFunctionList SgContList;
 PetscErrorCode SgContRegister(const char[], PetscErrorCode (*)(SgCont));
