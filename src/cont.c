@@ -26,13 +26,15 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   ct->gamma_max = 1e20;
   ct->stall_its = 10;
   ct->converged = PETSC_FALSE;
+  ct->problem   = c ? "P" : "elasticity";
+  ct->residual  = SG_NAN;
   PetscCall(PetscStrcpy(ct->type, "none"));
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   PetscCall(SgHistoryCreate(&ct->hist));
   PetscCall(SgSummaryCreate(&ct->sum));
   PetscOptionsBegin(p->comm, NULL, "Continuation controller", NULL);
   PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
-  PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of the original problem is below this", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
+  PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the backward error of (P_gamma)", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
   PetscCall(PetscOptionsInt("-cont_max_it", "Maximum number of outer (continuation) steps", NULL, ct->max_outer, &ct->max_outer, NULL));
   PetscCall(PetscOptionsReal("-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", NULL, ct->gamma_max, &ct->gamma_max, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
@@ -113,6 +115,13 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
 
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
+  if (ct->c && !(ct->gamma <= ct->gamma_max)) { /* later steps are checked by SgContCheck */
+    *ok = PETSC_FALSE;
+    PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the first gamma %g exceeds -cont_gamma_max %g: no step taken", (double)ct->gamma, (double)ct->gamma_max));
+    if (!ct->restarted) PetscCall(VecZeroEntries(ct->y));
+    PetscCall(SgContMeasure(ct));
+    PetscFunctionReturn(0);
+  }
   if (ct->restarted) PetscFunctionReturn(0);
   PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
   ct->ksp_its += its;
@@ -193,9 +202,16 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscCall(ct->solve(ct));
   PetscCall(PetscTime(&t1));
   PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V));
+  if (ct->c) {
+    PetscCall(SgContMeasure(ct));
+    if (!strcmp(ct->problem, "P")) ct->residual = ct->kkt.residual;
+  }
   PetscCall(SgSummarySetString(ct->sum, "cont_type", ct->type));
   PetscCall(SgSummarySetBool(ct->sum, "converged", ct->converged));
   PetscCall(SgSummarySetString(ct->sum, "reason", ct->reason));
+  PetscCall(SgSummarySetString(ct->sum, "problem", ct->problem));
+  PetscCall(SgSummarySetReal(ct->sum, "residual", ct->residual));
+  PetscCall(SgSummarySetReal(ct->sum, "residual_tol", ct->kkt_tol));
   PetscCall(SgSummarySetReal(ct->sum, "energy", ct->V));
   PetscCall(SgSummarySetReal(ct->sum, "energy_unconstrained", ct->V0));
   PetscCall(SgSummarySetInt(ct->sum, "ksp_iterations", ct->ksp_its));
@@ -208,7 +224,6 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgSummarySetReal(ct->sum, "displacement_max", nrm[1]));
   }
   if (ct->c) {
-    PetscCall(SgContMeasure(ct));
     PetscCall(SgSummarySetInt(ct->sum, "ssn_iterations", ct->ssn_its));
     PetscCall(SgSummarySetInt(ct->sum, "outer_iterations", ct->outer));
     PetscCall(SgSummarySetRealArray(ct->sum, "gammas", ct->ngammas, ct->gammas));
@@ -217,6 +232,8 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgSummarySetReal(ct->sum, "complementarity", ct->kkt.complementarity));
     PetscCall(SgSummarySetReal(ct->sum, "equilibrium", ct->kkt.equilibrium));
     PetscCall(SgSummarySetReal(ct->sum, "dual_infeasibility", ct->kkt.dual));
+    PetscCall(SgSummarySetReal(ct->sum, "penetration", ct->kkt.penetration));
+    PetscCall(SgSummarySetReal(ct->sum, "displacement_scale", ct->kkt.uscale));
     PetscCall(SgSummarySetReal(ct->sum, "rho_F", ct->kkt.rhoF));
     PetscCall(SgSummarySetReal(ct->sum, "rho_C", ct->kkt.rhoC));
     PetscCall(SgSummarySetInt(ct->sum, "active_set_size", ct->kkt.nactive));
@@ -326,38 +343,65 @@ PetscErrorCode SgContCheckBaseline(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* ---- none: one regularized problem (P_gamma) for -contact_gamma and -contact_lamhat, from the unconstrained start */
+/* ---- none: one regularized problem (P_gamma) for -contact_gamma and -contact_lamhat, from the unconstrained start.
+   It solves (P_gamma), not (P): converged means the equilibrium residual of (P_gamma) (SgSSNEquilibriumError) is below
+   -cont_kkt_tol (a settled active set after loose linear solves is not enough); the KKT residual of (P) is reported
+   beside it. */
 static PetscErrorCode Solve_None(SgCont ct)
 {
   PetscBool ok;
   PetscInt  its0 = ct->ssn_its;
+  PetscReal roundoff;
 
   PetscFunctionBeginUser;
+  if (ct->c) ct->gamma = ct->c->gamma;
   PetscCall(SgContStart(ct, &ok));
   if (!ok) PetscFunctionReturn(0);
   if (!ct->c) {
+    PetscReal nrm[2];
+    Vec       R;
+    PetscCall(VecDuplicate(ct->y, &R));
+    PetscCall(MatMult(ct->prob->K, ct->y, R));
+    PetscCall(VecAXPY(R, -1.0, ct->prob->b));
+    PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
+    PetscCall(VecNorm(ct->y, NORM_INFINITY, &nrm[1]));
+    PetscCall(VecDestroy(&R));
+    ct->residual  = nrm[0] > 0 ? nrm[0] / (ct->prob->Knorm * nrm[1] + ct->prob->bnorm_inf) : 0;
     ct->converged = PETSC_TRUE;
     PetscCall(PetscStrcpy(ct->reason, "LINEAR_SOLVE"));
     PetscFunctionReturn(0);
   }
   ct->outer = 1;
   PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-  PetscCall(SgContSSN(ct, ct->c->gamma, &ok));
+  PetscCall(SgContSSN(ct, ct->gamma, &ok));
   PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
   PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
-  if (ok) {
+  PetscCall(SgSSNEquilibriumError(ct->ssn, ct->y, &ct->residual, &roundoff));
+  if (ok && roundoff > ct->kkt_tol) {
+    PetscCall(SgContFail(ct, "PGAMMA_UNVERIFIABLE: SSN_%s at gamma %g, but the round-off of gamma (tau_N y - d) is %.3e of the force scale, above -cont_kkt_tol %.3e: (P_gamma) cannot be checked to that tolerance in double precision (lower -contact_gamma, or solve (P) with -cont_type ipf); as a solution of (P) the KKT residual is %.3e", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)roundoff, (double)ct->kkt_tol, (double)ct->kkt.residual));
+  } else if (ok && ct->residual <= ct->kkt_tol) {
     ct->converged = PETSC_TRUE;
-    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "SSN_%s", SgSSNReasons[ct->ssn->reason]));
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PGAMMA_SOLVED: SSN_%s at gamma %g, equilibrium residual of (P_gamma) %.3e <= %.3e; as a solution of (P) its KKT residual is %.3e (%s -cont_kkt_tol)", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)ct->residual, (double)ct->kkt_tol, (double)ct->kkt.residual, ct->kkt.residual <= ct->kkt_tol ? "within" : "above"));
+  } else if (ok) {
+    PetscCall(SgContFail(ct, "PGAMMA_RESIDUAL_ABOVE_TOL: SSN_%s at gamma %g, but the equilibrium residual of (P_gamma) is %.3e > %.3e (-cont_kkt_tol); tighten the linear solves", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)ct->residual, (double)ct->kkt_tol));
   }
   PetscCall(SgSummarySetReal(ct->sum, "path_value", ct->ssn->V));
   PetscCall(SgSummarySetReal(ct->sum, "path_derivative", ct->ssn->dVdg));
   PetscFunctionReturn(0);
 }
 
+/* The word for the end of a run: a solve of (P) converged, one (P_gamma) solved, or failed. */
+const char *SgContVerdict(SgCont ct)
+{
+  if (!ct->converged) return "FAILED";
+  return strcmp(ct->problem, "P_gamma") ? "CONVERGED" : "SOLVED (P_gamma)";
+}
+
 PetscErrorCode SgContCreate_None(SgCont ct)
 {
   PetscFunctionBeginUser;
-  ct->solve = Solve_None;
+  ct->solve   = Solve_None;
+  ct->problem = ct->c ? "P_gamma" : "elasticity";
   PetscFunctionReturn(0);
 }

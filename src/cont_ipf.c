@@ -2,7 +2,8 @@
    neighbourhood ||(r1, r2)|| <= tau / sqrt(gamma) (formula (14)); the next gamma follows rule (15) from the
    infeasibility rho_F and complementarity rho_C, reduced by the model safeguard (16).
    The end (not specified in the paper): on the path the infeasibility is ||lam_gamma|| / gamma, so gamma is capped at
-   10 ||lam|| / tol, where the path meets the KKT tolerance with a margin, and that last problem is solved exactly. */
+   10 ||lam|| / (tol Y sqrt|Gamma_c|) (Y sqrt|Gamma_c| the length scale of the KKT measures), where the path meets the
+   KKT tolerance with a margin, and that last problem is solved exactly. */
 #include "signorini.h"
 
 typedef struct {
@@ -75,7 +76,8 @@ static PetscErrorCode Solve_IPF(SgCont ct)
     PetscCall(SgContMeasure(ct));
     J   = ct->ssn->V; /* J(gamma_k, y_{k+1}) */
     dJ  = ct->ssn->dVdg;
-    cap = 10 * PetscSqrtReal(2 * gamma * gamma * dJ) / ct->kkt_tol; /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
+    /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
+    cap = ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(2 * gamma * gamma * dJ) / (ct->kkt_tol * ct->kkt.lscale) : PETSC_MAX_REAL;
     PetscCall(Measures(ct, &rhoF, &rhoC));
     (void)SgModelFit(ct->V0, gamma, J, dJ, &C1, &C2, &E);
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, C1, C2, E));

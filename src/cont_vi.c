@@ -64,7 +64,13 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(SNESCreate(ct->comm, &vi->snes));
   PetscCall(SNESSetOptionsPrefix(vi->snes, "vi_"));
   PetscCall(SNESSetType(vi->snes, SNESVINEWTONRSLS));
-  PetscCall(SNESSetTolerances(vi->snes, 1e-50, 1e-12, 0.0, 100, PETSC_DEFAULT));
+  {
+    /* absolute floor at the round-off of the problem's force scale: from the unconstrained start of a problem that
+       touches little or nothing, ||F_0|| is itself round-off and no relative decrease can be reached */
+    PetscReal ynorm;
+    PetscCall(VecNorm(ct->y, NORM_2, &ynorm));
+    PetscCall(SNESSetTolerances(vi->snes, 100 * PETSC_MACHINE_EPSILON * (p->Knorm * ynorm + p->bnorm), 1e-12, 0.0, 100, PETSC_DEFAULT));
+  }
   PetscCall(SNESSetFunction(vi->snes, r, Residual_VI, p));
   PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &vi->J));
   PetscCall(SNESSetJacobian(vi->snes, vi->J, vi->J, Jacobian_VI, p));

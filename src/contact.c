@@ -193,9 +193,20 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   PetscFunctionReturn(0);
 }
 
+/* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
+   vanishes but the measure does not */
+static PetscReal SafeRatio(PetscReal a, PetscReal b)
+{
+  if (!(a > 0)) return a == 0 ? 0 : a; /* 0, or NaN passed on */
+  return b > 0 ? a / b : PETSC_INFINITY;
+}
+
 /* KKT measures of the original problem (P) for a displacement y. The multiplier is the one that balances the normal
    residual at the contact vertices, lam_i = -(K y - b)_i.n_i / w_i: for the methods' own multipliers it agrees up to
-   round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure. */
+   round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure.
+   Every part is dimensionless, so that a tolerance means the same for any load level, material scale and unit system:
+   forces are measured against the equilibrium scale ||K|| ||y|| + ||b|| (a backward error), lengths against the
+   displacement scale Y = max(||y||_inf, largest initial penetration) as root mean squares over Gamma_c. */
 PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 {
   SgProblem          p   = c->prob;
@@ -203,8 +214,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   Vec                R, Ky;
   PetscScalar       *ra;
   const PetscScalar *ya;
-  PetscReal         *g, *lam, s[8] = {0}, lmax = 0, nrm[2];
-
+  PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm[2], fscale;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
@@ -220,21 +230,22 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     PetscReal rn = 0;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
     lam[i] = -rn / c->w[i];
-    lmax   = PetscMax(lmax, PetscAbsReal(lam[i]));
+    mx[0]  = PetscMax(mx[0], PetscAbsReal(lam[i]));
+    mx[1]  = PetscMax(mx[1], c->w[i] * PetscMax(0, -lam[i])); /* nodal force a pressure >= 0 cannot balance */
+    mx[2]  = PetscMax(mx[2], -c->d[i]);                       /* initial penetration */
   }
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
   PetscCall(VecRestoreArray(R, &ra));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPIU_REAL, MPI_MAX, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, p->comm));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
+  fscale = p->Knorm * nrm[1] + p->bnorm_inf;
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
        (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
-    const PetscReal noise = 1e-12 * (p->Knorm * nrm[1] + p->bnorm_inf) / c->w[i];
-    const PetscBool act   = (PetscBool)(lam[i] > PetscMax(1e-10 * lmax, noise));
+    const PetscReal noise = 1e-12 * fscale / c->w[i];
+    const PetscBool act   = (PetscBool)(lam[i] > PetscMax(1e-10 * mx[0], noise));
     s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
-    s[2] += c->w[i] * PetscSqr(PetscMin(0, lam[i]));                                    /* dual infeasibility^2 */
-    s[3] += c->w[i] * lam[i] * lam[i];
     s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
     s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                   /* rho_C */
     s[6] += c->w[i] * lam[i];                                                           /* contact force */
@@ -244,10 +255,13 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   /* normwise backward error of the equilibrium equations: ||R|| / (||K|| ||y|| + ||b||), infinity norms; it stays at
      round-off level for nearly incompressible materials, where ||R|| / ||b|| cannot go below eps ||K|| ||y|| / ||b|| */
   PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
-  kkt->equilibrium     = nrm[0] / PetscMax(p->Knorm * nrm[1] + p->bnorm_inf, PETSC_SMALL);
-  kkt->infeasibility   = PetscSqrtReal(s[0]);
-  kkt->complementarity = PetscSqrtReal(s[1]);
-  kkt->dual            = s[3] > 0 ? PetscSqrtReal(s[2] / s[3]) : 0;
+  kkt->uscale          = PetscMax(nrm[1], PetscMax(0, mx[2]));
+  kkt->lscale          = kkt->uscale * PetscSqrtReal(c->area);
+  kkt->penetration     = PetscSqrtReal(s[0]);
+  kkt->equilibrium     = nrm[0] / PetscMax(fscale, PETSC_SMALL);
+  kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
+  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1]), kkt->lscale);
+  kkt->dual            = SafeRatio(mx[1], fscale);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];

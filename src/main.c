@@ -124,7 +124,7 @@ int main(int argc, char **argv)
   PetscCall(SgSummarySetReal(cont->sum, "wall_time", t1 - t0));
   PetscCall(SgSummaryWrite(comm, cont->sum, "-summary_file", out.sumfile));
   if (contact)
-    PetscCall(PetscPrintf(comm, "%s: %s. %s; %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations; KKT residual %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); active %" PetscInt_FMT "/%" PetscInt_FMT " vertices; contact force %.6e; energy %.12e\n", cont->type, converged ? "CONVERGED" : "FAILED", cont->reason, cont->outer, cont->ssn_its, (double)cont->kkt.residual, (double)cont->kkt.infeasibility, (double)cont->kkt.complementarity, (double)cont->kkt.equilibrium, cont->kkt.nactive, contact->nglobal, (double)cont->kkt.force, (double)cont->V));
+    PetscCall(PetscPrintf(comm, "%s: %s. %s; %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations; KKT residual %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); active %" PetscInt_FMT "/%" PetscInt_FMT " vertices; contact force %.6e; energy %.12e\n", cont->type, SgContVerdict(cont), cont->reason, cont->outer, cont->ssn_its, (double)cont->kkt.residual, (double)cont->kkt.infeasibility, (double)cont->kkt.complementarity, (double)cont->kkt.equilibrium, cont->kkt.nactive, contact->nglobal, (double)cont->kkt.force, (double)cont->V));
   else PetscCall(PetscPrintf(comm, "elasticity: %s; energy %.12e\n", cont->reason, (double)cont->V));
   PetscCall(SgContDestroy(&cont));
   PetscCall(SgContactDestroy(&contact));

@@ -148,14 +148,19 @@ struct _n_SgContact {
   PetscReal  lamhat0, gamma, area;
 };
 
-/* Measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i:
-   equilibrium     ||K y - b + B^T W lam|| / (||K|| ||y|| + ||b||), infinity norms (backward error; interior and tangential part)
-   infeasibility   ||max(0, g)||_{L2(Gamma_c)}                             (length)
-   complementarity ||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}, A = {lam > 0}, as an L2 sum of squares
-   dual            ||min(0, lam)|| / ||lam||
-   residual        max(equilibrium, dual, infeasibility, complementarity): the stopping measure */
+/* Measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i, each
+   dimensionless (the same for any load level, material scale and unit system), with the force scale
+   ||K|| ||y|| + ||b|| (infinity norms) and the length scale Y sqrt|Gamma_c|, Y = max(||y||_inf, largest initial
+   penetration):
+   equilibrium     ||K y - b + B^T W lam|| / (||K|| ||y|| + ||b||)          (backward error; interior and tangential part)
+   infeasibility   ||max(0, g)||_{L2(Gamma_c)} / (Y sqrt|Gamma_c|)
+   complementarity (||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}) / (Y sqrt|Gamma_c|), A = {lam > 0}, as an L2 sum of squares
+   dual            max_i w_i max(0, -lam_i) / (||K|| ||y|| + ||b||)        (nodal force a pressure >= 0 cannot balance)
+   residual        max(equilibrium, dual, infeasibility, complementarity): the stopping measure
+   penetration     ||max(0, g)||_{L2(Gamma_c)} in the problem's units (the paper's infeasibility) */
 typedef struct {
   PetscReal equilibrium, infeasibility, complementarity, dual, residual, rhoF, rhoC, force;
+  PetscReal penetration, uscale, lscale;
   PetscInt  nactive;
 } SgKKT;
 
@@ -221,6 +226,7 @@ PetscErrorCode SgSSNCreate(SgProblem, SgContact, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *, KSPConvergedReason *);
 PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
+PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 
 /* ------------------------------------------------------------------ condense.c */
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
@@ -249,8 +255,10 @@ struct _n_SgCont {
   PetscInt   outer, ssn_its, ksp_its;
   PetscInt   ngammas, capgammas;
   PetscReal *gammas;       /* gamma of every outer step */
-  PetscBool  converged;
+  PetscBool  converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
   char       reason[512];
+  const char *problem;     /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */
+  PetscReal  residual;     /* the measure of that problem: the KKT residual of (P), the equilibrium residual of (P_gamma) or the backward error of K y = b */
   SgKKT      kkt;
   PetscReal  V0, V;        /* energy of the unconstrained solution and of the result */
   SgHistory  hist;
@@ -276,6 +284,7 @@ PetscErrorCode SgContCheck(SgCont, PetscBool *);
 PetscErrorCode SgCheckpointWrite(SgCont);
 PetscErrorCode SgCheckpointRead(SgCont);
 PetscErrorCode SgContCheckBaseline(SgCont);
+const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);

@@ -329,3 +329,47 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }
+
+/* The measure of a single regularized solve: the equilibrium residual of (P_gamma) at y, ||F(y)||_inf, relative to the
+   force scale ||K|| ||y|| + ||b|| of the KKT measures of (P), after discounting the round-off of forming
+   gamma (tau_N y - d) on the active set (4 eps max_A gamma w_i (|tau_N y_i| + |d_i|), which at gamma ~ 1e16 is not small).
+   Scaling by gamma w instead would hide inexact linear solves: a relative error of 1e-11 there is a pressure error of
+   1e-11 gamma |d|. roundoff: that discount relative to the force scale; above the tolerance the error cannot be
+   resolved in double precision at this gamma. */
+PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *roundoff)
+{
+  SgContact          c   = s->c;
+  Vec                F;
+  PetscScalar       *fa;
+  const PetscScalar *ya;
+  PetscReal          floor = 0, nrm[2], *g, *m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(c->n, &g, c->n, &m));
+  PetscCall(VecDuplicate(y, &F));
+  PetscCall(MatMult(s->prob->K, y, F));
+  PetscCall(VecAXPY(F, -1.0, s->prob->b));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(c, ya, g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal z = c->lamhat[i] + s->gamma * g[i];
+    m[i]              = PetscMax(0, z);
+    if (z > 0) floor = PetscMax(floor, s->gamma * c->w[i] * (PetscAbsReal(g[i] + c->d[i]) + PetscAbsReal(c->d[i])));
+  }
+  floor *= 4 * PETSC_MACHINE_EPSILON;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->prob->comm));
+  PetscCall(VecGetArray(F, &fa));
+  PetscCall(SgContactAddForce(c, m, fa));
+  PetscCall(VecRestoreArray(F, &fa));
+  PetscCall(VecNorm(F, NORM_INFINITY, &nrm[0]));
+  PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
+  {
+    const PetscReal scale = s->prob->Knorm * nrm[1] + s->prob->bnorm_inf, r = PetscMax(0, nrm[0] - floor);
+    *err      = r > 0 ? (scale > 0 ? r / scale : PETSC_INFINITY) : nrm[0] - nrm[0]; /* NaN passed on */
+    *roundoff = floor > 0 ? (scale > 0 ? floor / scale : PETSC_INFINITY) : 0;
+  }
+  PetscCall(VecDestroy(&F));
+  PetscCall(PetscFree2(g, m));
+  PetscFunctionReturn(0);
+}
