@@ -312,6 +312,13 @@ static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(PetscViewer, Ck
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode DestroyViewer(PetscViewer unused, CkRead *rd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&rd->viewer));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode OpenQuietly(PetscViewer unused, CkRead *rd)
 {
   PetscFunctionBeginUser;
@@ -358,7 +365,10 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   rd.file = ct->rsfile;
   PetscCall(Quietly(p->comm, OpenQuietly, NULL, &rd, &ierr));
   viewer = rd.viewer;
-  if (ierr && viewer) PetscCall(PetscViewerDestroy(&viewer));
+  if (ierr && viewer) { /* a viewer whose file did not open fails its flush: forget that error too */
+    PetscErrorCode ierr2;
+    PetscCall(Quietly(p->comm, DestroyViewer, NULL, &rd, &ierr2));
+  }
   PetscCheck(!ierr, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
   PetscCall(Quietly(p->comm, ReadBody, viewer, &rd, &ierr));
   if (ierr) {
