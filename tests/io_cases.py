@@ -47,6 +47,8 @@ class Cases:
             self.failed.append("%s: timed out" % name)
             return
         why = []
+        if rc < 0 or rc > 128:
+            why.append("killed by signal %d" % (-rc if rc < 0 else rc - 128))
         if CRASH.search(out):
             why.append("crashed or raw library trace: " + CRASH.search(out).group(0))
         if error is not None:
@@ -68,7 +70,10 @@ class Cases:
             for p in parts:
                 os.remove(p)
         if extra and not why:
-            e = extra(out)
+            try:
+                e = extra(out)
+            except Exception as ex:  # a missing or unreadable file is a failed case
+                e = "%s: %s" % (type(ex).__name__, ex)
             if e:
                 why.append(e)
         if why:
@@ -380,6 +385,8 @@ def main():
     c = Cases(tmp)
     try:
         globals()["group_" + opt.group](c)
+    except Exception as e:  # the script itself failed: a failed test, with the reason
+        c.failed.append("io_cases.py: %s: %s" % (type(e).__name__, e))
     finally:
         subprocess.run(["umount", os.path.join(tmp, "fs")], capture_output=True)
         shutil.rmtree(tmp, ignore_errors=True)
