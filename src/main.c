@@ -252,7 +252,6 @@ int main(int argc, char **argv)
   PetscLogDouble t0, t1;
   PetscBool      converged;
   PetscMPIInt    size;
-
   PetscErrorCode ierr_fields = 0, ierr_hist;
 
   if (CheckOptionsFileCycles(argc, argv)) return PETSC_ERR_USER_INPUT;

@@ -342,7 +342,7 @@ static void FileInspect(SgFileEntry *e, PetscBool hdf5, size_t h5max, char msg[]
     dir[dl] = 0;
   } else strcpy(dir, ".");
   if (!realpath(dir, rdir)) {
-    if (!e->input) snprintf(msg, len, "%s: cannot write '%s': the directory '%s' %s", e->option, e->name, dir, errno == ENOENT ? "does not exist" : strerror(errno));
+    if (!e->input) snprintf(msg, len, "%s: cannot write '%s': %s (the directory '%s')", e->option, e->name, strerror(errno), dir);
     PetscStrncpy(e->key, e->path, sizeof(e->key));
     return;
   }
@@ -382,6 +382,7 @@ static PetscErrorCode FileRegister(MPI_Comm comm, const char option[], const cha
   e->input = input;
   PetscCall(SgFileHDF5NameMax(input ? PETSC_COMM_SELF : comm, &h5max));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscMemzero(msg, sizeof(msg)));
   if (!rank) {
     FileInspect(e, hdf5, h5max, msg, sizeof(msg));
     for (int i = 0; !msg[0] && i < FileCount; i++) {
