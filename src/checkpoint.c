@@ -56,6 +56,51 @@ static PetscErrorCode RootVec(MPI_Comm comm, const char name[], PetscInt n, cons
   PetscFunctionReturn(0);
 }
 
+/* What identifies the problem a checkpoint belongs to: a restart of another problem (another -E, -nu, load, Dirichlet
+   data or obstacle) would resume a continuation path, and report an unconstrained energy, of a problem it is not. */
+#define NPRINT 6
+static const char *PrintNames[NPRINT] = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
+static const char *PrintOptions[NPRINT] = {"-E", "-nu", "the loads (-body_force, -neumann_traction, ...)", "the loads (-body_force, -neumann_traction, ...)", "the Dirichlet data (-dirichlet_values)", "the obstacle (-obstacle_*) or the contact boundary"};
+
+static PetscErrorCode ProblemPrint(SgCont ct, PetscReal print[NPRINT])
+{
+  SgProblem p = ct->prob;
+  PetscReal gs = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; ct->c && i < ct->c->n; i++) gs += ct->c->w[i] * ct->c->d[i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gs, 1, MPIU_REAL, MPI_SUM, p->comm));
+  print[0] = p->E;
+  print[1] = p->nu;
+  print[2] = p->bnorm;
+  print[3] = p->bnorm_inf;
+  print[4] = p->energy_shift;
+  print[5] = gs;
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  SgCont    ct;
+  Vec       v[6];
+  PetscInt  ints[6];
+  PetscReal print[NPRINT];
+} CkCtx;
+
+static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
+{
+  CkCtx      *ctx      = (CkCtx *)vctx;
+  const char *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
+  for (PetscInt i = 0; i < 6; i++) PetscCall(VecView(ctx->v[i], viewer));
+  for (PetscInt i = 0; i < 6; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", names[i], PETSC_INT, &ctx->ints[i]));
+  for (PetscInt i = 0; i < NPRINT; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, &ctx->print[i]));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ctx->ct->type));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgCheckpointWrite(SgCont ct)
 {
   SgProblem          p = ct->prob;
@@ -68,8 +113,6 @@ PetscErrorCode SgCheckpointWrite(SgCont ct)
   Vec                X, U, L, R, G, H, yloc;
   PetscScalar       *xa, *ua, *la;
   const PetscScalar *ya;
-  PetscViewer        viewer;
-  char               tmp[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
   if (!ct->ckfile[0]) PetscFunctionReturn(0);
@@ -128,23 +171,20 @@ PetscErrorCode SgCheckpointWrite(SgCont ct)
   ints[4] = ct->ksp_its;
   ints[5] = ct->best_step;
 
-  PetscCall(SgFileTmpName(ct->ckfile, tmp, sizeof(tmp)));
-  PetscCall(PetscViewerHDF5Open(p->comm, tmp, FILE_MODE_WRITE, &viewer));
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  PetscCall(VecView(X, viewer));
-  PetscCall(VecView(U, viewer));
-  PetscCall(VecView(L, viewer));
-  PetscCall(VecView(R, viewer));
-  PetscCall(VecView(G, viewer));
-  PetscCall(VecView(H, viewer));
   {
-    const char *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
-    for (PetscInt i = 0; i < 6; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", names[i], PETSC_INT, &ints[i]));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ct->type));
+    CkCtx     ctx = {ct, {X, U, L, R, G, H}, {0}, {0}};
+    PetscBool ok;
+    char      msg[PETSC_MAX_PATH_LEN + 256];
+    for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
+    PetscCall(ProblemPrint(ct, ctx.print));
+    PetscCall(SgFileWriteHDF5(p->comm, "-checkpoint_file", ct->ckfile, WriteBody, &ctx, PETSC_TRUE, &ok, msg, sizeof(msg)));
+    if (!ok) {
+      /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
+      PetscCall(PetscPrintf(p->comm, "checkpoint not written: %s\n", msg));
+      PetscCall(SgContFail(ct, "CHECKPOINT_FAILED: %s", msg));
+      ct->ckfile[0] = 0;
+    }
   }
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(SgFileCommit(p->comm, ct->ckfile));
   PetscCall(VecDestroy(&X));
   PetscCall(VecDestroy(&U));
   PetscCall(VecDestroy(&L));
@@ -200,34 +240,149 @@ static PetscErrorCode LoadSeq(PetscViewer viewer, const char name[], PetscInt n,
   PetscFunctionReturn(0);
 }
 
+typedef struct {
+  PetscInt    nvert, dim, ints[6];
+  char       *type;
+  const char *what; /* what was being read, for the message */
+  const char *file;
+  PetscViewer viewer;
+  PetscBool   hasprint;
+  PetscReal   print[NPRINT];
+  Vec         X, U, L, R, G, H;
+} CkRead;
+
+/* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
+static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
+{
+  PetscBool   exists;
+  const char *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
+
+  PetscFunctionBeginUser;
+  rd->what = "the attribute cont_type";
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "cont_type", &exists));
+  if (!exists) PetscFunctionReturn(0);
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, NULL, &rd->type));
+  for (PetscInt i = 0; i < 6; i++) {
+    rd->what = names[i];
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", names[i], PETSC_INT, NULL, &rd->ints[i]));
+  }
+  rd->what = "the problem data";
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", PrintNames[0], &rd->hasprint));
+  for (PetscInt i = 0; rd->hasprint && i < NPRINT; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, NULL, &rd->print[i]));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
+  rd->what = "coordinates";
+  PetscCall(LoadSeq(viewer, "coordinates", rd->nvert * rd->dim, &rd->X));
+  rd->what = "displacement";
+  PetscCall(LoadSeq(viewer, "displacement", rd->nvert * rd->dim, &rd->U));
+  rd->what = "lamhat";
+  PetscCall(LoadSeq(viewer, "lamhat", rd->nvert, &rd->L));
+  rd->what = "reals";
+  PetscCall(LoadSeq(viewer, "reals", NREAL, &rd->R));
+  rd->what = "gammas";
+  PetscCall(LoadSeq(viewer, "gammas", -1, &rd->G));
+  rd->what = "history";
+  PetscCall(LoadSeq(viewer, "history", -1, &rd->H));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Run a read step with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
+static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(PetscViewer, CkRead *), PetscViewer viewer, CkRead *rd, PetscErrorCode *ierr)
+{
+  H5E_auto2_t efunc;
+  void       *edata;
+  int         e;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  *ierr = f(viewer, rd); /* not PetscCall: a damaged file is reported by the caller, naming -restart_file */
+  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
+  PetscCall(PetscPopErrorHandler());
+  e = *ierr ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_INT, MPI_MAX, comm));
+  *ierr = e ? PETSC_ERR_FILE_READ : 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DestroyViewer(PetscViewer unused, CkRead *rd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&rd->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OpenQuietly(PetscViewer unused, CkRead *rd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, rd->file, FILE_MODE_READ, &rd->viewer));
+  PetscFunctionReturn(0);
+}
+
+/* all finite, and >= lo when check_lo; the index of the first bad one in *bad (-1: none) */
+static void CheckReals(const PetscScalar a[], PetscInt n, PetscBool check_lo, PetscReal lo, PetscInt *bad)
+{
+  *bad = -1;
+  for (PetscInt i = 0; i < n; i++)
+    if (!PetscIsNormalReal(PetscRealPart(a[i])) && PetscRealPart(a[i]) != 0) {
+      *bad = i;
+      return;
+    } else if (check_lo && !(PetscRealPart(a[i]) >= lo)) {
+      *bad = i;
+      return;
+    }
+}
+
 PetscErrorCode SgCheckpointRead(SgCont ct)
 {
   SgProblem          p = ct->prob;
   SgContact          c = ct->c;
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim;
-  PetscViewer        viewer;
-  PetscInt           ints[6], nvert = 0, *perm, nmiss = 0, nh;
-  char              *type = NULL;
-  Vec                X, U, L, R, G, H;
+  PetscViewer        viewer = NULL;
+  PetscInt           nvert = 0, *perm, nmiss = 0, nh, ng, bad, *ints;
+  CkRead             rd;
   const PetscScalar *xa, *ua, *la, *ra, *ga, *ha;
   PetscScalar       *ya;
   PetscBool          exists, same;
-  const char        *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
+  PetscErrorCode     ierr;
+  const char        *f = ct->rsfile;
 
   PetscFunctionBeginUser;
   if (!ct->rsfile[0]) PetscFunctionReturn(0);
+  PetscCall(PetscMemzero(&rd, sizeof(rd)));
   PetscCall(PetscTestFile(ct->rsfile, 'r', &exists));
   PetscCheck(exists, p->comm, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", ct->rsfile);
   PetscCheck(!strcmp(ct->type, "alm") || !strcmp(ct->type, "pf") || !strcmp(ct->type, "ipf"), p->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (alm, pf and ipf have)", ct->type);
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, ct->rsfile, FILE_MODE_READ, &viewer));
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "cont_type", &exists));
-  PetscCheck(exists, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", ct->rsfile);
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, NULL, &type));
-  PetscCall(PetscStrcmp(type, ct->type, &same));
-  PetscCheck(same, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", ct->rsfile, type, ct->type);
-  PetscCall(PetscFree(type));
-  for (PetscInt i = 0; i < 6; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", names[i], PETSC_INT, NULL, &ints[i]));
+  /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
+  rd.file = ct->rsfile;
+  PetscCall(Quietly(p->comm, OpenQuietly, NULL, &rd, &ierr));
+  viewer = rd.viewer;
+  if (ierr && viewer) { /* a viewer whose file did not open fails its flush: forget that error too */
+    PetscErrorCode ierr2;
+    PetscCall(Quietly(p->comm, DestroyViewer, NULL, &rd, &ierr2));
+  }
+  PetscCheck(!ierr, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
+  PetscCall(Quietly(p->comm, ReadBody, viewer, &rd, &ierr));
+  if (ierr) {
+    PetscCall(PetscViewerDestroy(&viewer));
+    PetscCall(PetscFree(rd.type));
+    SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", f, rd.what);
+  }
+  if (!rd.type) PetscCall(PetscViewerDestroy(&viewer));
+  PetscCheck(rd.type, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
+  PetscCall(PetscStrcmp(rd.type, ct->type, &same));
+  if (!same) PetscCall(PetscViewerDestroy(&viewer));
+  PetscCheck(same, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", f, rd.type, ct->type);
+  PetscCall(PetscFree(rd.type));
+  ints = rd.ints;
   {
     PetscSection gs;
     PetscCall(DMGetGlobalSection(p->dmVert, &gs));
@@ -238,20 +393,87 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, p->comm));
   }
-  PetscCheck(ints[0] == dim && ints[1] == nvert, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, ct->rsfile, ints[0], ints[1], dim, nvert);
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  PetscCall(LoadSeq(viewer, "coordinates", nvert * dim, &X));
-  PetscCall(LoadSeq(viewer, "displacement", nvert * dim, &U));
-  PetscCall(LoadSeq(viewer, "lamhat", nvert, &L));
-  PetscCall(LoadSeq(viewer, "reals", NREAL, &R));
-  PetscCall(LoadSeq(viewer, "gammas", -1, &G));
-  PetscCall(LoadSeq(viewer, "history", -1, &H));
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(PetscViewerDestroy(&viewer));
+  PetscCheck(ints[0] == dim && ints[1] == nvert, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, ints[0], ints[1], dim, nvert);
+  /* the counters: a checkpoint is written after an outer step */
+  {
+    const char *what = NULL;
+    PetscInt    val  = 0;
+    if (ints[2] < 1) what = "outer", val = ints[2];
+    else if (ints[3] < 0) what = "ssn_iterations", val = ints[3];
+    else if (ints[4] < 0) what = "ksp_iterations", val = ints[4];
+    else if (ints[5] < 0 || ints[5] > ints[2]) what = "best_step", val = ints[5];
+    if (what) PetscCall(PetscViewerDestroy(&viewer));
+    PetscCheck(!what, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);
+  }
+  /* a restart of another problem would continue a path that is not this problem's */
+  if (rd.hasprint) {
+    PetscReal now[NPRINT];
+    PetscCall(ProblemPrint(ct, now));
+    for (PetscInt i = 0; i < NPRINT; i++) {
+      const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - rd.print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(rd.print[i]) : 0));
+      if (!ok) PetscCall(PetscViewerDestroy(&viewer));
+      PetscCheck(ok, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
+    }
+  }
+  rd.nvert = nvert;
+  rd.dim   = dim;
+  PetscCall(Quietly(p->comm, ReadVectors, viewer, &rd, &ierr));
   PetscCall(PetscViewerDestroy(&viewer));
+  if (ierr) {
+    Vec *v[6] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.G, &rd.H};
+    for (PetscInt i = 0; i < 6; i++) PetscCall(VecDestroy(v[i]));
+    SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
+  }
 
-  PetscCall(VecGetArrayRead(X, &xa));
-  PetscCall(VecGetArrayRead(U, &ua));
-  PetscCall(VecGetArrayRead(L, &la));
+  /* every number read must be possible */
+  PetscCall(VecGetArrayRead(rd.X, &xa));
+  PetscCall(VecGetArrayRead(rd.U, &ua));
+  PetscCall(VecGetArrayRead(rd.L, &la));
+  PetscCall(VecGetArrayRead(rd.R, &ra));
+  PetscCall(VecGetSize(rd.G, &ng));
+  PetscCall(VecGetArrayRead(rd.G, &ga));
+  PetscCall(VecGetSize(rd.H, &nh));
+  PetscCall(VecGetArrayRead(rd.H, &ha));
+  {
+    const char *what = NULL;
+    PetscReal   val  = 0;
+    CheckReals(xa, nvert * dim, PETSC_FALSE, 0, &bad);
+    if (bad >= 0) what = "a vertex coordinate", val = PetscRealPart(xa[bad]);
+    if (!what) CheckReals(ua, nvert * dim, PETSC_FALSE, 0, &bad);
+    if (!what && bad >= 0) what = "a displacement", val = PetscRealPart(ua[bad]);
+    if (!what) CheckReals(la, nvert, PETSC_TRUE, 0, &bad);
+    if (!what && bad >= 0) what = "a multiplier shift lamhat (must be >= 0)", val = PetscRealPart(la[bad]);
+    if (!what && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
+    if (!what && !PetscIsNormalReal(PetscRealPart(ra[1])) && PetscRealPart(ra[1]) != 0) what = "the unconstrained energy", val = PetscRealPart(ra[1]);
+    if (!what) CheckReals(&ra[2], 1, PETSC_TRUE, 0, &bad);
+    if (!what && bad >= 0) what = "the best KKT residual", val = PetscRealPart(ra[2]);
+    if (!what) CheckReals(&ra[3], 4, PETSC_FALSE, 0, &bad);
+    if (!what && bad >= 0) what = "the controller state", val = PetscRealPart(ra[3 + bad]);
+    if (!what && ng != ints[2]) what = "the number of gammas (must be the number of outer steps)", val = ng;
+    for (PetscInt i = 0; !what && i < ng; i++)
+      if (!(PetscRealPart(ga[i]) > 0)) what = "a gamma of the path (must be positive)", val = PetscRealPart(ga[i]);
+    if (!what && nh % NHIST) what = "the length of the history", val = nh;
+    for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
+      const PetscReal kind = PetscRealPart(ha[i * NHIST]), outer = PetscRealPart(ha[i * NHIST + 1]);
+      if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
+      else if (!(outer >= 0 && outer <= ints[2] && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+    }
+    if (what) {
+      PetscCall(VecRestoreArrayRead(rd.X, &xa));
+      PetscCall(VecRestoreArrayRead(rd.U, &ua));
+      PetscCall(VecRestoreArrayRead(rd.L, &la));
+      PetscCall(VecRestoreArrayRead(rd.R, &ra));
+      PetscCall(VecRestoreArrayRead(rd.G, &ga));
+      PetscCall(VecRestoreArrayRead(rd.H, &ha));
+      {
+        Vec *v[6] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.G, &rd.H};
+        for (PetscInt i = 0; i < 6; i++) PetscCall(VecDestroy(v[i]));
+      }
+      SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
+    }
+  }
+
   PetscCall(PetscMalloc1(nvert, &perm));
   for (PetscInt i = 0; i < nvert; i++) perm[i] = i;
   SortX   = (const PetscReal *)xa;
@@ -275,33 +497,30 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     if (idx < 0) nmiss++;
     else c->lamhat[i] = PetscRealPart(la[idx]);
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, p->comm));
-  PetscCheck(!nmiss, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, ct->rsfile);
   PetscCall(PetscFree(perm));
-  PetscCall(VecRestoreArrayRead(X, &xa));
-  PetscCall(VecRestoreArrayRead(U, &ua));
-  PetscCall(VecRestoreArrayRead(L, &la));
+  PetscCall(VecRestoreArrayRead(rd.X, &xa));
+  PetscCall(VecRestoreArrayRead(rd.U, &ua));
+  PetscCall(VecRestoreArrayRead(rd.L, &la));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, p->comm));
+  if (nmiss) {
+    PetscCall(VecRestoreArrayRead(rd.R, &ra));
+    PetscCall(VecRestoreArrayRead(rd.G, &ga));
+    PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  }
+  PetscCheck(!nmiss, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
 
-  PetscCall(VecGetArrayRead(R, &ra));
   ct->gamma    = PetscRealPart(ra[0]);
   ct->V0       = PetscRealPart(ra[1]);
   ct->best_kkt = PetscRealPart(ra[2]);
   for (PetscInt i = 0; i < 4; i++) ct->state[i] = PetscRealPart(ra[3 + i]);
-  PetscCall(VecRestoreArrayRead(R, &ra));
+  PetscCall(VecRestoreArrayRead(rd.R, &ra));
   ct->outer     = ints[2];
   ct->ssn_its   = ints[3];
   ct->ksp_its   = ints[4];
   ct->best_step = ints[5];
-  ct->ngammas = 0;
-  PetscCall(VecGetArrayRead(G, &ga));
-  {
-    PetscInt ng;
-    PetscCall(VecGetSize(G, &ng));
-    for (PetscInt i = 0; i < ng; i++) PetscCall(SgContAddGamma(ct, PetscRealPart(ga[i])));
-  }
-  PetscCall(VecRestoreArrayRead(G, &ga));
-  PetscCall(VecGetSize(H, &nh));
-  PetscCall(VecGetArrayRead(H, &ha));
+  ct->ngammas   = 0;
+  for (PetscInt i = 0; i < ng; i++) PetscCall(SgContAddGamma(ct, PetscRealPart(ga[i])));
+  PetscCall(VecRestoreArrayRead(rd.G, &ga));
   ct->hist->n = 0;
   for (PetscInt i = 0; i < nh / NHIST; i++) {
     SgHistoryRow r;
@@ -310,13 +529,13 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     RealsToRow(a, &r);
     PetscCall(SgHistoryAdd(ct->hist, &r));
   }
-  PetscCall(VecRestoreArrayRead(H, &ha));
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&U));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&R));
-  PetscCall(VecDestroy(&G));
-  PetscCall(VecDestroy(&H));
+  PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  PetscCall(VecDestroy(&rd.X));
+  PetscCall(VecDestroy(&rd.U));
+  PetscCall(VecDestroy(&rd.L));
+  PetscCall(VecDestroy(&rd.R));
+  PetscCall(VecDestroy(&rd.G));
+  PetscCall(VecDestroy(&rd.H));
   ct->restarted = PETSC_TRUE;
   PetscCall(PetscInfo(NULL, "restarted from %s after outer step %" PetscInt_FMT " (gamma %g)\n", ct->rsfile, ct->outer, (double)ct->gamma));
   PetscFunctionReturn(0);

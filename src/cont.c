@@ -122,6 +122,10 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
     PetscCall(SgContMeasure(ct));
     PetscFunctionReturn(0);
   }
+  if (ct->restarted && ct->outer >= ct->max_outer) { /* the checkpoint is at or beyond the limit: no step to take */
+    *ok = PETSC_FALSE;
+    PetscCall(SgContFail(ct, "MAX_IT: the checkpoint of -restart_file is at outer step %" PetscInt_FMT " >= -cont_max_it %" PetscInt_FMT ": no step taken", ct->outer, ct->max_outer));
+  }
   if (ct->restarted) PetscFunctionReturn(0);
   PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
   ct->ksp_its += its;
@@ -327,6 +331,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;
   PetscCall(SgCheckpointWrite(ct));
+  if (!strncmp(ct->reason, "CHECKPOINT_FAILED", 17)) *stop = PETSC_TRUE; /* the disk is full, say: stop, keep the summary */
   PetscFunctionReturn(0);
 }
 

@@ -2,14 +2,139 @@
 #include "signorini.h"
 #include <petscviewerhdf5.h>
 #include <errno.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdlib.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
 
 /* Every result file is written to "<name>.part" and renamed once complete: a failed or killed run leaves
-   the previous result intact and never a half-written file under the final name. */
-PetscErrorCode SgFileTmpName(const char name[], char tmp[], size_t len)
+   the previous result intact and never a half-written file under the final name.
+
+   The result and input files of a run are registered here before any work (SgFileCheckWritable, SgFileCheckInput):
+   that refuses names too long for the libraries, files that are not regular files where a rename would replace
+   them, and two options naming the same file. A registered name may differ from the file written:
+   - a symbolic link to a regular file is written through: "<target>.part", renamed onto the target (the link stays);
+   - a character device or FIFO (text results only) is written directly, without a ".part" and a rename. */
+typedef struct {
+  char      option[64];
+  char      name[PETSC_MAX_PATH_LEN]; /* as given */
+  char      path[PETSC_MAX_PATH_LEN]; /* the file written: name, or the target of a symbolic link */
+  char      key[PATH_MAX + NAME_MAX + 2]; /* realpath of the directory + "/" + base name of path */
+  PetscBool direct, input, exists;
+  dev_t     dev;
+  ino_t     ino;
+} SgFileEntry;
+
+#define SG_FILE_MAX 48
+static SgFileEntry FileTable[SG_FILE_MAX];
+static int         FileCount = 0;
+
+/* ".part" files being written: removed by SgFileCleanup on a signal or an error exit (async-signal-safe: static
+   storage, unlink only). */
+#define SG_PENDING_MAX 16
+static char                  Pending[SG_PENDING_MAX][PETSC_MAX_PATH_LEN];
+static volatile sig_atomic_t PendingUsed[SG_PENDING_MAX];
+
+static void PendingAdd(const char tmp[])
+{
+  for (int i = 0; i < SG_PENDING_MAX; i++)
+    if (!PendingUsed[i]) {
+      size_t n = strlen(tmp);
+      if (n > PETSC_MAX_PATH_LEN - 1) n = PETSC_MAX_PATH_LEN - 1;
+      memcpy(Pending[i], tmp, n);
+      Pending[i][n] = 0;
+      PendingUsed[i]                     = 1;
+      return;
+    }
+}
+
+static void PendingRemove(const char tmp[])
+{
+  for (int i = 0; i < SG_PENDING_MAX; i++)
+    if (PendingUsed[i] && !strcmp(Pending[i], tmp)) PendingUsed[i] = 0;
+}
+
+/* Remove every ".part" file still being written (called from signal handlers and at exit). */
+void SgFileCleanup(void)
+{
+  for (int i = 0; i < SG_PENDING_MAX; i++)
+    if (PendingUsed[i]) {
+      (void)unlink(Pending[i]);
+      PendingUsed[i] = 0;
+    }
+}
+
+static struct sigaction OldAction[2];
+static const int        CaughtSignals[2] = {SIGINT, SIGTERM};
+
+/* SIGINT, SIGTERM: remove the ".part" files, then let the handler that was there before (PETSc's, or the default)
+   end the process as it would have. */
+static void SignalCleanup(int sig)
+{
+  SgFileCleanup();
+  for (int i = 0; i < 2; i++)
+    if (CaughtSignals[i] == sig) {
+      (void)sigaction(sig, &OldAction[i], NULL);
+      (void)raise(sig);
+    }
+}
+
+PetscErrorCode SgFileInstallCleanup(void)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(tmp, len, "%s.part", name));
+  for (int i = 0; i < 2; i++) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = SignalCleanup;
+    sigemptyset(&sa.sa_mask);
+    PetscCheck(!sigaction(CaughtSignals[i], &sa, &OldAction[i]), PETSC_COMM_SELF, PETSC_ERR_SYS, "cannot install the handler of signal %d: %s", CaughtSignals[i], strerror(errno));
+  }
+  /* an error returned from main (PETSc's error path) also ends with no ".part" left */
+  PetscCheck(!atexit(SgFileCleanup), PETSC_COMM_SELF, PETSC_ERR_SYS, "atexit failed");
+  PetscFunctionReturn(0);
+}
+
+static SgFileEntry *FileFind(const char name[])
+{
+  for (int i = 0; i < FileCount; i++)
+    if (!strcmp(FileTable[i].name, name) && !FileTable[i].input) return &FileTable[i];
+  return NULL;
+}
+
+/* The file written for a result name (the target of a symbolic link), and whether it is written directly. */
+static void FileResolve(const char name[], const char **path, PetscBool *direct)
+{
+  const SgFileEntry *e = FileFind(name);
+  *path                = e ? e->path : name;
+  *direct              = e ? e->direct : PETSC_FALSE;
+}
+
+PetscErrorCode SgFileTmpName(const char name[], char tmp[], size_t len)
+{
+  const char *path;
+  PetscBool   direct;
+
+  PetscFunctionBeginUser;
+  FileResolve(name, &path, &direct);
+  if (direct) PetscCall(PetscStrncpy(tmp, path, len));
+  else PetscCall(PetscSNPrintf(tmp, len, "%s.part", path));
+  PetscFunctionReturn(0);
+}
+
+/* Note that the temporary file of name is being written (rank-local; removed on a signal or an error exit). */
+PetscErrorCode SgFileBegin(const char name[])
+{
+  const char *path;
+  PetscBool   direct;
+  char        tmp[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  FileResolve(name, &path, &direct);
+  if (direct) PetscFunctionReturn(0);
+  PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
+  PendingAdd(tmp);
   PetscFunctionReturn(0);
 }
 
@@ -17,32 +142,62 @@ PetscErrorCode SgFileCommit(MPI_Comm comm, const char name[])
 {
   PetscMPIInt rank;
   char        tmp[PETSC_MAX_PATH_LEN];
+  const char *path;
+  PetscBool   direct;
   int         err = 0;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Barrier(comm));
+  FileResolve(name, &path, &direct);
+  if (direct) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
-  if (rank == 0 && rename(tmp, name)) err = errno;
+  if (rank == 0 && rename(tmp, path)) err = errno;
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
-  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s", tmp, name, strerror(err));
+  if (err && rank == 0) (void)unlink(tmp);
+  PendingRemove(tmp);
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s", tmp, path, strerror(err));
   PetscFunctionReturn(0);
 }
 
-/* Remove a temporary file left by a failed write (rank 0). */
+/* Remove a temporary file left by a failed write (rank 0; the other ranks only forget it). */
 PetscErrorCode SgFileAbandon(MPI_Comm comm, const char name[])
 {
   PetscMPIInt rank;
   char        tmp[PETSC_MAX_PATH_LEN];
+  const char *path;
+  PetscBool   direct;
 
   PetscFunctionBeginUser;
+  FileResolve(name, &path, &direct);
+  if (direct) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
-  if (rank == 0) (void)remove(tmp);
+  if (rank == 0) (void)unlink(tmp);
+  PendingRemove(tmp);
   PetscFunctionReturn(0);
 }
 
-/* Open "<name>.part" for writing on rank 0 (NULL elsewhere); an error names the option that gave the file. */
+/* The cause of a failed write, for the message: errno if it says something, else a full file system. */
+const char *SgFileErrorCause(int err, const char path[])
+{
+  struct statvfs sv;
+  char           dir[PETSC_MAX_PATH_LEN];
+  char          *slash;
+
+  if (err == ENOSPC) return "no space left on device";
+  if (err && err != EIO) return strerror(err);
+  strncpy(dir, path, sizeof(dir) - 1);
+  dir[sizeof(dir) - 1] = 0;
+  slash                = strrchr(dir, '/');
+  if (slash) *(slash == dir ? slash + 1 : slash) = 0;
+  else strcpy(dir, ".");
+  if (!statvfs(dir, &sv) && sv.f_bavail == 0) return "no space left on device";
+  return err ? strerror(err) : "the HDF5 library reported a write error";
+}
+
+/* Open the file to write for name ("<name>.part", or a device directly) on rank 0 (NULL elsewhere); an error names
+   the option that gave the file. */
 PetscErrorCode SgFileOpen(MPI_Comm comm, const char option[], const char name[], FILE **fp)
 {
   PetscMPIInt rank;
@@ -54,50 +209,296 @@ PetscErrorCode SgFileOpen(MPI_Comm comm, const char option[], const char name[],
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
   if (rank == 0) {
+    PetscCall(SgFileBegin(name));
     *fp = fopen(tmp, "w");
-    if (!*fp) err = errno;
+    if (!*fp) {
+      err = errno;
+      PendingRemove(tmp);
+    }
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "%s: cannot write '%s': %s", option, name, strerror(err));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgFileClose(MPI_Comm comm, const char name[], FILE **fp)
+/* Close the file; then commit (rename the .part), keep the .part for a later SgFileCommit, or abandon (remove) it.
+   A write error always removes it. */
+typedef enum { FILE_ABANDON, FILE_COMMIT, FILE_KEEP } FileEnd;
+static PetscErrorCode FileFinish(MPI_Comm comm, const char name[], FILE **fp, FileEnd end)
 {
-  int err = 0;
+  int         err = 0;
+  const char *path, *cause;
+  PetscBool   direct;
 
   PetscFunctionBeginUser;
   if (*fp) {
-    if (fflush(*fp) || ferror(*fp)) err = EIO;
-    if (fclose(*fp)) err = errno;
+    errno = 0;
+    if (fflush(*fp) || ferror(*fp)) err = errno ? errno : EIO;
+    if (fclose(*fp) && !err) err = errno;
     *fp = NULL;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm));
-  if (err) PetscCall(SgFileAbandon(comm, name));
-  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "error writing '%s': %s", name, strerror(err));
-  PetscCall(SgFileCommit(comm, name));
+  FileResolve(name, &path, &direct);
+  cause = err ? SgFileErrorCause(err, path) : NULL; /* before the .part is removed (and the space freed) */
+  if (err || end == FILE_ABANDON) PetscCall(SgFileAbandon(comm, name));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "error writing '%s': %s", name, cause);
+  if (end == FILE_COMMIT) PetscCall(SgFileCommit(comm, name));
   PetscFunctionReturn(0);
 }
 
-/* Fail early (before any solve) if an output location cannot be written. */
-PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const char name[])
+PetscErrorCode SgFileClose(MPI_Comm comm, const char name[], FILE **fp)
 {
-  FILE *fp;
+  PetscFunctionBeginUser;
+  PetscCall(FileFinish(comm, name, fp, FILE_COMMIT));
+  PetscFunctionReturn(0);
+}
+
+/* OpenMPI's OMPIO (sharedfp/lockedfile) formats "<name>.locktest.<rank>" into a 256-byte buffer when HDF5 opens a
+   file through MPI-IO and aborts the process beyond ("buffer overflow detected"): the longest file name HDF5 may be
+   given on a communicator of size ranks. */
+PetscErrorCode SgFileHDF5NameMax(MPI_Comm comm, size_t *len)
+{
+  PetscMPIInt size;
+  size_t      digits = 1;
 
   PetscFunctionBeginUser;
-  if (!name[0]) PetscFunctionReturn(0);
-  {
-    PetscMPIInt rank;
-    int         isdir = 0;
-    struct stat st;
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
-    if (!rank && !stat(name, &st) && S_ISDIR(st.st_mode)) isdir = 1;
-    PetscCallMPI(MPI_Bcast(&isdir, 1, MPI_INT, 0, comm));
-    PetscCheck(!isdir, comm, PETSC_ERR_FILE_OPEN, "%s: '%s' is a directory, not a file name", option, name);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (PetscMPIInt r = size - 1; r >= 10; r /= 10) digits++;
+  *len = 255 - strlen(".locktest.") - digits;
+  PetscFunctionReturn(0);
+}
+
+static const char *FileTypeName(mode_t m)
+{
+  if (S_ISDIR(m)) return "a directory";
+  if (S_ISCHR(m)) return "a character device";
+  if (S_ISBLK(m)) return "a block device";
+  if (S_ISFIFO(m)) return "a FIFO";
+  if (S_ISSOCK(m)) return "a socket";
+  return "not a regular file";
+}
+
+/* Fill an entry (on rank 0: the file system is looked at there; the verdict is broadcast). Returns a message in msg
+   (empty: fine). */
+static void FileInspect(SgFileEntry *e, PetscBool hdf5, size_t h5max, char msg[], size_t len)
+{
+  struct stat st, lst;
+  char        dir[PETSC_MAX_PATH_LEN], rdir[PATH_MAX];
+  const char *base, *slash;
+  size_t      n = strlen(e->name);
+
+  msg[0] = 0;
+  PetscStrncpy(e->path, e->name, sizeof(e->path));
+  if (!e->input && n + strlen(".part") >= PETSC_MAX_PATH_LEN - 1) {
+    snprintf(msg, len, "%s: the file name is %zu characters long, at most %d are supported", e->option, n, PETSC_MAX_PATH_LEN - 7);
+    return;
   }
+  if (!lstat(e->name, &lst) && S_ISLNK(lst.st_mode)) {
+    /* a symbolic link is written through: its target is the file replaced, the link stays */
+    if (stat(e->name, &st)) {
+      snprintf(msg, len, "%s: '%s' is a symbolic link to a missing file", e->option, e->name);
+      return;
+    }
+    if (S_ISREG(st.st_mode) && !realpath(e->name, e->path)) {
+      snprintf(msg, len, "%s: cannot resolve the symbolic link '%s': %s", e->option, e->name, strerror(errno));
+      return;
+    }
+  }
+  e->exists = (PetscBool)!stat(e->path, &st);
+  if (e->exists) {
+    e->dev = st.st_dev;
+    e->ino = st.st_ino;
+    if (S_ISDIR(st.st_mode)) {
+      snprintf(msg, len, "%s: '%s' is a directory, not a file name", e->option, e->name);
+      return;
+    }
+    if (!S_ISREG(st.st_mode) && !e->input) {
+      /* never rename over a device or FIFO: text is written into it, HDF5 needs a regular file */
+      if (hdf5 || !(S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) {
+        snprintf(msg, len, "%s: '%s' is %s, not a regular file: %s", e->option, e->name, FileTypeName(st.st_mode), hdf5 ? "HDF5 results need a regular file" : "refusing to replace it");
+        return;
+      }
+      e->direct = PETSC_TRUE;
+      if (access(e->path, W_OK)) snprintf(msg, len, "%s: cannot write '%s': %s", e->option, e->name, strerror(errno));
+      return;
+    }
+  } else if (e->input) {
+    return; /* a missing input is reported by the code that reads it */
+  }
+  if (hdf5) {
+    const size_t hl = strlen(e->path) + (e->input ? 0 : strlen(".part"));
+    if (hl > h5max) {
+      snprintf(msg, len, "%s: the file name '%s' is %zu characters long; HDF5 through OpenMPI's MPI-IO accepts at most %zu here (%zu with the \".part\" suffix): use a shorter path (e.g. a relative one or a symbolic link to the directory)", e->option, e->name, n, h5max - (e->input ? 0 : strlen(".part")), h5max);
+      return;
+    }
+  }
+  /* the key: the real directory and the base name, so that two spellings of one file compare equal */
+  slash = strrchr(e->path, '/');
+  base  = slash ? slash + 1 : e->path;
+  if (slash) {
+    size_t dl = (size_t)(slash - e->path);
+    if (dl == 0) dl = 1;
+    memcpy(dir, e->path, dl);
+    dir[dl] = 0;
+  } else strcpy(dir, ".");
+  if (!realpath(dir, rdir)) {
+    if (!e->input) snprintf(msg, len, "%s: cannot write '%s': %s (the directory '%s')", e->option, e->name, strerror(errno), dir);
+    PetscStrncpy(e->key, e->path, sizeof(e->key));
+    return;
+  }
+  snprintf(e->key, sizeof(e->key), "%s/%s", rdir, base);
+}
+
+static PetscBool FileSame(const SgFileEntry *a, const SgFileEntry *b)
+{
+  if (a->direct && b->direct) return PETSC_FALSE; /* two streams into one device (e.g. /dev/null) are fine */
+  if (a->exists && b->exists && a->dev == b->dev && a->ino == b->ino) return PETSC_TRUE;
+  return (PetscBool)(a->key[0] && !strcmp(a->key, b->key));
+}
+
+/* Register the file of an option (replacing an earlier registration of the same option) and check it against the
+   others. hdf5: written by HDF5 (the length limit, regular files only). */
+static PetscErrorCode FileRegister(MPI_Comm comm, const char option[], const char name[], PetscBool input, PetscBool hdf5)
+{
+  SgFileEntry *e = NULL;
+  PetscMPIInt  rank;
+  char         msg[PETSC_MAX_PATH_LEN + 512];
+  size_t       h5max;
+
+  PetscFunctionBeginUser;
+  for (int i = 0; i < FileCount; i++) /* an option names one file, except -options_file (each is kept) */
+    if (!strcmp(FileTable[i].option, option) && strcmp(option, "-options_file")) e = &FileTable[i];
+  if (!name || !name[0]) {
+    if (e) *e = FileTable[--FileCount];
+    PetscFunctionReturn(0);
+  }
+  if (!e) {
+    PetscCheck(FileCount < SG_FILE_MAX, comm, PETSC_ERR_PLIB, "too many files");
+    e = &FileTable[FileCount++];
+  }
+  PetscCall(PetscMemzero(e, sizeof(*e)));
+  PetscCall(PetscStrncpy(e->option, option, sizeof(e->option)));
+  PetscCall(PetscStrncpy(e->name, name, sizeof(e->name)));
+  e->input = input;
+  PetscCall(SgFileHDF5NameMax(input ? PETSC_COMM_SELF : comm, &h5max));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscMemzero(msg, sizeof(msg)));
+  if (!rank) {
+    FileInspect(e, hdf5, h5max, msg, sizeof(msg));
+    for (int i = 0; !msg[0] && i < FileCount; i++) {
+      const SgFileEntry *o = &FileTable[i];
+      if (o == e || (o->input && e->input)) continue;
+      /* resuming from and rewriting one checkpoint is the normal workflow: the restart is read completely before
+         the first checkpoint is written, and the write is atomic */
+      if ((!strcmp(o->option, "-restart_file") && !strcmp(e->option, "-checkpoint_file")) || (!strcmp(e->option, "-restart_file") && !strcmp(o->option, "-checkpoint_file"))) continue;
+      if (FileSame(e, o)) snprintf(msg, sizeof(msg), "%s '%.2000s' and %s '%.2000s' name the same file: %s", o->option, o->name, e->option, e->name, o->input || e->input ? "an input would be overwritten" : "one result would overwrite the other");
+    }
+  }
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCallMPI(MPI_Bcast(e, sizeof(*e), MPI_BYTE, 0, comm));
+  if (msg[0]) {
+    *e = FileTable[--FileCount];
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", msg);
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscBool OptionIsHDF5(const char option[])
+{
+  return (PetscBool)(!strcmp(option, "-output_file") || !strcmp(option, "-checkpoint_file") || !strcmp(option, "-restart_file"));
+}
+
+/* The XDMF file written beside an HDF5 result: F.h5 -> F.xmf, else F + ".xmf". */
+PetscErrorCode SgOutputXdmfName(const char h5name[], char xname[], size_t len)
+{
+  size_t n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(xname, h5name, len));
+  PetscCall(PetscStrlen(xname, &n));
+  if (n > 3 && !strcmp(xname + n - 3, ".h5")) xname[n - 3] = 0;
+  PetscCall(PetscStrlcat(xname, ".xmf", len));
+  PetscFunctionReturn(0);
+}
+
+/* Fail early (before any solve) if an output location cannot be written, is not ours to replace, or is named twice. */
+PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const char name[])
+{
+  FILE     *fp;
+  PetscBool direct;
+  const char *path;
+
+  PetscFunctionBeginUser;
+  PetscCall(FileRegister(comm, option, name, PETSC_FALSE, OptionIsHDF5(option)));
+  if (!strcmp(option, "-output_file")) {
+    char xname[PETSC_MAX_PATH_LEN + 8];
+    PetscCall(SgOutputXdmfName(name, xname, sizeof(xname)));
+    PetscCall(FileRegister(comm, "-output_file (its .xmf file)", name[0] ? xname : NULL, PETSC_FALSE, PETSC_FALSE));
+  }
+  if (!name[0]) PetscFunctionReturn(0);
+  FileResolve(name, &path, &direct);
+  if (direct) PetscFunctionReturn(0); /* opening a FIFO would wait for its reader; access() was checked */
   PetscCall(SgFileOpen(comm, option, name, &fp));
-  if (fp) fclose(fp);
-  PetscCall(SgFileAbandon(comm, name));
+  PetscCall(FileFinish(comm, name, &fp, FILE_ABANDON));
+  PetscFunctionReturn(0);
+}
+
+/* Register an input file (read by the run), so that no result names it. */
+PetscErrorCode SgFileCheckInput(MPI_Comm comm, const char option[], const char name[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(FileRegister(comm, option, name, PETSC_TRUE, OptionIsHDF5(option)));
+  PetscFunctionReturn(0);
+}
+
+/* Write the HDF5 file of a result option through body(viewer, ctx) into its ".part" file and commit it (or leave it
+   for SgFileCommit when commit is false). A failure (a full disk, say) does not raise an error here: the ".part" is
+   removed and ok = PETSC_FALSE with a message naming the option, the file and the cause, so that the caller can
+   still record it in the summary. HDF5's own error stack is silenced meanwhile. */
+PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char name[], PetscErrorCode (*body)(PetscViewer, void *), void *ctx, PetscBool commit, PetscBool *ok, char msg[], size_t len)
+{
+  char           tmp[PETSC_MAX_PATH_LEN];
+  PetscViewer    viewer = NULL;
+  PetscErrorCode ierr, ierr2;
+  H5E_auto2_t    efunc;
+  void          *edata;
+  int            err[2];
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
+  PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
+  PetscCall(SgFileBegin(name));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  errno = 0;
+  /* not PetscCall: the error is caught, reported with its cause and the .part removed below */
+  ierr = PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer);
+  if (!ierr) ierr = body(viewer, ctx);
+  err[1] = errno;
+  if (viewer) {
+    ierr2 = PetscViewerDestroy(&viewer);
+    if (!ierr) {
+      ierr   = ierr2;
+      err[1] = errno;
+    }
+  }
+  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
+  PetscCall(PetscPopErrorHandler());
+  err[0] = ierr ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, err, 2, MPI_INT, MPI_MAX, comm));
+  if (err[0]) {
+    const char *path;
+    PetscBool   direct;
+    FileResolve(name, &path, &direct);
+    /* HDF5 leaves errno stale: trust only the codes of a failed write; the cause before the .part is removed */
+    if (!(err[1] == ENOSPC || err[1] == EDQUOT || err[1] == EFBIG || err[1] == EROFS || err[1] == EACCES || err[1] == EIO)) err[1] = 0;
+    PetscCall(PetscSNPrintf(msg, len, "%s: cannot write '%s': %s", option, name, SgFileErrorCause(err[1], path)));
+    PetscCall(SgFileAbandon(comm, name));
+    *ok = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  if (commit) PetscCall(SgFileCommit(comm, name));
   PetscFunctionReturn(0);
 }
 
@@ -318,35 +719,51 @@ static PetscErrorCode WriteXDMF(SgProblem p, const char h5name[], const char xna
     }
     fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
   }
-  PetscCall(SgFileClose(p->comm, xname, &fp));
+  PetscCall(FileFinish(p->comm, xname, &fp, FILE_KEEP)); /* committed with the .h5 file */
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  SgProblem p;
+  PetscInt  nv, nc;
+  Vec      *vf, *cf;
+  PetscReal magnification;
+} FieldsCtx;
+
+static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
+{
+  FieldsCtx *f = (FieldsCtx *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));
+  PetscCall(DMView(f->p->dm, viewer));
+  for (PetscInt i = 0; i < f->nv; i++) PetscCall(VecView(f->vf[i], viewer));
+  for (PetscInt i = 0; i < f->nc; i++) PetscCall(VecView(f->cf[i], viewer));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "magnification", PETSC_REAL, &f->magnification));
+  PetscCall(PetscViewerPopFormat(viewer));
   PetscFunctionReturn(0);
 }
 
 /* Write mesh, vertex fields (first: displacement, on the full mesh with Dirichlet values) and cell fields to
-   <name>.h5 and the matching <name>.xmf. */
+   <name>.h5 and the matching <name>.xmf. Both are written as ".part" first and renamed together, so that a failure of
+   either leaves neither new file (and the previous pair intact). */
 PetscErrorCode SgOutputWrite(SgProblem p, const char h5name[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
-  PetscViewer viewer;
-  char        tmp[PETSC_MAX_PATH_LEN], xname[PETSC_MAX_PATH_LEN];
-  size_t      len;
+  char           xname[PETSC_MAX_PATH_LEN + 8], msg[PETSC_MAX_PATH_LEN + 256];
+  PetscBool      ok;
+  FieldsCtx      ctx = {p, nv, nc, vf, cf, magnification};
+  PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Output, 0, 0, 0, 0));
-  PetscCall(SgFileTmpName(h5name, tmp, sizeof(tmp)));
-  PetscCall(PetscViewerHDF5Open(p->comm, tmp, FILE_MODE_WRITE, &viewer));
-  PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));
-  PetscCall(DMView(p->dm, viewer));
-  for (PetscInt i = 0; i < nv; i++) PetscCall(VecView(vf[i], viewer));
-  for (PetscInt i = 0; i < nc; i++) PetscCall(VecView(cf[i], viewer));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "magnification", PETSC_REAL, &magnification));
-  PetscCall(PetscViewerPopFormat(viewer));
-  PetscCall(PetscViewerDestroy(&viewer));
+  PetscCall(SgFileWriteHDF5(p->comm, "-output_file", h5name, WriteFieldsH5, &ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
+  PetscCheck(ok, p->comm, PETSC_ERR_FILE_WRITE, "%s", msg);
+  PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname)));
+  ierr = WriteXDMF(p, h5name, xname, nv, vf, nc, cf, magnification);
+  if (ierr) PetscCall(SgFileAbandon(p->comm, h5name)); /* the .xmf.part is gone already */
+  PetscCall(ierr);
   PetscCall(SgFileCommit(p->comm, h5name));
-  PetscCall(PetscStrncpy(xname, h5name, sizeof(xname)));
-  PetscCall(PetscStrlen(xname, &len));
-  if (len > 3 && !strcmp(xname + len - 3, ".h5")) xname[len - 3] = 0;
-  PetscCall(PetscStrlcat(xname, ".xmf", sizeof(xname)));
-  PetscCall(WriteXDMF(p, h5name, xname, nv, vf, nc, cf, magnification));
+  PetscCall(SgFileCommit(p->comm, xname));
   PetscCall(PetscLogEventEnd(SG_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
