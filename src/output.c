@@ -391,7 +391,7 @@ static PetscErrorCode FileRegister(MPI_Comm comm, const char option[], const cha
       /* resuming from and rewriting one checkpoint is the normal workflow: the restart is read completely before
          the first checkpoint is written, and the write is atomic */
       if ((!strcmp(o->option, "-restart_file") && !strcmp(e->option, "-checkpoint_file")) || (!strcmp(e->option, "-restart_file") && !strcmp(o->option, "-checkpoint_file"))) continue;
-      if (FileSame(e, o)) snprintf(msg, sizeof(msg), "%s '%.2000s' and %s '%.2000s' name the same file: %s", o->option, o->name, e->option, e->name, o->input || e->input ? "an input would be overwritten" : "one result would overwrite the other");
+      if (FileSame(e, o)) snprintf(msg, sizeof(msg), "%.64s '%.2000s' and %.64s '%.2000s' name the same file: %s", o->option, o->name, e->option, e->name, o->input || e->input ? "an input would be overwritten" : "one result would overwrite the other");
     }
   }
   PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
