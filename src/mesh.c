@@ -418,6 +418,13 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-box_upper", "Upper corner of the box (dim numbers)", SG_OPT_MAX, hi, &nhi, NULL));
   PetscCall(PetscOptionsEnum("-box_diagonal", "2D: direction of the diagonal splitting each square", NULL, SgBoxDiagonals, (PetscEnum)diag, (PetscEnum *)&diag, NULL));
   PetscOptionsEnd();
+  {
+    /* PETSc keeps the default for an enum given without a value */
+    const char *val;
+    PetscBool   has;
+    PetscCall(PetscOptionsFindPair(NULL, NULL, "-box_diagonal", &val, &has));
+    PetscCheck(!has || (val && val[0]), comm, PETSC_ERR_USER_INPUT, "-box_diagonal is given without a value (right or left)");
+  }
 
   if (file) PetscCall(MeshReadFile(comm, fname, dm));
   else {
@@ -449,6 +456,12 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
   PetscCall(DMSetFromOptions(*dm));
+  {
+    /* the assembly and the energy visit every local cell once: cells shared by an overlap would count twice */
+    PetscInt ov;
+    PetscCall(DMPlexGetOverlap(*dm, &ov));
+    PetscCheck(ov == 0, comm, PETSC_ERR_USER_INPUT, "-dm_distribute_overlap %" PetscInt_FMT ": an overlapping distribution is not supported (cells on several ranks would be assembled more than once); use 0", ov);
+  }
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscCall(PetscLogEventEnd(SG_MeshSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
