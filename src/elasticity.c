@@ -127,28 +127,29 @@ static PetscErrorCode SimplexQuadrature(PetscInt dim, PetscInt *nq, PetscReal **
 
 static PetscErrorCode ProblemOptions(SgProblem p)
 {
-  PetscInt  nbf = 3;
-  PetscBool flg;
-
   PetscFunctionBeginUser;
   p->E  = 1.0;
   p->nu = 0.3;
   PetscOptionsBegin(p->comm, NULL, "Linear elasticity", NULL);
-  PetscCall(PetscOptionsReal("-E", "Young's modulus", NULL, p->E, &p->E, NULL));
-  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio (plane strain in 2D)", NULL, p->nu, &p->nu, NULL));
-  PetscCall(PetscOptionsRealArray("-body_force", "Constant body force f (dim numbers)", NULL, p->body_force, &nbf, &flg));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-E", "Young's modulus", &p->E, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-nu", "Poisson's ratio in [0, 0.5) (plane strain in 2D)", &p->nu, NULL));
+  p->nbody_force = 0;
+  PetscCall(SgOptionsRealList(PetscOptionsObject, "-body_force", "Constant body force f (dim numbers)", 3, p->body_force, &p->nbody_force, NULL));
   p->use_nearnull = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-elasticity_near_null_space", "Attach the rigid-body modes to the stiffness as near null space (used by GAMG; hypre's use of them crashes in Debian's build)", NULL, p->use_nearnull, &p->use_nearnull, NULL));
   PetscCall(PetscOptionsBool("-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", NULL, p->mms, &p->mms, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-elasticity_rigid_shift", "Accept a body whose Dirichlet part leaves rigid motions free: add eps E/L^2 M to K (M lumped volumes, L the mesh diameter); 0: no shift, singular K", &p->rigid_shift, &p->rigid_shift_set));
+  PetscCall(PetscOptionsBool("-elasticity_energy_check", "Debug: print the energy beside a long double evaluation and the former y^T K y formula", NULL, p->energy_check, &p->energy_check, NULL));
   PetscOptionsEnd();
   p->dirichlet.what = "dirichlet";
   p->neumann.what   = "neumann";
   PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
   PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
   PetscCheck(PetscIsNormalReal(p->E) && p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E: Young's modulus must be positive and finite, got %g", (double)p->E);
-  PetscCheck(PetscIsNormalReal(p->nu) && p->nu > 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in (0, 0.5), got %g", (double)p->nu);
-  PetscCheck(!flg || nbf == 2 || nbf == 3, p->comm, PETSC_ERR_USER_INPUT, "-body_force: give one number per dimension, got %" PetscInt_FMT, nbf);
-  for (PetscInt d = 0; d < 3; d++) PetscCheck(PetscIsNormalReal(p->body_force[d]) || p->body_force[d] == 0, p->comm, PETSC_ERR_USER_INPUT, "-body_force: entry %" PetscInt_FMT " is %g, must be finite", d, (double)p->body_force[d]);
+  /* nu = 0 (no lateral contraction) is a valid material; nu -> 1/2 is incompressible */
+  PetscCheck(!PetscIsInfOrNanReal(p->nu) && p->nu >= 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in [0, 0.5), got %g", (double)p->nu);
+  for (PetscInt d = 0; d < p->nbody_force; d++) PetscCheck(PetscIsNormalReal(p->body_force[d]) || p->body_force[d] == 0, p->comm, PETSC_ERR_USER_INPUT, "-body_force: entry %" PetscInt_FMT " is %g, must be finite", d, (double)p->body_force[d]);
+  PetscCheck(!p->rigid_shift_set || (PetscIsNormalReal(p->rigid_shift) && p->rigid_shift > 0) || p->rigid_shift == 0, p->comm, PETSC_ERR_USER_INPUT, "-elasticity_rigid_shift: must be finite and >= 0, got %g", (double)p->rigid_shift);
   PetscCall(SgLame(p->E, p->nu, &p->lambda, &p->mu));
   PetscFunctionReturn(0);
 }
@@ -286,7 +287,7 @@ static PetscErrorCode Assemble(SgProblem p)
   const SgMesh   *m = &p->mesh;
   const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
   Vec             floc, mloc, xg, xloc;
-  PetscScalar    *fa, *ma, *ua, *xa;
+  PetscScalar    *fa, *ma, *ua, *xa, *pa;
   PetscReal       shift = 0, *lq = NULL, *wq = NULL;
   PetscInt        nq = 0, nfac, *facets, *part;
   PetscLogDouble  t0, t1;
@@ -300,6 +301,8 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscCall(PetscObjectSetName((PetscObject)p->K, "K"));
   PetscCall(VecDuplicate(p->b, &p->mass));
   PetscCall(DMCreateLocalVector(p->dm, &p->ubc));
+  PetscCall(DMCreateLocalVector(p->dm, &p->fpart));
+  PetscCall(VecZeroEntries(p->fpart));
   PetscCall(DMGetLocalVector(p->dm, &floc));
   PetscCall(DMGetLocalVector(p->dm, &mloc));
   PetscCall(VecZeroEntries(floc));
@@ -316,6 +319,7 @@ static PetscErrorCode Assemble(SgProblem p)
     }
   PetscCall(VecGetArray(floc, &fa));
   PetscCall(VecGetArray(mloc, &ma));
+  PetscCall(VecGetArray(p->fpart, &pa));
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
     PetscReal       xe[12], Ke[144], fe[12], ud[12], vol;
@@ -345,6 +349,8 @@ static PetscErrorCode Assemble(SgProblem p)
     } else
       for (PetscInt a = 0; a < nv; a++)
         for (PetscInt d = 0; d < dim; d++) fe[a * dim + d] = vol / nv * p->body_force[d];
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) pa[m->loff[cv[a]] + d] += fe[a * dim + d];
     if (lift) {
       for (PetscInt i = 0; i < ne; i++) {
         PetscReal Ku = 0;
@@ -370,6 +376,7 @@ static PetscErrorCode Assemble(SgProblem p)
         for (PetscInt d = 0; d < dim; d++) {
           const PetscReal t = area / nfv * p->neumann.values[part[i] * dim + d];
           fa[m->loff[fv[a]] + d] += t;
+          pa[m->loff[fv[a]] + d] += t;
           shift -= t * PetscRealPart(ua[m->loff[fv[a]] + d]);
         }
     }
@@ -377,6 +384,7 @@ static PetscErrorCode Assemble(SgProblem p)
   }
   PetscCall(VecRestoreArray(floc, &fa));
   PetscCall(VecRestoreArray(mloc, &ma));
+  PetscCall(VecRestoreArray(p->fpart, &pa));
   PetscCall(VecRestoreArray(p->ubc, &ua));
   PetscCall(PetscFree2(lq, wq));
   PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
@@ -386,6 +394,14 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscCall(DMLocalToGlobal(p->dm, mloc, ADD_VALUES, p->mass));
   PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatConvert(p->K, MATAIJ, MAT_INPLACE_MATRIX, &p->K));
+  if (p->rigid_shift > 0) { /* an elastic foundation of modulus eps E/L^2 holds the otherwise free rigid motions */
+    Vec sh;
+    PetscCall(VecDuplicate(p->mass, &sh));
+    PetscCall(VecCopy(p->mass, sh));
+    PetscCall(VecScale(sh, p->rigid_shift * p->E / PetscSqr(p->diam)));
+    PetscCall(MatDiagonalSet(p->K, sh, ADD_VALUES));
+    PetscCall(VecDestroy(&sh));
+  }
   PetscCall(DMRestoreLocalVector(p->dm, &floc));
   PetscCall(DMRestoreLocalVector(p->dm, &mloc));
   PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));
@@ -414,6 +430,40 @@ static PetscErrorCode Assemble(SgProblem p)
   PetscFunctionReturn(0);
 }
 
+/* The Dirichlet part must fix all rigid motions: otherwise K is singular and any solution is garbage. A part that fixes
+   every component of 2 distinct points (2D) or 3 non-collinear points (3D) does; contact with a frictionless obstacle
+   does not count (it leaves the tangential motions free). -elasticity_rigid_shift accepts such a body on purpose. */
+static PetscErrorCode CheckRigidMotions(SgProblem p)
+{
+  const PetscInt dim = p->dim;
+  PetscInt       adim;
+  PetscReal      p0[3], dir[3];
+  char           part[512], what[512], ids[256] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(SgMeshConstrainedDimension(p->comm, &p->mesh, &adim, p0, dir, &p->diam));
+  /* the other extreme: a label of cells (or of every boundary part of a 1-layer mesh) leaves nothing to solve for */
+  PetscCheck(p->mesh.nfree_glob > 0, p->comm, PETSC_ERR_USER_INPUT, "-dirichlet_label '%s': every vertex of the mesh is a Dirichlet vertex, nothing is left to solve for (give a label of boundary faces)", p->dirichlet.label);
+  if (adim >= dim - 1) PetscFunctionReturn(0);
+  if (p->rigid_shift_set) {
+    PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves rigid motions free (affine dimension %" PetscInt_FMT "): regularized with -elasticity_rigid_shift %g\n", adim, (double)p->rigid_shift));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < p->dirichlet.nids; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(ids, &l));
+    PetscCall(PetscSNPrintf(ids + l, sizeof(ids) - l, i ? ",%" PetscInt_FMT : "%" PetscInt_FMT, p->dirichlet.ids[i]));
+  }
+  if (!p->dirichlet.active) PetscCall(PetscSNPrintf(part, sizeof(part), "no Dirichlet part is given (-dirichlet_label/-dirichlet_ids)"));
+  else PetscCall(PetscSNPrintf(part, sizeof(part), "the Dirichlet part (-dirichlet_label '%s'%s%s)", p->dirichlet.label, p->dirichlet.nids ? " -dirichlet_ids " : "", ids));
+  if (adim < 0) PetscCall(PetscSNPrintf(what, sizeof(what), "%s%s", p->dirichlet.active ? " has no vertex: " : ": ", dim == 2 ? "both translations and the rotation are free" : "the three translations and the three rotations are free"));
+  else if (adim == 0) {
+    if (dim == 2) PetscCall(PetscSNPrintf(what, sizeof(what), " fixes the single point (%g, %g): the rotation about it is free", (double)p0[0], (double)p0[1]));
+    else PetscCall(PetscSNPrintf(what, sizeof(what), " fixes the single point (%g, %g, %g): the three rotations about it are free", (double)p0[0], (double)p0[1], (double)p0[2]));
+  } else PetscCall(PetscSNPrintf(what, sizeof(what), " fixes only points on the line through (%g, %g, %g) along (%.6g, %.6g, %.6g): the rotation about that line is free", (double)p0[0], (double)p0[1], (double)p0[2], (double)dir[0], (double)dir[1], (double)dir[2]));
+  SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "%s%s, so the stiffness is singular and the body floats. Fix every component of at least %s with -dirichlet_label/-dirichlet_ids (contact with a frictionless obstacle does not hold the body: tangential motions stay free), or regularize on purpose with -elasticity_rigid_shift eps (adds eps E/L^2 times the lumped volumes to K)", part, what, dim == 2 ? "2 distinct points" : "3 points not on one line");
+}
+
 PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
 {
   SgProblem p;
@@ -425,8 +475,10 @@ PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
   PetscCall(ProblemOptions(p));
   PetscCall(SgMeshCreateDM(comm, &p->dm));
   PetscCall(DMGetDimension(p->dm, &p->dim));
+  PetscCheck(p->nbody_force == 0 || p->nbody_force == p->dim, comm, PETSC_ERR_USER_INPUT, "-body_force: give %" PetscInt_FMT " numbers for this %" PetscInt_FMT "D mesh, got %" PetscInt_FMT, p->dim, p->dim, p->nbody_force);
   PetscCall(BoundaryValueOptions(p));
   PetscCall(SgMeshSetUp(p->dm, &p->dirichlet, &p->mesh));
+  PetscCall(CheckRigidMotions(p));
   PetscCall(CreateFieldDM(p->dm, 0, 1, "cell", &p->dmCell));
   PetscCall(CreateFieldDM(p->dm, p->dim, 1, "vertex", &p->dmVert));
   PetscCall(CreateFieldDM(p->dm, p->dim, p->dim, "vector", &p->dmVec));
@@ -448,6 +500,7 @@ PetscErrorCode SgProblemDestroy(SgProblem *prob)
   PetscCall(VecDestroy(&p->b));
   PetscCall(VecDestroy(&p->mass));
   PetscCall(VecDestroy(&p->ubc));
+  PetscCall(VecDestroy(&p->fpart));
   PetscCall(MatNullSpaceDestroy(&p->nearnull));
   PetscCall(SgMeshDestroy(&p->mesh));
   PetscCall(DMDestroy(&p->dmCell));
@@ -458,19 +511,207 @@ PetscErrorCode SgProblemDestroy(SgProblem *prob)
   PetscFunctionReturn(0);
 }
 
-/* V(y) = 1/2 a(y,y) - L(y) of the full field (free and Dirichlet parts). */
-PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
+/* Neumaier's compensated sum: s + c carries the sum of the added terms to about one rounding of the result. */
+typedef struct {
+  PetscReal s, c;
+} SgSum;
+
+static inline void SumAdd(SgSum *a, PetscReal x)
 {
-  Vec         Ky;
-  PetscScalar yKy, by;
+  const PetscReal t = a->s + x;
+  if (PetscAbsReal(a->s) >= PetscAbsReal(x)) a->c += (a->s - t) + x;
+  else a->c += (x - t) + a->s;
+  a->s = t;
+}
+
+typedef struct {
+  long double s, c;
+} SgSumL;
+
+static inline void SumAddL(SgSumL *a, long double x)
+{
+  const long double t = a->s + x;
+  if (fabsl(a->s) >= fabsl(x)) a->c += (a->s - t) + x;
+  else a->c += (x - t) + a->s;
+  a->s = t;
+}
+
+/* Debug reference of the energy (-elasticity_energy_check): per element 1/2 w^T K_e w with K_e built in long double
+   from the coordinates and w = u_e - u_0 (K_e annihilates translations), the load work and the foundation in long
+   double; partial sums gathered as pairs of doubles. */
+static PetscErrorCode EnergyReference(SgProblem p, const PetscScalar ya[], const PetscScalar fa[], Vec y, long double *Vref)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  SgSumL             el = {0, 0}, ld = {0, 0}, tot = {0, 0};
+  PetscInt           nloc, n;
+  double             part[4], *all;
+  PetscMPIInt        size;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(y, &Ky));
-  PetscCall(MatMult(p->K, y, Ky));
-  PetscCall(VecDot(y, Ky, &yKy));
-  PetscCall(VecDot(y, p->b, &by));
-  PetscCall(VecDestroy(&Ky));
-  *V = 0.5 * PetscRealPart(yKy) - PetscRealPart(by) + p->energy_shift;
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    long double     J[3][3], Ji[3][3], det, G[4][3], w[12], vol, e = 0;
+
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt d = 0; d < dim; d++) J[d][a] = (long double)m->x[cv[a + 1] * dim + d] - (long double)m->x[cv[0] * dim + d];
+    if (dim == 2) {
+      det      = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+      Ji[0][0] = J[1][1] / det;
+      Ji[0][1] = -J[0][1] / det;
+      Ji[1][0] = -J[1][0] / det;
+      Ji[1][1] = J[0][0] / det;
+      vol      = fabsl(det) / 2;
+    } else {
+      det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+      for (PetscInt i = 0; i < 3; i++)
+        for (PetscInt j = 0; j < 3; j++) Ji[i][j] = (J[(j + 1) % 3][(i + 1) % 3] * J[(j + 2) % 3][(i + 2) % 3] - J[(j + 1) % 3][(i + 2) % 3] * J[(j + 2) % 3][(i + 1) % 3]) / det;
+      vol = fabsl(det) / 6;
+    }
+    for (PetscInt d = 0; d < dim; d++) {
+      G[0][d] = 0;
+      for (PetscInt a = 1; a <= dim; a++) {
+        G[a][d] = Ji[a - 1][d];
+        G[0][d] -= Ji[a - 1][d];
+      }
+    }
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) w[a * dim + d] = (long double)PetscRealPart(ya[m->loff[cv[a]] + d]) - (long double)PetscRealPart(ya[m->loff[cv[0]] + d]);
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt i = 0; i < dim; i++)
+        for (PetscInt b = 0; b < nv; b++)
+          for (PetscInt j = 0; j < dim; j++) {
+            long double gg = 0, K;
+            for (PetscInt k = 0; k < dim; k++) gg += G[a][k] * G[b][k];
+            K = vol * ((long double)p->lambda * G[a][i] * G[b][j] + (long double)p->mu * (G[a][j] * G[b][i] + (i == j ? gg : 0)));
+            e += w[a * dim + i] * K * w[b * dim + j];
+          }
+    SumAddL(&el, e / 2);
+  }
+  PetscCall(VecGetLocalSize(p->fpart, &nloc));
+  for (PetscInt i = 0; i < nloc; i++) SumAddL(&ld, (long double)PetscRealPart(fa[i]) * (long double)PetscRealPart(ya[i]));
+  if (p->rigid_shift > 0) {
+    const PetscScalar *yg, *mg;
+    const long double  cs = (long double)p->rigid_shift * p->E / ((long double)p->diam * p->diam);
+    PetscCall(VecGetLocalSize(y, &n));
+    PetscCall(VecGetArrayRead(y, &yg));
+    PetscCall(VecGetArrayRead(p->mass, &mg));
+    for (PetscInt i = 0; i < n; i++) SumAddL(&el, cs * PetscRealPart(mg[i]) * PetscRealPart(yg[i]) * PetscRealPart(yg[i]) / 2);
+    PetscCall(VecRestoreArrayRead(y, &yg));
+    PetscCall(VecRestoreArrayRead(p->mass, &mg));
+  }
+  {
+    const long double E = el.s + el.c, W = ld.s + ld.c;
+    part[0] = (double)E;
+    part[1] = (double)(E - (long double)part[0]);
+    part[2] = (double)W;
+    part[3] = (double)(W - (long double)part[2]);
+  }
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCall(PetscMalloc1(4 * size, &all));
+  PetscCallMPI(MPI_Allgather(part, 4, MPI_DOUBLE, all, 4, MPI_DOUBLE, p->comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    SumAddL(&tot, all[4 * r]);
+    SumAddL(&tot, all[4 * r + 1]);
+    SumAddL(&tot, -(long double)all[4 * r + 2]);
+    SumAddL(&tot, -(long double)all[4 * r + 3]);
+  }
+  PetscCall(PetscFree(all));
+  *Vref = tot.s + tot.c;
+  PetscFunctionReturn(0);
+}
+
+/* V(y) = 1/2 a(u,u) - L(u) of the full field u (free values y, Dirichlet values from the data), exact to round-off:
+   the elastic energy per element, vol (lambda/2 (div u)^2 + mu eps:eps) >= 0 from the displacement differences along
+   the edges (no cancellation, as 1/2 y^T K y - b^T y has on fine meshes), the load work f.u with the unlifted load,
+   each summed with compensation, and the partial sums of the ranks added in rank order (the same on any rank).
+   Costs about one pass over the cells (no matrix product). */
+PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  Vec                yloc;
+  const PetscScalar *ya, *fa;
+  SgSum              el = {0, 0}, ld = {0, 0}, tot = {0, 0};
+  PetscInt           nloc;
+  PetscReal          part[4], *all;
+  PetscMPIInt        size;
+  PetscLogDouble     t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArrayRead(p->fpart, &fa));
+  /* every cell is on exactly one rank (no overlap), as in the assembly */
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    PetscReal       xe[12], G[12], vol, H[3][3] = {{0}}, tr = 0, e2 = 0;
+
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) xe[a * dim + d] = m->x[cv[a] * dim + d];
+    PetscCall(SgSimplexGradients(dim, xe, G, &vol));
+    /* grad u = sum_{a>0} (u_a - u_0) grad phi_a, since the gradients sum to zero */
+    for (PetscInt a = 1; a < nv; a++)
+      for (PetscInt i = 0; i < dim; i++) {
+        const PetscReal du = PetscRealPart(ya[m->loff[cv[a]] + i]) - PetscRealPart(ya[m->loff[cv[0]] + i]);
+        for (PetscInt j = 0; j < dim; j++) H[i][j] += du * G[a * dim + j];
+      }
+    for (PetscInt i = 0; i < dim; i++) {
+      tr += H[i][i];
+      for (PetscInt j = 0; j < dim; j++) e2 += PetscSqr(0.5 * (H[i][j] + H[j][i]));
+    }
+    SumAdd(&el, vol * (0.5 * p->lambda * tr * tr + p->mu * e2));
+  }
+  PetscCall(VecGetLocalSize(p->fpart, &nloc));
+  for (PetscInt i = 0; i < nloc; i++)
+    if (fa[i] != 0) SumAdd(&ld, PetscRealPart(fa[i]) * PetscRealPart(ya[i]));
+  if (p->rigid_shift > 0) { /* the foundation of -elasticity_rigid_shift, on the free dofs this rank owns */
+    const PetscScalar *yg, *mg;
+    const PetscReal    cs = p->rigid_shift * p->E / PetscSqr(p->diam);
+    PetscInt           n;
+    PetscCall(VecGetLocalSize(y, &n));
+    PetscCall(VecGetArrayRead(y, &yg));
+    PetscCall(VecGetArrayRead(p->mass, &mg));
+    for (PetscInt i = 0; i < n; i++) SumAdd(&el, 0.5 * cs * PetscRealPart(mg[i]) * PetscSqr(PetscRealPart(yg[i])));
+    PetscCall(VecRestoreArrayRead(y, &yg));
+    PetscCall(VecRestoreArrayRead(p->mass, &mg));
+  }
+  part[0] = el.s;
+  part[1] = el.c;
+  part[2] = ld.s;
+  part[3] = ld.c;
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCall(PetscMalloc1(4 * size, &all));
+  PetscCallMPI(MPI_Allgather(part, 4, MPIU_REAL, all, 4, MPIU_REAL, p->comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    SumAdd(&tot, all[4 * r]);
+    SumAdd(&tot, all[4 * r + 1]);
+    SumAdd(&tot, -all[4 * r + 2]);
+    SumAdd(&tot, -all[4 * r + 3]);
+  }
+  PetscCall(PetscFree(all));
+  *V = tot.s + tot.c;
+  PetscCall(PetscTime(&t1));
+  if (p->energy_check) {
+    long double Vref = 0;
+    Vec         Ky;
+    PetscScalar yKy, by;
+    PetscReal   Vold;
+
+    PetscCall(EnergyReference(p, ya, fa, y, &Vref));
+    PetscCall(VecDuplicate(y, &Ky));
+    PetscCall(MatMult(p->K, y, Ky));
+    PetscCall(VecDot(y, Ky, &yKy));
+    PetscCall(VecDot(y, p->b, &by));
+    PetscCall(VecDestroy(&Ky));
+    Vold = 0.5 * PetscRealPart(yKy) - PetscRealPart(by) + p->energy_shift;
+    PetscCall(PetscPrintf(p->comm, "energy check: compensated %.17e (%.3g s), y^T K y formula %.17e, long double reference %.17e; relative errors %.3e (compensated), %.3e (formula)\n", (double)*V, (double)(t1 - t0), (double)Vold, (double)Vref, (double)(fabsl((long double)*V - Vref) / fabsl(Vref)), (double)(fabsl((long double)Vold - Vref) / fabsl(Vref))));
+  }
+  PetscCall(VecRestoreArrayRead(p->fpart, &fa));
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,111 @@
 /* mesh.c: the DMPlex mesh (structured simplex box or gmsh file), boundary parts and the P1 displacement layout. */
 #include "signorini.h"
+#include <errno.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 const char *const SgBoxDiagonals[] = {"right", "left", "SgBoxDiagonal", "SG_BOX_", NULL};
 typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT } SgBoxDiagonal;
+
+/* Split a comma-separated option value; an empty value or entry, or more than max entries, is an error naming opt. */
+static PetscErrorCode SplitList(const char opt[], const char str[], PetscInt max, char tok[][64], PetscInt *n)
+{
+  const char *s = str;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  while (*s == ' ' || *s == '\t') s++;
+  PetscCheck(*s, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given without a value", opt);
+  for (;;) {
+    const char *e = s;
+    size_t      len;
+    while (*e && *e != ',') e++;
+    len = (size_t)(e - s);
+    while (len > 0 && (s[len - 1] == ' ' || s[len - 1] == '\t')) len--;
+    while (len > 0 && (*s == ' ' || *s == '\t')) {
+      s++;
+      len--;
+    }
+    PetscCheck(*n < max, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': more than %" PetscInt_FMT " entries", opt, str, max);
+    PetscCheck(len > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is empty", opt, str, *n);
+    PetscCheck(len < 64, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is too long", opt, str, *n);
+    PetscCall(PetscMemcpy(tok[*n], s, len));
+    tok[*n][len] = 0;
+    (*n)++;
+    if (!*e) break;
+    s = e + 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -opt as a list of at most max integers: read as a string so that a bad entry is reported with the option's name
+   (PETSc's own parser does not name it, and drops an option given without a value). */
+PetscErrorCode SgOptionsIntList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscInt vals[], PetscInt *n, PetscBool *set)
+{
+  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
+  PetscInt  nt;
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
+  for (PetscInt i = 0; i < *n; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(def, &l));
+    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%" PetscInt_FMT : "%" PetscInt_FMT, vals[i]));
+  }
+  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) PetscFunctionReturn(0);
+  PetscCall(SplitList(opt, str, max, tok, &nt));
+  for (PetscInt i = 0; i < nt; i++) {
+    char     *end;
+    long long v;
+    errno = 0;
+    v     = strtoll(tok[i], &end, 10);
+    PetscCheck(!*end && end != tok[i], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not an integer", opt, str, i, tok[i]);
+    PetscCheck(errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is out of range (%" PetscInt_FMT " to %" PetscInt_FMT ")", opt, str, i, tok[i], (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
+    vals[i] = (PetscInt)v;
+  }
+  *n = nt;
+  PetscFunctionReturn(0);
+}
+
+/* -opt as a list of at most max reals (see SgOptionsIntList); inf and nan are read, the caller decides on them. */
+PetscErrorCode SgOptionsRealList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscReal vals[], PetscInt *n, PetscBool *set)
+{
+  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
+  PetscInt  nt;
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
+  for (PetscInt i = 0; i < *n; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(def, &l));
+    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%g" : "%g", (double)vals[i]));
+  }
+  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) PetscFunctionReturn(0);
+  PetscCall(SplitList(opt, str, max, tok, &nt));
+  for (PetscInt i = 0; i < nt; i++) {
+    char *end;
+    vals[i] = (PetscReal)strtod(tok[i], &end);
+    PetscCheck(!*end && end != tok[i], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not a number", opt, str, i, tok[i]);
+  }
+  *n = nt;
+  PetscFunctionReturn(0);
+}
+
+/* A single real -opt (see SgOptionsIntList). */
+PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscReal *val, PetscBool *set)
+{
+  PetscInt n = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsRealList(PetscOptionsObject, opt, text, 1, val, &n, set));
+  PetscFunctionReturn(0);
+}
 
 /* Face markers follow DMPlexCreateBoxMesh(): 2D bottom 1, right 2, top 3, left 4;
    3D bottom 1, top 2, front 3, back 4, right 5, left 6 ("Face Sets"). */
@@ -24,19 +127,50 @@ static PetscInt BoxFaceMarker(PetscInt dim, PetscInt axis, PetscBool upper)
    PETSc 3.18 as packaged by Debian has no Triangle/TetGen, so DMPlexCreateBoxMesh() cannot make simplices. */
 static PetscErrorCode BoxMeshCreate(MPI_Comm comm, PetscInt dim, const PetscInt faces[], const PetscReal lo[], const PetscReal hi[], SgBoxDiagonal diag, DM *dm)
 {
-  PetscMPIInt rank;
-  PetscInt    nv = 0, nc = 0, *cells = NULL;
-  PetscReal  *coords = NULL;
+  PetscMPIInt    rank;
+  PetscInt       nv = 0, nc = 0, *cells = NULL, failed = 0;
+  PetscReal     *coords = NULL;
+  PetscErrorCode ierr;
+  char           fstr[128];
+  double         bytes;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscSNPrintf(fstr, sizeof(fstr), dim == 2 ? "%" PetscInt_FMT ",%" PetscInt_FMT : "%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT, faces[0], faces[1], faces[2]));
+  {
+    /* sizes in floating point first: an impossible mesh is refused before any int overflow or allocation */
+    const double nvd = (faces[0] + 1.0) * (faces[1] + 1.0) * (dim == 3 ? faces[2] + 1.0 : 1.0);
+    const double ncd = dim == 2 ? 2.0 * faces[0] * faces[1] : 6.0 * faces[0] * faces[1] * faces[2];
+    /* entries of the largest index arrays of the interpolated DMPlex (Euler: edges ~ vertices + cells; 3D faces ~ 2 cells):
+       2D points 2V+2C, cones 2V+5C; 3D points 2V+4C, cones 2V+12C */
+    const double idx = dim == 2 ? 2 * nvd + 5 * ncd : 2 * nvd + 12 * ncd;
+    double       phys = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGE_SIZE);
+
+    /* measured peak memory of building the box mesh on rank 0 and distributing it: about 265 B per triangle and 590 B per
+       tetrahedron (a lower bound, without the solver); rank 0's machine decides, so every rank stops alike */
+    bytes = (dim == 2 ? 250.0 : 550.0) * ncd;
+    PetscCallMPI(MPI_Bcast(&phys, 1, MPI_DOUBLE, 0, comm));
+
+    PetscCheck(idx <= (double)PETSC_MAX_INT, comm, PETSC_ERR_USER_INPUT, "-box_faces %s: the box mesh would have %.0f vertices and %.0f %s, beyond the range of PetscInt in this PETSc build (index arrays of about %.3g entries, at most %" PetscInt_FMT "); it would also need at least %.3g GB of memory", fstr, nvd, ncd, dim == 2 ? "triangles" : "tetrahedra", idx, (PetscInt)PETSC_MAX_INT, bytes / 1e9);
+    PetscCheck(phys <= 0 || bytes <= phys, comm, PETSC_ERR_USER_INPUT, "-box_faces %s: the box mesh (%.0f vertices, %.0f %s) needs at least %.3g GB of memory to build on one rank, but this machine has %.3g GB", fstr, nvd, ncd, dim == 2 ? "triangles" : "tetrahedra", bytes / 1e9, phys / 1e9);
+  }
+  if (rank == 0) {
+    const PetscInt nx = faces[0], ny = faces[1], nz = dim == 3 ? faces[2] : 1;
+
+    nv = (nx + 1) * (ny + 1) * (dim == 3 ? nz + 1 : 1);
+    nc = dim == 2 ? 2 * nx * ny : 6 * nx * ny * nz;
+    /* an allocation failure is reported with the option that asked for the size */
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = PetscMalloc2((size_t)nv * dim, &coords, (size_t)nc * (dim + 1), &cells);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) failed = 1;
+  }
+  PetscCallMPI(MPI_Bcast(&failed, 1, MPIU_INT, 0, comm));
+  PetscCheck(!failed, comm, PETSC_ERR_MEM, "-box_faces %s: out of memory allocating the box mesh (%.3g GB for its cell list and coordinates alone)", fstr, ((double)nv * dim * sizeof(PetscReal) + (double)nc * (dim + 1) * sizeof(PetscInt)) / 1e9);
   if (rank == 0) {
     const PetscInt nx = faces[0], ny = faces[1], nz = dim == 3 ? faces[2] : 1;
     PetscInt       c = 0;
 
-    nv = (nx + 1) * (ny + 1) * (dim == 3 ? nz + 1 : 1);
-    nc = dim == 2 ? 2 * nx * ny : 6 * nx * ny * nz;
-    PetscCall(PetscMalloc2(nv * dim, &coords, nc * (dim + 1), &cells));
     for (PetscInt k = 0; k < (dim == 3 ? nz + 1 : 1); k++)
       for (PetscInt j = 0; j <= ny; j++)
         for (PetscInt i = 0; i <= nx; i++) {
@@ -87,8 +221,16 @@ static PetscErrorCode BoxMeshCreate(MPI_Comm comm, PetscInt dim, const PetscInt 
             }
     }
   }
-  PetscCall(DMPlexCreateFromCellListPetsc(comm, dim, nc, nv, dim + 1, PETSC_TRUE, cells, dim, coords, dm));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = DMPlexCreateFromCellListPetsc(comm, dim, nc, nv, dim + 1, PETSC_TRUE, cells, dim, coords, dm);
+  PetscCall(PetscPopErrorHandler());
   PetscCall(PetscFree2(coords, cells));
+  if (ierr) {
+    const char *text = NULL;
+    char       *spec = NULL;
+    PetscErrorMessage(ierr, &text, &spec);
+    SETERRQ(PETSC_COMM_SELF, ierr, "-box_faces %s: building the box mesh of %" PetscInt_FMT " vertices and %" PetscInt_FMT " cells failed (it needs about %.3g GB of memory; PETSc says: %s%s%s)", fstr, nv, nc, bytes / 1e9, text ? text : "", text && spec && spec[0] ? ", " : "", spec ? spec : "");
+  }
   PetscCall(DMCreateLabel(*dm, "Face Sets"));
   if (rank == 0) {
     DMLabel         bd, fs;
@@ -160,13 +302,105 @@ static PetscErrorCode CheckMeshFile(MPI_Comm comm, const char fname[])
   PetscFunctionReturn(0);
 }
 
+/* A 2D mesh read with 3D coordinates (gmsh writes x, y, z): exact if every z is the same, so z is dropped then; a
+   surface in a tilted plane (or not planar) would be solved projected onto z = 0, a wrong result: refused. */
+static PetscErrorCode MeshDropConstantZ(MPI_Comm comm, const char fname[], DM dm)
+{
+  Vec                cl, nc;
+  PetscSection       cs, ns;
+  const PetscScalar *ca;
+  PetscScalar       *na;
+  PetscInt           vStart, vEnd;
+  PetscReal          r[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* min x,y,z and -max x,y,z */
+  PetscReal          ext;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetCoordinatesLocal(dm, &cl));
+  PetscCall(DMGetCoordinateSection(dm, &cs));
+  PetscCall(VecGetArrayRead(cl, &ca));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(cs, v, &off));
+    for (PetscInt d = 0; d < 3; d++) {
+      r[d]     = PetscMin(r[d], PetscRealPart(ca[off + d]));
+      r[3 + d] = PetscMin(r[3 + d], -PetscRealPart(ca[off + d]));
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 6, MPIU_REAL, MPIU_MIN, comm));
+  ext = PetscMax(-r[3] - r[0], -r[4] - r[1]);
+  /* equal up to round-off of the coordinates themselves (gmsh interpolates nodes inside a plane surface) */
+  PetscCheck(-r[5] - r[2] <= 1e-13 * PetscMax(ext, PetscMax(PetscAbsReal(r[2]), PetscAbsReal(r[5]))), comm, PETSC_ERR_USER_INPUT,
+             "-dm_plex_filename: '%s' is a 2D mesh whose z coordinates range over [%.17g, %.17g] (x over [%g, %g], y over [%g, %g]): a surface that is not in a plane z = constant is not supported (a 2D mesh must lie in a plane z = constant; rotate it into one)", fname, (double)r[2], (double)-r[5], (double)r[0], (double)-r[3], (double)r[1], (double)-r[4]);
+  PetscCall(PetscInfo(dm, "2D mesh %s in the plane z = %g: z dropped\n", fname, (double)r[2]));
+  PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), &ns));
+  PetscCall(PetscSectionSetNumFields(ns, 1));
+  PetscCall(PetscSectionSetFieldComponents(ns, 0, 2));
+  PetscCall(PetscSectionSetChart(ns, vStart, vEnd));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscCall(PetscSectionSetDof(ns, v, 2));
+    PetscCall(PetscSectionSetFieldDof(ns, v, 0, 2));
+  }
+  PetscCall(PetscSectionSetUp(ns));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 2 * (vEnd - vStart), &nc));
+  PetscCall(VecSetBlockSize(nc, 2));
+  PetscCall(PetscObjectSetName((PetscObject)nc, "coordinates"));
+  PetscCall(VecGetArray(nc, &na));
+  for (PetscInt v = vStart; v < vEnd; v++) {
+    PetscInt off, noff;
+    PetscCall(PetscSectionGetOffset(cs, v, &off));
+    PetscCall(PetscSectionGetOffset(ns, v, &noff));
+    na[noff]     = ca[off];
+    na[noff + 1] = ca[off + 1];
+  }
+  PetscCall(VecRestoreArray(nc, &na));
+  PetscCall(VecRestoreArrayRead(cl, &ca));
+  PetscCall(DMSetCoordinateDim(dm, 2));
+  PetscCall(DMSetCoordinateSection(dm, 2, ns));
+  PetscCall(DMSetCoordinatesLocal(dm, nc));
+  PetscCall(PetscSectionDestroy(&ns));
+  PetscCall(VecDestroy(&nc));
+  PetscFunctionReturn(0);
+}
+
+/* Read a gmsh (or other) mesh file with the file's own coordinate dimension, so that a 2D mesh with z values is seen. */
+static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
+{
+  PetscErrorCode ierr;
+  const char    *msg = NULL;
+  char           why[512] = "";
+  PetscBool      userdim;
+  PetscInt       dim, cdim;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckMeshFile(comm, fname));
+  /* PETSc's gmsh reader keeps only the first dim coordinates unless told the space dimension; an explicit
+     -dm_plex_gmsh_spacedim from the user is left alone */
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_spacedim", &userdim));
+  if (!userdim) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_spacedim", "3"));
+  /* a reader error (truncated or foreign file) is reported with the file's name instead of a bare traceback */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = DMPlexCreateFromFile(comm, fname, "signorini", PETSC_TRUE, dm);
+  PetscCall(PetscPopErrorHandler());
+  if (!userdim) PetscCall(PetscOptionsClearValue(NULL, "-dm_plex_gmsh_spacedim"));
+  if (ierr) {
+    PetscErrorMessage(ierr, NULL, (char **)&msg);
+    if (msg) PetscCall(PetscStrncpy(why, msg, sizeof(why)));
+    SETERRQ(comm, PETSC_ERR_FILE_READ, "-dm_plex_filename: cannot read mesh file '%s': %s", fname, why[0] ? why : "the reader failed");
+  }
+  PetscCall(DMGetDimension(*dm, &dim));
+  PetscCall(DMGetCoordinateDim(*dm, &cdim));
+  if (dim == 2 && cdim == 3) PetscCall(MeshDropConstantZ(comm, fname, *dm));
+  PetscFunctionReturn(0);
+}
+
 /* Create the distributed simplex mesh from a gmsh file (-dm_plex_filename) or the structured box (-box_*). */
 PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
 {
   char             fname[PETSC_MAX_PATH_LEN] = "";
   PetscBool        file;
-  PetscInt         dim = 2, nfaces = 3, nlo = 3, nhi = 3, faces[3] = {10, 10, 10};
-  PetscReal        lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  PetscInt         dim = 2, nfaces, nlo, nhi, ndim = 1, faces[SG_OPT_MAX] = {10, 10, 10};
+  PetscReal        lo[SG_OPT_MAX] = {0, 0, 0}, hi[SG_OPT_MAX] = {1, 1, 1};
   SgBoxDiagonal    diag = SG_BOX_RIGHT;
   PetscPartitioner part;
   PetscInt         cStart, cEnd, ncells, cdim;
@@ -174,30 +408,30 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_MeshSetUp, 0, 0, 0, 0));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-dm_plex_filename", fname, sizeof(fname), &file));
+  PetscCheck(!file || fname[0], comm, PETSC_ERR_USER_INPUT, "-dm_plex_filename is given without a value");
   PetscOptionsBegin(comm, NULL, "Structured simplex box mesh (used without -dm_plex_filename)", NULL);
-  PetscCall(PetscOptionsRangeInt("-box_dim", "Spatial dimension of the box", NULL, dim, &dim, NULL, 2, 3));
-  PetscCall(PetscOptionsIntArray("-box_faces", "Number of cells along each axis", NULL, faces, &nfaces, NULL));
-  PetscCall(PetscOptionsRealArray("-box_lower", "Lower corner of the box", NULL, lo, &nlo, NULL));
-  PetscCall(PetscOptionsRealArray("-box_upper", "Upper corner of the box", NULL, hi, &nhi, NULL));
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-box_dim", "Spatial dimension of the box: 2 or 3", 1, &dim, &ndim, NULL));
+  PetscCheck(dim == 2 || dim == 3, comm, PETSC_ERR_USER_INPUT, "-box_dim: the dimension must be 2 or 3, got %" PetscInt_FMT, dim);
+  nfaces = nlo = nhi = dim;
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-box_faces", "Number of cells along each axis (dim numbers)", SG_OPT_MAX, faces, &nfaces, NULL));
+  PetscCall(SgOptionsRealList(PetscOptionsObject, "-box_lower", "Lower corner of the box (dim numbers)", SG_OPT_MAX, lo, &nlo, NULL));
+  PetscCall(SgOptionsRealList(PetscOptionsObject, "-box_upper", "Upper corner of the box (dim numbers)", SG_OPT_MAX, hi, &nhi, NULL));
   PetscCall(PetscOptionsEnum("-box_diagonal", "2D: direction of the diagonal splitting each square", NULL, SgBoxDiagonals, (PetscEnum)diag, (PetscEnum *)&diag, NULL));
   PetscOptionsEnd();
+  {
+    /* PETSc keeps the default for an enum given without a value */
+    const char *val;
+    PetscBool   has;
+    PetscCall(PetscOptionsFindPair(NULL, NULL, "-box_diagonal", &val, &has));
+    PetscCheck(!has || (val && val[0]), comm, PETSC_ERR_USER_INPUT, "-box_diagonal is given without a value (right or left)");
+  }
 
-  if (file) {
-    PetscErrorCode ierr;
-    const char    *msg = NULL;
-    char           why[512] = "";
-
-    PetscCall(CheckMeshFile(comm, fname));
-    /* a reader error (truncated or foreign file) is reported with the file's name instead of a bare traceback */
-    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    ierr = DMPlexCreateFromFile(comm, fname, "signorini", PETSC_TRUE, dm);
-    PetscCall(PetscPopErrorHandler());
-    if (ierr) {
-      PetscErrorMessage(ierr, NULL, (char **)&msg);
-      if (msg) PetscCall(PetscStrncpy(why, msg, sizeof(why)));
-      SETERRQ(comm, PETSC_ERR_FILE_READ, "-dm_plex_filename: cannot read mesh file '%s': %s", fname, why[0] ? why : "the reader failed");
-    }
-  } else {
+  if (file) PetscCall(MeshReadFile(comm, fname, dm));
+  else {
+    /* every entry from the user: a missing one would silently come from the default, an extra one be ignored */
+    PetscCheck(nfaces == dim, comm, PETSC_ERR_USER_INPUT, "-box_faces: give %" PetscInt_FMT " numbers for -box_dim %" PetscInt_FMT ", got %" PetscInt_FMT, dim, dim, nfaces);
+    PetscCheck(nlo == dim, comm, PETSC_ERR_USER_INPUT, "-box_lower: give %" PetscInt_FMT " numbers for -box_dim %" PetscInt_FMT ", got %" PetscInt_FMT, dim, dim, nlo);
+    PetscCheck(nhi == dim, comm, PETSC_ERR_USER_INPUT, "-box_upper: give %" PetscInt_FMT " numbers for -box_dim %" PetscInt_FMT ", got %" PetscInt_FMT, dim, dim, nhi);
     for (PetscInt d = 0; d < dim; d++) {
       PetscCheck(faces[d] > 0, comm, PETSC_ERR_USER_INPUT, "-box_faces: entry %" PetscInt_FMT " is %" PetscInt_FMT ", must be positive", d, faces[d]);
       PetscCheck(PetscIsNormalReal(hi[d] - lo[d]) && hi[d] > lo[d], comm, PETSC_ERR_USER_INPUT, "-box_lower/-box_upper: axis %" PetscInt_FMT " has lower %g >= upper %g", d, (double)lo[d], (double)hi[d]);
@@ -222,37 +456,46 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
   PetscCall(DMSetFromOptions(*dm));
+  {
+    /* the assembly and the energy visit every local cell once: cells shared by an overlap would count twice */
+    PetscInt ov;
+    PetscCall(DMPlexGetOverlap(*dm, &ov));
+    PetscCheck(ov == 0, comm, PETSC_ERR_USER_INPUT, "-dm_distribute_overlap %" PetscInt_FMT ": an overlapping distribution is not supported (cells on several ranks would be assembled more than once); use 0", ov);
+  }
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscCall(PetscLogEventEnd(SG_MeshSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-/* Read -<what>_label, -<what>_ids and (if ncomp > 0) -<what>_<valname>: ncomp numbers per id. */
+/* Read -<what>_label, -<what>_ids and (if ncomp > 0) -<what>_<valname>: ncomp numbers per id. An option given without
+   a value is an error (PETSc would report it as not set, and the part would silently vanish). */
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBoundary *bnd, PetscInt ncomp, const char *valname, const char *help)
 {
   char      opt[64], txt[256];
-  PetscInt  n = SG_MAX_IDS;
+  PetscInt  n = bnd->nids;
   PetscBool set;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_label", bnd->what));
   PetscCall(PetscSNPrintf(txt, sizeof(txt), "Label marking the %s boundary", help));
   PetscCall(PetscOptionsString(opt, txt, NULL, bnd->label, bnd->label, sizeof(bnd->label), &set));
-  if (set) bnd->active = PETSC_TRUE;
+  if (set) {
+    PetscCheck(bnd->label[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given without a value (a label name)", opt);
+    bnd->active = PETSC_TRUE;
+  }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_ids", bnd->what));
   PetscCall(PetscSNPrintf(txt, sizeof(txt), "Values of the %s label making the %s boundary (none: every value)", bnd->what, help));
-  PetscCall(PetscOptionsIntArray(opt, txt, NULL, bnd->ids, &n, &set));
+  PetscCall(SgOptionsIntList(PetscOptionsObject, opt, txt, SG_MAX_IDS, bnd->ids, &n, &set));
   if (set) {
     bnd->nids   = n;
     bnd->active = PETSC_TRUE;
-    PetscCheck(n > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: give at least one label value", opt);
   }
   if (ncomp > 0) {
-    PetscInt nv = 3 * SG_MAX_IDS, need = ncomp * PetscMax(bnd->nids, 1);
+    PetscInt nv = bnd->nvalues, need = ncomp * PetscMax(bnd->nids, 1);
 
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s", bnd->what, valname));
     PetscCall(PetscSNPrintf(txt, sizeof(txt), "%s: %" PetscInt_FMT " numbers per label value", help, ncomp));
-    PetscCall(PetscOptionsRealArray(opt, txt, NULL, bnd->values, &nv, &set));
+    PetscCall(SgOptionsRealList(PetscOptionsObject, opt, txt, 3 * SG_MAX_IDS, bnd->values, &nv, &set));
     if (set) {
       PetscCheck(bnd->active, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given, but no -%s_label or -%s_ids says where", opt, bnd->what, bnd->what);
       PetscCheck(nv == need, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT " (%" PetscInt_FMT " per value of %s_ids)", opt, nv, need, ncomp, bnd->what);
@@ -468,6 +711,100 @@ PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
     PetscCall(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &clo));
     PetscCheck(k == dim + 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "cell %" PetscInt_FMT " has %" PetscInt_FMT " vertices: not a simplex", c, k);
   }
+  PetscFunctionReturn(0);
+}
+
+/* The farthest point of this rank's set from a reference (dist(x) >= 0), over all ranks: its distance and coordinates. */
+typedef PetscReal (*PointDist)(const PetscReal[], const PetscReal[], const PetscReal[], PetscInt);
+
+static PetscReal DistPoint(const PetscReal x[], const PetscReal p0[], const PetscReal e[], PetscInt dim)
+{
+  PetscReal s = 0;
+  for (PetscInt d = 0; d < dim; d++) s += PetscSqr(x[d] - p0[d]);
+  return PetscSqrtReal(s);
+}
+
+static PetscReal DistLine(const PetscReal x[], const PetscReal p0[], const PetscReal e[], PetscInt dim)
+{
+  PetscReal t = 0, s = 0;
+  for (PetscInt d = 0; d < dim; d++) t += (x[d] - p0[d]) * e[d];
+  for (PetscInt d = 0; d < dim; d++) s += PetscSqr(x[d] - p0[d] - t * e[d]);
+  return PetscSqrtReal(s);
+}
+
+static PetscErrorCode FarthestConstrained(MPI_Comm comm, const SgMesh *m, PointDist dist, const PetscReal p0[], const PetscReal e[], PetscReal *dmax, PetscReal x[])
+{
+  struct {
+    double v;
+    int    r;
+  } loc = {-1.0, 0}, glob;
+  PetscMPIInt rank;
+  PetscInt    best = -1;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscReal dv;
+    if (m->bcgroup[v] < 0) continue;
+    dv = dist(&m->x[v * m->dim], p0, e, m->dim);
+    if (dv > loc.v) {
+      loc.v = (double)dv;
+      best  = v;
+    }
+  }
+  loc.r = rank;
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  for (PetscInt d = 0; d < 3; d++) x[d] = 0;
+  if (glob.r == rank && best >= 0)
+    for (PetscInt d = 0; d < m->dim; d++) x[d] = m->x[best * m->dim + d];
+  PetscCallMPI(MPI_Bcast(x, 3, MPIU_REAL, glob.r, comm));
+  *dmax = (PetscReal)glob.v;
+  PetscFunctionReturn(0);
+}
+
+/* Affine dimension of the set of Dirichlet vertices (each fixes every component), over all ranks: -1 no vertex, 0 one
+   point, 1 collinear points, 2 not collinear. Distances below 1e-10 of the mesh's diameter count as zero.
+   p0: a Dirichlet vertex; dir: the direction of the line when adim = 1; diam: the diameter of the mesh's bounding box. */
+PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscInt *adim, PetscReal p0[3], PetscReal dir[3], PetscReal *diam)
+{
+  const PetscInt dim = m->dim;
+  PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, d1, d2, p1[3], p2[3], tol;
+  PetscMPIInt    rank, size, first;
+  PetscInt       v0 = -1;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    for (PetscInt d = 0; d < dim; d++) {
+      box[d]     = PetscMin(box[d], m->x[v * dim + d]);
+      box[3 + d] = PetscMin(box[3 + d], -m->x[v * dim + d]);
+    }
+    if (v0 < 0 && m->bcgroup[v] >= 0) v0 = v;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, box, 6, MPIU_REAL, MPIU_MIN, comm));
+  *diam = 0;
+  for (PetscInt d = 0; d < dim; d++) *diam += PetscSqr(-box[3 + d] - box[d]);
+  *diam = PetscSqrtReal(*diam);
+  tol   = 1e-10 * *diam;
+  for (PetscInt d = 0; d < 3; d++) p0[d] = dir[d] = 0;
+  first = v0 >= 0 ? rank : size;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm));
+  if (first == size) {
+    *adim = -1;
+    PetscFunctionReturn(0);
+  }
+  if (rank == first)
+    for (PetscInt d = 0; d < dim; d++) p0[d] = m->x[v0 * dim + d];
+  PetscCallMPI(MPI_Bcast(p0, 3, MPIU_REAL, first, comm));
+  PetscCall(FarthestConstrained(comm, m, DistPoint, p0, dir, &d1, p1));
+  if (d1 <= tol) {
+    *adim = 0;
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt d = 0; d < dim; d++) dir[d] = (p1[d] - p0[d]) / d1;
+  PetscCall(FarthestConstrained(comm, m, DistLine, p0, dir, &d2, p2));
+  *adim = d2 <= tol ? 1 : 2;
   PetscFunctionReturn(0);
 }
 

@@ -6,6 +6,7 @@
 #include <math.h>
 
 #define SG_MAX_IDS 32 /* label values per boundary part */
+#define SG_OPT_MAX (3 * SG_MAX_IDS) /* entries of a list option read by SgOptionsIntList/RealList */
 #define SG_NAN     ((PetscReal)NAN) /* "not set" in tables and summaries */
 
 /* ------------------------------------------------------------------ events.c */
@@ -41,12 +42,16 @@ typedef struct {
   PetscInt   nfree_glob;/* global number of free vertices */
 } SgMesh;
 
+PetscErrorCode SgOptionsIntList(PetscOptionItems *, const char[], const char[], PetscInt, PetscInt[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsRealList(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsRealValue(PetscOptionItems *, const char[], const char[], PetscReal *, PetscBool *);
 PetscErrorCode SgMeshCreateDM(MPI_Comm, DM *);
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
 PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
 PetscErrorCode SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
 PetscErrorCode SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode SgMeshDestroy(SgMesh *);
+PetscErrorCode SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
 PetscErrorCode SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
 
 /* ------------------------------------------------------------------ elasticity.c */
@@ -61,6 +66,7 @@ struct _n_SgProblem {
   PetscInt     dim;
   PetscReal    E, nu, lambda, mu;
   PetscReal    body_force[3];
+  PetscInt     nbody_force;  /* entries given with -body_force (must be dim) */
   SgBoundary   dirichlet, neumann;
   PetscBool    mms;          /* manufactured solution: body force and Dirichlet data from a known field */
   Mat          K;            /* stiffness on the free dofs, block size dim */
@@ -70,6 +76,11 @@ struct _n_SgProblem {
   PetscReal    energy_shift; /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
   PetscReal    bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
   PetscReal    Knorm;        /* ||K||_inf */
+  Vec          fpart;        /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
+  PetscReal    diam;         /* diameter of the mesh's bounding box */
+  PetscReal    rigid_shift;  /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
+  PetscBool    rigid_shift_set;
+  PetscBool    energy_check; /* -elasticity_energy_check: compare the energy with a long double evaluation */
   MatNullSpace nearnull;     /* rigid-body modes */
   PetscBool    use_nearnull; /* attached to K and the Jacobians */
   PetscInt     ndofs;
