@@ -34,12 +34,12 @@ PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
   PetscCall(SgSummaryCreate(&ct->sum));
   PetscOptionsBegin(p->comm, NULL, "Continuation controller", NULL);
   PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
-  PetscCall(PetscOptionsReal("-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the backward error of (P_gamma)", NULL, ct->kkt_tol, &ct->kkt_tol, NULL));
-  PetscCall(PetscOptionsInt("-cont_max_it", "Maximum number of outer (continuation) steps", NULL, ct->max_outer, &ct->max_outer, NULL));
-  PetscCall(PetscOptionsReal("-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", NULL, ct->gamma_max, &ct->gamma_max, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
-  PetscCall(PetscOptionsInt("-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", NULL, ct->stall_its, &ct->stall_its, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, p->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
   PetscCall(create(ct));

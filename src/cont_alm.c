@@ -11,8 +11,8 @@ static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptio
   ALM *alm = (ALM *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-alm_gamma", "gamma of the first step", NULL, alm->gamma, &alm->gamma, NULL));
-  PetscCall(PetscOptionsReal("-alm_gamma_factor", "gamma_{l+1} = factor * gamma_l (1: gamma fixed)", NULL, alm->factor, &alm->factor, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-alm_gamma", "gamma of the first step", &alm->gamma, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-alm_gamma_factor", "gamma_{l+1} = factor * gamma_l (1: gamma fixed)", &alm->factor, NULL));
   PetscCheck(PetscIsNormalReal(alm->gamma) && alm->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "-alm_gamma: must be positive and finite, got %g", (double)alm->gamma);
   PetscCheck(PetscIsNormalReal(alm->factor) && alm->factor >= 1, ct->comm, PETSC_ERR_USER_INPUT, "-alm_gamma_factor: must be >= 1 (gamma may not decrease), got %g", (double)alm->factor);
   PetscFunctionReturn(0);

@@ -15,11 +15,11 @@ static PetscErrorCode SetFromOptions_IPF(SgCont ct, PetscOptionItems *PetscOptio
   IPF *ipf = (IPF *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-ipf_gamma1", "gamma of the first path step", NULL, ipf->gamma1, &ipf->gamma1, NULL));
-  PetscCall(PetscOptionsReal("-ipf_tau", "Neighbourhood size: SSN stops when ||(r1,r2)|| <= tau/sqrt(gamma)", NULL, ipf->tau, &ipf->tau, NULL));
-  PetscCall(PetscOptionsReal("-ipf_tau1", "Minimal growth factor of gamma in rule (15)", NULL, ipf->tau1, &ipf->tau1, NULL));
-  PetscCall(PetscOptionsReal("-ipf_q", "Exponent q of 1/max(rho_F, rho_C)^q in rule (15)", NULL, ipf->q, &ipf->q, NULL));
-  PetscCall(PetscOptionsReal("-ipf_tau3", "Safeguard (16): |tangent - model| <= tau3 |change of J|", NULL, ipf->tau3, &ipf->tau3, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_gamma1", "gamma of the first path step", &ipf->gamma1, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau", "Neighbourhood size: SSN stops when ||(r1,r2)|| <= tau/sqrt(gamma)", &ipf->tau, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau1", "Minimal growth factor of gamma in rule (15)", &ipf->tau1, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_q", "Exponent q of 1/max(rho_F, rho_C)^q in rule (15)", &ipf->q, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau3", "Safeguard (16): |tangent - model| <= tau3 |change of J|", &ipf->tau3, NULL));
   PetscCheck(PetscIsNormalReal(ipf->gamma1) && ipf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_gamma1: must be positive and finite, got %g", (double)ipf->gamma1);
   PetscCheck(PetscIsNormalReal(ipf->tau) && ipf->tau > 0, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_tau: must be positive and finite, got %g", (double)ipf->tau);
   PetscCheck(PetscIsNormalReal(ipf->tau1) && ipf->tau1 > 1, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_tau1: must be > 1, got %g", (double)ipf->tau1);

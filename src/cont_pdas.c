@@ -12,8 +12,8 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
   PDAS *pd = (PDAS *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", NULL, pd->c, &pd->c, NULL));
-  PetscCall(PetscOptionsInt("-pdas_max_it", "Maximum number of active-set iterations", NULL, pd->maxit, &pd->maxit, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", &pd->c, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-pdas_max_it", "Maximum number of active-set iterations", &pd->maxit, NULL));
   PetscCheck((PetscIsNormalReal(pd->c) || pd->c == 0) && pd->c >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_c: must be finite and >= 0, got %g", (double)pd->c);
   PetscCheck(pd->maxit > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_max_it: must be positive, got %" PetscInt_FMT, pd->maxit);
   PetscFunctionReturn(0);

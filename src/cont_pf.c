@@ -12,9 +12,9 @@ static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOption
   PF *pf = (PF *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-pf_gamma1", "gamma of the first path step", NULL, pf->gamma1, &pf->gamma1, NULL));
-  PetscCall(PetscOptionsReal("-pf_tau0", "tau_k = tau0^k: the model's predicted distance to V(infinity) shrinks by tau_k", NULL, pf->tau0, &pf->tau0, NULL));
-  PetscCall(PetscOptionsReal("-pf_fallback_factor", "gamma growth when the model cannot be fitted (never needed in our runs)", NULL, pf->fallback, &pf->fallback, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_gamma1", "gamma of the first path step", &pf->gamma1, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_tau0", "tau_k = tau0^k: the model's predicted distance to V(infinity) shrinks by tau_k", &pf->tau0, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_fallback_factor", "gamma growth when the model cannot be fitted (never needed in our runs)", &pf->fallback, NULL));
   PetscCheck(PetscIsNormalReal(pf->gamma1) && pf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pf_gamma1: must be positive and finite, got %g", (double)pf->gamma1);
   PetscCheck(PetscIsNormalReal(pf->tau0) && pf->tau0 > 0 && pf->tau0 < 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_tau0: must lie in (0, 1), got %g", (double)pf->tau0);
   PetscCheck(PetscIsNormalReal(pf->fallback) && pf->fallback > 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_fallback_factor: must be > 1, got %g", (double)pf->fallback);

@@ -23,9 +23,9 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
   PetscCall(PetscStrcpy(c->bnd.label, label));
   PetscOptionsBegin(p->comm, NULL, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
-  PetscCall(PetscOptionsReal("-contact_gamma", "Regularization parameter gamma of (P_gamma) (for -cont_type none)", NULL, c->gamma, &c->gamma, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_gamma", "Regularization parameter gamma of (P_gamma) (for -cont_type none)", &c->gamma, NULL));
   c->lamhat0 = 0;
-  PetscCall(PetscOptionsReal("-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", NULL, c->lamhat0, &c->lamhat0, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", &c->lamhat0, NULL));
   PetscOptionsEnd();
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(PetscFree(c));

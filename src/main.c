@@ -163,7 +163,7 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
   PetscCall(PetscOptionsString("-output_file", "HDF5 result file (fields for ParaView; an .xmf file is written beside it)", NULL, o->outfile, o->outfile, sizeof(o->outfile), NULL));
   PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, o->sumfile, o->sumfile, sizeof(o->sumfile), NULL));
   PetscCall(PetscOptionsString("-history_file", "CSV history: one row per SSN iteration and per outer step", NULL, o->histfile, o->histfile, sizeof(o->histfile), NULL));
-  PetscCall(PetscOptionsReal("-output_magnification", "Displacement magnification stored for the pictures", NULL, o->magnification, &o->magnification, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-output_magnification", "Displacement magnification stored for the pictures", &o->magnification, NULL));
   PetscOptionsEnd();
   PetscCheck(PetscIsNormalReal(o->magnification) && o->magnification > 0, comm, PETSC_ERR_USER_INPUT, "-output_magnification: must be positive and finite, got %g", (double)o->magnification);
   /* refuse unwritable locations before any work is done */

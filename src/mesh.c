@@ -107,6 +107,16 @@ PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const ch
   PetscFunctionReturn(0);
 }
 
+/* A single integer -opt (see SgOptionsIntList). */
+PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *val, PetscBool *set)
+{
+  PetscInt n = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsIntList(PetscOptionsObject, opt, text, 1, val, &n, set));
+  PetscFunctionReturn(0);
+}
+
 /* Face markers follow DMPlexCreateBoxMesh(): 2D bottom 1, right 2, top 3, left 4;
    3D bottom 1, top 2, front 3, back 4, right 5, left 6 ("Face Sets"). */
 static PetscInt BoxFaceMarker(PetscInt dim, PetscInt axis, PetscBool upper)

@@ -16,7 +16,7 @@ static PetscErrorCode ReadVector(PetscOptionItems *PetscOptionsObject, MPI_Comm 
   PetscBool set;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsRealArray(opt, text, NULL, v, &n, &set));
+  PetscCall(SgOptionsRealList(PetscOptionsObject, opt, text, dim, v, &n, &set));
   PetscCheck(!set || n == dim, comm, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, opt, n, dim);
   PetscCall(CheckFinite(comm, opt, dim, v));
   PetscFunctionReturn(0);
@@ -82,8 +82,8 @@ static PetscErrorCode SetFromOptions_Parabola(SgObstacle o, PetscOptionItems *Pe
   o->p[0] = 0.003;
   o->p[1] = 0.001;
   o->p[2] = 1.5;
-  PetscCall(PetscOptionsReal("-obstacle_parabola_a", "Curvature coefficient a of d = a |x_t - c_t|^2 + offset", NULL, o->p[0], &o->p[0], NULL));
-  PetscCall(PetscOptionsReal("-obstacle_parabola_offset", "Gap at the vertex of the parabola", NULL, o->p[1], &o->p[1], NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_parabola_a", "Curvature coefficient a of d = a |x_t - c_t|^2 + offset", &o->p[0], NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_parabola_offset", "Gap at the vertex of the parabola", &o->p[1], NULL));
   PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_parabola_center", "Vertex of the parabola (its normal component is ignored)", o->dim, o->p + 2));
   PetscCheck(PetscIsNormalReal(o->p[0]) || o->p[0] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be finite, got %g", (double)o->p[0]);
   PetscCheck(o->p[0] >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be >= 0 (an obstacle bending away from the body), got %g", (double)o->p[0]);
@@ -139,7 +139,7 @@ static PetscErrorCode SetFromOptions_Ball(SgObstacle o, PetscOptionItems *PetscO
   PetscFunctionBeginUser;
   o->p[0]              = 0.5;
   o->p[4 + o->dim - 1] = 1;
-  PetscCall(PetscOptionsReal("-obstacle_ball_radius", "Radius of the half-ball", NULL, o->p[0], &o->p[0], NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_ball_radius", "Radius of the half-ball", &o->p[0], NULL));
   PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_ball_center", "Centre of the half-ball (on its flat side)", o->dim, o->p + 1));
   PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_ball_up", "Direction from the flat side towards the body", o->dim, o->p + 4));
   PetscCheck(PetscIsNormalReal(o->p[0]) && o->p[0] > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_ball_radius: must be positive and finite, got %g", (double)o->p[0]);

@@ -45,6 +45,7 @@ typedef struct {
 PetscErrorCode SgOptionsIntList(PetscOptionItems *, const char[], const char[], PetscInt, PetscInt[], PetscInt *, PetscBool *);
 PetscErrorCode SgOptionsRealList(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscInt *, PetscBool *);
 PetscErrorCode SgOptionsRealValue(PetscOptionItems *, const char[], const char[], PetscReal *, PetscBool *);
+PetscErrorCode SgOptionsIntValue(PetscOptionItems *, const char[], const char[], PetscInt *, PetscBool *);
 PetscErrorCode SgMeshCreateDM(MPI_Comm, DM *);
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
 PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);

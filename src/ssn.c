@@ -256,7 +256,7 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   PetscOptionsBegin(p->comm, NULL, "Semismooth Newton (active set) solver", NULL);
   PetscCall(PetscOptionsBool("-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", NULL, s->monitor, &s->monitor, NULL));
   PetscCall(PetscOptionsBool("-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", NULL, condense, &condense, NULL));
-  PetscCall(PetscOptionsInt("-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", NULL, s->pc_reuse_its, &s->pc_reuse_its, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SNESSetFromOptions(s->snes));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
