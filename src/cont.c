@@ -130,12 +130,33 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
   PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
   ct->ksp_its += its;
   PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V0));
-  if (kr < 0) {
+  if (kr >= 0 && PetscIsInfOrNanReal(ct->V0)) {
+    *ok = PETSC_FALSE;
+    PetscCall(SgContFail(ct, "DIVERGED_NAN: the solution without contact is not finite (energy %g): the loads (-neumann_traction, -body_force, -dirichlet_values) are too large against -E for double precision", (double)ct->V0));
+    if (ct->c) PetscCall(SgContMeasure(ct));
+  } else if (kr < 0) {
     *ok = PETSC_FALSE;
     PetscCall(SgContFail(ct, "LINEAR_SOLVE_FAILED: the elasticity solve without contact stopped with KSP %s after %" PetscInt_FMT " iterations (check -ksp_type, -pc_type)", KSPConvergedReasons[kr], its));
     if (ct->c) PetscCall(SgContMeasure(ct));
   }
   PetscFunctionReturn(0);
+}
+
+/* What a user can change when an SSN solve fails: the options that act on it. */
+static const char *SSNHint(SgSSNReason r)
+{
+  switch (r) {
+  case SG_SSN_MAX_IT:
+    return ": raise -snes_max_it, or take smaller gamma steps";
+  case SG_SSN_CYCLING:
+    return ": gamma may be too large for double precision here (see -cont_gamma_max and the controller's first gamma), or the linear solves too loose (-ksp_rtol)";
+  case SG_SSN_LINEAR_SOLVE:
+    return ": check -ksp_type, -pc_type, -ksp_max_it";
+  case SG_SSN_NAN:
+    return ": the iterate overflowed; check the magnitudes of -neumann_traction, -body_force, -dirichlet_values and -E";
+  default:
+    return ": see -snes_converged_reason and -ssn_monitor";
+  }
 }
 
 /* One SSN solve of (P_gamma) (shift: c->lamhat) from the current y; lam = its multiplier. ok = PETSC_FALSE on failure. */
@@ -151,7 +172,7 @@ PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
   ct->ksp_its += kits;
   PetscCall(PetscArraycpy(ct->lam, ct->ssn->m, ct->c->n));
   *ok = (PetscBool)(r > 0);
-  if (!*ok) PetscCall(SgContFail(ct, "SSN_%s at gamma %g in outer step %" PetscInt_FMT " after %" PetscInt_FMT " iterations (SNES %s)", SgSSNReasons[ct->ssn->reason], (double)gamma, ct->outer, its, SNESConvergedReasons[r]));
+  if (!*ok) PetscCall(SgContFail(ct, "SSN_%s at gamma %g in outer step %" PetscInt_FMT " after %" PetscInt_FMT " iterations (SNES %s)%s", SgSSNReasons[ct->ssn->reason], (double)gamma, ct->outer, its, SNESConvergedReasons[r], SSNHint(ct->ssn->reason)));
   PetscFunctionReturn(0);
 }
 
@@ -325,8 +346,8 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
     ct->best_kkt  = ct->kkt.residual;
     ct->best_step = ct->outer;
   }
-  if (PetscIsInfOrNanReal(ct->kkt.residual)) PetscCall(SgContFail(ct, "DIVERGED_NAN: the KKT residual is not a number after outer step %" PetscInt_FMT, ct->outer));
-  else if (ct->outer - ct->best_step >= ct->stall_its) PetscCall(SgContFail(ct, "STALLED: no progress in the KKT residual (%.3e, best %.3e at step %" PetscInt_FMT ") for %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->best_kkt, ct->best_step, ct->outer - ct->best_step));
+  if (PetscIsInfOrNanReal(ct->kkt.residual)) PetscCall(SgContFail(ct, "DIVERGED_NAN: the KKT residual is not a number after outer step %" PetscInt_FMT " (check the magnitudes of -neumann_traction, -body_force, -dirichlet_values and -E)", ct->outer));
+  else if (ct->outer - ct->best_step >= ct->stall_its) PetscCall(SgContFail(ct, "STALLED: no progress in the KKT residual (%.3e, best %.3e at step %" PetscInt_FMT ") for %" PetscInt_FMT " outer steps (-cont_stall_it); a larger first gamma may help", (double)ct->kkt.residual, (double)ct->best_kkt, ct->best_step, ct->outer - ct->best_step));
   else if (!(gamma_next <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)gamma_next, (double)ct->gamma_max, (double)ct->kkt.residual));
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;

@@ -66,10 +66,11 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(SNESSetType(vi->snes, SNESVINEWTONRSLS));
   {
     /* absolute floor at the round-off of the problem's force scale: from the unconstrained start of a problem that
-       touches little or nothing, ||F_0|| is itself round-off and no relative decrease can be reached */
+       touches little or nothing, ||F_0|| is itself round-off and no relative decrease can be reached; positive even
+       without any load, where F_0 = 0 must count as converged */
     PetscReal ynorm;
     PetscCall(VecNorm(ct->y, NORM_2, &ynorm));
-    PetscCall(SNESSetTolerances(vi->snes, 100 * PETSC_MACHINE_EPSILON * (p->Knorm * ynorm + p->bnorm), 1e-12, 0.0, 100, PETSC_DEFAULT));
+    PetscCall(SNESSetTolerances(vi->snes, 100 * PETSC_MACHINE_EPSILON * (p->Knorm * ynorm + p->bnorm) + 1e-300, 1e-12, 0.0, 100, PETSC_DEFAULT));
   }
   PetscCall(SNESSetFunction(vi->snes, r, Residual_VI, p));
   PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &vi->J));
@@ -103,7 +104,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   if (reason > 0) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "VI_%s", SNESConvergedReasons[reason]));
-  } else PetscCall(SgContFail(ct, "VI_%s after %" PetscInt_FMT " iterations", SNESConvergedReasons[reason], its));
+  } else PetscCall(SgContFail(ct, "VI_%s after %" PetscInt_FMT " iterations (see -vi_snes_type, -vi_snes_max_it, -vi_ksp_type)", SNESConvergedReasons[reason], its));
   PetscCall(SgContCheckBaseline(ct));
   {
     SNESType type;
