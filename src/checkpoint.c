@@ -340,6 +340,19 @@ static void CheckReals(const PetscScalar a[], PetscInt n, PetscBool check_lo, Pe
     }
 }
 
+/* Close the viewer with error printing off (a damaged file can fail at H5Fclose); *ierr, if asked for, says whether it did. */
+static PetscErrorCode CloseQuietly(MPI_Comm comm, CkRead *rd, PetscViewer *viewer, PetscErrorCode *ierr)
+{
+  PetscErrorCode e = 0;
+
+  PetscFunctionBeginUser;
+  rd->viewer = *viewer;
+  *viewer    = NULL;
+  PetscCall(Quietly(comm, DestroyViewer, NULL, rd, &e));
+  if (ierr) *ierr = e;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgCheckpointRead(SgCont ct)
 {
   SgProblem          p = ct->prob;
@@ -366,20 +379,20 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   PetscCall(Quietly(p->comm, OpenQuietly, NULL, &rd, &ierr));
   viewer = rd.viewer;
   if (ierr && viewer) { /* a viewer whose file did not open fails its flush: forget that error too */
-    PetscErrorCode ierr2;
+    PetscErrorCode ierr2 = 0;
     PetscCall(Quietly(p->comm, DestroyViewer, NULL, &rd, &ierr2));
   }
   PetscCheck(!ierr, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
   PetscCall(Quietly(p->comm, ReadBody, viewer, &rd, &ierr));
   if (ierr) {
-    PetscCall(PetscViewerDestroy(&viewer));
+    PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
     PetscCall(PetscFree(rd.type));
     SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", f, rd.what);
   }
-  if (!rd.type) PetscCall(PetscViewerDestroy(&viewer));
+  if (!rd.type) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
   PetscCheck(rd.type, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
   PetscCall(PetscStrcmp(rd.type, ct->type, &same));
-  if (!same) PetscCall(PetscViewerDestroy(&viewer));
+  if (!same) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
   PetscCheck(same, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", f, rd.type, ct->type);
   PetscCall(PetscFree(rd.type));
   ints = rd.ints;
@@ -393,7 +406,7 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, p->comm));
   }
-  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(PetscViewerDestroy(&viewer));
+  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
   PetscCheck(ints[0] == dim && ints[1] == nvert, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, ints[0], ints[1], dim, nvert);
   /* the counters: a checkpoint is written after an outer step */
   {
@@ -403,7 +416,7 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     else if (ints[3] < 0) what = "ssn_iterations", val = ints[3];
     else if (ints[4] < 0) what = "ksp_iterations", val = ints[4];
     else if (ints[5] < 0 || ints[5] > ints[2]) what = "best_step", val = ints[5];
-    if (what) PetscCall(PetscViewerDestroy(&viewer));
+    if (what) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
     PetscCheck(!what, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);
   }
   /* a restart of another problem would continue a path that is not this problem's */
@@ -412,14 +425,21 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     PetscCall(ProblemPrint(ct, now));
     for (PetscInt i = 0; i < NPRINT; i++) {
       const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - rd.print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(rd.print[i]) : 0));
-      if (!ok) PetscCall(PetscViewerDestroy(&viewer));
+      if (!ok) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
       PetscCheck(ok, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
     }
   }
   rd.nvert = nvert;
   rd.dim   = dim;
   PetscCall(Quietly(p->comm, ReadVectors, viewer, &rd, &ierr));
-  PetscCall(PetscViewerDestroy(&viewer));
+  {
+    PetscErrorCode ierr2 = 0;
+    PetscCall(CloseQuietly(p->comm, &rd, &viewer, &ierr2));
+    if (ierr2 && !ierr) {
+      ierr    = ierr2;
+      rd.what = "the file's end (closing it failed)";
+    }
+  }
   if (ierr) {
     Vec *v[6] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.G, &rd.H};
     for (PetscInt i = 0; i < 6; i++) PetscCall(VecDestroy(v[i]));
