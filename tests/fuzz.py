@@ -20,6 +20,7 @@ Output: one line per violation with the command, a count per generator, and "N p
 """
 import argparse
 import csv
+import ctypes
 import json
 import math
 import os
@@ -51,9 +52,25 @@ CRASH = re.compile(r"Caught signal|Segmentation|Signal received|signal number|ex
                    r"stack smashing|double free|corrupted|free\(\): invalid|malloc\(\): |Aborted \(core dumped\)")
 
 
+LIBC = ctypes.CDLL(None, use_errno=True)
+ACTIVE, TMPDIRS = set(), set()  # running runs and case directories, for a clean stop on SIGINT/SIGTERM
+
+
 def _limits():
     resource.setrlimit(resource.RLIMIT_AS, (MEM_LIMIT, MEM_LIMIT))
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    LIBC.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG: a run does not outlive the fuzzer (a killed harness leaves no hang)
+
+
+def _stop(signum, frame):
+    for p in list(ACTIVE):
+        try:
+            os.killpg(p.pid, signal.SIGKILL)  # each run is its own process group (start_new_session)
+        except ProcessLookupError:
+            pass
+    for d in list(TMPDIRS):
+        shutil.rmtree(d, ignore_errors=True)
+    os._exit(128 + signum)
 
 
 # ---------------------------------------------------------------- value pools
@@ -91,6 +108,7 @@ class Run:
         self.inputs = list(inputs)  # files of the case directory the run reads
         self.checkpoint = checkpoint  # a -checkpoint_file in the case directory
         self.result = None
+        self.must_converge = False  # a well-posed problem: anything but exit 0 is a failure
 
 
 class Case:
@@ -286,6 +304,27 @@ def gen_options(rng, T, base):
         runs = [Run(scaled, np_, tol, y0, checkpoint=runs[0].checkpoint), Run(unscaled, np_, tol, y0, checkpoint=runs[0].checkpoint)]
         desc += " scaled 10^%d" % k
     return desc, runs, twin
+
+
+# ---------------------------------------------------------------- generator 1b: well-posed problems that must converge
+
+def gen_wellposed(rng, T, base):
+    """Example 1 with a random load level, material scale, nu in [0, 0.5) and an obstacle that is touched, barely
+    touched or never touched, exact solves: a normal contact problem every controller must solve (issue 10, item 1)."""
+    k = rng.randint(-6, 6)
+    load = rng.choice([2.0, 0.01, 1e-3, 1e-5, log_uniform(rng, 1e-5, 5)])
+    off = rng.choice([0, 1e-4, 0.001, 0.01, 0.1, 1, 1e3])
+    a = rng.choice([0.003, 0, rng.uniform(0, 0.02)])
+    ct = rng.choice(CONTROLLERS)
+    args = ["-options_file", "tests/opts/ex1_coarse.opts", "-box_faces", "%d,%d" % (rng.randint(6, 24), rng.randint(2, 8)),
+            "-options_file", "options/cont/%s.opts" % ct]
+    if rng.random() < 0.25:
+        args += ["-options_file", "options/solver/mumps_reuse.opts"]
+    args += ["-E", num(5000 * 10 ** k), "-nu", num(rng.choice([0.4, 0.3, 0.0, rng.uniform(0, 0.49)])),
+             "-neumann_traction", "0,%s" % num(-load * 10 ** k), "-obstacle_parabola_a", num(a), "-obstacle_parabola_offset", num(off)]
+    run = Run(args, 2 if rng.random() < 0.08 else 1, str(DEFAULT_KKT_TOL), True)
+    run.must_converge = True
+    return "wellposed %s load %.3g offset %g" % (ct, load, off), [run], False
 
 
 # ---------------------------------------------------------------- generator 2: mutations of a valid options file
@@ -602,7 +641,7 @@ def gen_checkpoint(rng, T, base):
     return "checkpoint %s->%s: %s" % (ct, run_ct, done), [Run(args, np_, str(DEFAULT_KKT_TOL), True, inputs=[path], checkpoint=ck)], False
 
 
-GENERATORS = [("options", gen_options, 0.45), ("optfile", gen_optfile, 0.2), ("mesh", gen_mesh, 0.2), ("checkpoint", gen_checkpoint, 0.15)]
+GENERATORS = [("options", gen_options, 0.35), ("wellposed", gen_wellposed, 0.1), ("optfile", gen_optfile, 0.2), ("mesh", gen_mesh, 0.2), ("checkpoint", gen_checkpoint, 0.15)]
 
 
 def draw_case(seed, index, T, base):
@@ -743,6 +782,9 @@ def check_run(case, run, T, before):
                     v.append(("b: exit 0 with positive energy (y = 0 is admissible)", "energy %.4g, unconstrained %r" % (e, eu)))
                 elif finite(eu) and e < eu - 1e-8 * abs(eu) - 1e-300:
                     v.append(("b: exit 0 with energy below the unconstrained minimum", "energy %.10g < %.10g" % (e, eu)))
+    if run.must_converge and rc != 0 and not v:
+        last = [l for l in error_message(out).splitlines() if l.strip()]
+        v.append(("b: a well-posed problem not solved", "exit %d: %s" % (rc, (last[0] if last else "")[:150])))
     # (c) a failure names an option or a file
     if rc != 0 and not v:  # a crash or a hang is reported as such
         files = run.inputs + [a for a in run.args if "/" in a or a.endswith((".h5", ".opts", ".msh"))]
@@ -787,6 +829,7 @@ def execute(run, T, timeout):
     t0 = time.time()
     p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True,
                          preexec_fn=_limits)
+    ACTIVE.add(p)
     timed_out = False
     try:
         out, _ = p.communicate(timeout=timeout)
@@ -797,6 +840,7 @@ def execute(run, T, timeout):
         except ProcessLookupError:
             pass
         out, _ = p.communicate()
+    ACTIVE.discard(p)
     return {"rc": p.returncode, "out": out.decode("utf-8", errors="replace"), "timeout": timed_out, "limit": timeout,
             "seconds": time.time() - t0}
 
@@ -939,7 +983,10 @@ def main():
         sys.exit("fuzz.py: bin/signorini is missing: run make all")
     t0 = time.time()
     listing = repo_listing()
+    signal.signal(signal.SIGINT, _stop)
+    signal.signal(signal.SIGTERM, _stop)
     master = tempfile.mkdtemp(prefix="fuzz-base-")
+    TMPDIRS.add(master)
     base = make_checkpoints(master)
     indices = opt.case if opt.case else list(range(opt.count))
     cases, lock = [], threading.Lock()
@@ -949,6 +996,7 @@ def main():
         if time.time() - start > opt.time_limit:
             return None
         T = tempfile.mkdtemp(prefix="fuzz-%d-" % i)
+        TMPDIRS.add(T)
         try:
             case = draw_case(opt.seed, i, T, base)
             run_case(case, T, opt, random.Random("files:%d:%d" % (opt.seed, i)))
@@ -957,6 +1005,7 @@ def main():
                 print("case %d: kept in %s" % (i, T), flush=True)
             else:
                 shutil.rmtree(T, ignore_errors=True)
+            TMPDIRS.discard(T)
         with lock:
             cases.append(case)
         return case
