@@ -109,6 +109,7 @@ class Run:
         self.checkpoint = checkpoint  # a -checkpoint_file in the case directory
         self.result = None
         self.must_converge = False  # a well-posed problem: anything but exit 0 is a failure
+        self.exact = not any(a in ("-ksp_rtol", "-ksp_type", "-pc_type") or "hypre" in a or "mumps_reuse" in a for a in self.args)
 
 
 class Case:
@@ -285,11 +286,12 @@ def gen_options(rng, T, base):
     runs = [Run(args, np_, tol, y0, tail=tail, checkpoint=os.path.join(T, "ck.h5") if "-checkpoint_file" in args else None)]
     desc = "options %s" % ct
     twin = False
-    if k and not weird and not tail and rng.random() < 0.5:
+    dimensional = ("-contact_gamma", "-alm_gamma", "-pf_gamma1", "-ipf_gamma1", "-contact_lamhat", "-pdas_c", "-cont_gamma_max")
+    if k and not weird and not tail and not any(a in dimensional for a in args) and rng.random() < 0.5:
         # the same problem in other units: E, loads and the gamma parameters x 10^k; the verdict must not change
         twin = True
         scaled = list(args)
-        if gammaopt and gscale != 1:
+        if gammaopt:
             defaults = {"none": 1e10, "alm": 1e3, "pf": 1e2, "ipf": 1e2}
             scaled += [gammaopt, num(defaults[ct] * gscale)]
         unscaled = [a for a in args]
@@ -780,7 +782,7 @@ def check_run(case, run, T, before):
                 scale = abs(eu) if finite(eu) else abs(e)
                 if e > 1e-8 * scale + 1e-300:
                     v.append(("b: exit 0 with positive energy (y = 0 is admissible)", "energy %.4g, unconstrained %r" % (e, eu)))
-                elif finite(eu) and e < eu - 1e-8 * abs(eu) - 1e-300:
+                elif finite(eu) and run.exact and e < eu - 1e-8 * abs(eu) - 1e-300:  # an inexact unconstrained solve is no bound
                     v.append(("b: exit 0 with energy below the unconstrained minimum", "energy %.10g < %.10g" % (e, eu)))
     if run.must_converge and rc != 0 and not v:
         last = [l for l in error_message(out).splitlines() if l.strip()]
