@@ -109,6 +109,7 @@ class Run:
         self.checkpoint = checkpoint  # a -checkpoint_file in the case directory
         self.result = None
         self.must_converge = False  # a well-posed problem: anything but exit 0 is a failure
+        self.contact = False  # contact was asked for: an exit 0 without contact has dropped it silently
         self.exact = not any(a in ("-ksp_rtol", "-ksp_type", "-pc_type") or "hypre" in a or "mumps_reuse" in a for a in self.args)
 
 
@@ -284,6 +285,7 @@ def gen_options(rng, T, base):
     args += weird
     tol = options_in(args, "-cont_kkt_tol", str(DEFAULT_KKT_TOL))
     runs = [Run(args, np_, tol, y0, tail=tail, checkpoint=os.path.join(T, "ck.h5") if "-checkpoint_file" in args else None)]
+    runs[0].contact = True
     desc = "options %s" % ct
     twin = False
     dimensional = ("-contact_gamma", "-alm_gamma", "-pf_gamma1", "-ipf_gamma1", "-contact_lamhat", "-pdas_c", "-cont_gamma_max")
@@ -304,6 +306,8 @@ def gen_options(rng, T, base):
         undo(unscaled, "-neumann_traction", 10 ** k)
         undo(unscaled, "-body_force", 10 ** k)
         runs = [Run(scaled, np_, tol, y0, checkpoint=runs[0].checkpoint), Run(unscaled, np_, tol, y0, checkpoint=runs[0].checkpoint)]
+        for r in runs:
+            r.contact = True
         desc += " scaled 10^%d" % k
     return desc, runs, twin
 
@@ -325,7 +329,7 @@ def gen_wellposed(rng, T, base):
     args += ["-E", num(5000 * 10 ** k), "-nu", num(rng.choice([0.4, 0.3, 0.0, rng.uniform(0, 0.49)])),
              "-neumann_traction", "0,%s" % num(-load * 10 ** k), "-obstacle_parabola_a", num(a), "-obstacle_parabola_offset", num(off)]
     run = Run(args, 2 if rng.random() < 0.08 else 1, str(DEFAULT_KKT_TOL), True)
-    run.must_converge = True
+    run.must_converge = run.contact = True
     return "wellposed %s load %.3g offset %g" % (ct, load, off), [run], False
 
 
@@ -417,7 +421,9 @@ def gen_optfile(rng, T, base):
         f.write(data)
     args = ["-options_file", path]
     tol = options_in(args, "-cont_kkt_tol", str(DEFAULT_KKT_TOL))
-    return "optfile %s: %s" % (ct, ",".join(done)), [Run(args, 1, tol, None, inputs=[path])], False
+    run = Run(args, 1, tol, None, inputs=[path])
+    run.contact = re.search(rb"^-contact_(ids|label)\b", data, re.M) is not None
+    return "optfile %s: %s" % (ct, ",".join(done)), [run], False
 
 
 # ---------------------------------------------------------------- generator 3: mutations of a gmsh mesh
@@ -517,7 +523,9 @@ def gen_mesh(rng, T, base):
     if ct != "elasticity":
         args += ["-obstacle_type", "parabola", "-options_file", "options/cont/%s.opts" % ct]
     y0 = set(done) <= {"none", "no_dirichlet", "format", "names", "garbage"}  # no vertex moved: y = 0 stays admissible
-    return "mesh %s: %s" % (ct, ",".join(done)), [Run(args, 1, str(DEFAULT_KKT_TOL), y0, inputs=[path])], False
+    run = Run(args, 1, str(DEFAULT_KKT_TOL), y0, inputs=[path])
+    run.contact = ct != "elasticity"
+    return "mesh %s: %s" % (ct, ",".join(done)), [run], False
 
 
 # ---------------------------------------------------------------- generator 4: mutations of a checkpoint
@@ -640,7 +648,9 @@ def gen_checkpoint(rng, T, base):
         ck = path if rng.random() < 0.5 else os.path.join(T, "ck2.h5")
         args += ["-checkpoint_file", ck]
     np_ = 2 if rng.random() < 0.1 else 1
-    return "checkpoint %s->%s: %s" % (ct, run_ct, done), [Run(args, np_, str(DEFAULT_KKT_TOL), True, inputs=[path], checkpoint=ck)], False
+    run = Run(args, np_, str(DEFAULT_KKT_TOL), True, inputs=[path], checkpoint=ck)
+    run.contact = True
+    return "checkpoint %s->%s: %s" % (ct, run_ct, done), [run], False
 
 
 GENERATORS = [("options", gen_options, 0.35), ("wellposed", gen_wellposed, 0.1), ("optfile", gen_optfile, 0.2), ("mesh", gen_mesh, 0.2), ("checkpoint", gen_checkpoint, 0.15)]
@@ -774,6 +784,8 @@ def check_run(case, run, T, before):
                 r = s["kkt_residual"]
                 if not (finite(r) and r <= tol):
                     v.append(("b: exit 0 with KKT residual above -cont_kkt_tol", "%s: kkt_residual %r > -cont_kkt_tol %g (%s)" % (s.get("cont_type"), r, tol, str(s.get("reason"))[:60])))
+            if run.contact and "kkt_residual" not in s and s.get("problem") in (None, "elasticity"):
+                v.append(("b: exit 0 with contact silently dropped", "the run asked for contact, the summary has none (%s)" % s.get("reason")))
             bad = [k for k in ("energy", "kkt_residual", "displacement_norm", "residual") if k in s and not finite(s[k])]
             bad += [k for k in ("outer_iterations", "ssn_iterations", "ksp_iterations") if k in s and not (finite(s[k]) and s[k] >= 0)]
             if s.get("cont_type") in ("none", "alm", "pf", "ipf"):  # pdas and vi have no gamma (null)
@@ -789,13 +801,13 @@ def check_run(case, run, T, before):
                     v.append(("b: exit 0 with energy below the unconstrained minimum", "energy %.10g < %.10g" % (e, eu)))
     if run.must_converge and rc != 0 and not v:
         last = [l for l in error_message(out).splitlines() if l.strip()]
-        v.append(("b: a well-posed problem not solved", "exit %d: %s" % (rc, (last[0] if last else "")[:150])))
+        v.append(("b: a well-posed problem not solved", "exit %d: %s" % (rc, " / ".join(last[:2])[:150])))
     # (c) a failure names an option or a file
     if rc != 0 and not v:  # a crash or a hang is reported as such
         files = run.inputs + [a for a in run.args if "/" in a or a.endswith((".h5", ".opts", ".msh"))]
         if not names_option_or_file(error_message(out), files):
             last = [l for l in error_message(out).splitlines() if l.strip()]
-            v.append(("c: failure names no option or file", "exit %d: %s" % (rc, (last[0] if last else "(no message)")[:150])))
+            v.append(("c: failure names no option or file", "exit %d: %s" % (rc, (" / ".join(last[:2]) if last else "(no message)")[:150])))
     # (d) files
     now = set()
     for dp, dn, fn in os.walk(T):
@@ -914,6 +926,7 @@ def self_test():
         ("b: residual of P is not the KKT residual", 0, "", dict(GOOD, problem="P", residual=1e-12, residual_tol=1e-10), {"r.h5": "h5", "r.xmf": "xmf"}, {}, False),
         ("b: exit 0 with nonsense", 0, "", dict(GOOD, outer_iterations=-4), {"r.h5": "h5", "r.xmf": "xmf"}, {}, False),
         ("b: exit 0 with positive energy", 0, "", dict(GOOD, energy=3.9e15, energy_unconstrained=3.9e15), {"r.h5": "h5", "r.xmf": "xmf"}, {}, False),
+        ("b: exit 0 with contact silently dropped", 0, "", {"converged": True, "energy": -1.0, "reason": "LINEAR_SOLVE"}, {"r.h5": "h5", "r.xmf": "xmf"}, {}, False),
         ("c: failure names no option", 63, PETSC_ERR % "Input string abc has no numeric value", None, {}, {}, False),
         ("c: failure names no option", 3, "ipf: FAILED. STALLED: no progress for 10 outer steps", dict(GOOD, converged=False), {}, {}, False),
         ("d: .part file left", 3, "-cont_max_it", dict(GOOD, converged=False), {"r.h5.part": b"x"}, {}, False),
@@ -946,6 +959,7 @@ def self_test():
                 with open(os.path.join(T, "r.json"), "w") as f:
                     json.dump(summ, f)
             run = Run(["-dm_plex_filename", os.path.join(T, "m.msh")], kkt_tol="1e-10", y0_admissible=True, inputs=[os.path.join(T, "m.msh")])
+            run.contact = True
             run.result = {"rc": rc, "out": out.replace("$T", T), "timeout": timeout, "limit": 30, "seconds": 0}
             got = [c for c, d in check_run(None, run, T, before)[0]]
         finally:
