@@ -24,7 +24,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
 
 # Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
-TARGETS = all run test check-memory table1 reproduce figures meshes bench
+TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench
 
 .PHONY: $(TARGETS) deps clean
 
@@ -54,9 +54,16 @@ meshes:
 
 # The 2D tests (and the unit tests) under valgrind memcheck: no errors, no definite leaks (tests/valgrind.supp holds
 # OpenMPI's own start-up leaks). The 3D, parallel-heavy and long regression runs are left out.
-MEMCHECK_EXCLUDE = 3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_
+MEMCHECK_EXCLUDE = 3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_|fuzz
 check-memory: all
 	$(PYTHON) tests/harness.py --valgrind -x '$(MEMCHECK_EXCLUDE)' tests/*.ini
+
+# Randomized robustness test, the larger set (make test runs 200 cases of it): FUZZ_SEED, FUZZ_COUNT, FUZZ_TIME override
+FUZZ_SEED  ?= 1
+FUZZ_COUNT ?= 2000
+FUZZ_TIME  ?= 1800
+fuzz: all
+	$(PYTHON) tests/fuzz.py --count $(FUZZ_COUNT) --seed $(FUZZ_SEED) --time-limit $(FUZZ_TIME)
 
 # The paper's tables side by side with ours (results/*.md) and its figures (results/fig*.png)
 table1: all
