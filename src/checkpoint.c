@@ -412,9 +412,12 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   {
     const char *what = NULL;
     PetscInt    val  = 0;
-    if (ints[2] < 1) what = "outer", val = ints[2];
-    else if (ints[3] < 0) what = "ssn_iterations", val = ints[3];
-    else if (ints[4] < 0) what = "ksp_iterations", val = ints[4];
+    /* above a quarter of PetscInt's range a count is damage (HDF5 saturates larger stored values), and adding the
+       resumed run's iterations would overflow */
+    const PetscInt big = PETSC_MAX_INT / 4;
+    if (ints[2] < 1 || ints[2] > big) what = "outer", val = ints[2];
+    else if (ints[3] < 0 || ints[3] > big) what = "ssn_iterations", val = ints[3];
+    else if (ints[4] < 0 || ints[4] > big) what = "ksp_iterations", val = ints[4];
     else if (ints[5] < 0 || ints[5] > ints[2]) what = "best_step", val = ints[5];
     if (what) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
     PetscCheck(!what, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);

@@ -62,6 +62,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(VecRestoreArray(xl, &la));
   PetscCall(VecRestoreArray(xu, &ua));
   PetscCall(SNESCreate(ct->comm, &vi->snes));
+  PetscCall(SgCheckSolverTypes(ct->comm, "vi_"));
   PetscCall(SNESSetOptionsPrefix(vi->snes, "vi_"));
   PetscCall(SNESSetType(vi->snes, SNESVINEWTONRSLS));
   {

@@ -136,10 +136,10 @@ static PetscErrorCode ProblemOptions(SgProblem p)
   p->nbody_force = 0;
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-body_force", "Constant body force f (dim numbers)", 3, p->body_force, &p->nbody_force, NULL));
   p->use_nearnull = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-elasticity_near_null_space", "Attach the rigid-body modes to the stiffness as near null space (used by GAMG; hypre's use of them crashes in Debian's build)", NULL, p->use_nearnull, &p->use_nearnull, NULL));
-  PetscCall(PetscOptionsBool("-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", NULL, p->mms, &p->mms, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-elasticity_near_null_space", "Attach the rigid-body modes to the stiffness as near null space (used by GAMG; hypre's use of them crashes in Debian's build)", &p->use_nearnull, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", &p->mms, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-elasticity_rigid_shift", "Accept a body whose Dirichlet part leaves rigid motions free: add eps E/L^2 M to K (M lumped volumes, L the mesh diameter); 0: no shift, singular K", &p->rigid_shift, &p->rigid_shift_set));
-  PetscCall(PetscOptionsBool("-elasticity_energy_check", "Debug: print the energy beside a long double evaluation and the former y^T K y formula", NULL, p->energy_check, &p->energy_check, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-elasticity_energy_check", "Debug: print the energy beside a long double evaluation and the former y^T K y formula", &p->energy_check, NULL));
   PetscOptionsEnd();
   p->dirichlet.what = "dirichlet";
   p->neumann.what   = "neumann";

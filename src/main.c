@@ -91,12 +91,14 @@ static int FollowOptionsFile(IncludeStack *st, const char *given)
   if (!realpath(fname, real)) return 0; /* a missing file is PETSc's to report */
   for (int i = 0; i < st->n; i++)
     if (!strcmp(st->path[i], real)) {
+      fprintf(stderr, "[0]PETSC ERROR: --------------------- Error Message --------------------------------------------------------------\n");
       fprintf(stderr, "[0]PETSC ERROR: -options_file: '%s' includes itself:", given);
       for (int j = i; j < st->n; j++) fprintf(stderr, " %s ->", st->given[j]);
       fprintf(stderr, " %s\n[0]PETSC ERROR: (PETSc would follow the cycle until it crashes; remove one of these -options_file lines)\n", given);
       return 1;
     }
   if (st->n == SG_INCLUDE_DEPTH) {
+    fprintf(stderr, "[0]PETSC ERROR: --------------------- Error Message --------------------------------------------------------------\n");
     fprintf(stderr, "[0]PETSC ERROR: -options_file: more than %d nested options files (at '%s')\n", SG_INCLUDE_DEPTH, given);
     return 1;
   }

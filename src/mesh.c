@@ -107,6 +107,41 @@ PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const ch
   PetscFunctionReturn(0);
 }
 
+/* A logical -opt as PETSc reads it (alone: true; true/false, yes/no, on/off, 1/0 in any case), but a bad value is
+   reported with the option's name (PETSc says only "Unknown logical value"). */
+PetscErrorCode SgOptionsBoolValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool *val, PetscBool *set)
+{
+  static const char *const yes[] = {"", "true", "yes", "on", "1"}, *const no[] = {"false", "no", "off", "0"};
+  char      str[256];
+  PetscBool flg, match;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsString(opt, text, NULL, *val ? "true" : "false", str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) {
+    /* PetscOptionsString reports a bare option as not set: look for the name itself */
+    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &flg));
+    if (set) *set = flg;
+    if (flg) *val = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  for (size_t k = 0; k < sizeof(yes) / sizeof(yes[0]); k++) {
+    PetscCall(PetscStrcasecmp(str, yes[k], &match));
+    if (match) {
+      *val = PETSC_TRUE;
+      PetscFunctionReturn(0);
+    }
+  }
+  for (size_t k = 0; k < sizeof(no) / sizeof(no[0]); k++) {
+    PetscCall(PetscStrcasecmp(str, no[k], &match));
+    if (match) {
+      *val = PETSC_FALSE;
+      PetscFunctionReturn(0);
+    }
+  }
+  SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': not a logical value (true or false, yes or no, on or off, 1 or 0)", opt, str);
+}
+
 /* A single integer -opt (see SgOptionsIntList). */
 PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *val, PetscBool *set)
 {

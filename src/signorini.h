@@ -46,6 +46,7 @@ PetscErrorCode SgOptionsIntList(PetscOptionItems *, const char[], const char[], 
 PetscErrorCode SgOptionsRealList(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscInt *, PetscBool *);
 PetscErrorCode SgOptionsRealValue(PetscOptionItems *, const char[], const char[], PetscReal *, PetscBool *);
 PetscErrorCode SgOptionsIntValue(PetscOptionItems *, const char[], const char[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsBoolValue(PetscOptionItems *, const char[], const char[], PetscBool *, PetscBool *);
 PetscErrorCode SgMeshCreateDM(MPI_Comm, DM *);
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
 PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
@@ -247,6 +248,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *, KSPConvergedReason *);
 PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
+PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 
 /* ------------------------------------------------------------------ condense.c */
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);

@@ -224,6 +224,52 @@ static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx
   PetscFunctionReturn(0);
 }
 
+/* -<prefix>snes_type, -<prefix>ksp_type and -<prefix>pc_type name a registered method: checked before SetFromOptions,
+   whose own message ("Unable to find requested KSP type ...") names neither the option nor a file. */
+static PetscErrorCode TryType(MPI_Comm comm, PetscInt which, const char type[], PetscErrorCode *ierr)
+{
+  SNES snes = NULL;
+  KSP  ksp  = NULL;
+  PC   pc   = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  if (which == 0) {
+    *ierr = SNESCreate(comm, &snes);
+    if (!*ierr) *ierr = SNESSetType(snes, type);
+  } else if (which == 1) {
+    *ierr = KSPCreate(comm, &ksp);
+    if (!*ierr) *ierr = KSPSetType(ksp, type);
+  } else {
+    *ierr = PCCreate(comm, &pc);
+    if (!*ierr) *ierr = PCSetType(pc, type);
+  }
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(PCDestroy(&pc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckSolverTypes(MPI_Comm comm, const char prefix[])
+{
+  const char *what[3] = {"snes_type", "ksp_type", "pc_type"}, *kind[3] = {"nonlinear solver (SNES)", "Krylov method (KSP)", "preconditioner (PC)"};
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < 3; k++) {
+    char           name[64], type[256];
+    PetscBool      set;
+    PetscErrorCode ierr = 0;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%s%s", prefix ? prefix : "", what[k]));
+    PetscCall(PetscOptionsGetString(NULL, NULL, name, type, sizeof(type), &set));
+    if (!set) continue;
+    PetscCheck(type[0], comm, PETSC_ERR_USER_INPUT, "%s is given without a value", name);
+    PetscCall(TryType(comm, k, type, &ierr));
+    PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT, "%s '%s': no such %s in this PETSc (see -help for the list)", name, type, kind[k]);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
 {
   SgSSN          s;
@@ -254,10 +300,11 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   PetscCall(SNESGetKSP(s->snes, &ksp));
   PetscCall(KSPSetOperators(ksp, s->J, s->J));
   PetscOptionsBegin(p->comm, NULL, "Semismooth Newton (active set) solver", NULL);
-  PetscCall(PetscOptionsBool("-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", NULL, s->monitor, &s->monitor, NULL));
-  PetscCall(PetscOptionsBool("-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", NULL, condense, &condense, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
+  PetscCall(SgCheckSolverTypes(p->comm, NULL));
   PetscCall(SNESSetFromOptions(s->snes));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   {

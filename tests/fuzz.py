@@ -328,6 +328,11 @@ def gen_wellposed(rng, T, base):
         args += ["-options_file", "options/solver/mumps_reuse.opts"]
     args += ["-E", num(5000 * 10 ** k), "-nu", num(rng.choice([0.4, 0.3, 0.0, rng.uniform(0, 0.49)])),
              "-neumann_traction", "0,%s" % num(-load * 10 ** k), "-obstacle_parabola_a", num(a), "-obstacle_parabola_offset", num(off)]
+    if ct == "alm":
+        # gamma is dimensional (a pressure per length): it scales with E. With gamma fixed, ALM contracts the multiplier
+        # error by 1/(1 + gamma mu) per step (mu ~ h/E), so no step count bounds it: the growing variant is the one
+        # that must converge
+        args += ["-alm_gamma", num(1e3 * 10 ** k), "-alm_gamma_factor", "10"]
     run = Run(args, 2 if rng.random() < 0.08 else 1, str(DEFAULT_KKT_TOL), True)
     run.must_converge = run.contact = True
     return "wellposed %s load %.3g offset %g" % (ct, load, off), [run], False
