@@ -419,6 +419,8 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
 
   PetscFunctionBeginUser;
   PetscCall(CheckMeshFile(comm, fname));
+  /* PETSc's gmsh reader trusts the file (a bad node tag is a segmentation fault): check its structure first */
+  PetscCall(SgGmshCheckFile(comm, fname));
   /* PETSc's gmsh reader keeps only the first dim coordinates unless told the space dimension; an explicit
      -dm_plex_gmsh_spacedim from the user is left alone */
   PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_spacedim", &userdim));

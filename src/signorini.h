@@ -55,6 +55,7 @@ PetscErrorCode SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode SgMeshDestroy(SgMesh *);
 PetscErrorCode SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
 PetscErrorCode SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
+PetscErrorCode SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
 
 /* ------------------------------------------------------------------ elasticity.c */
 typedef struct _n_SgProblem *SgProblem;
