@@ -77,7 +77,13 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &vi->J));
   PetscCall(SNESSetJacobian(vi->snes, vi->J, vi->J, Jacobian_VI, p));
   PetscCall(SNESVISetVariableBounds(vi->snes, xl, xu));
-  PetscCall(SNESSetFromOptions(vi->snes));
+  {
+    PetscErrorCode ierr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SNESSetFromOptions(vi->snes);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(SgSolverConfigured(ct->comm, ierr));
+  }
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));

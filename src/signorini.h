@@ -250,6 +250,7 @@ PetscErrorCode SgSSNSolveLinear(SgSSN, Vec, PetscInt *, KSPConvergedReason *);
 PetscErrorCode SgSSNActiveSetHash(SgSSN, const char[], PetscInt64 *);
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
+PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 
 /* ------------------------------------------------------------------ condense.c */
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);

@@ -251,6 +251,21 @@ static PetscErrorCode TryType(MPI_Comm comm, PetscInt which, const char type[], 
   PetscFunctionReturn(0);
 }
 
+/* ierr of a solver configuration step run under PetscReturnErrorHandler (SetFromOptions, the first set-up): a
+   combination that cannot work (a factorization package without that factorization, an unknown
+   -pc_factor_mat_solver_type) is reported naming the options to look at, with PETSc's message. */
+PetscErrorCode SgSolverConfigured(MPI_Comm comm, PetscErrorCode ierr)
+{
+  int   bad = ierr ? 1 : 0;
+  char *msg = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
+  if (ierr) PetscErrorMessage(ierr, NULL, &msg);
+  PetscCheck(!bad, comm, PETSC_ERR_USER_INPUT, "the solver options do not fit together (-ksp_type, -pc_type, -pc_factor_mat_solver_type, -snes_*): %s", msg ? msg : "(see the message of another rank)");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgCheckSolverTypes(MPI_Comm comm, const char prefix[])
 {
   const char *what[3] = {"snes_type", "ksp_type", "pc_type"}, *kind[3] = {"nonlinear solver (SNES)", "Krylov method (KSP)", "preconditioner (PC)"};
@@ -266,6 +281,18 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm comm, const char prefix[])
     PetscCheck(type[0], comm, PETSC_ERR_USER_INPUT, "%s is given without a value", name);
     PetscCall(TryType(comm, k, type, &ierr));
     PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT, "%s '%s': no such %s in this PETSc (see -help for the list)", name, type, kind[k]);
+  }
+  {
+    char      name[64], type[256];
+    PetscBool set, found = PETSC_FALSE, foundm = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%spc_factor_mat_solver_type", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetString(NULL, NULL, name, type, sizeof(type), &set));
+    if (set) {
+      PetscCheck(type[0], comm, PETSC_ERR_USER_INPUT, "%s is given without a value", name);
+      /* a package registered for any matrix type and factorization (which combination fits is decided at set-up) */
+      for (PetscInt f = MAT_FACTOR_LU; f <= MAT_FACTOR_QR && !found; f++) PetscCall(MatSolverTypeGet(type, MATSEQAIJ, (MatFactorType)f, &found, &foundm, NULL));
+      PetscCheck(found, comm, PETSC_ERR_USER_INPUT, "%s '%s': no such factorization package in this PETSc (e.g. mumps, petsc, superlu, superlu_dist)", name, type);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -305,7 +332,13 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(p->comm, NULL));
-  PetscCall(SNESSetFromOptions(s->snes));
+  {
+    PetscErrorCode ierr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SNESSetFromOptions(s->snes);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(SgSolverConfigured(p->comm, ierr));
+  }
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   {
     PetscBool preonly;
@@ -339,6 +372,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
 PetscErrorCode SgSSNSolveLinear(SgSSN s, Vec y, PetscInt *its, KSPConvergedReason *kr)
 {
   KSP                ksp;
+  PetscErrorCode     ierr;
 
   PetscLogDouble     t0, t1, t2;
 
@@ -348,7 +382,11 @@ PetscErrorCode SgSSNSolveLinear(SgSSN s, Vec y, PetscInt *its, KSPConvergedReaso
   PetscCall(MatCopy(s->prob->K, s->J, SAME_NONZERO_PATTERN));
   PetscCall(KSPSetOperators(ksp, s->J, s->J));
   PetscCall(PetscTime(&t0));
-  PetscCall(KSPSetUp(ksp));
+  /* the first set-up of the linear solver is where some configurations that cannot work fail */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetUp(ksp);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(SgSolverConfigured(s->prob->comm, ierr));
   PetscCall(PetscTime(&t1));
   PetscCall(KSPSolve(ksp, s->prob->b, y));
   PetscCall(PetscTime(&t2));

@@ -333,6 +333,8 @@ def gen_wellposed(rng, T, base):
         # error by 1/(1 + gamma mu) per step (mu ~ h/E), so no step count bounds it: the growing variant is the one
         # that must converge
         args += ["-alm_gamma", num(1e3 * 10 ** k), "-alm_gamma_factor", "10"]
+    elif ct == "none":  # one (P_gamma) at none.opts' gamma in units of E: relative to E it is the same problem
+        args += ["-contact_gamma", num(1e10 * 10 ** k)]
     run = Run(args, 2 if rng.random() < 0.08 else 1, str(DEFAULT_KKT_TOL), True)
     run.must_converge = run.contact = True
     return "wellposed %s load %.3g offset %g" % (ct, load, off), [run], False
