@@ -126,6 +126,19 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
     *ok = PETSC_FALSE;
     PetscCall(SgContFail(ct, "MAX_IT: the checkpoint of -restart_file is at outer step %" PetscInt_FMT " >= -cont_max_it %" PetscInt_FMT ": no step taken", ct->outer, ct->max_outer));
   }
+  if (ct->restarted && *ok) {
+    /* V(0) belongs to the problem, not to the file: recomputed, so that a damaged value cannot bend the path model
+       (one linear solve, not counted: the counters continue the checkpoint's) */
+    Vec y0;
+    PetscCall(VecDuplicate(ct->y, &y0));
+    PetscCall(SgSSNSolveLinear(ct->ssn, y0, &its, &kr));
+    if (kr >= 0) PetscCall(SgProblemEnergy(ct->prob, y0, &ct->V0));
+    PetscCall(VecDestroy(&y0));
+    if (kr < 0) {
+      *ok = PETSC_FALSE;
+      PetscCall(SgContFail(ct, "LINEAR_SOLVE_FAILED: the elasticity solve without contact stopped with KSP %s after %" PetscInt_FMT " iterations (check -ksp_type, -pc_type)", KSPConvergedReasons[kr], its));
+    }
+  }
   if (ct->restarted) PetscFunctionReturn(0);
   PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
   ct->ksp_its += its;
