@@ -2,6 +2,7 @@
 #include "signorini.h"
 #include <petscviewerhdf5.h>
 #include <errno.h>
+#include <pthread.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -66,17 +67,26 @@ void SgFileCleanup(void)
     }
 }
 
-static struct sigaction OldAction[2];
-static const int        CaughtSignals[2] = {SIGINT, SIGTERM};
+static struct sigaction    OldAction[2];
+static const int           CaughtSignals[2] = {SIGINT, SIGTERM};
+static volatile sig_atomic_t Dying            = 0;
 
 /* SIGINT, SIGTERM: remove the ".part" files, then let the handler that was there before (PETSc's, or the default)
-   end the process as it would have. */
+   end the process as it would have. The signal may run on another thread (MPI's progress threads) while the main
+   thread goes on: Dying stops it from starting a new ".part" file, and the signal is unblocked before it is raised
+   again, so that the process ends at once. */
 static void SignalCleanup(int sig)
 {
+  sigset_t set;
+
+  Dying = 1;
   SgFileCleanup();
   for (int i = 0; i < 2; i++)
     if (CaughtSignals[i] == sig) {
       (void)sigaction(sig, &OldAction[i], NULL);
+      (void)sigemptyset(&set);
+      (void)sigaddset(&set, sig);
+      (void)pthread_sigmask(SIG_UNBLOCK, &set, NULL);
       (void)raise(sig);
     }
 }
@@ -134,6 +144,7 @@ PetscErrorCode SgFileBegin(const char name[])
   FileResolve(name, &path, &direct);
   if (direct) PetscFunctionReturn(0);
   PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
+  while (Dying) pause(); /* a signal is ending the process: start no new file */
   PendingAdd(tmp);
   PetscFunctionReturn(0);
 }
