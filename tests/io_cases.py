@@ -16,6 +16,7 @@ import re
 import shutil
 import signal
 import subprocess
+import time
 import tempfile
 
 import h5py
@@ -262,7 +263,13 @@ def group_diskfull(c):
         args = ["-options_file", "tests/opts/ex1_coarse.opts", "-options_file", "options/cont/ipf.opts", "-box_faces", "120,40",
                 "-output_file", os.path.join(d, "r.h5"), "-checkpoint_file", os.path.join(d, "ck.h5"), "-summary_file", os.path.join(d, "s.json"), "-history_file", os.path.join(d, "h.csv")]
         left, killed = [], 0
-        for delay in (0.3, 0.6, 0.9, 1.2, 1.5, 2.0):
+        # kill at fractions of an undisturbed run's duration, so that the kills land mid-run on any machine speed
+        t0 = time.time()
+        subprocess.run([os.path.join(ROOT, "bin", "signorini")] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        full = time.time() - t0
+        for f in os.listdir(d):
+            os.remove(os.path.join(d, f))
+        for delay in [full * x for x in (0.1, 0.25, 0.4, 0.55, 0.7, 0.85)]:
             p = subprocess.Popen([os.path.join(ROOT, "bin", "signorini")] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
             try:
                 p.wait(timeout=delay)
