@@ -15,12 +15,12 @@ export OPENBLAS_NUM_THREADS = 1
 
 CC     := mpicc
 CFLAGS ?= -O2 -g
-CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP $(PETSC_CC_INCLUDES)
+CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP -Isrc $(PETSC_CC_INCLUDES)
 LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh
-SRC    := $(wildcard src/*.c)
-LIBOBJ := $(patsubst src/%.c,build/%.o,$(filter-out src/main.c,$(SRC)))
+SRC    := $(wildcard src/*/*.c)
+LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
 # Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
@@ -94,11 +94,15 @@ meshes/ex2_coarse.msh: meshes/ex2.geo
 meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 
-build/%.o: src/%.c | build
+build/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+build/app/%.o: app/%.c
+	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 build/unit_tests.o: tests/unit_tests.c | build
-	$(CC) $(CFLAGS) -Isrc -c $< -o $@
-bin/signorini: build/main.o $(LIBOBJ) | bin
+	$(CC) $(CFLAGS) -c $< -o $@
+bin/signorini: build/app/signorini.o $(LIBOBJ) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
 bin/unit_tests: build/unit_tests.o $(LIBOBJ) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
@@ -108,4 +112,4 @@ build bin:
 clean:
 	rm -rf build bin tests/output
 
--include $(wildcard build/*.d)
+-include $(wildcard build/*.d build/*/*.d)
