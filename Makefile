@@ -15,7 +15,7 @@ export OPENBLAS_NUM_THREADS = 1
 
 CC     := mpicc
 CFLAGS ?= -O2 -g
-CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP -Isrc $(PETSC_CC_INCLUDES)
+CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP -Iinclude -Isrc $(PETSC_CC_INCLUDES)
 LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh
@@ -113,3 +113,7 @@ clean:
 	rm -rf build bin tests/output
 
 -include $(wildcard build/*.d build/*/*.d)
+
+# the compiler flags for PETSc's headers (tests/check_layers.py compiles the public header alone with them)
+print-cflags:
+	@echo $(PETSC_CC_INCLUDES)

@@ -24,6 +24,22 @@ typedef struct _n_SgCont    *SgCont;
 /* Registers the log events, obstacle and controller types; called by the Create functions (PetscFinalize undoes it). */
 PetscErrorCode SgInitializePackage(void);
 
+/* Option readers for a driver's own options, between PetscOptionsBegin and PetscOptionsEnd: an empty, malformed or
+   out-of-range value is an error naming the option with its prefix (PETSc 3.18's own readers take an empty value as
+   "not set"). Lists are comma-separated, at most the given number of entries. */
+PetscErrorCode SgOptionsIntList(PetscOptionItems *, const char[], const char[], PetscInt, PetscInt[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsRealList(PetscOptionItems *, const char[], const char[], PetscInt, PetscReal[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsRealValue(PetscOptionItems *, const char[], const char[], PetscReal *, PetscBool *);
+PetscErrorCode SgOptionsIntValue(PetscOptionItems *, const char[], const char[], PetscInt *, PetscBool *);
+PetscErrorCode SgOptionsBoolValue(PetscOptionItems *, const char[], const char[], PetscBool *, PetscBool *);
+PetscErrorCode SgOptionsName(const char[], const char[], char[], size_t);
+
+/* Safe result files: a result is written to <name>.part and renamed when complete; these refuse, before any work, a
+   location that cannot be written or is one of the run's inputs, and remove unfinished files on a fatal signal. */
+PetscErrorCode SgFileCheckWritable(MPI_Comm, const char[], const char[]); /* option name (for messages), file name */
+PetscErrorCode SgFileCheckInput(MPI_Comm, const char[], const char[]);
+PetscErrorCode SgFileInstallCleanup(void);
+
 /* ---- SgProblem */
 typedef enum {
   SG_BOUNDARY_DIRICHLET, /* values: dim displacements per id */

@@ -360,7 +360,7 @@ def group_checkpoint(c):
         ("y_nan", setdata("displacement", 5, float("nan")), r"a displacement is nan"),
         ("y_inf", setdata("displacement", 5, float("inf")), r"a displacement is inf"),
         ("coordinate_nan", setdata("coordinates", 0, float("nan")), r"a vertex coordinate is nan"),
-        ("state_nan", setdata("reals", 3, float("nan")), r"the controller state is nan"),
+        ("state_nan", setdata("state", 0, float("nan")), r"the controller state J_previous is nan"),
         ("path_gamma_zero", setdata("gammas", 0, 0.0), r"a gamma of the path \(must be positive\) is 0"),
         ("history_kind", setdata("history", 0, 7.0), r"a history row kind is 7"),
         ("dataset_missing", lambda g: g.__delitem__("lamhat"), r"cannot read the dataset lamhat"),

@@ -1,6 +1,6 @@
 /* cont_alm.c: first-order augmented Lagrangian method (ALM): solve (P_gamma) with lamhat = lam^l by SSN, then
    lam^{l+1} = max(0, lam^l + gamma_{l+1} (tau_N y - d)); gamma fixed or grown by a factor per step. */
-#include "signorini.h"
+#include "cont/contimpl.h"
 
 typedef struct {
   PetscReal gamma, factor;
@@ -18,33 +18,24 @@ static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptio
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Solve_ALM(SgCont ct)
+static PetscErrorCode Start_ALM(SgCont ct)
 {
-  ALM      *alm  = (ALM *)ct->data;
-  SgContact c    = ct->c;
-  PetscBool stop = PETSC_FALSE, ok;
+  ALM *alm = (ALM *)ct->data;
 
   PetscFunctionBeginUser;
-  if (!ct->restarted) {
-    ct->gamma = alm->gamma;
-    for (PetscInt i = 0; i < c->n; i++) c->lamhat[i] = 0; /* lam^0 = 0 */
-  }
-  PetscCall(SgContStart(ct, &ok));
-  while (ok && !stop) {
-    PetscInt its0 = ct->ssn_its;
+  ct->gamma = alm->gamma;
+  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0; /* lam^0 = 0 */
+  PetscFunctionReturn(0);
+}
 
-    ct->outer++;
-    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContSSN(ct, ct->gamma, &ok));
-    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContMeasure(ct));
-    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
-    if (!ok) break;
-    /* the multiplier update: the SSN multiplier max(0, lamhat + gamma g) is lam^{l+1} */
-    PetscCall(PetscArraycpy(c->lamhat, ct->lam, c->n));
-    ct->gamma *= alm->factor;
-    PetscCall(SgContCheck(ct, &stop));
-  }
+/* the multiplier update: the SSN multiplier max(0, lamhat + gamma g) is lam^{l+1} */
+static PetscErrorCode Update_ALM(SgCont ct, PetscReal *next)
+{
+  ALM *alm = (ALM *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->cv.n));
+  *next = ct->gamma * alm->factor;
   PetscFunctionReturn(0);
 }
 
@@ -54,10 +45,11 @@ PetscErrorCode SgContCreate_ALM(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&alm));
-  alm->gamma         = 1e3;
-  alm->factor        = 1;
-  ct->data           = alm;
-  ct->setfromoptions = SetFromOptions_ALM;
-  ct->solve          = Solve_ALM;
+  alm->gamma             = 1e3;
+  alm->factor            = 1;
+  ct->data               = alm;
+  ct->ops.setfromoptions = SetFromOptions_ALM;
+  ct->ops.start          = Start_ALM;
+  ct->ops.update         = Update_ALM;
   PetscFunctionReturn(0);
 }

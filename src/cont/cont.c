@@ -1,62 +1,183 @@
-/* cont.c: the continuation controller registry (-cont_type), what every controller shares, and the type "none". */
-#include "signorini.h"
+/* cont/cont.c: SgCont, a solver of the contact problem: the registry of types (-cont_type), the object's life cycle,
+   and the outer loop every continuation controller shares (the types fill the hooks of SgContOps, contimpl.h). */
+#include "cont/contimpl.h"
 #include <stdarg.h>
 
 PetscFunctionList SgContList = NULL;
 
+static PetscErrorCode SgContFinalizePackage(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&SgContList));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContRegisterAll(void)
+{
+  static PetscBool done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (done) PetscFunctionReturn(0);
+  done = PETSC_TRUE;
+  PetscCall(PetscRegisterFinalize(SgContFinalizePackage));
+  PetscCall(SgContRegister(SGCONTNONE, SgContCreate_None));
+  PetscCall(SgContRegister(SGCONTALM, SgContCreate_ALM));
+  PetscCall(SgContRegister(SGCONTPF, SgContCreate_PF));
+  PetscCall(SgContRegister(SGCONTIPF, SgContCreate_IPF));
+  PetscCall(SgContRegister(SGCONTPDAS, SgContCreate_PDAS));
+  PetscCall(SgContRegister(SGCONTVI, SgContCreate_VI));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgInitializePackage(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgLogEventsRegister());
+  PetscCall(SgObstacleRegisterAll());
+  PetscCall(SgContRegisterAll());
+  PetscFunctionReturn(0);
+}
+
+/* A controller type of the caller's: create fills the SgContOps of the object (see cont/contimpl.h). */
 PetscErrorCode SgContRegister(const char name[], PetscErrorCode (*create)(SgCont))
 {
   PetscFunctionBeginUser;
+  PetscCall(SgContRegisterAll());
   PetscCall(PetscFunctionListAdd(&SgContList, name, create));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgContCreate(SgProblem p, SgContact c, SgCont *cont)
+PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 {
   SgCont ct;
-  PetscErrorCode (*create)(SgCont) = NULL;
 
   PetscFunctionBeginUser;
+  PetscCall(SgInitializePackage());
   PetscCall(PetscNew(&ct));
-  ct->comm      = p->comm;
-  ct->prob      = p;
-  ct->c         = c;
-  ct->kkt_tol   = 1e-10;
-  ct->max_outer = 50;
-  ct->gamma_max = 1e20;
-  ct->stall_its = 10;
-  ct->converged = PETSC_FALSE;
-  ct->problem   = c ? "P" : "elasticity";
-  ct->residual  = SG_NAN;
-  PetscCall(PetscStrcpy(ct->type, "none"));
+  PetscCall(SgProblemGetComm(prob, &ct->comm));
+  ct->problem_obj = prob;
+  ct->kkt_tol     = 1e-10;
+  ct->max_outer   = 50;
+  ct->gamma_max   = 1e20;
+  ct->stall_its   = 10;
+  ct->residual    = SG_NAN;
+  ct->V0 = ct->V = SG_NAN;
+  PetscCall(PetscStrcpy(ct->type, SGCONTNONE));
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   PetscCall(SgHistoryCreate(&ct->hist));
   PetscCall(SgSummaryCreate(&ct->sum));
-  PetscOptionsBegin(p->comm, NULL, "Continuation controller", NULL);
+  *cont = ct;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CheckNotSetUp(SgCont ct, const char fn[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!ct->setfromoptions_called && !ct->setup, ct->comm, PETSC_ERR_ORDER, "%s: call it before SgContSetFromOptions/SgContSetUp", fn);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContSetType(SgCont ct, const char type[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(ct, "SgContSetType"));
+  PetscCall(PetscStrncpy(ct->type, type, sizeof(ct->type)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetType(SgCont ct, const char *type[])
+{
+  PetscFunctionBeginUser;
+  *type = ct->type;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContSetOptionsPrefix(SgCont ct, const char prefix[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(ct, "SgContSetOptionsPrefix"));
+  PetscCheck(!prefix || prefix[0] != '-', ct->comm, PETSC_ERR_ARG_WRONG, "SgContSetOptionsPrefix: the prefix '%s' must not begin with a hyphen", prefix);
+  PetscCall(PetscFree(ct->prefix));
+  PetscCall(PetscStrallocpy(prefix, &ct->prefix));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetOptionsPrefix(SgCont ct, const char *prefix[])
+{
+  PetscFunctionBeginUser;
+  *prefix = ct->prefix;
+  PetscFunctionReturn(0);
+}
+
+/* the KKT tolerance of (P) (of the equilibrium residual of (P_gamma) for none) and the outer-step limit (the defaults
+   of -cont_kkt_tol and -cont_max_it; PETSC_DEFAULT keeps a value) */
+PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(ct, "SgContSetTolerances"));
+  if (kkt_tol != (PetscReal)PETSC_DEFAULT) ct->kkt_tol = kkt_tol;
+  if (max_it != PETSC_DEFAULT) ct->max_outer = max_it;
+  PetscFunctionReturn(0);
+}
+
+/* The options under the prefix: -cont_type and the controller's own, the stopping tests, checkpoint and restart files.
+   The problem is set up first (its options are read before the solver's). */
+PetscErrorCode SgContSetFromOptions(SgCont ct)
+{
+  PetscErrorCode (*create)(SgCont) = NULL;
+  SgProblem p = ct->problem_obj;
+
+  PetscFunctionBeginUser;
+  PetscCheck(!ct->setfromoptions_called, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: called twice");
+  PetscCall(SgProblemSetUp(p));
+  PetscCall(SgProblemGetElasticity(p, &ct->prob));
+  PetscCall(SgProblemGetContact(p, &ct->c));
+  if (ct->c) PetscCall(SgContactGetView(ct->c, &ct->cv));
+  ct->problem = ct->c ? "P" : "elasticity";
+  PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
   PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
-  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
+  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
-  PetscCheck(create, p->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
+  PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
+  ct->ops.needs_ssn = PETSC_TRUE;
   PetscCall(create(ct));
-  if (ct->setfromoptions) PetscCall(ct->setfromoptions(ct, PetscOptionsObject));
+  if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
   PetscOptionsEnd();
-  PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
-  PetscCheck(ct->max_outer > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
-  PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
-  PetscCheck(ct->stall_its > 0, p->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
-  PetscCheck(c || !strcmp(ct->type, "none"), p->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
-  PetscCall(SgFileCheckWritable(p->comm, "-checkpoint_file", ct->ckfile));
-  PetscCall(DMCreateGlobalVector(p->dm, &ct->y));
+  PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
+  PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
+  PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
+  PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
+  PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
+  PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
+  PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
+  ct->setfromoptions_called = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The iterate, the linear solver of every step and, for the controllers that use it, the SSN solver (reads the
+   options first if SgContSetFromOptions was not called). */
+PetscErrorCode SgContSetUp(SgCont ct)
+{
+  DM dm;
+
+  PetscFunctionBeginUser;
+  if (ct->setup) PetscFunctionReturn(0);
+  if (!ct->setfromoptions_called) PetscCall(SgContSetFromOptions(ct));
+  PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
+  PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
-  PetscCall(PetscCalloc1(c ? c->n : 0, &ct->lam));
-  PetscCall(SgSSNCreate(p, c, &ct->ssn));
-  ct->ssn->hist = ct->hist;
-  *cont         = ct;
+  PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
+  PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
+  if (ct->ops.needs_ssn && ct->c) {
+    PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
+    PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
+  }
+  ct->setup = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -66,12 +187,15 @@ PetscErrorCode SgContDestroy(SgCont *cont)
 
   PetscFunctionBeginUser;
   if (!ct) PetscFunctionReturn(0);
-  if (ct->destroy) PetscCall(ct->destroy(ct)); /* what the controller's data holds */
+  if (ct->ops.destroy) PetscCall(ct->ops.destroy(ct)); /* what the controller's data holds */
   PetscCall(PetscFree(ct->data));
   PetscCall(SgSSNDestroy(&ct->ssn));
+  PetscCall(KSPDestroy(&ct->ksp));
+  PetscCall(MatDestroy(&ct->J));
   PetscCall(VecDestroy(&ct->y));
   PetscCall(PetscFree(ct->lam));
   PetscCall(PetscFree(ct->gammas));
+  PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
   PetscCall(SgSummaryDestroy(&ct->sum));
   PetscCall(PetscFree(*cont));
@@ -131,8 +255,8 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
        (one linear solve, not counted: the counters continue the checkpoint's) */
     Vec y0;
     PetscCall(VecDuplicate(ct->y, &y0));
-    PetscCall(SgSSNSolveLinear(ct->ssn, y0, &its, &kr));
-    if (kr >= 0) PetscCall(SgProblemEnergy(ct->prob, y0, &ct->V0));
+    PetscCall(SgLinearSolveUnconstrained(ct->prob, ct->ksp, ct->J, y0, &its, &kr, &ct->t_linear_setup, &ct->t_linear_solve));
+    if (kr >= 0) PetscCall(SgElasticityEnergy(ct->prob, y0, &ct->V0));
     PetscCall(VecDestroy(&y0));
     if (kr < 0) {
       *ok = PETSC_FALSE;
@@ -140,9 +264,9 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
     }
   }
   if (ct->restarted) PetscFunctionReturn(0);
-  PetscCall(SgSSNSolveLinear(ct->ssn, ct->y, &its, &kr));
+  PetscCall(SgLinearSolveUnconstrained(ct->prob, ct->ksp, ct->J, ct->y, &its, &kr, &ct->t_linear_setup, &ct->t_linear_solve));
   ct->ksp_its += its;
-  PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V0));
+  PetscCall(SgElasticityEnergy(ct->prob, ct->y, &ct->V0));
   if (kr >= 0 && PetscIsInfOrNanReal(ct->V0)) {
     *ok = PETSC_FALSE;
     PetscCall(SgContFail(ct, "DIVERGED_NAN: the solution without contact is not finite (energy %g): the loads (-neumann_traction, -body_force, -dirichlet_values) are too large against -E for double precision", (double)ct->V0));
@@ -172,20 +296,26 @@ static const char *SSNHint(SgSSNReason r)
   }
 }
 
-/* One SSN solve of (P_gamma) (shift: c->lamhat) from the current y; lam = its multiplier. ok = PETSC_FALSE on failure. */
+/* One SSN solve of (P_gamma) (shift: lamhat) from the current y; lam = its multiplier. ok = PETSC_FALSE on failure. */
 PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
 {
   PetscInt            its, kits;
   SNESConvergedReason r;
+  const PetscReal    *m;
 
   PetscFunctionBeginUser;
   PetscCall(SgContAddGamma(ct, gamma));
   PetscCall(SgSSNSolve(ct->ssn, gamma, ct->outer, ct->y, &its, &kits, &r));
   ct->ssn_its += its;
   ct->ksp_its += kits;
-  PetscCall(PetscArraycpy(ct->lam, ct->ssn->m, ct->c->n));
+  PetscCall(SgSSNGetMultiplier(ct->ssn, &m));
+  PetscCall(PetscArraycpy(ct->lam, m, ct->cv.n));
   *ok = (PetscBool)(r > 0);
-  if (!*ok) PetscCall(SgContFail(ct, "SSN_%s at gamma %g in outer step %" PetscInt_FMT " after %" PetscInt_FMT " iterations (SNES %s)%s", SgSSNReasons[ct->ssn->reason], (double)gamma, ct->outer, its, SNESConvergedReasons[r], SSNHint(ct->ssn->reason)));
+  if (!*ok) {
+    SgSSNReason sr;
+    PetscCall(SgSSNGetReason(ct->ssn, &sr));
+    PetscCall(SgContFail(ct, "SSN_%s at gamma %g in outer step %" PetscInt_FMT " after %" PetscInt_FMT " iterations (SNES %s)%s", SgSSNReasons[sr], (double)gamma, ct->outer, its, SNESConvergedReasons[r], SSNHint(sr)));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -197,106 +327,9 @@ PetscErrorCode SgContMeasure(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* Path data per outer step (the history's outer rows) as summary arrays path_<quantity>. */
-static PetscErrorCode SummaryPath(SgCont ct)
-{
-  const char *names[] = {"path_gamma", "path_V", "path_dVdgamma", "path_C1", "path_C2", "path_E", "path_ssn_iterations", "path_rho_F", "path_rho_C", "path_infeasibility", "path_kkt_residual"};
-  PetscInt    n = 0;
-  PetscReal  *a[11];
-
-  PetscFunctionBeginUser;
-  for (PetscInt j = 0; j < 11; j++) PetscCall(PetscMalloc1(ct->hist->n + 1, &a[j]));
-  for (PetscInt i = 0; i < ct->hist->n; i++) {
-    const SgHistoryRow *r = &ct->hist->rows[i];
-    if (r->kind != 'o') continue;
-    a[0][n]  = r->gamma;
-    a[1][n]  = r->V;
-    a[2][n]  = r->dV;
-    a[3][n]  = r->C1;
-    a[4][n]  = r->C2;
-    a[5][n]  = r->Em;
-    a[6][n]  = r->ssn_its;
-    a[7][n]  = r->rhoF;
-    a[8][n]  = r->rhoC;
-    a[9][n]  = r->infeas;
-    a[10][n] = r->kkt;
-    n++;
-  }
-  for (PetscInt j = 0; j < 11; j++) {
-    PetscCall(SgSummarySetRealArray(ct->sum, names[j], n, a[j]));
-    PetscCall(PetscFree(a[j]));
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SgContSolve(SgCont ct)
-{
-  PetscLogDouble t1;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscTime(&ct->t0));
-  ct->ssn->t0 = ct->t0;
-  PetscCall(SgCheckpointRead(ct));
-  PetscCall(ct->solve(ct));
-  PetscCall(PetscTime(&t1));
-  PetscCall(SgProblemEnergy(ct->prob, ct->y, &ct->V));
-  if (ct->c) {
-    PetscCall(SgContMeasure(ct));
-    if (!strcmp(ct->problem, "P")) ct->residual = ct->kkt.residual;
-  }
-  PetscCall(SgSummarySetString(ct->sum, "cont_type", ct->type));
-  PetscCall(SgSummarySetBool(ct->sum, "converged", ct->converged));
-  PetscCall(SgSummarySetString(ct->sum, "reason", ct->reason));
-  PetscCall(SgSummarySetString(ct->sum, "problem", ct->problem));
-  PetscCall(SgSummarySetReal(ct->sum, "residual", ct->residual));
-  PetscCall(SgSummarySetReal(ct->sum, "residual_tol", ct->kkt_tol));
-  PetscCall(SgSummarySetReal(ct->sum, "energy", ct->V));
-  PetscCall(SgSummarySetReal(ct->sum, "energy_unconstrained", ct->V0));
-  PetscCall(SgSummarySetInt(ct->sum, "ksp_iterations", ct->ksp_its));
-  PetscCall(SgSummarySetReal(ct->sum, "solve_time", t1 - ct->t0));
-  {
-    PetscReal nrm[2];
-    PetscCall(VecNorm(ct->y, NORM_2, &nrm[0]));
-    PetscCall(VecNorm(ct->y, NORM_INFINITY, &nrm[1]));
-    PetscCall(SgSummarySetReal(ct->sum, "displacement_norm", nrm[0]));
-    PetscCall(SgSummarySetReal(ct->sum, "displacement_max", nrm[1]));
-  }
-  if (ct->c) {
-    PetscCall(SgSummarySetInt(ct->sum, "ssn_iterations", ct->ssn_its));
-    PetscCall(SgSummarySetInt(ct->sum, "outer_iterations", ct->outer));
-    PetscCall(SgSummarySetRealArray(ct->sum, "gammas", ct->ngammas, ct->gammas));
-    PetscCall(SgSummarySetReal(ct->sum, "kkt_residual", ct->kkt.residual));
-    PetscCall(SgSummarySetReal(ct->sum, "infeasibility", ct->kkt.infeasibility));
-    PetscCall(SgSummarySetReal(ct->sum, "complementarity", ct->kkt.complementarity));
-    PetscCall(SgSummarySetReal(ct->sum, "equilibrium", ct->kkt.equilibrium));
-    PetscCall(SgSummarySetReal(ct->sum, "dual_infeasibility", ct->kkt.dual));
-    PetscCall(SgSummarySetReal(ct->sum, "penetration", ct->kkt.penetration));
-    PetscCall(SgSummarySetReal(ct->sum, "displacement_scale", ct->kkt.uscale));
-    PetscCall(SgSummarySetReal(ct->sum, "rho_F", ct->kkt.rhoF));
-    PetscCall(SgSummarySetReal(ct->sum, "rho_C", ct->kkt.rhoC));
-    PetscCall(SgSummarySetInt(ct->sum, "active_set_size", ct->kkt.nactive));
-    PetscCall(SgSummarySetReal(ct->sum, "contact_force", ct->kkt.force));
-    PetscCall(SgSummarySetInt(ct->sum, "contact_vertices", ct->c->nglobal));
-    PetscCall(SgSummarySetReal(ct->sum, "contact_area", ct->c->area));
-    PetscCall(SgSummarySetString(ct->sum, "obstacle", ct->c->obs->type));
-    {
-      /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
-      const PetscInt dim = ct->prob->dim;
-      PetscReal      F[3] = {0, 0, 0}, R[3];
-      for (PetscInt i = 0; i < ct->c->n; i++)
-        for (PetscInt d = 0; d < dim; d++) F[d] += ct->c->w[i] * ct->lam[i] * ct->c->normal[i * dim + d];
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, F, 3, MPIU_REAL, MPI_SUM, ct->comm));
-      PetscCall(SgProblemReaction(ct->prob, ct->y, R));
-      PetscCall(SgSummarySetRealArray(ct->sum, "contact_force_vector", dim, F));
-      PetscCall(SgSummarySetRealArray(ct->sum, "reaction_force", dim, R));
-    }
-    PetscCall(SummaryPath(ct));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* Add the row closing an outer step to the history. */
-PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, PetscReal C1, PetscReal C2, PetscReal Em)
+/* Add the row closing an outer step to the history: the path values of the SSN, the KKT measures, and what the
+   controller's model hook put into mdl (C1, C2, Em; rhoF and rhoC when not NaN). */
+PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, const SgHistoryRow *mdl)
 {
   SgHistoryRow   row;
   PetscLogDouble t;
@@ -304,19 +337,17 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, PetscReal C1, PetscRe
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t));
   PetscCall(SgHistoryRowInit(&row));
-  row.kind    = 'o';
-  row.outer   = ct->outer;
-  row.gamma   = ct->ssn->gamma;
+  row.kind = 'o';
+  row.outer = ct->outer;
+  if (ct->ssn) PetscCall(SgSSNGetPathValues(ct->ssn, &row.gamma, &row.V, &row.dV));
   row.active  = ct->kkt.nactive;
   row.fnorm   = ct->kkt.equilibrium;
-  row.V       = ct->ssn->V;
-  row.dV      = ct->ssn->dVdg;
   row.ssn_its = ssn_its;
-  row.C1      = C1;
-  row.C2      = C2;
-  row.Em      = Em;
-  row.rhoF    = ct->kkt.rhoF;
-  row.rhoC    = ct->kkt.rhoC;
+  row.C1      = mdl ? mdl->C1 : SG_NAN;
+  row.C2      = mdl ? mdl->C2 : SG_NAN;
+  row.Em      = mdl ? mdl->Em : SG_NAN;
+  row.rhoF    = mdl && !PetscIsNanReal(mdl->rhoF) ? mdl->rhoF : ct->kkt.rhoF;
+  row.rhoC    = mdl && !PetscIsNanReal(mdl->rhoC) ? mdl->rhoC : ct->kkt.rhoC;
   row.infeas  = ct->kkt.infeasibility;
   row.kkt     = ct->kkt.residual;
   row.time    = t - ct->t0;
@@ -352,7 +383,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
   if (ct->kkt.residual <= ct->kkt_tol) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer));
-    PetscCall(SgCheckpointWrite(ct));
+    PetscCall(SgContCheckpointWrite(ct));
     PetscFunctionReturn(0);
   }
   if (ct->kkt.residual < 0.99 * ct->best_kkt || ct->outer == 1) {
@@ -364,7 +395,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
   else if (!(gamma_next <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)gamma_next, (double)ct->gamma_max, (double)ct->kkt.residual));
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;
-  PetscCall(SgCheckpointWrite(ct));
+  PetscCall(SgContCheckpointWrite(ct));
   if (!strncmp(ct->reason, "CHECKPOINT_FAILED", 17)) *stop = PETSC_TRUE; /* the disk is full, say: stop, keep the summary */
   PetscFunctionReturn(0);
 }
@@ -382,51 +413,125 @@ PetscErrorCode SgContCheckBaseline(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* ---- none: one regularized problem (P_gamma) for -contact_gamma and -contact_lamhat, from the unconstrained start.
-   It solves (P_gamma), not (P): converged means the equilibrium residual of (P_gamma) (SgSSNEquilibriumError) is below
-   -cont_kkt_tol (a settled active set after loose linear solves is not enough); the KKT residual of (P) is reported
-   beside it. */
-static PetscErrorCode Solve_None(SgCont ct)
+/* The checkpoint's record of the controller: the common state and the type's own named numbers. */
+static void CheckpointFill(SgCont ct, SgCheckpoint *ck)
 {
-  PetscBool ok;
-  PetscInt  its0 = ct->ssn_its;
-  PetscReal roundoff;
+  PetscMemzero(ck, sizeof(*ck));
+  PetscStrncpy(ck->type, ct->type, sizeof(ck->type));
+  ck->gamma     = ct->gamma;
+  ck->V0        = ct->V0;
+  ck->best_kkt  = ct->best_kkt;
+  ck->outer     = ct->outer;
+  ck->ssn_its   = ct->ssn_its;
+  ck->ksp_its   = ct->ksp_its;
+  ck->best_step = ct->best_step;
+  ck->y         = ct->y;
+  ck->lamhat    = ct->lamhat;
+  ck->ngammas   = ct->ngammas;
+  ck->gammas    = ct->gammas;
+  ck->hist      = ct->hist;
+  ck->nstate    = ct->ops.nstate;
+  for (PetscInt i = 0; i < ct->ops.nstate; i++) {
+    ck->state_names[i] = ct->ops.state_names[i];
+    ck->state[i]       = ct->state[i];
+  }
+}
+
+PetscErrorCode SgContCheckpointWrite(SgCont ct)
+{
+  SgCheckpoint ck;
+  PetscBool    ok;
+  char         msg[PETSC_MAX_PATH_LEN + 256];
 
   PetscFunctionBeginUser;
-  if (ct->c) ct->gamma = ct->c->gamma;
-  PetscCall(SgContStart(ct, &ok));
-  if (!ok) PetscFunctionReturn(0);
-  if (!ct->c) {
-    PetscReal nrm[2];
-    Vec       R;
-    PetscCall(VecDuplicate(ct->y, &R));
-    PetscCall(MatMult(ct->prob->K, ct->y, R));
-    PetscCall(VecAXPY(R, -1.0, ct->prob->b));
-    PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
-    PetscCall(VecNorm(ct->y, NORM_INFINITY, &nrm[1]));
-    PetscCall(VecDestroy(&R));
-    ct->residual  = nrm[0] > 0 ? nrm[0] / (ct->prob->Knorm * nrm[1] + ct->prob->bnorm_inf) : 0;
-    ct->converged = PETSC_TRUE;
-    PetscCall(PetscStrcpy(ct->reason, "LINEAR_SOLVE"));
-    PetscFunctionReturn(0);
+  if (!ct->ckfile[0]) PetscFunctionReturn(0);
+  CheckpointFill(ct, &ck);
+  PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
+  if (!ok) {
+    /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
+    PetscCall(PetscPrintf(ct->comm, "checkpoint not written: %s\n", msg));
+    PetscCall(SgContFail(ct, "CHECKPOINT_FAILED: %s", msg));
+    ct->ckfile[0] = 0;
   }
-  ct->outer = 1;
-  PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-  PetscCall(SgContSSN(ct, ct->gamma, &ok));
-  PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
-  PetscCall(SgContMeasure(ct));
-  PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, SG_NAN, SG_NAN, SG_NAN));
-  PetscCall(SgSSNEquilibriumError(ct->ssn, ct->y, &ct->residual, &roundoff));
-  if (ok && roundoff > ct->kkt_tol) {
-    PetscCall(SgContFail(ct, "PGAMMA_UNVERIFIABLE: SSN_%s at gamma %g, but the round-off of gamma (tau_N y - d) is %.3e of the force scale, above -cont_kkt_tol %.3e: (P_gamma) cannot be checked to that tolerance in double precision (lower -contact_gamma, or solve (P) with -cont_type ipf); as a solution of (P) the KKT residual is %.3e", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)roundoff, (double)ct->kkt_tol, (double)ct->kkt.residual));
-  } else if (ok && ct->residual <= ct->kkt_tol) {
-    ct->converged = PETSC_TRUE;
-    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PGAMMA_SOLVED: SSN_%s at gamma %g, equilibrium residual of (P_gamma) %.3e <= %.3e; as a solution of (P) its KKT residual is %.3e (%s -cont_kkt_tol)", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)ct->residual, (double)ct->kkt_tol, (double)ct->kkt.residual, ct->kkt.residual <= ct->kkt_tol ? "within" : "above"));
-  } else if (ok) {
-    PetscCall(SgContFail(ct, "PGAMMA_RESIDUAL_ABOVE_TOL: SSN_%s at gamma %g, but the equilibrium residual of (P_gamma) is %.3e > %.3e (-cont_kkt_tol); tighten the linear solves", SgSSNReasons[ct->ssn->reason], (double)ct->gamma, (double)ct->residual, (double)ct->kkt_tol));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCheckpointRead(SgCont ct)
+{
+  SgCheckpoint ck;
+
+  PetscFunctionBeginUser;
+  if (!ct->rsfile[0]) PetscFunctionReturn(0);
+  PetscCheck(!ct->ops.solve, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have)", ct->type);
+  CheckpointFill(ct, &ck);
+  ck.gammas = NULL;
+  PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
+  ct->gamma     = ck.gamma;
+  ct->V0        = ck.V0;
+  ct->best_kkt  = ck.best_kkt;
+  ct->outer     = ck.outer;
+  ct->ssn_its   = ck.ssn_its;
+  ct->ksp_its   = ck.ksp_its;
+  ct->best_step = ck.best_step;
+  for (PetscInt i = 0; i < ct->ops.nstate; i++) ct->state[i] = ck.state[i];
+  ct->ngammas = 0;
+  for (PetscInt i = 0; i < ck.ngammas; i++) PetscCall(SgContAddGamma(ct, ck.gammas[i]));
+  PetscCall(PetscFree(ck.gammas));
+  ct->restarted = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The outer loop of every continuation controller (see cont/contimpl.h for the order of the hooks). */
+static PetscErrorCode SolveContinuation(SgCont ct)
+{
+  PetscBool stop = PETSC_FALSE, ok;
+
+  PetscFunctionBeginUser;
+  if (!ct->restarted) PetscCall(ct->ops.start(ct));
+  PetscCall(SgContStart(ct, &ok)); /* V(0) */
+  if (!ct->restarted && ct->ops.started) PetscCall(ct->ops.started(ct));
+  while (ok && !stop) {
+    const PetscInt its0 = ct->ssn_its;
+    SgHistoryRow   mdl;
+    PetscReal      next = SG_NAN;
+
+    if (ct->ops.prestep) PetscCall(ct->ops.prestep(ct));
+    ct->outer++;
+    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContSSN(ct, ct->gamma, &ok));
+    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContMeasure(ct));
+    PetscCall(SgHistoryRowInit(&mdl));
+    if (ct->ops.model) PetscCall(ct->ops.model(ct, &mdl));
+    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, &mdl));
+    if (!ok) break;
+    PetscCall(ct->ops.update(ct, &next));
+    ct->gamma = next;
+    PetscCall(SgContCheck(ct, &stop));
   }
-  PetscCall(SgSummarySetReal(ct->sum, "path_value", ct->ssn->V));
-  PetscCall(SgSummarySetReal(ct->sum, "path_derivative", ct->ssn->dVdg));
+  if (ct->ops.finish) PetscCall(ct->ops.finish(ct));
+  PetscFunctionReturn(0);
+}
+
+/* Solve: the controller's steps from the unconstrained start (or the restart file's state), then the energy and the
+   KKT measures of the result. Reporting is separate (SgContView, SgContWriteSummary, ...). */
+PetscErrorCode SgContSolve(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContSetUp(ct));
+  PetscCheck(!ct->solved, ct->comm, PETSC_ERR_ORDER, "SgContSolve: a controller solves once (create another for another solve)");
+  PetscCall(PetscTime(&ct->t0));
+  if (ct->ssn) PetscCall(SgSSNSetHistory(ct->ssn, ct->hist, ct->t0));
+  PetscCall(SgContCheckpointRead(ct));
+  if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
+  else PetscCall(SolveContinuation(ct));
+  PetscCall(PetscTime(&ct->t1));
+  PetscCall(SgElasticityEnergy(ct->prob, ct->y, &ct->V));
+  if (ct->c) {
+    PetscCall(SgContMeasure(ct));
+    if (!strcmp(ct->problem, "P")) ct->residual = ct->kkt.residual;
+  }
+  ct->solved = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -437,10 +542,55 @@ const char *SgContVerdict(SgCont ct)
   return strcmp(ct->problem, "P_gamma") ? "CONVERGED" : "SOLVED (P_gamma)";
 }
 
-PetscErrorCode SgContCreate_None(SgCont ct)
+PetscErrorCode SgContGetSolution(SgCont ct, Vec *y)
 {
   PetscFunctionBeginUser;
-  ct->solve   = Solve_None;
-  ct->problem = ct->c ? "P_gamma" : "elasticity";
+  PetscCheck(ct->setup, ct->comm, PETSC_ERR_ORDER, "SgContGetSolution: call SgContSetUp or SgContSolve first");
+  *y = ct->y;
+  PetscFunctionReturn(0);
+}
+
+/* converged: the problem the type solves ((P), or (P_gamma) for none) was solved to the tolerance; reason: why it
+   stopped, with the measures reached */
+PetscErrorCode SgContGetConvergedReason(SgCont ct, PetscBool *converged, const char *reason[])
+{
+  PetscFunctionBeginUser;
+  if (converged) *converged = ct->converged;
+  if (reason) *reason = ct->reason;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetIterationNumbers(SgCont ct, PetscInt *outer, PetscInt *ssn, PetscInt *ksp)
+{
+  PetscFunctionBeginUser;
+  if (outer) *outer = ct->outer;
+  if (ssn) *ssn = ct->ssn_its;
+  if (ksp) *ksp = ct->ksp_its;
+  PetscFunctionReturn(0);
+}
+
+/* SgContactKKT's measures of the result as a solution of (P) (dimensionless; see src/sg.h) */
+PetscErrorCode SgContGetKKT(SgCont ct, SgKKT *kkt)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ct->c, ct->comm, PETSC_ERR_ARG_WRONGSTATE, "SgContGetKKT: the problem has no contact boundary");
+  *kkt = ct->kkt;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetEnergy(SgCont ct, PetscReal *V)
+{
+  PetscFunctionBeginUser;
+  *V = ct->V;
+  PetscFunctionReturn(0);
+}
+
+/* the SSN's SNES (NULL for the baselines and without contact): for monitors and -snes_* settings in code */
+PetscErrorCode SgContGetSNES(SgCont ct, SNES *snes)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContSetUp(ct));
+  *snes = NULL;
+  if (ct->ssn) PetscCall(SgSSNGetSNES(ct->ssn, snes));
   PetscFunctionReturn(0);
 }

@@ -4,10 +4,11 @@
    The end (not specified in the paper): on the path the infeasibility is ||lam_gamma|| / gamma, so gamma is capped at
    10 ||lam|| / (tol Y sqrt|Gamma_c|) (Y sqrt|Gamma_c| the length scale of the KKT measures), where the path meets the
    KKT tolerance with a margin, and that last problem is solved exactly. */
-#include "signorini.h"
+#include "cont/contimpl.h"
 
 typedef struct {
   PetscReal gamma1, tau, tau1, q, tau3;
+  PetscReal gamma, J, dJ, C1, C2, E, rhoF, rhoC; /* the last step's path data (Model_IPF) */
 } IPF;
 
 static PetscErrorCode SetFromOptions_IPF(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -28,83 +29,87 @@ static PetscErrorCode SetFromOptions_IPF(SgCont ct, PetscOptionItems *PetscOptio
   PetscFunctionReturn(0);
 }
 
-/* rho_F = int max(0, g), rho_C = int_I max(0, g) + int_A -min(0, g) with A, I the active and inactive sets of the
-   iterate (the sets of the last Newton step). */
-static PetscErrorCode Measures(SgCont ct, PetscReal *rhoF, PetscReal *rhoC)
+static PetscErrorCode Start_IPF(SgCont ct)
 {
-  SgContact c = ct->c;
-  SgSSN     s = ct->ssn;
-  PetscReal r[2] = {0, 0};
+  IPF *ipf = (IPF *)ct->data;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscBool act = (PetscBool)(s->havejac ? s->actjac[i] : s->act[i]);
-    r[0] += c->w[i] * PetscMax(0, s->g[i]);
-    r[1] += c->w[i] * (act ? -PetscMin(0, s->g[i]) : PetscMax(0, s->g[i]));
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 2, MPIU_REAL, MPI_SUM, ct->comm));
-  *rhoF = r[0];
-  *rhoC = r[1];
+  ct->gamma    = ipf->gamma1;
+  ct->state[1] = ipf->tau; /* the neighbourhood tau (0: the last problem, solved exactly) */
+  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Solve_IPF(SgCont ct)
+static PetscErrorCode Started_IPF(SgCont ct)
 {
-  IPF       *ipf   = (IPF *)ct->data;
-  PetscReal *Jprev = &ct->state[0], *nbhd = &ct->state[1]; /* J of the previous step; the neighbourhood tau (0: exact) */
-  PetscBool  stop  = PETSC_FALSE, ok;
+  PetscFunctionBeginUser;
+  ct->state[0] = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PreStep_IPF(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNSetNeighbourhood(ct->ssn, ct->state[1]));
+  PetscFunctionReturn(0);
+}
+
+/* the path data of the step: J(gamma_k, y_{k+1}), its derivative, the model (9), rho_F and rho_C (kept for the update) */
+static PetscErrorCode Model_IPF(SgCont ct, SgHistoryRow *row)
+{
+  IPF *ipf = (IPF *)ct->data;
 
   PetscFunctionBeginUser;
-  if (!ct->restarted) {
-    ct->gamma = ipf->gamma1;
-    *nbhd     = ipf->tau;
-    for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
-  }
-  PetscCall(SgContStart(ct, &ok));
-  if (!ct->restarted) *Jprev = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
-  while (ok && !stop) {
-    const PetscReal gamma = ct->gamma;
-    PetscInt        its0  = ct->ssn_its, cuts = 0;
-    PetscReal       J, dJ, C1, C2, E, rhoF, rhoC, next, dJk, cap;
+  PetscCall(SgSSNGetPathValues(ct->ssn, &ipf->gamma, &ipf->J, &ipf->dJ));
+  PetscCall(SgSSNPathMeasures(ct->ssn, &ipf->rhoF, &ipf->rhoC));
+  (void)SgModelFit(ct->V0, ipf->gamma, ipf->J, ipf->dJ, &ipf->C1, &ipf->C2, &ipf->E);
+  row->C1   = ipf->C1;
+  row->C2   = ipf->C2;
+  row->Em   = ipf->E;
+  row->rhoF = ipf->rhoF;
+  row->rhoC = ipf->rhoC;
+  PetscFunctionReturn(0);
+}
 
-    ct->ssn->nbhd_tau = *nbhd;
+/* rule (15) with the safeguard (16), and the cap where the last problem is solved exactly */
+static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
+{
+  IPF            *ipf   = (IPF *)ct->data;
+  PetscReal      *Jprev = &ct->state[0], *nbhd = &ct->state[1];
+  const PetscReal gamma = ipf->gamma, J = ipf->J, dJ = ipf->dJ, C1 = ipf->C1, C2 = ipf->C2, E = ipf->E, rhoF = ipf->rhoF, rhoC = ipf->rhoC;
+  PetscReal       next, dJk, cap;
+  PetscInt        cuts = 0;
+  SNES            snes;
 
-    ct->outer++;
-    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContSSN(ct, gamma, &ok));
-    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContMeasure(ct));
-    J   = ct->ssn->V; /* J(gamma_k, y_{k+1}) */
-    dJ  = ct->ssn->dVdg;
-    /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
-    cap = ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(2 * gamma * gamma * dJ) / (ct->kkt_tol * ct->kkt.lscale) : PETSC_MAX_REAL;
-    PetscCall(Measures(ct, &rhoF, &rhoC));
-    (void)SgModelFit(ct->V0, gamma, J, dJ, &C1, &C2, &E);
-    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, C1, C2, E));
-    ct->hist->rows[ct->hist->n - 1].rhoF = rhoF;
-    ct->hist->rows[ct->hist->n - 1].rhoC = rhoC;
-    if (!ok) break;
-    /* rule (15) */
-    next = PetscMax(gamma * PetscMax(ipf->tau1, rhoC > 0 ? rhoF / rhoC : PETSC_MAX_REAL), PetscMax(rhoF, rhoC) > 0 ? PetscPowReal(PetscMax(rhoF, rhoC), -ipf->q) : PETSC_MAX_REAL);
-    next = PetscMin(next, PETSC_MAX_REAL);
-    /* safeguard (16): while much larger than tau1 gamma, halve log(next/gamma) until the tangent and the model agree */
-    dJk = PetscAbsReal(J - *Jprev);
-    while (next > ipf->tau1 * gamma) {
-      const PetscReal t = J + dJ * (next - gamma), mval = PetscIsNormalReal(E) ? C1 - C2 / (E + next) : SG_NAN;
-      if (PetscAbsReal(t - mval) <= ipf->tau3 * dJk) break;
-      next = PetscMax(ipf->tau1 * gamma, PetscSqrtReal(next) * PetscSqrtReal(gamma));
-      cuts++;
-    }
-    if (next >= cap && cap > gamma) {
-      next  = cap;
-      *nbhd = 0; /* the last problem: solved exactly */
-    } else if (cap <= gamma) *nbhd = 0;
-    PetscCall(PetscInfo(ct->ssn->snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)\n", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
-    *Jprev    = J;
-    ct->gamma = next;
-    PetscCall(SgContCheck(ct, &stop));
+  PetscFunctionBeginUser;
+  /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
+  cap = ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(2 * gamma * gamma * dJ) / (ct->kkt_tol * ct->kkt.lscale) : PETSC_MAX_REAL;
+  /* rule (15) */
+  next = PetscMax(gamma * PetscMax(ipf->tau1, rhoC > 0 ? rhoF / rhoC : PETSC_MAX_REAL), PetscMax(rhoF, rhoC) > 0 ? PetscPowReal(PetscMax(rhoF, rhoC), -ipf->q) : PETSC_MAX_REAL);
+  next = PetscMin(next, PETSC_MAX_REAL);
+  /* safeguard (16): while much larger than tau1 gamma, halve log(next/gamma) until the tangent and the model agree */
+  dJk = PetscAbsReal(J - *Jprev);
+  while (next > ipf->tau1 * gamma) {
+    const PetscReal t = J + dJ * (next - gamma), mval = PetscIsNormalReal(E) ? C1 - C2 / (E + next) : SG_NAN;
+    if (PetscAbsReal(t - mval) <= ipf->tau3 * dJk) break;
+    next = PetscMax(ipf->tau1 * gamma, PetscSqrtReal(next) * PetscSqrtReal(gamma));
+    cuts++;
   }
-  ct->ssn->nbhd_tau = 0;
+  if (next >= cap && cap > gamma) {
+    next  = cap;
+    *nbhd = 0; /* the last problem: solved exactly */
+  } else if (cap <= gamma) *nbhd = 0;
+  PetscCall(SgSSNGetSNES(ct->ssn, &snes));
+  PetscCall(PetscInfo(snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)\n", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
+  *Jprev = J;
+  *nextp = next;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Finish_IPF(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNSetNeighbourhood(ct->ssn, 0));
   PetscFunctionReturn(0);
 }
 
@@ -114,13 +119,21 @@ PetscErrorCode SgContCreate_IPF(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&ipf));
-  ipf->gamma1        = 1e2;
-  ipf->tau           = 1e6;
-  ipf->tau1          = 5;
-  ipf->q             = 1.5;
-  ipf->tau3          = 100;
-  ct->data           = ipf;
-  ct->setfromoptions = SetFromOptions_IPF;
-  ct->solve          = Solve_IPF;
+  ipf->gamma1            = 1e2;
+  ipf->tau               = 1e6;
+  ipf->tau1              = 5;
+  ipf->q                 = 1.5;
+  ipf->tau3              = 100;
+  ct->data               = ipf;
+  ct->ops.setfromoptions = SetFromOptions_IPF;
+  ct->ops.start          = Start_IPF;
+  ct->ops.started        = Started_IPF;
+  ct->ops.prestep        = PreStep_IPF;
+  ct->ops.model          = Model_IPF;
+  ct->ops.update         = Update_IPF;
+  ct->ops.finish         = Finish_IPF;
+  ct->ops.nstate         = 2;
+  ct->ops.state_names[0] = "J_previous";
+  ct->ops.state_names[1] = "neighbourhood_tau";
   PetscFunctionReturn(0);
 }

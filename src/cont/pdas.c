@@ -1,10 +1,11 @@
 /* cont_pdas.c: baseline: the unregularized primal-dual active set method (Hintermueller-Ito-Kunisch, Hueber-Wohlmuth,
    deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals. */
-#include "signorini.h"
+#include "cont/contimpl.h"
 
 typedef struct {
   PetscReal c;     /* weight of the gap in the active-set test lam + c g > 0 (0: E / contact mesh size) */
   PetscInt  maxit;
+  PetscBool monitor;
 } PDAS;
 
 static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -14,6 +15,12 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
   PetscFunctionBeginUser;
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", &pd->c, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-pdas_max_it", "Maximum number of active-set iterations", &pd->maxit, NULL));
+  {
+    PetscBool condense = PETSC_FALSE;
+    PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print the active set and the energy per PDAS iteration", &pd->monitor, NULL));
+    PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "(not for pdas)", &condense, NULL));
+    PetscCheck(!condense, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_condense does not apply to -cont_type pdas (its solves eliminate the active normal dofs)");
+  }
   PetscCheck((PetscIsNormalReal(pd->c) || pd->c == 0) && pd->c >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_c: must be finite and >= 0, got %g", (double)pd->c);
   PetscCheck(pd->maxit > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_max_it: must be positive, got %" PetscInt_FMT, pd->maxit);
   PetscFunctionReturn(0);
@@ -25,7 +32,7 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
   PetscInt s[3] = {0, 0, 0};
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < ct->c->n; i++) {
+  for (PetscInt i = 0; i < ct->cv.n; i++) {
     s[0] += a[i];
     s[1] += (b[i] && !a[i]);
     s[2] += (a[i] && !b[i]);
@@ -40,11 +47,12 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
   PDAS              *pd = (PDAS *)ct->data;
-  SgContact          c  = ct->c;
-  SgProblem          p  = ct->prob;
-  const PetscInt     dim = p->dim;
-  Mat                A   = ct->ssn->J;
-  KSP                ksp;
+  const SgContactView *c = &ct->cv;
+  PetscInt           dim;
+  Mat                A   = ct->J, K;
+  Vec                b;
+  PetscReal          E;
+  KSP                ksp = ct->ksp;
   Vec                rhs, x, diag;
   PetscInt          *axis, *rows, rstart, N, k, nhash = 0;
   PetscReal         *sign, *g, dmean, hc = 0;
@@ -53,14 +61,16 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscBool          done = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
-  PetscCheck(!ct->ssn->cond, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_condense does not apply to -cont_type pdas (its solves eliminate the active normal dofs)");
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgElasticityGetOperators(ct->prob, &K, &b));
+  PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
   PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n, &rows));
   PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
-  PetscCall(SgContactAxisAligned(c, "-cont_type pdas", axis, sign));
+  PetscCall(SgContactAxisAligned(ct->c, "-cont_type pdas", axis, sign));
   for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
   hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
-  if (pd->c == 0) pd->c = p->E / hc;
+  if (pd->c == 0) pd->c = E / hc;
 
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
@@ -68,21 +78,20 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(PetscFree(hash));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecDuplicate(p->b, &rhs));
-  PetscCall(VecDuplicate(p->b, &x));
-  PetscCall(VecDuplicate(p->b, &diag));
-  PetscCall(MatGetDiagonal(p->K, diag));
+  PetscCall(VecDuplicate(b, &rhs));
+  PetscCall(VecDuplicate(b, &x));
+  PetscCall(VecDuplicate(b, &diag));
+  PetscCall(MatGetDiagonal(K, diag));
   PetscCall(VecGetSize(diag, &N));
   PetscCall(VecSum(diag, &dmean));
   dmean /= N;
   PetscCall(VecDestroy(&diag));
   PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
   PetscCall(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  PetscCall(SNESGetKSP(ct->ssn->snes, &ksp));
   {
     const PetscScalar *ya;
     PetscCall(VecGetArrayRead(ct->y, &ya));
-    PetscCall(SgContactGap(c, ya, g));
+    PetscCall(SgContactGap(ct->c, ya, g));
     PetscCall(VecRestoreArrayRead(ct->y, &ya));
   }
   for (PetscInt i = 0; i < c->n; i++) {
@@ -99,9 +108,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     SgHistoryRow       row;
     PetscLogDouble     t;
 
-    PetscCall(SgSSNActiveSetHash(ct->ssn, act, &hash[nhash++]));
+    PetscCall(SgContactActiveSetHash(ct->c, act, &hash[nhash++]));
     /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
-    PetscCall(MatCopy(p->K, A, SAME_NONZERO_PATTERN));
+    PetscCall(MatCopy(K, A, SAME_NONZERO_PATTERN));
     PetscCall(VecGetArray(x, &xa));
     for (PetscInt i = 0; i < c->n; i++)
       if (act[i]) {
@@ -109,7 +118,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
         xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
       }
     PetscCall(VecRestoreArray(x, &xa));
-    PetscCall(VecCopy(p->b, rhs));
+    PetscCall(VecCopy(b, rhs));
     PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
     PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
     PetscCall(KSPSetOperators(ksp, A, A));
@@ -124,9 +133,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       break;
     }
     /* multiplier from the equilibrium on the active set, then the next active set */
-    PetscCall(SgContactMultiplierFromResidual(c, ct->y, ct->lam));
+    PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
     PetscCall(VecGetArrayRead(ct->y, &ya));
-    PetscCall(SgContactGap(c, ya, g));
+    PetscCall(SgContactGap(ct->c, ya, g));
     PetscCall(VecRestoreArrayRead(ct->y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
       if (!act[i]) ct->lam[i] = 0;
@@ -142,18 +151,18 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     row.active  = nact;
     row.entered = entered;
     row.left    = left;
-    PetscCall(SgProblemEnergy(p, ct->y, &row.V));
+    PetscCall(SgElasticityEnergy(ct->prob, ct->y, &row.V));
     row.ksp_its = kits;
     row.time    = t - ct->t0;
     PetscCall(SgHistoryAdd(ct->hist, &row));
-    if (ct->ssn->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) V %.10e KSP %" PetscInt_FMT "\n", k, nact, entered, left, (double)row.V, kits));
+    if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) V %.10e KSP %" PetscInt_FMT "\n", k, nact, entered, left, (double)row.V, kits));
     if (entered + left == 0) {
       done          = PETSC_TRUE;
       ct->converged = PETSC_TRUE;
       PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
     } else {
       PetscInt64 h;
-      PetscCall(SgSSNActiveSetHash(ct->ssn, next, &h));
+      PetscCall(SgContactActiveSetHash(ct->c, next, &h));
       for (PetscInt j = 0; j < nhash - 1; j++)
         if (hash[j] == h) {
           PetscCall(SgContFail(ct, "PDAS_ACTIVE_SET_CYCLING: the active set of iteration %" PetscInt_FMT " came back after iteration %" PetscInt_FMT, j + 1, k));
@@ -164,7 +173,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   }
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
   PetscCall(SgContMeasure(ct));
-  PetscCall(SgContOuterRow(ct, ct->ssn_its, SG_NAN, SG_NAN, SG_NAN));
+  PetscCall(SgContOuterRow(ct, ct->ssn_its, NULL));
   PetscCall(SgContCheckBaseline(ct));
   PetscCall(VecDestroy(&rhs));
   PetscCall(VecDestroy(&x));
@@ -181,7 +190,8 @@ PetscErrorCode SgContCreate_PDAS(SgCont ct)
   PetscCall(PetscNew(&pd));
   pd->maxit          = 100;
   ct->data           = pd;
-  ct->setfromoptions = SetFromOptions_PDAS;
-  ct->solve          = Solve_PDAS;
+  ct->ops.setfromoptions = SetFromOptions_PDAS;
+  ct->ops.solve          = Solve_PDAS;
+  ct->ops.needs_ssn      = PETSC_FALSE; /* a solver of (P) itself, with the controller's linear solver */
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,7 @@
 /* cont_pf.c: exact path-following (PF), lamhat = 0: solve (P_gamma) exactly by SSN, fit the model
    m(gamma) = C1 - C2/(E + gamma) to V(0), V(gamma_k), V'(gamma_k) (formula (9)), then
    gamma_{k+1} = C2/beta_k - E with beta_k = tau_k |C1 - V(gamma_k)| and tau_k = tau0^k (formula (12)). */
-#include "signorini.h"
+#include "cont/contimpl.h"
 
 typedef struct {
   PetscReal gamma1, tau0, fallback;
@@ -21,42 +21,45 @@ static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOption
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Solve_PF(SgCont ct)
+static PetscErrorCode Start_PF(SgCont ct)
 {
-  PF       *pf    = (PF *)ct->data;
-  PetscReal *tauk = &ct->state[0]; /* tau0^k */
-  PetscBool stop  = PETSC_FALSE, ok;
+  PF *pf = (PF *)ct->data;
 
   PetscFunctionBeginUser;
-  if (!ct->restarted) {
-    ct->gamma = pf->gamma1;
-    *tauk     = 1;
-    for (PetscInt i = 0; i < ct->c->n; i++) ct->c->lamhat[i] = 0;
-  }
-  PetscCall(SgContStart(ct, &ok)); /* V(0) */
-  while (ok && !stop) {
-    const PetscReal gamma = ct->gamma;
-    PetscInt        its0  = ct->ssn_its;
-    PetscReal       V, dV, C1, C2, E, next;
+  ct->gamma    = pf->gamma1;
+  ct->state[0] = 1; /* tau_k = tau0^k */
+  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
+  PetscFunctionReturn(0);
+}
 
-    ct->outer++;
-    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContSSN(ct, gamma, &ok));
-    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
-    PetscCall(SgContMeasure(ct));
-    V  = ct->ssn->V;
-    dV = ct->ssn->dVdg;
-    *tauk *= pf->tau0;
-    if (SgModelFit(ct->V0, gamma, V, dV, &C1, &C2, &E)) next = C2 / (*tauk * PetscAbsReal(C1 - V)) - E;
-    else next = SG_NAN;
-    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, C1, C2, E));
-    if (!ok) break;
-    if (!(PetscIsNormalReal(next) && next > gamma)) {
-      PetscCall(PetscInfo(ct->ssn->snes, "PF step %" PetscInt_FMT ": no usable model update (%g), gamma grows by %g\n", ct->outer, (double)next, (double)pf->fallback));
-      next = gamma * pf->fallback;
-    }
-    ct->gamma = next;
-    PetscCall(SgContCheck(ct, &stop));
+/* the model (9) through V(0), V(gamma_k) and V'(gamma_k) */
+static PetscErrorCode Model_PF(SgCont ct, SgHistoryRow *row)
+{
+  PetscReal gamma, V, dV;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNGetPathValues(ct->ssn, &gamma, &V, &dV));
+  (void)SgModelFit(ct->V0, gamma, V, dV, &row->C1, &row->C2, &row->Em);
+  PetscFunctionReturn(0);
+}
+
+/* rule (12): gamma_{k+1} = C2/beta_k - E, beta_k = tau_k |C1 - V(gamma_k)| */
+static PetscErrorCode Update_PF(SgCont ct, PetscReal *next)
+{
+  PF        *pf   = (PF *)ct->data;
+  PetscReal *tauk = &ct->state[0];
+  PetscReal  gamma, V, dV, C1, C2, E;
+  SNES       snes;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNGetPathValues(ct->ssn, &gamma, &V, &dV));
+  *tauk *= pf->tau0;
+  if (SgModelFit(ct->V0, gamma, V, dV, &C1, &C2, &E)) *next = C2 / (*tauk * PetscAbsReal(C1 - V)) - E;
+  else *next = SG_NAN;
+  if (!(PetscIsNormalReal(*next) && *next > gamma)) {
+    PetscCall(SgSSNGetSNES(ct->ssn, &snes));
+    PetscCall(PetscInfo(snes, "PF step %" PetscInt_FMT ": no usable model update (%g), gamma grows by %g\n", ct->outer, (double)*next, (double)pf->fallback));
+    *next = gamma * pf->fallback;
   }
   PetscFunctionReturn(0);
 }
@@ -67,11 +70,15 @@ PetscErrorCode SgContCreate_PF(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&pf));
-  pf->gamma1         = 1e2;
-  pf->tau0           = 0.1;
-  pf->fallback       = 10;
-  ct->data           = pf;
-  ct->setfromoptions = SetFromOptions_PF;
-  ct->solve          = Solve_PF;
+  pf->gamma1             = 1e2;
+  pf->tau0               = 0.1;
+  pf->fallback           = 10;
+  ct->data               = pf;
+  ct->ops.setfromoptions = SetFromOptions_PF;
+  ct->ops.start          = Start_PF;
+  ct->ops.model          = Model_PF;
+  ct->ops.update         = Update_PF;
+  ct->ops.nstate         = 1;
+  ct->ops.state_names[0] = "tau_k";
   PetscFunctionReturn(0);
 }

@@ -1,36 +1,39 @@
 /* cont_vi.c: baseline: PETSc's own variational-inequality Newton solvers (SNESVINEWTONRSLS / SNESVINEWTONSSLS) on the
    same discrete problem, as bounds on the normal displacement component (axis-aligned normals only). Options: -vi_snes_*, -vi_ksp_*. */
-#include "signorini.h"
+#include "cont/contimpl.h"
 
 typedef struct {
   SNES snes;
   Mat  J; /* SNESVINEWTONSSLS scales its Jacobian in place: never hand it the stiffness itself */
+  Mat  K;
+  Vec  b;
 } VI;
 
 static PetscErrorCode Residual_VI(SNES snes, Vec y, Vec F, void *ctx)
 {
-  SgProblem p = (SgProblem)ctx;
+  VI *vi = (VI *)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(MatMult(p->K, y, F));
-  PetscCall(VecAXPY(F, -1.0, p->b));
+  PetscCall(MatMult(vi->K, y, F));
+  PetscCall(VecAXPY(F, -1.0, vi->b));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Jacobian_VI(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 {
-  SgProblem p = (SgProblem)ctx;
+  VI *vi = (VI *)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(MatCopy(p->K, P, SAME_NONZERO_PATTERN));
+  PetscCall(MatCopy(vi->K, P, SAME_NONZERO_PATTERN));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Solve_VI(SgCont ct)
 {
   VI                 *vi = (VI *)ct->data;
-  SgContact           c  = ct->c;
-  SgProblem           p  = ct->prob;
+  const SgContactView *c = &ct->cv;
+  PetscReal           Knorm, bnorm;
+  char                prefix[256];
   Vec                 xl, xu, r;
   PetscInt           *axis, its, kits;
   PetscReal          *sign;
@@ -41,16 +44,19 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscLogDouble      t;
 
   PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetOperators(ct->prob, &vi->K, &vi->b));
+  PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ct->prefix ? ct->prefix : ""));
   PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
-  PetscCall(SgContactAxisAligned(c, "-cont_type vi", axis, sign));
+  PetscCall(SgContactAxisAligned(ct->c, "-cont_type vi", axis, sign));
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
     PetscCall(PetscFree2(axis, sign));
     PetscFunctionReturn(0);
   }
-  PetscCall(VecDuplicate(p->b, &xl));
-  PetscCall(VecDuplicate(p->b, &xu));
-  PetscCall(VecDuplicate(p->b, &r));
+  PetscCall(VecDuplicate(vi->b, &xl));
+  PetscCall(VecDuplicate(vi->b, &xu));
+  PetscCall(VecDuplicate(vi->b, &r));
   PetscCall(VecSet(xl, PETSC_NINFINITY));
   PetscCall(VecSet(xu, PETSC_INFINITY));
   PetscCall(VecGetArray(xl, &la));
@@ -62,8 +68,8 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(VecRestoreArray(xl, &la));
   PetscCall(VecRestoreArray(xu, &ua));
   PetscCall(SNESCreate(ct->comm, &vi->snes));
-  PetscCall(SgCheckSolverTypes(ct->comm, "vi_"));
-  PetscCall(SNESSetOptionsPrefix(vi->snes, "vi_"));
+  PetscCall(SgCheckSolverTypes(ct->comm, prefix));
+  PetscCall(SNESSetOptionsPrefix(vi->snes, prefix));
   PetscCall(SNESSetType(vi->snes, SNESVINEWTONRSLS));
   {
     /* absolute floor at the round-off of the problem's force scale: from the unconstrained start of a problem that
@@ -71,11 +77,11 @@ static PetscErrorCode Solve_VI(SgCont ct)
        without any load, where F_0 = 0 must count as converged */
     PetscReal ynorm;
     PetscCall(VecNorm(ct->y, NORM_2, &ynorm));
-    PetscCall(SNESSetTolerances(vi->snes, 100 * PETSC_MACHINE_EPSILON * (p->Knorm * ynorm + p->bnorm) + 1e-300, 1e-12, 0.0, 100, PETSC_DEFAULT));
+    PetscCall(SNESSetTolerances(vi->snes, 100 * PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm) + 1e-300, 1e-12, 0.0, 100, PETSC_DEFAULT));
   }
-  PetscCall(SNESSetFunction(vi->snes, r, Residual_VI, p));
-  PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &vi->J));
-  PetscCall(SNESSetJacobian(vi->snes, vi->J, vi->J, Jacobian_VI, p));
+  PetscCall(SNESSetFunction(vi->snes, r, Residual_VI, vi));
+  PetscCall(MatDuplicate(vi->K, MAT_COPY_VALUES, &vi->J));
+  PetscCall(SNESSetJacobian(vi->snes, vi->J, vi->J, Jacobian_VI, vi));
   PetscCall(SNESVISetVariableBounds(vi->snes, xl, xu));
   {
     PetscErrorCode ierr;
@@ -95,7 +101,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   ct->ssn_its += its;
   ct->ksp_its += kits;
   /* the multiplier balances the normal residual at the contact vertices */
-  PetscCall(SgContactMultiplierFromResidual(c, ct->y, ct->lam));
+  PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
   PetscCall(SgContMeasure(ct));
   PetscCall(PetscTime(&t));
   PetscCall(SgHistoryRowInit(&row));
@@ -105,9 +111,9 @@ static PetscErrorCode Solve_VI(SgCont ct)
   row.active  = ct->kkt.nactive;
   row.ksp_its = kits;
   row.time    = t - ct->t0;
-  PetscCall(SgProblemEnergy(p, ct->y, &row.V));
+  PetscCall(SgElasticityEnergy(ct->prob, ct->y, &row.V));
   PetscCall(SgHistoryAdd(ct->hist, &row));
-  PetscCall(SgContOuterRow(ct, its, SG_NAN, SG_NAN, SG_NAN));
+  PetscCall(SgContOuterRow(ct, its, NULL));
   if (reason > 0) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "VI_%s", SNESConvergedReasons[reason]));
@@ -142,7 +148,8 @@ PetscErrorCode SgContCreate_VI(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&vi));
   ct->data    = vi;
-  ct->solve   = Solve_VI;
-  ct->destroy = Destroy_VI;
+  ct->ops.solve     = Solve_VI;
+  ct->ops.destroy   = Destroy_VI;
+  ct->ops.needs_ssn = PETSC_FALSE; /* PETSc's SNESVI solves (P) itself */
   PetscFunctionReturn(0);
 }

@@ -1,57 +1,72 @@
 /* contact.c: contact geometry on Gamma_c (vertex normals, lumped weights, gaps) and the discrete contact terms. */
-#include "signorini.h"
+#include "contact/contactimpl.h"
 
 /* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
    area-weighted normals are summed over the facets of every rank, then read by the owner. */
-PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
+/* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
+   options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
+PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
 {
-  SgContact        c;
-  const SgMesh    *m = &p->mesh;
-  const PetscInt   dim = p->dim;
-  PetscInt         nfac, *facets, *part, nloc = 0, nglob, nfglob;
-  Vec              wl, nl, wg, ng;
-  PetscScalar     *wa, *na;
-  PetscSection     ws, ns;
-  char             label[256] = "Face Sets";
+  SgContact c;
 
   PetscFunctionBeginUser;
   *contact = NULL;
   PetscCall(PetscNew(&c));
-  c->prob     = p;
+  c->prob = p;
+  PetscCall(SgElasticityGetComm(p, &c->comm));
+  PetscCall(SgElasticityGetDimension(p, &c->dim));
+  PetscCall(PetscStrallocpy(prefix, &c->prefix));
+  PetscCall(PetscStrncpy(c->obstype, obstype ? obstype : "", sizeof(c->obstype)));
+  if (bnd) c->bnd = *bnd;
   c->bnd.what = "contact";
-  c->gamma    = 1e4;
-  PetscCall(PetscStrcpy(c->bnd.label, label));
-  PetscOptionsBegin(p->comm, NULL, "Contact boundary", NULL);
+  if (!c->bnd.label[0]) PetscCall(PetscStrcpy(c->bnd.label, "Face Sets"));
+  PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_gamma", "Regularization parameter gamma of (P_gamma) (for -cont_type none)", &c->gamma, NULL));
-  c->lamhat0 = 0;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", &c->lamhat0, NULL));
   PetscOptionsEnd();
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
+    PetscCall(PetscFree(c->prefix));
     PetscCall(PetscFree(c));
     PetscFunctionReturn(0);
   }
-  PetscCheck(PetscIsNormalReal(c->gamma) && c->gamma > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_gamma: gamma must be positive and finite, got %g", (double)c->gamma);
-  PetscCheck((PetscIsNormalReal(c->lamhat0) || c->lamhat0 == 0) && c->lamhat0 >= 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_lamhat: the shift must be finite and >= 0, got %g", (double)c->lamhat0);
-  PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
-  PetscCall(SgObstacleCreate(p->comm, dim, &c->obs));
+  PetscCall(SgObstacleCreate(c->comm, prefix, c->dim, c->obstype, &c->obs));
+  *contact = c;
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(SgBoundaryGetFacets(p->dm, &c->bnd, &nfac, &facets, &part));
+/* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
+   area-weighted normals are summed over the facets of every rank, then read by the owner. */
+PetscErrorCode SgContactSetUp(SgContact c)
+{
+  const SgMesh    *m;
+  PetscInt         dim = c->dim;
+  PetscInt         nfac, *facets, *part, nloc = 0, nglob, nfglob;
+  Vec              wl, nl, wg, ng;
+  PetscScalar     *wa, *na;
+  PetscSection     ws, ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(c->prob, &c->dm, &c->dmVert, &c->dmVec, NULL));
+  PetscCall(SgElasticityGetMesh(c->prob, &c->mesh));
+  PetscCall(SgElasticityGetOperators(c->prob, &c->K, &c->b));
+  PetscCall(SgElasticityGetScales(c->prob, &c->Knorm, NULL, &c->bnorm_inf));
+  m = c->mesh;
+  PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
+  PetscCall(SgBoundaryGetFacets(c->dm, &c->bnd, &nfac, &facets, &part));
   nfglob = nfac;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, p->comm));
-  PetscCheck(nfglob > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.label);
-  PetscCall(DMGetLocalVector(p->dmVert, &wl));
-  PetscCall(DMGetLocalVector(p->dmVec, &nl));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, c->comm));
+  PetscCheck(nfglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.label);
+  PetscCall(DMGetLocalVector(c->dmVert, &wl));
+  PetscCall(DMGetLocalVector(c->dmVec, &nl));
   PetscCall(VecZeroEntries(wl));
   PetscCall(VecZeroEntries(nl));
-  PetscCall(DMGetLocalSection(p->dmVert, &ws));
-  PetscCall(DMGetLocalSection(p->dmVec, &ns));
+  PetscCall(DMGetLocalSection(c->dmVert, &ws));
+  PetscCall(DMGetLocalSection(c->dmVec, &ns));
   PetscCall(VecGetArray(wl, &wa));
   PetscCall(VecGetArray(nl, &na));
   for (PetscInt f = 0; f < nfac; f++) {
     PetscInt  fv[3], nfv, off;
     PetscReal area, nrm[3];
-    PetscCall(SgFacetGeometry(p->dm, m, facets[f], &nfv, fv, &area, nrm));
+    PetscCall(SgFacetGeometry(c->dm, m, facets[f], &nfv, fv, &area, nrm));
     c->area += area;
     for (PetscInt a = 0; a < nfv; a++) {
       PetscCall(PetscSectionGetOffset(ws, m->vStart + fv[a], &off));
@@ -63,18 +78,18 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
   PetscCall(PetscFree2(facets, part));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &c->area, 1, MPIU_REAL, MPI_SUM, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &c->area, 1, MPIU_REAL, MPI_SUM, c->comm));
   /* sum over ranks, then every rank reads the totals of its vertices */
-  PetscCall(DMGetGlobalVector(p->dmVert, &wg));
-  PetscCall(DMGetGlobalVector(p->dmVec, &ng));
+  PetscCall(DMGetGlobalVector(c->dmVert, &wg));
+  PetscCall(DMGetGlobalVector(c->dmVec, &ng));
   PetscCall(VecZeroEntries(wg));
   PetscCall(VecZeroEntries(ng));
-  PetscCall(DMLocalToGlobal(p->dmVert, wl, ADD_VALUES, wg));
-  PetscCall(DMLocalToGlobal(p->dmVec, nl, ADD_VALUES, ng));
-  PetscCall(DMGlobalToLocal(p->dmVert, wg, INSERT_VALUES, wl));
-  PetscCall(DMGlobalToLocal(p->dmVec, ng, INSERT_VALUES, nl));
-  PetscCall(DMRestoreGlobalVector(p->dmVert, &wg));
-  PetscCall(DMRestoreGlobalVector(p->dmVec, &ng));
+  PetscCall(DMLocalToGlobal(c->dmVert, wl, ADD_VALUES, wg));
+  PetscCall(DMLocalToGlobal(c->dmVec, nl, ADD_VALUES, ng));
+  PetscCall(DMGlobalToLocal(c->dmVert, wg, INSERT_VALUES, wl));
+  PetscCall(DMGlobalToLocal(c->dmVec, ng, INSERT_VALUES, nl));
+  PetscCall(DMRestoreGlobalVector(c->dmVert, &wg));
+  PetscCall(DMRestoreGlobalVector(c->dmVec, &ng));
 
   PetscCall(VecGetArray(wl, &wa));
   PetscCall(VecGetArray(nl, &na));
@@ -85,7 +100,6 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
   }
   c->n = nloc;
   PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
-  PetscCall(PetscCalloc1(nloc, &c->lamhat));
   nloc = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  off, noff;
@@ -101,18 +115,44 @@ PetscErrorCode SgContactCreate(SgProblem p, SgContact *contact)
     PetscCheck(nn > 1e-12 * c->w[nloc], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "contact vertex %" PetscInt_FMT " has no defined normal (opposite facet normals cancel)", v);
     for (PetscInt k = 0; k < dim; k++) c->normal[nloc * dim + k] = PetscRealPart(na[noff + k]) / nn;
     PetscCall(SgObstacleGap(c->obs, &m->x[v * dim], &c->normal[nloc * dim], &c->d[nloc]));
-    c->lamhat[nloc] = c->lamhat0;
-    nloc++;
+        nloc++;
   }
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
-  PetscCall(DMRestoreLocalVector(p->dmVert, &wl));
-  PetscCall(DMRestoreLocalVector(p->dmVec, &nl));
+  PetscCall(DMRestoreLocalVector(c->dmVert, &wl));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &nl));
   nglob = c->n;
-  PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, p->comm));
-  PetscCheck(c->nglobal > 0, p->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
+  PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
+  PetscCheck(c->nglobal > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
-  *contact = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
+{
+  PetscFunctionBeginUser;
+  v->n       = c->n;
+  v->nglobal = c->nglobal;
+  v->vert    = c->vert;
+  v->off     = c->off;
+  v->w       = c->w;
+  v->normal  = c->normal;
+  v->d       = c->d;
+  v->area    = c->area;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetObstacleType(SgContact c, const char *type[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleGetType(c->obs, type));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetElasticity(SgContact c, SgElasticity *el)
+{
+  PetscFunctionBeginUser;
+  *el = c->prob;
   PetscFunctionReturn(0);
 }
 
@@ -121,7 +161,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscFunctionBeginUser;
   if (!*c) PetscFunctionReturn(0);
   PetscCall(PetscFree5((*c)->vert, (*c)->off, (*c)->normal, (*c)->w, (*c)->d));
-  PetscCall(PetscFree((*c)->lamhat));
+  PetscCall(PetscFree((*c)->prefix));
   PetscCall(SgObstacleDestroy(&(*c)->obs));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(0);
@@ -130,7 +170,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
 /* g_i = tau_N y - d at every contact vertex (ya: the local part of a global displacement vector). */
 PetscErrorCode SgContactGap(SgContact c, const PetscScalar ya[], PetscReal g[])
 {
-  const PetscInt dim = c->prob->dim;
+  const PetscInt dim = c->dim;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n; i++) {
@@ -144,7 +184,7 @@ PetscErrorCode SgContactGap(SgContact c, const PetscScalar ya[], PetscReal g[])
 /* F += sum_i w_i lam_i n_i */
 PetscErrorCode SgContactAddForce(SgContact c, const PetscReal lam[], PetscScalar Fa[])
 {
-  const PetscInt dim = c->prob->dim;
+  const PetscInt dim = c->dim;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n; i++)
@@ -155,7 +195,7 @@ PetscErrorCode SgContactAddForce(SgContact c, const PetscReal lam[], PetscScalar
 /* J += gamma w_i n_i n_i^T on the active vertices (J assembled afterwards by the caller). */
 PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
 {
-  const PetscInt dim = c->prob->dim;
+  const PetscInt dim = c->dim;
   PetscInt       rstart;
 
   PetscFunctionBeginUser;
@@ -174,14 +214,14 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
 /* Multiplier balancing the normal part of the equilibrium residual: lam_i = -(K y - b)_i . n_i / w_i. */
 PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam[])
 {
-  const PetscInt     dim = c->prob->dim;
+  const PetscInt     dim = c->dim;
   Vec                R;
   const PetscScalar *ra;
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(y, &R));
-  PetscCall(MatMult(c->prob->K, y, R));
-  PetscCall(VecAXPY(R, -1.0, c->prob->b));
+  PetscCall(MatMult(c->K, y, R));
+  PetscCall(VecAXPY(R, -1.0, c->b));
   PetscCall(VecGetArrayRead(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal rn = 0;
@@ -209,8 +249,7 @@ static PetscReal SafeRatio(PetscReal a, PetscReal b)
    displacement scale Y = max(||y||_inf, largest initial penetration) as root mean squares over Gamma_c. */
 PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 {
-  SgProblem          p   = c->prob;
-  const PetscInt     dim = p->dim;
+  const PetscInt     dim = c->dim;
   Vec                R, Ky;
   PetscScalar       *ra;
   const PetscScalar *ya;
@@ -220,8 +259,8 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
   PetscCall(VecDuplicate(y, &R));
   PetscCall(VecDuplicate(y, &Ky));
-  PetscCall(MatMult(p->K, y, Ky));
-  PetscCall(VecWAXPY(R, -1.0, p->b, Ky));
+  PetscCall(MatMult(c->K, y, Ky));
+  PetscCall(VecWAXPY(R, -1.0, c->b, Ky));
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
@@ -236,9 +275,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   }
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
   PetscCall(VecRestoreArray(R, &ra));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
-  fscale = p->Knorm * nrm[1] + p->bnorm_inf;
+  fscale = c->Knorm * nrm[1] + c->bnorm_inf;
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
        (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
@@ -251,7 +290,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     s[6] += c->w[i] * lam[i];                                                           /* contact force */
     s[7] += (act ? 1 : 0);
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
   /* normwise backward error of the equilibrium equations: ||R|| / (||K|| ||y|| + ||b||), infinity norms; it stays at
      round-off level for nearly incompressible materials, where ||R|| / ||b|| cannot go below eps ||K|| ||y|| / ||b|| */
   PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
@@ -277,7 +316,6 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
    the vector d n from each contact vertex to the obstacle (zero elsewhere; pictures draw the obstacle from it). */
 PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec flds[4], Vec obst)
 {
-  SgProblem          p = c->prob;
   Vec                loc[4];
   PetscScalar       *la[4];
   const PetscScalar *ya;
@@ -289,15 +327,15 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  PetscCall(DMGetLocalSection(p->dmVert, &s));
+  PetscCall(DMGetLocalSection(c->dmVert, &s));
   for (PetscInt f = 0; f < 4; f++) {
-    PetscCall(DMGetLocalVector(p->dmVert, &loc[f]));
+    PetscCall(DMGetLocalVector(c->dmVert, &loc[f]));
     PetscCall(VecZeroEntries(loc[f]));
     PetscCall(VecGetArray(loc[f], &la[f]));
   }
   for (PetscInt i = 0; i < c->n; i++) {
     PetscInt off;
-    PetscCall(PetscSectionGetOffset(s, p->mesh.vStart + c->vert[i], &off));
+    PetscCall(PetscSectionGetOffset(s, c->mesh->vStart + c->vert[i], &off));
     la[0][off] = lam[i];
     la[1][off] = -g[i];
     la[2][off] = PetscMax(0, g[i]);
@@ -307,28 +345,28 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
     PetscCall(VecRestoreArray(loc[f], &la[f]));
     /* only owners hold contact vertices: adding the zeros of the other ranks keeps the owner's value */
     PetscCall(VecZeroEntries(flds[f]));
-    PetscCall(DMLocalToGlobal(p->dmVert, loc[f], ADD_VALUES, flds[f]));
-    PetscCall(DMRestoreLocalVector(p->dmVert, &loc[f]));
+    PetscCall(DMLocalToGlobal(c->dmVert, loc[f], ADD_VALUES, flds[f]));
+    PetscCall(DMRestoreLocalVector(c->dmVert, &loc[f]));
   }
   PetscCall(PetscFree(g));
   {
     Vec          ol;
     PetscScalar *oa;
     PetscSection vs;
-    const PetscInt dim = p->dim;
-    PetscCall(DMGetLocalSection(p->dmVec, &vs));
-    PetscCall(DMGetLocalVector(p->dmVec, &ol));
+    const PetscInt dim = c->dim;
+    PetscCall(DMGetLocalSection(c->dmVec, &vs));
+    PetscCall(DMGetLocalVector(c->dmVec, &ol));
     PetscCall(VecZeroEntries(ol));
     PetscCall(VecGetArray(ol, &oa));
     for (PetscInt i = 0; i < c->n; i++) {
       PetscInt off;
-      PetscCall(PetscSectionGetOffset(vs, p->mesh.vStart + c->vert[i], &off));
+      PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
       for (PetscInt k = 0; k < dim; k++) oa[off + k] = PetscMin(c->d[i], 1e3 * c->area) * c->normal[i * dim + k];
     }
     PetscCall(VecRestoreArray(ol, &oa));
     PetscCall(VecZeroEntries(obst));
-    PetscCall(DMLocalToGlobal(p->dmVec, ol, ADD_VALUES, obst));
-    PetscCall(DMRestoreLocalVector(p->dmVec, &ol));
+    PetscCall(DMLocalToGlobal(c->dmVec, ol, ADD_VALUES, obst));
+    PetscCall(DMRestoreLocalVector(c->dmVec, &ol));
   }
   PetscFunctionReturn(0);
 }
@@ -336,7 +374,7 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
 /* Every contact normal must be +-e_k (for the bound-constrained baselines); returns k and the sign per vertex. */
 PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis[], PetscReal sign[])
 {
-  const PetscInt dim = c->prob->dim;
+  const PetscInt dim = c->dim;
   PetscInt       bad = -1;
 
   PetscFunctionBeginUser;
@@ -350,8 +388,30 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
     if (axis[i] < 0) bad = i;
   }
   if (bad >= 0) {
-    const PetscReal *x = &c->prob->mesh.x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
+    const PetscReal *x = &c->mesh->x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0));
   }
+  PetscFunctionReturn(0);
+}
+
+static inline PetscInt64 Mix64(PetscInt64 x)
+{
+  uint64_t z = (uint64_t)x + 0x9e3779b97f4a7c15ULL;
+  z          = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z          = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return (PetscInt64)(z ^ (z >> 31));
+}
+
+/* Order-independent hash of a set of contact vertices (act[i] != 0), over global vertex numbers: identical on every
+   rank and for every partition (cycle detection of the active-set methods). */
+PetscErrorCode SgContactActiveSetHash(SgContact c, const char act[], PetscInt64 *h)
+{
+  uint64_t loc = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n; i++)
+    if (act[i]) loc += (uint64_t)Mix64(c->mesh->gblock[c->vert[i]]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &loc, 1, MPI_UINT64_T, MPI_SUM, c->comm));
+  *h = (PetscInt64)loc;
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,5 @@
 /* obstacle.c: rigid obstacles (registry): the gap d(x) measured from a boundary point along its outward normal. */
-#include "signorini.h"
+#include "contact/contactimpl.h"
 
 PetscFunctionList SgObstacleList = NULL;
 
@@ -164,7 +164,8 @@ PetscErrorCode SgObstacleRegister(const char name[], PetscErrorCode (*create)(Sg
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgObstacleCreate(MPI_Comm comm, PetscInt dim, SgObstacle *obs)
+/* The obstacle of type deftype ("" or NULL: plane) unless -obstacle_type says otherwise, options under the prefix. */
+PetscErrorCode SgObstacleCreate(MPI_Comm comm, const char prefix[], PetscInt dim, const char deftype[], SgObstacle *obs)
 {
   SgObstacle o;
   PetscErrorCode (*create)(SgObstacle) = NULL;
@@ -174,8 +175,8 @@ PetscErrorCode SgObstacleCreate(MPI_Comm comm, PetscInt dim, SgObstacle *obs)
   PetscCall(PetscNew(&o));
   o->comm = comm;
   o->dim  = dim;
-  PetscCall(PetscStrcpy(o->type, "plane"));
-  PetscOptionsBegin(comm, NULL, "Rigid obstacle", NULL);
+  PetscCall(PetscStrncpy(o->type, deftype && deftype[0] ? deftype : "plane", sizeof(o->type)));
+  PetscOptionsBegin(comm, prefix, "Rigid obstacle", NULL);
   PetscCall(PetscOptionsFList("-obstacle_type", "Obstacle shape", NULL, SgObstacleList, o->type, o->type, sizeof(o->type), &set));
   PetscCall(PetscFunctionListFind(SgObstacleList, o->type, &create));
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-obstacle_type: unknown obstacle '%s' (see -help for the list)", o->type);
@@ -190,6 +191,34 @@ PetscErrorCode SgObstacleGap(SgObstacle o, const PetscReal x[], const PetscReal 
 {
   PetscFunctionBeginUser;
   PetscCall(o->gap(o, x, n, d));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleGetType(SgObstacle o, const char *type[])
+{
+  PetscFunctionBeginUser;
+  *type = o->type;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SgObstacleFinalizePackage(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&SgObstacleList));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleRegisterAll(void)
+{
+  static PetscBool done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (done) PetscFunctionReturn(0);
+  done = PETSC_TRUE;
+  PetscCall(PetscRegisterFinalize(SgObstacleFinalizePackage));
+  PetscCall(SgObstacleRegister("plane", SgObstacleCreate_Plane));
+  PetscCall(SgObstacleRegister("parabola", SgObstacleCreate_Parabola));
+  PetscCall(SgObstacleRegister("ball", SgObstacleCreate_Ball));
   PetscFunctionReturn(0);
 }
 

@@ -1,17 +1,10 @@
-/* events.c: log events (-log_view) and the registration of every registry. */
-#include "signorini.h"
+/* core/init.c: the log events (-log_view). The type registries belong to their layers (SgObstacleRegisterAll,
+   SgContRegisterAll); SgInitializePackage (cont/cont.c) calls them all. */
+#include "sg.h"
 
 PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
 
-static PetscErrorCode SgFinalizePackage(void)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFunctionListDestroy(&SgObstacleList));
-  PetscCall(PetscFunctionListDestroy(&SgContList));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SgRegisterAll(void)
+PetscErrorCode SgLogEventsRegister(void)
 {
   static PetscBool done = PETSC_FALSE;
   PetscClassId     cid;
@@ -19,7 +12,6 @@ PetscErrorCode SgRegisterAll(void)
   PetscFunctionBeginUser;
   if (done) PetscFunctionReturn(0);
   done = PETSC_TRUE;
-  PetscCall(PetscRegisterFinalize(SgFinalizePackage));
   PetscCall(PetscClassIdRegister("Signorini", &cid));
   PetscCall(PetscLogEventRegister("SgMeshSetUp", cid, &SG_MeshSetUp));
   PetscCall(PetscLogEventRegister("SgAssembly", cid, &SG_Assembly));
@@ -30,14 +22,5 @@ PetscErrorCode SgRegisterAll(void)
   PetscCall(PetscLogEventRegister("SgLinearSolve", cid, &SG_LinearSolve));
   PetscCall(PetscLogEventRegister("SgContStep", cid, &SG_ContStep));
   PetscCall(PetscLogEventRegister("SgOutput", cid, &SG_Output));
-  PetscCall(SgObstacleRegister("plane", SgObstacleCreate_Plane));
-  PetscCall(SgObstacleRegister("parabola", SgObstacleCreate_Parabola));
-  PetscCall(SgObstacleRegister("ball", SgObstacleCreate_Ball));
-  PetscCall(SgContRegister("none", SgContCreate_None));
-  PetscCall(SgContRegister("alm", SgContCreate_ALM));
-  PetscCall(SgContRegister("pf", SgContCreate_PF));
-  PetscCall(SgContRegister("ipf", SgContCreate_IPF));
-  PetscCall(SgContRegister("pdas", SgContCreate_PDAS));
-  PetscCall(SgContRegister("vi", SgContCreate_VI));
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,5 @@
 /* elasticity.c: P1 linear elasticity: element kernels, assembly of K and the load, energy, stresses, manufactured solution. */
-#include "signorini.h"
+#include "fem/femimpl.h"
 
 /* Lame constants (plane strain in 2D) from Young's modulus and Poisson's ratio. */
 PetscErrorCode SgLame(PetscReal E, PetscReal nu, PetscReal *lambda, PetscReal *mu)
@@ -125,12 +125,12 @@ static PetscErrorCode SimplexQuadrature(PetscInt dim, PetscInt *nq, PetscReal **
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ProblemOptions(SgProblem p)
+static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings *set)
 {
   PetscFunctionBeginUser;
-  p->E  = 1.0;
-  p->nu = 0.3;
-  PetscOptionsBegin(p->comm, NULL, "Linear elasticity", NULL);
+  p->E  = set && set->material_set ? set->E : 1.0;
+  p->nu = set && set->material_set ? set->nu : 0.3;
+  PetscOptionsBegin(p->comm, p->prefix, "Linear elasticity", NULL);
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-E", "Young's modulus", &p->E, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-nu", "Poisson's ratio in [0, 0.5) (plane strain in 2D)", &p->nu, NULL));
   p->nbody_force = 0;
@@ -141,10 +141,14 @@ static PetscErrorCode ProblemOptions(SgProblem p)
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-elasticity_rigid_shift", "Accept a body whose Dirichlet part leaves rigid motions free: add eps E/L^2 M to K (M lumped volumes, L the mesh diameter); 0: no shift, singular K", &p->rigid_shift, &p->rigid_shift_set));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-elasticity_energy_check", "Debug: print the energy beside a long double evaluation and the former y^T K y formula", &p->energy_check, NULL));
   PetscOptionsEnd();
+  if (set) {
+    p->dirichlet = set->dirichlet;
+    p->neumann   = set->neumann;
+  }
   p->dirichlet.what = "dirichlet";
   p->neumann.what   = "neumann";
-  PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
-  PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
+  if (!p->dirichlet.label[0]) PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
+  if (!p->neumann.label[0]) PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
   PetscCheck(PetscIsNormalReal(p->E) && p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E: Young's modulus must be positive and finite, got %g", (double)p->E);
   /* nu = 0 (no lateral contraction) is a valid material; nu -> 1/2 is incompressible */
   PetscCheck(!PetscIsInfOrNanReal(p->nu) && p->nu >= 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in [0, 0.5), got %g", (double)p->nu);
@@ -155,10 +159,10 @@ static PetscErrorCode ProblemOptions(SgProblem p)
 }
 
 /* The boundary parts' options (their values need the dimension, known only once the mesh exists). */
-static PetscErrorCode BoundaryValueOptions(SgProblem p)
+static PetscErrorCode BoundaryValueOptions(SgElasticity p)
 {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(p->comm, NULL, "Boundary data", NULL);
+  PetscOptionsBegin(p->comm, p->prefix, "Boundary data", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->dirichlet, p->dim, "values", "Dirichlet displacement"));
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->neumann, p->dim, "traction", "Neumann traction"));
   PetscOptionsEnd();
@@ -192,7 +196,7 @@ static PetscErrorCode CreateFieldDM(DM dm, PetscInt height, PetscInt ncomp, cons
 }
 
 /* Dirichlet value of vertex v (local number) */
-static void DirichletValue(SgProblem p, PetscInt v, PetscReal u[])
+static void DirichletValue(SgElasticity p, PetscInt v, PetscReal u[])
 {
   const PetscInt g = p->mesh.bcgroup[v];
   if (p->mms) MMSExact(p->dim, &p->mesh.x[v * p->dim], u, NULL);
@@ -204,7 +208,7 @@ static void DirichletValue(SgProblem p, PetscInt v, PetscReal u[])
    vertices of its cells.
    Rows of vertices shared between ranks get the counts of every rank added, an upper bound only there (the other
    ranks' cells are not local). DMCreateMatrix() and MATPREALLOCATOR cost several times the assembly itself. */
-static PetscErrorCode CreateStiffness(SgProblem p)
+static PetscErrorCode CreateStiffness(SgElasticity p)
 {
   const SgMesh  *m = &p->mesh;
   const PetscInt dim = p->dim, nv = dim + 1;
@@ -282,7 +286,7 @@ static PetscErrorCode CreateStiffness(SgProblem p)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Assemble(SgProblem p)
+static PetscErrorCode Assemble(SgElasticity p)
 {
   const SgMesh   *m = &p->mesh;
   const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
@@ -433,7 +437,7 @@ static PetscErrorCode Assemble(SgProblem p)
 /* The Dirichlet part must fix all rigid motions: otherwise K is singular and any solution is garbage. A part that fixes
    every component of 2 distinct points (2D) or 3 non-collinear points (3D) does; contact with a frictionless obstacle
    does not count (it leaves the tangential motions free). -elasticity_rigid_shift accepts such a body on purpose. */
-static PetscErrorCode CheckRigidMotions(SgProblem p)
+static PetscErrorCode CheckRigidMotions(SgElasticity p)
 {
   const PetscInt dim = p->dim;
   PetscInt       adim;
@@ -464,19 +468,46 @@ static PetscErrorCode CheckRigidMotions(SgProblem p)
   SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "%s%s, so the stiffness is singular and the body floats. Fix every component of at least %s with -dirichlet_label/-dirichlet_ids (contact with a frictionless obstacle does not hold the body: tangential motions stay free), or regularize on purpose with -elasticity_rigid_shift eps (adds eps E/L^2 times the lumped volumes to K)", part, what, dim == 2 ? "2 distinct points" : "3 points not on one line");
 }
 
-PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
+PetscErrorCode SgElasticityCreate(MPI_Comm comm, const char prefix[], SgElasticity *prob)
 {
-  SgProblem p;
-  PetscInt  bs;
+  SgElasticity p;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&p));
   p->comm = comm;
-  PetscCall(ProblemOptions(p));
-  PetscCall(SgMeshCreateDM(comm, &p->dm));
+  PetscCall(PetscStrallocpy(prefix, &p->prefix));
+  *prob = p;
+  PetscFunctionReturn(0);
+}
+
+/* The material and the boundary parts from the settings and the options, and the mesh: the caller's dm (a clone of
+   it: its own section stays untouched), or ours from -dm_plex_filename / -box_*. */
+PetscErrorCode SgElasticitySetFromOptions(SgElasticity p, DM dm, const SgElasticitySettings *set)
+{
+  MPI_Comm comm = p->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(ProblemOptions(p, set));
+  if (dm) {
+    PetscCall(SgMeshCheckDM(comm, "(given to SgProblemSetDM)", dm));
+    PetscCall(DMClone(dm, &p->dm));
+    PetscCall(PetscObjectSetName((PetscObject)p->dm, "mesh"));
+  } else PetscCall(SgMeshCreateDM(comm, p->prefix, &p->dm));
   PetscCall(DMGetDimension(p->dm, &p->dim));
   PetscCheck(p->nbody_force == 0 || p->nbody_force == p->dim, comm, PETSC_ERR_USER_INPUT, "-body_force: give %" PetscInt_FMT " numbers for this %" PetscInt_FMT "D mesh, got %" PetscInt_FMT, p->dim, p->dim, p->nbody_force);
   PetscCall(BoundaryValueOptions(p));
+  PetscFunctionReturn(0);
+}
+
+/* The P1 layout with the Dirichlet constraints, the auxiliary field layouts and the assembly. */
+PetscErrorCode SgElasticitySetUp(SgElasticity p)
+{
+  MPI_Comm comm = p->comm;
+  PetscInt bs;
+
+  PetscFunctionBeginUser;
+  if (p->setup) PetscFunctionReturn(0);
+  PetscCheck(p->dm, comm, PETSC_ERR_ORDER, "SgElasticitySetUp: the mesh is missing (SgElasticitySetFromOptions first)");
   PetscCall(SgMeshSetUp(p->dm, &p->dirichlet, &p->mesh));
   PetscCall(CheckRigidMotions(p));
   PetscCall(CreateFieldDM(p->dm, 0, 1, "cell", &p->dmCell));
@@ -486,13 +517,115 @@ PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
   PetscCall(VecGetSize(p->b, &p->ndofs));
   PetscCall(MatGetBlockSize(p->K, &bs));
   PetscCheck(bs == p->dim, comm, PETSC_ERR_PLIB, "stiffness block size %" PetscInt_FMT " differs from the dimension", bs);
-  *prob = p;
+  p->setup = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgProblemDestroy(SgProblem *prob)
+PetscErrorCode SgElasticityView(SgElasticity p, PetscViewer viewer)
 {
-  SgProblem p = *prob;
+  PetscInt nc = p->mesh.nc;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "linear elasticity (P1, %s): %" PetscInt_FMT "D, %" PetscInt_FMT " cells, %" PetscInt_FMT " unknowns, E %g, nu %g\n", p->dim == 2 ? "plane strain" : "3D", p->dim, nc, p->ndofs, (double)p->E, (double)p->nu));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  Dirichlet part: %s%s, Neumann part: %s\n", p->dirichlet.active ? "label " : "none", p->dirichlet.active ? p->dirichlet.label : "", p->neumann.nvalues ? p->neumann.label : "none"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetComm(SgElasticity p, MPI_Comm *comm)
+{
+  PetscFunctionBeginUser;
+  *comm = p->comm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetDimension(SgElasticity p, PetscInt *dim)
+{
+  PetscFunctionBeginUser;
+  *dim = p->dim;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetDMs(SgElasticity p, DM *dm, DM *dmVert, DM *dmVec, DM *dmCell)
+{
+  PetscFunctionBeginUser;
+  if (dm) *dm = p->dm;
+  if (dmVert) *dmVert = p->dmVert;
+  if (dmVec) *dmVec = p->dmVec;
+  if (dmCell) *dmCell = p->dmCell;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetMesh(SgElasticity p, const SgMesh **m)
+{
+  PetscFunctionBeginUser;
+  *m = &p->mesh;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetOperators(SgElasticity p, Mat *K, Vec *b)
+{
+  PetscFunctionBeginUser;
+  if (K) *K = p->K;
+  if (b) *b = p->b;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetMass(SgElasticity p, Vec *mass)
+{
+  PetscFunctionBeginUser;
+  *mass = p->mass;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity p, MatNullSpace *nsp)
+{
+  PetscFunctionBeginUser;
+  *nsp = p->use_nearnull ? p->nearnull : NULL;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetScales(SgElasticity p, PetscReal *Knorm, PetscReal *bnorm, PetscReal *bnorm_inf)
+{
+  PetscFunctionBeginUser;
+  if (Knorm) *Knorm = p->Knorm;
+  if (bnorm) *bnorm = p->bnorm;
+  if (bnorm_inf) *bnorm_inf = p->bnorm_inf;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetEnergyShift(SgElasticity p, PetscReal *shift)
+{
+  PetscFunctionBeginUser;
+  *shift = p->energy_shift;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetMaterial(SgElasticity p, PetscReal *E, PetscReal *nu)
+{
+  PetscFunctionBeginUser;
+  if (E) *E = p->E;
+  if (nu) *nu = p->nu;
+  PetscFunctionReturn(0);
+}
+
+/* unknowns (global), cells (global), manufactured solution, assembly time */
+PetscErrorCode SgElasticityGetInfo(SgElasticity p, PetscInt *ndofs, PetscInt *ncells, PetscBool *mms, PetscLogDouble *t_assembly)
+{
+  PetscFunctionBeginUser;
+  if (ndofs) *ndofs = p->ndofs;
+  if (ncells) {
+    *ncells = p->mesh.nc;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ncells, 1, MPIU_INT, MPI_SUM, p->comm));
+  }
+  if (mms) *mms = p->mms;
+  if (t_assembly) *t_assembly = p->t_assembly;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityDestroy(SgElasticity *prob)
+{
+  SgElasticity p = *prob;
 
   PetscFunctionBeginUser;
   if (!p) PetscFunctionReturn(0);
@@ -507,6 +640,7 @@ PetscErrorCode SgProblemDestroy(SgProblem *prob)
   PetscCall(DMDestroy(&p->dmVert));
   PetscCall(DMDestroy(&p->dmVec));
   PetscCall(DMDestroy(&p->dm));
+  PetscCall(PetscFree(p->prefix));
   PetscCall(PetscFree(*prob));
   PetscFunctionReturn(0);
 }
@@ -539,7 +673,7 @@ static inline void SumAddL(SgSumL *a, long double x)
 /* Debug reference of the energy (-elasticity_energy_check): per element 1/2 w^T K_e w with K_e built in long double
    from the coordinates and w = u_e - u_0 (K_e annihilates translations), the load work and the foundation in long
    double; partial sums gathered as pairs of doubles. */
-static PetscErrorCode EnergyReference(SgProblem p, const PetscScalar ya[], const PetscScalar fa[], Vec y, long double *Vref)
+static PetscErrorCode EnergyReference(SgElasticity p, const PetscScalar ya[], const PetscScalar fa[], Vec y, long double *Vref)
 {
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -626,7 +760,7 @@ static PetscErrorCode EnergyReference(SgProblem p, const PetscScalar ya[], const
    the edges (no cancellation, as 1/2 y^T K y - b^T y has on fine meshes), the load work f.u with the unlifted load,
    each summed with compensation, and the partial sums of the ranks added in rank order (the same on any rank).
    Costs about one pass over the cells (no matrix product). */
-PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
+PetscErrorCode SgElasticityEnergy(SgElasticity p, Vec y, PetscReal *V)
 {
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -641,7 +775,7 @@ PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
   PetscCall(DMGetLocalVector(p->dm, &yloc));
-  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
   PetscCall(VecGetArrayRead(yloc, &ya));
   PetscCall(VecGetArrayRead(p->fpart, &fa));
   /* every cell is on exactly one rank (no overlap), as in the assembly */
@@ -716,7 +850,7 @@ PetscErrorCode SgProblemEnergy(SgProblem p, Vec y, PetscReal *V)
 }
 
 /* Local vector of the full displacement: free values from y, Dirichlet values from the data. */
-PetscErrorCode SgProblemGlobalToLocal(SgProblem p, Vec y, Vec yloc)
+PetscErrorCode SgElasticityGlobalToLocal(SgElasticity p, Vec y, Vec yloc)
 {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(p->ubc, yloc));
@@ -725,7 +859,7 @@ PetscErrorCode SgProblemGlobalToLocal(SgProblem p, Vec y, Vec yloc)
 }
 
 /* The displacement on every vertex (Dirichlet ones included) as a global vector of dmVec, for output. */
-PetscErrorCode SgProblemFullDisplacement(SgProblem p, Vec y, Vec ufull)
+PetscErrorCode SgElasticityFullDisplacement(SgElasticity p, Vec y, Vec ufull)
 {
   Vec                yloc, uloc;
   const PetscScalar *ya;
@@ -735,7 +869,7 @@ PetscErrorCode SgProblemFullDisplacement(SgProblem p, Vec y, Vec ufull)
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(p->dm, &yloc));
   PetscCall(DMGetLocalVector(p->dmVec, &uloc));
-  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
   PetscCall(DMGetLocalSection(p->dmVec, &s));
   PetscCall(VecGetArrayRead(yloc, &ya));
   PetscCall(VecGetArray(uloc, &ua));
@@ -753,7 +887,7 @@ PetscErrorCode SgProblemFullDisplacement(SgProblem p, Vec y, Vec ufull)
 }
 
 /* Discrete dual norm of a residual: sqrt(sum_j R_j^2 / m_j), m_j the lumped volume of dof j. */
-PetscErrorCode SgProblemDualNorm(SgProblem p, Vec R, PetscReal *nrm)
+PetscErrorCode SgElasticityDualNorm(SgElasticity p, Vec R, PetscReal *nrm)
 {
   Vec w;
 
@@ -768,7 +902,7 @@ PetscErrorCode SgProblemDualNorm(SgProblem p, Vec R, PetscReal *nrm)
 }
 
 /* Per-cell von Mises stress and elastic shear (distortion) energy density mu |dev eps|^2 (plane strain: eps_33 = 0). */
-PetscErrorCode SgProblemCellFields(SgProblem p, Vec y, Vec vm, Vec wshear)
+PetscErrorCode SgElasticityCellFields(SgElasticity p, Vec y, Vec vm, Vec wshear)
 {
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -779,7 +913,7 @@ PetscErrorCode SgProblemCellFields(SgProblem p, Vec y, Vec vm, Vec wshear)
 
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(p->dm, &yloc));
-  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
   PetscCall(DMGetLocalVector(p->dmCell, &vml));
   PetscCall(DMGetLocalVector(p->dmCell, &wl));
   PetscCall(DMGetLocalSection(p->dmCell, &cs));
@@ -822,7 +956,7 @@ PetscErrorCode SgProblemCellFields(SgProblem p, Vec y, Vec vm, Vec wshear)
 
 /* Total reaction force on the Dirichlet vertices, sum_D (K u - f)_D (u with its Dirichlet values). With the contact
    forces it balances the loads: R = sum_i w_i lam_i n_i - sum f. */
-PetscErrorCode SgProblemReaction(SgProblem p, Vec y, PetscReal R[3])
+PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
 {
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -832,7 +966,7 @@ PetscErrorCode SgProblemReaction(SgProblem p, Vec y, PetscReal R[3])
 
   PetscFunctionBeginUser;
   PetscCall(DMGetLocalVector(p->dm, &yloc));
-  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
   PetscCall(VecGetArrayRead(yloc, &ya));
   /* every cell is on exactly one rank, so the element sums need no ownership bookkeeping */
   for (PetscInt c = 0; c < m->nc; c++) {
@@ -877,7 +1011,7 @@ PetscErrorCode SgProblemReaction(SgProblem p, Vec y, PetscReal R[3])
 }
 
 /* L2 and H1-seminorm errors against the manufactured solution. */
-PetscErrorCode SgProblemMMSErrors(SgProblem p, Vec y, PetscReal *l2, PetscReal *h1)
+PetscErrorCode SgElasticityMMSErrors(SgElasticity p, Vec y, PetscReal *l2, PetscReal *h1)
 {
   const SgMesh      *m = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -890,7 +1024,7 @@ PetscErrorCode SgProblemMMSErrors(SgProblem p, Vec y, PetscReal *l2, PetscReal *
   PetscCheck(p->mms, p->comm, PETSC_ERR_ARG_WRONGSTATE, "errors need -mms");
   PetscCall(SimplexQuadrature(dim, &nq, &lq, &wq));
   PetscCall(DMGetLocalVector(p->dm, &yloc));
-  PetscCall(SgProblemGlobalToLocal(p, y, yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
   PetscCall(VecGetArrayRead(yloc, &ya));
   for (PetscInt c = 0; c < m->nc; c++) {
     PetscReal xe[12], ue[12], G[12], vol, gh[9] = {0};

@@ -1,5 +1,5 @@
 /* gmshcheck.c: validate a gmsh .msh file on rank 0 before PETSc's reader, which trusts it (a bad node tag crashes it). */
-#include "signorini.h"
+#include "fem/femimpl.h"
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,156 +1,11 @@
 /* mesh.c: the DMPlex mesh (structured simplex box or gmsh file), boundary parts and the P1 displacement layout. */
-#include "signorini.h"
+#include "fem/femimpl.h"
 #include <errno.h>
 #include <stdlib.h>
 #include <unistd.h>
 
 const char *const SgBoxDiagonals[] = {"right", "left", "SgBoxDiagonal", "SG_BOX_", NULL};
 typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT } SgBoxDiagonal;
-
-/* Split a comma-separated option value; an empty value or entry, or more than max entries, is an error naming opt. */
-static PetscErrorCode SplitList(const char opt[], const char str[], PetscInt max, char tok[][64], PetscInt *n)
-{
-  const char *s = str;
-
-  PetscFunctionBeginUser;
-  *n = 0;
-  while (*s == ' ' || *s == '\t') s++;
-  PetscCheck(*s, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given without a value", opt);
-  for (;;) {
-    const char *e = s;
-    size_t      len;
-    while (*e && *e != ',') e++;
-    len = (size_t)(e - s);
-    while (len > 0 && (s[len - 1] == ' ' || s[len - 1] == '\t')) len--;
-    while (len > 0 && (*s == ' ' || *s == '\t')) {
-      s++;
-      len--;
-    }
-    PetscCheck(*n < max, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': more than %" PetscInt_FMT " entries", opt, str, max);
-    PetscCheck(len > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is empty", opt, str, *n);
-    PetscCheck(len < 64, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is too long", opt, str, *n);
-    PetscCall(PetscMemcpy(tok[*n], s, len));
-    tok[*n][len] = 0;
-    (*n)++;
-    if (!*e) break;
-    s = e + 1;
-  }
-  PetscFunctionReturn(0);
-}
-
-/* -opt as a list of at most max integers: read as a string so that a bad entry is reported with the option's name
-   (PETSc's own parser does not name it, and drops an option given without a value). */
-PetscErrorCode SgOptionsIntList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscInt vals[], PetscInt *n, PetscBool *set)
-{
-  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
-  PetscInt  nt;
-  PetscBool flg;
-
-  PetscFunctionBeginUser;
-  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
-  for (PetscInt i = 0; i < *n; i++) {
-    size_t l;
-    PetscCall(PetscStrlen(def, &l));
-    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%" PetscInt_FMT : "%" PetscInt_FMT, vals[i]));
-  }
-  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
-  if (set) *set = flg;
-  if (!flg) PetscFunctionReturn(0);
-  PetscCall(SplitList(opt, str, max, tok, &nt));
-  for (PetscInt i = 0; i < nt; i++) {
-    char     *end;
-    long long v;
-    errno = 0;
-    v     = strtoll(tok[i], &end, 10);
-    PetscCheck(!*end && end != tok[i], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not an integer", opt, str, i, tok[i]);
-    PetscCheck(errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is out of range (%" PetscInt_FMT " to %" PetscInt_FMT ")", opt, str, i, tok[i], (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
-    vals[i] = (PetscInt)v;
-  }
-  *n = nt;
-  PetscFunctionReturn(0);
-}
-
-/* -opt as a list of at most max reals (see SgOptionsIntList); inf and nan are read, the caller decides on them. */
-PetscErrorCode SgOptionsRealList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscReal vals[], PetscInt *n, PetscBool *set)
-{
-  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
-  PetscInt  nt;
-  PetscBool flg;
-
-  PetscFunctionBeginUser;
-  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
-  for (PetscInt i = 0; i < *n; i++) {
-    size_t l;
-    PetscCall(PetscStrlen(def, &l));
-    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%g" : "%g", (double)vals[i]));
-  }
-  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
-  if (set) *set = flg;
-  if (!flg) PetscFunctionReturn(0);
-  PetscCall(SplitList(opt, str, max, tok, &nt));
-  for (PetscInt i = 0; i < nt; i++) {
-    char *end;
-    vals[i] = (PetscReal)strtod(tok[i], &end);
-    PetscCheck(!*end && end != tok[i], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not a number", opt, str, i, tok[i]);
-  }
-  *n = nt;
-  PetscFunctionReturn(0);
-}
-
-/* A single real -opt (see SgOptionsIntList). */
-PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscReal *val, PetscBool *set)
-{
-  PetscInt n = 1;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealList(PetscOptionsObject, opt, text, 1, val, &n, set));
-  PetscFunctionReturn(0);
-}
-
-/* A logical -opt as PETSc reads it (alone: true; true/false, yes/no, on/off, 1/0 in any case), but a bad value is
-   reported with the option's name (PETSc says only "Unknown logical value"). */
-PetscErrorCode SgOptionsBoolValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool *val, PetscBool *set)
-{
-  static const char *const yes[] = {"", "true", "yes", "on", "1"}, *const no[] = {"false", "no", "off", "0"};
-  char      str[256];
-  PetscBool flg, match;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString(opt, text, NULL, *val ? "true" : "false", str, sizeof(str), &flg));
-  if (set) *set = flg;
-  if (!flg) {
-    /* PetscOptionsString reports a bare option as not set: look for the name itself */
-    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &flg));
-    if (set) *set = flg;
-    if (flg) *val = PETSC_TRUE;
-    PetscFunctionReturn(0);
-  }
-  for (size_t k = 0; k < sizeof(yes) / sizeof(yes[0]); k++) {
-    PetscCall(PetscStrcasecmp(str, yes[k], &match));
-    if (match) {
-      *val = PETSC_TRUE;
-      PetscFunctionReturn(0);
-    }
-  }
-  for (size_t k = 0; k < sizeof(no) / sizeof(no[0]); k++) {
-    PetscCall(PetscStrcasecmp(str, no[k], &match));
-    if (match) {
-      *val = PETSC_FALSE;
-      PetscFunctionReturn(0);
-    }
-  }
-  SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s '%s': not a logical value (true or false, yes or no, on or off, 1 or 0)", opt, str);
-}
-
-/* A single integer -opt (see SgOptionsIntList). */
-PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *val, PetscBool *set)
-{
-  PetscInt n = 1;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgOptionsIntList(PetscOptionsObject, opt, text, 1, val, &n, set));
-  PetscFunctionReturn(0);
-}
 
 /* Face markers follow DMPlexCreateBoxMesh(): 2D bottom 1, right 2, top 3, left 4;
    3D bottom 1, top 2, front 3, back 4, right 5, left 6 ("Face Sets"). */
@@ -441,8 +296,9 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
   PetscFunctionReturn(0);
 }
 
-/* Create the distributed simplex mesh from a gmsh file (-dm_plex_filename) or the structured box (-box_*). */
-PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
+/* Create the distributed simplex mesh from a gmsh file (-dm_plex_filename) or the structured box (-box_*), options
+   under the prefix. */
+PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
 {
   char             fname[PETSC_MAX_PATH_LEN] = "";
   PetscBool        file;
@@ -450,13 +306,12 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscReal        lo[SG_OPT_MAX] = {0, 0, 0}, hi[SG_OPT_MAX] = {1, 1, 1};
   SgBoxDiagonal    diag = SG_BOX_RIGHT;
   PetscPartitioner part;
-  PetscInt         cStart, cEnd, ncells, cdim;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_MeshSetUp, 0, 0, 0, 0));
-  PetscCall(PetscOptionsGetString(NULL, NULL, "-dm_plex_filename", fname, sizeof(fname), &file));
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-dm_plex_filename", fname, sizeof(fname), &file));
   PetscCheck(!file || fname[0], comm, PETSC_ERR_USER_INPUT, "-dm_plex_filename is given without a value");
-  PetscOptionsBegin(comm, NULL, "Structured simplex box mesh (used without -dm_plex_filename)", NULL);
+  PetscOptionsBegin(comm, prefix, "Structured simplex box mesh (used without -dm_plex_filename)", NULL);
   PetscCall(SgOptionsIntList(PetscOptionsObject, "-box_dim", "Spatial dimension of the box: 2 or 3", 1, &dim, &ndim, NULL));
   PetscCheck(dim == 2 || dim == 3, comm, PETSC_ERR_USER_INPUT, "-box_dim: the dimension must be 2 or 3, got %" PetscInt_FMT, dim);
   nfaces = nlo = nhi = dim;
@@ -469,7 +324,7 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
     /* PETSc keeps the default for an enum given without a value */
     const char *val;
     PetscBool   has;
-    PetscCall(PetscOptionsFindPair(NULL, NULL, "-box_diagonal", &val, &has));
+    PetscCall(PetscOptionsFindPair(NULL, prefix, "-box_diagonal", &val, &has));
     PetscCheck(!has || (val && val[0]), comm, PETSC_ERR_USER_INPUT, "-box_diagonal is given without a value (right or left)");
   }
 
@@ -486,22 +341,11 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
     PetscCall(BoxMeshCreate(comm, dim, faces, lo, hi, diag, dm));
   }
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
-  PetscCall(DMGetDimension(*dm, &dim));
-  PetscCall(DMGetCoordinateDim(*dm, &cdim));
-  PetscCheck(dim == 2 || dim == 3, comm, PETSC_ERR_USER_INPUT, "mesh %s has dimension %" PetscInt_FMT ": only 2D and 3D meshes are supported", file ? fname : "(box)", dim);
-  PetscCheck(cdim == dim, comm, PETSC_ERR_USER_INPUT, "mesh %s: coordinate dimension %" PetscInt_FMT " differs from the topological dimension %" PetscInt_FMT, file ? fname : "(box)", cdim, dim);
-  PetscCall(DMPlexGetHeightStratum(*dm, 0, &cStart, &cEnd));
-  ncells = cEnd - cStart;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCheck(ncells > 0, comm, PETSC_ERR_USER_INPUT, "mesh %s has no cells", file ? fname : "(box)");
-  if (cEnd > cStart) {
-    DMPolytopeType ct;
-    PetscCall(DMPlexGetCellType(*dm, cStart, &ct));
-    PetscCheck(ct == (dim == 2 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "mesh %s: cells are %s, P1 elasticity needs %s", file ? fname : "(box)", DMPolytopeTypes[ct], dim == 2 ? "triangles" : "tetrahedra");
-  }
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)*dm, prefix));
   /* PT-Scotch unless the user picks another partitioner; DMSetFromOptions() distributes and refines */
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+  PetscCall(SgMeshCheckDM(comm, file ? fname : "(box)", *dm));
   PetscCall(DMSetFromOptions(*dm));
   {
     /* the assembly and the energy visit every local cell once: cells shared by an overlap would count twice */
@@ -514,20 +358,48 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, DM *dm)
   PetscFunctionReturn(0);
 }
 
+/* A mesh we can use: 2D triangles or 3D tetrahedra, coordinates of the mesh's dimension, no overlap (the caller's DM
+   is checked by this too; name: how to call it in messages). */
+PetscErrorCode SgMeshCheckDM(MPI_Comm comm, const char name[], DM dm)
+{
+  PetscInt dim, cdim, cStart, cEnd, ncells, ov;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMGetCoordinateDim(dm, &cdim));
+  PetscCheck(dim == 2 || dim == 3, comm, PETSC_ERR_USER_INPUT, "mesh %s has dimension %" PetscInt_FMT ": only 2D and 3D meshes are supported", name, dim);
+  PetscCheck(cdim == dim, comm, PETSC_ERR_USER_INPUT, "mesh %s: coordinate dimension %" PetscInt_FMT " differs from the topological dimension %" PetscInt_FMT, name, cdim, dim);
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  ncells = cEnd - cStart;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCheck(ncells > 0, comm, PETSC_ERR_USER_INPUT, "mesh %s has no cells", name);
+  if (cEnd > cStart) {
+    DMPolytopeType ct;
+    PetscCall(DMPlexGetCellType(dm, cStart, &ct));
+    PetscCheck(ct == (dim == 2 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "mesh %s: cells are %s, P1 elasticity needs %s", name, DMPolytopeTypes[ct], dim == 2 ? "triangles" : "tetrahedra");
+  }
+  PetscCall(DMPlexGetOverlap(dm, &ov));
+  PetscCheck(ov == 0, comm, PETSC_ERR_USER_INPUT, "mesh %s: an overlapping distribution (overlap %" PetscInt_FMT ") is not supported (cells on several ranks would be assembled more than once); use 0", name, ov);
+  PetscFunctionReturn(0);
+}
+
 /* Read -<what>_label, -<what>_ids and (if ncomp > 0) -<what>_<valname>: ncomp numbers per id. An option given without
    a value is an error (PETSc would report it as not set, and the part would silently vanish). */
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBoundary *bnd, PetscInt ncomp, const char *valname, const char *help)
 {
-  char      opt[64], txt[256];
+  char      opt[64], txt[256], name[256], pre[256];
   PetscInt  n = bnd->nids;
   PetscBool set;
 
   PetscFunctionBeginUser;
+  /* messages name the option as the user types it: with the prefix */
+  PetscCall(PetscSNPrintf(pre, sizeof(pre), "%s", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : ""));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_label", bnd->what));
+  PetscCall(SgOptionsName(pre, opt, name, sizeof(name)));
   PetscCall(PetscSNPrintf(txt, sizeof(txt), "Label marking the %s boundary", help));
   PetscCall(PetscOptionsString(opt, txt, NULL, bnd->label, bnd->label, sizeof(bnd->label), &set));
   if (set) {
-    PetscCheck(bnd->label[0], PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given without a value (a label name)", opt);
+    PetscCheck(bnd->label[0], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s is given without a value (a label name)", name);
     bnd->active = PETSC_TRUE;
   }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_ids", bnd->what));
@@ -541,13 +413,14 @@ PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBou
     PetscInt nv = bnd->nvalues, need = ncomp * PetscMax(bnd->nids, 1);
 
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s", bnd->what, valname));
+    PetscCall(SgOptionsName(pre, opt, name, sizeof(name)));
     PetscCall(PetscSNPrintf(txt, sizeof(txt), "%s: %" PetscInt_FMT " numbers per label value", help, ncomp));
     PetscCall(SgOptionsRealList(PetscOptionsObject, opt, txt, 3 * SG_MAX_IDS, bnd->values, &nv, &set));
     if (set) {
-      PetscCheck(bnd->active, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s is given, but no -%s_label or -%s_ids says where", opt, bnd->what, bnd->what);
-      PetscCheck(nv == need, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT " (%" PetscInt_FMT " per value of %s_ids)", opt, nv, need, ncomp, bnd->what);
+      PetscCheck(bnd->active, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s is given, but no -%s%s_label or -%s%s_ids says where", name, pre, bnd->what, pre, bnd->what);
+      PetscCheck(nv == need, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT " (%" PetscInt_FMT " per value of %s_ids)", name, nv, need, ncomp, bnd->what);
       bnd->nvalues = nv;
-      for (PetscInt i = 0; i < nv; i++) PetscCheck(PetscIsNormalReal(bnd->values[i]) || bnd->values[i] == 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g, must be finite", opt, i, (double)bnd->values[i]);
+      for (PetscInt i = 0; i < nv; i++) PetscCheck(PetscIsNormalReal(bnd->values[i]) || bnd->values[i] == 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g, must be finite", name, i, (double)bnd->values[i]);
     }
   }
   PetscFunctionReturn(0);

@@ -1,10 +1,10 @@
 /* checkpoint.c: the continuation state after every outer step (-checkpoint_file) and the restart from it
    (-restart_file). Vertex data are stored with the vertex coordinates and matched by them on reading, so a restart may
    use another number of ranks (another partition) than the run that wrote the file. */
-#include "signorini.h"
+#include "io/ioimpl.h"
 #include <petscviewerhdf5.h>
 
-#define NREAL 7    /* gamma, V0, best KKT, state[4] */
+#define NREAL 3    /* gamma, V0, best KKT (the controller's own state: the dataset "state", named by the attribute "state_names") */
 #define NHIST 22   /* numbers per history row */
 
 static void RowToReals(const SgHistoryRow *r, PetscReal a[])
@@ -62,26 +62,27 @@ static PetscErrorCode RootVec(MPI_Comm comm, const char name[], PetscInt n, cons
 static const char *PrintNames[NPRINT] = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
 static const char *PrintOptions[NPRINT] = {"-E", "-nu", "the loads (-body_force, -neumann_traction, ...)", "the loads (-body_force, -neumann_traction, ...)", "the Dirichlet data (-dirichlet_values)", "the obstacle (-obstacle_*) or the contact boundary"};
 
-static PetscErrorCode ProblemPrint(SgCont ct, PetscReal print[NPRINT])
+static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print[NPRINT])
 {
-  SgProblem p = ct->prob;
-  PetscReal gs = 0;
+  SgContactView cv = {0};
+  MPI_Comm      comm;
+  PetscReal     gs = 0;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; ct->c && i < ct->c->n; i++) gs += ct->c->w[i] * ct->c->d[i];
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gs, 1, MPIU_REAL, MPI_SUM, p->comm));
-  print[0] = p->E;
-  print[1] = p->nu;
-  print[2] = p->bnorm;
-  print[3] = p->bnorm_inf;
-  print[4] = p->energy_shift;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  if (c) PetscCall(SgContactGetView(c, &cv));
+  for (PetscInt i = 0; i < cv.n; i++) gs += cv.w[i] * cv.d[i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gs, 1, MPIU_REAL, MPI_SUM, comm));
+  PetscCall(SgElasticityGetMaterial(el, &print[0], &print[1]));
+  PetscCall(SgElasticityGetScales(el, NULL, &print[2], &print[3]));
+  PetscCall(SgElasticityGetEnergyShift(el, &print[4]));
   print[5] = gs;
   PetscFunctionReturn(0);
 }
 
 typedef struct {
-  SgCont    ct;
-  Vec       v[6];
+  SgCheckpoint *ck;
+  Vec       v[7];
   PetscInt  ints[6];
   PetscReal print[NPRINT];
 } CkCtx;
@@ -93,45 +94,63 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  for (PetscInt i = 0; i < 6; i++) PetscCall(VecView(ctx->v[i], viewer));
+  for (PetscInt i = 0; i < 7; i++) PetscCall(VecView(ctx->v[i], viewer));
   for (PetscInt i = 0; i < 6; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", names[i], PETSC_INT, &ctx->ints[i]));
   for (PetscInt i = 0; i < NPRINT; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, &ctx->print[i]));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ctx->ct->type));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ctx->ck->type));
+  {
+    char names[SG_STATE_MAX * 64] = "";
+    for (PetscInt i = 0; i < ctx->ck->nstate; i++) {
+      size_t l;
+      PetscCall(PetscStrlen(names, &l));
+      PetscCall(PetscSNPrintf(names + l, sizeof(names) - l, i ? ",%s" : "%s", ctx->ck->state_names[i]));
+    }
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, names));
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgCheckpointWrite(SgCont ct)
+/* Write the state ck to file (atomically). ok = PETSC_FALSE and msg say why if the file could not be written (a full
+   disk, say): the caller decides what that means for the run. */
+PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[], SgCheckpoint *ck, PetscBool *ok, char msg[], size_t len)
 {
-  SgProblem          p = ct->prob;
-  SgContact          c = ct->c;
-  const SgMesh      *m = &p->mesh;
-  const PetscInt     dim = p->dim;
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscInt           dim;
+  MPI_Comm           comm;
+  DM                 dm, dmVert;
   PetscSection       gs;
-  PetscInt           nown = 0, k = 0, nvert, ints[6];
+  PetscInt           nown = 0, k = 0, nvert, ints[6], nh;
   PetscReal         *vl, reals[NREAL], *hist;
-  Vec                X, U, L, R, G, H, yloc;
+  SgHistoryRow      *rows;
+  Vec                X, U, L, R, G, H, S, yloc;
   PetscScalar       *xa, *ua, *la;
   const PetscScalar *ya;
 
   PetscFunctionBeginUser;
-  if (!ct->ckfile[0]) PetscFunctionReturn(0);
-  PetscCall(DMGetGlobalSection(p->dmVert, &gs));
+  *ok = PETSC_TRUE;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
+  if (c) PetscCall(SgContactGetView(c, &cv));
+  PetscCall(DMGetGlobalSection(dmVert, &gs));
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
     if (off >= 0) nown++;
   }
   PetscCall(PetscCalloc1(m->nv, &vl));
-  for (PetscInt i = 0; c && i < c->n; i++) vl[c->vert[i]] = c->lamhat[i];
-  PetscCall(VecCreateMPI(p->comm, nown * dim, PETSC_DETERMINE, &X));
-  PetscCall(VecCreateMPI(p->comm, nown * dim, PETSC_DETERMINE, &U));
-  PetscCall(VecCreateMPI(p->comm, nown, PETSC_DETERMINE, &L));
+  for (PetscInt i = 0; i < cv.n; i++) vl[cv.vert[i]] = ck->lamhat[i];
+  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, &X));
+  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, &U));
+  PetscCall(VecCreateMPI(comm, nown, PETSC_DETERMINE, &L));
   PetscCall(PetscObjectSetName((PetscObject)X, "coordinates"));
   PetscCall(PetscObjectSetName((PetscObject)U, "displacement"));
   PetscCall(PetscObjectSetName((PetscObject)L, "lamhat"));
-  PetscCall(DMGetLocalVector(p->dm, &yloc));
-  PetscCall(SgProblemGlobalToLocal(p, ct->y, yloc));
+  PetscCall(DMGetLocalVector(dm, &yloc));
+  PetscCall(SgElasticityGlobalToLocal(el, ck->y, yloc));
   PetscCall(VecGetArrayRead(yloc, &ya));
   PetscCall(VecGetArray(X, &xa));
   PetscCall(VecGetArray(U, &ua));
@@ -150,45 +169,39 @@ PetscErrorCode SgCheckpointWrite(SgCont ct)
   PetscCall(VecRestoreArray(U, &ua));
   PetscCall(VecRestoreArray(L, &la));
   PetscCall(VecRestoreArrayRead(yloc, &ya));
-  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscCall(DMRestoreLocalVector(dm, &yloc));
   PetscCall(PetscFree(vl));
 
-  reals[0] = ct->gamma;
-  reals[1] = ct->V0;
-  reals[2] = ct->best_kkt;
-  for (PetscInt i = 0; i < 4; i++) reals[3 + i] = ct->state[i];
-  PetscCall(PetscMalloc1(NHIST * ct->hist->n + 1, &hist));
-  for (PetscInt i = 0; i < ct->hist->n; i++) RowToReals(&ct->hist->rows[i], &hist[i * NHIST]);
-  PetscCall(RootVec(p->comm, "reals", NREAL, reals, &R));
-  PetscCall(RootVec(p->comm, "gammas", ct->ngammas, ct->gammas, &G));
-  PetscCall(RootVec(p->comm, "history", NHIST * ct->hist->n, hist, &H));
+  reals[0] = ck->gamma;
+  reals[1] = ck->V0;
+  reals[2] = ck->best_kkt;
+  PetscCall(SgHistoryGetRows(ck->hist, &nh, &rows));
+  PetscCall(PetscMalloc1(NHIST * nh + 1, &hist));
+  for (PetscInt i = 0; i < nh; i++) RowToReals(&rows[i], &hist[i * NHIST]);
+  PetscCall(RootVec(comm, "reals", NREAL, reals, &R));
+  PetscCall(RootVec(comm, "state", ck->nstate, ck->state, &S));
+  PetscCall(RootVec(comm, "gammas", ck->ngammas, ck->gammas, &G));
+  PetscCall(RootVec(comm, "history", NHIST * nh, hist, &H));
   PetscCall(PetscFree(hist));
   PetscCall(VecGetSize(L, &nvert));
   ints[0] = dim;
   ints[1] = nvert;
-  ints[2] = ct->outer;
-  ints[3] = ct->ssn_its;
-  ints[4] = ct->ksp_its;
-  ints[5] = ct->best_step;
+  ints[2] = ck->outer;
+  ints[3] = ck->ssn_its;
+  ints[4] = ck->ksp_its;
+  ints[5] = ck->best_step;
 
   {
-    CkCtx     ctx = {ct, {X, U, L, R, G, H}, {0}, {0}};
-    PetscBool ok;
-    char      msg[PETSC_MAX_PATH_LEN + 256];
+    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}};
     for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
-    PetscCall(ProblemPrint(ct, ctx.print));
-    PetscCall(SgFileWriteHDF5(p->comm, "-checkpoint_file", ct->ckfile, WriteBody, &ctx, PETSC_TRUE, &ok, msg, sizeof(msg)));
-    if (!ok) {
-      /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
-      PetscCall(PetscPrintf(p->comm, "checkpoint not written: %s\n", msg));
-      PetscCall(SgContFail(ct, "CHECKPOINT_FAILED: %s", msg));
-      ct->ckfile[0] = 0;
-    }
+    PetscCall(ProblemPrint(el, c, ctx.print));
+    PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
   }
   PetscCall(VecDestroy(&X));
   PetscCall(VecDestroy(&U));
   PetscCall(VecDestroy(&L));
   PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&S));
   PetscCall(VecDestroy(&G));
   PetscCall(VecDestroy(&H));
   PetscFunctionReturn(0);
@@ -248,7 +261,8 @@ typedef struct {
   PetscViewer viewer;
   PetscBool   hasprint;
   PetscReal   print[NPRINT];
-  Vec         X, U, L, R, G, H;
+  char       *state_names;
+  Vec         X, U, L, R, S, G, H;
 } CkRead;
 
 /* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
@@ -266,6 +280,8 @@ static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
     rd->what = names[i];
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", names[i], PETSC_INT, NULL, &rd->ints[i]));
   }
+  rd->what = "the attribute state_names";
+  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, NULL, &rd->state_names));
   rd->what = "the problem data";
   PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", PrintNames[0], &rd->hasprint));
   for (PetscInt i = 0; rd->hasprint && i < NPRINT; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, NULL, &rd->print[i]));
@@ -284,6 +300,8 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
   PetscCall(LoadSeq(viewer, "lamhat", rd->nvert, &rd->L));
   rd->what = "reals";
   PetscCall(LoadSeq(viewer, "reals", NREAL, &rd->R));
+  rd->what = "state";
+  PetscCall(LoadSeq(viewer, "state", -1, &rd->S));
   rd->what = "gammas";
   PetscCall(LoadSeq(viewer, "gammas", -1, &rd->G));
   rd->what = "history";
@@ -353,61 +371,81 @@ static PetscErrorCode CloseQuietly(MPI_Comm comm, CkRead *rd, PetscViewer *viewe
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgCheckpointRead(SgCont ct)
+/* Read the state of file into ck: ck->type, nstate and state_names say what this run's controller is and keeps;
+   ck->y and ck->lamhat (per contact vertex) receive the vertex data, gammas (allocated here) and hist the path.
+   Every refusal (another controller, problem or mesh, a damaged file) names -restart_file and the file. */
+PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], SgCheckpoint *ck)
 {
-  SgProblem          p = ct->prob;
-  SgContact          c = ct->c;
-  const SgMesh      *m = &p->mesh;
-  const PetscInt     dim = p->dim;
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscInt           dim;
+  MPI_Comm           comm;
+  DM                 dmVert;
   PetscViewer        viewer = NULL;
-  PetscInt           nvert = 0, *perm, nmiss = 0, nh, ng, bad, *ints;
+  PetscInt           nvert = 0, *perm, nmiss = 0, nh, ng, ns, bad, *ints;
   CkRead             rd;
-  const PetscScalar *xa, *ua, *la, *ra, *ga, *ha;
+  const PetscScalar *xa, *ua, *la, *ra, *sa, *ga, *ha;
   PetscScalar       *ya;
   PetscBool          exists, same;
   PetscErrorCode     ierr;
-  const char        *f = ct->rsfile;
 
   PetscFunctionBeginUser;
-  if (!ct->rsfile[0]) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
+  if (c) PetscCall(SgContactGetView(c, &cv));
   PetscCall(PetscMemzero(&rd, sizeof(rd)));
-  PetscCall(PetscTestFile(ct->rsfile, 'r', &exists));
-  PetscCheck(exists, p->comm, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", ct->rsfile);
-  PetscCheck(!strcmp(ct->type, "alm") || !strcmp(ct->type, "pf") || !strcmp(ct->type, "ipf"), p->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (alm, pf and ipf have)", ct->type);
+  PetscCall(PetscTestFile(f, 'r', &exists));
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", f);
   /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
-  rd.file = ct->rsfile;
-  PetscCall(Quietly(p->comm, OpenQuietly, NULL, &rd, &ierr));
+  rd.file = f;
+  PetscCall(Quietly(comm, OpenQuietly, NULL, &rd, &ierr));
   viewer = rd.viewer;
   if (ierr && viewer) { /* a viewer whose file did not open fails its flush: forget that error too */
     PetscErrorCode ierr2 = 0;
-    PetscCall(Quietly(p->comm, DestroyViewer, NULL, &rd, &ierr2));
+    PetscCall(Quietly(comm, DestroyViewer, NULL, &rd, &ierr2));
   }
-  PetscCheck(!ierr, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
-  PetscCall(Quietly(p->comm, ReadBody, viewer, &rd, &ierr));
+  PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
+  PetscCall(Quietly(comm, ReadBody, viewer, &rd, &ierr));
   if (ierr) {
-    PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
+    PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
     PetscCall(PetscFree(rd.type));
-    SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", f, rd.what);
+    PetscCall(PetscFree(rd.state_names));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", f, rd.what);
   }
-  if (!rd.type) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
-  PetscCheck(rd.type, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
-  PetscCall(PetscStrcmp(rd.type, ct->type, &same));
-  if (!same) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
-  PetscCheck(same, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", f, rd.type, ct->type);
+  if (!rd.type) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+  PetscCheck(rd.type, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
+  PetscCall(PetscStrcmp(rd.type, ck->type, &same));
+  if (!same) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+  PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", f, rd.type, ck->type);
   PetscCall(PetscFree(rd.type));
+  {
+    /* the controller's own numbers, by name: a file of another version of the controller is not resumed */
+    char names[SG_STATE_MAX * 64] = "";
+    for (PetscInt i = 0; i < ck->nstate; i++) {
+      size_t l;
+      PetscCall(PetscStrlen(names, &l));
+      PetscCall(PetscSNPrintf(names + l, sizeof(names) - l, i ? ",%s" : "%s", ck->state_names[i]));
+    }
+    PetscCall(PetscStrcmp(rd.state_names, names, &same));
+    if (!same) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+    PetscCheck(same, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' holds the controller state (%s), -cont_type %s keeps (%s)", f, rd.state_names, ck->type, names);
+    PetscCall(PetscFree(rd.state_names));
+  }
   ints = rd.ints;
   {
     PetscSection gs;
-    PetscCall(DMGetGlobalSection(p->dmVert, &gs));
+    PetscCall(DMGetGlobalSection(dmVert, &gs));
     for (PetscInt v = 0; v < m->nv; v++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
       if (off >= 0) nvert++;
     }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, p->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, comm));
   }
-  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
-  PetscCheck(ints[0] == dim && ints[1] == nvert, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, ints[0], ints[1], dim, nvert);
+  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+  PetscCheck(ints[0] == dim && ints[1] == nvert, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, ints[0], ints[1], dim, nvert);
   /* the counters: a checkpoint is written after an outer step */
   {
     const char *what = NULL;
@@ -419,34 +457,34 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     else if (ints[3] < 0 || ints[3] > big) what = "ssn_iterations", val = ints[3];
     else if (ints[4] < 0 || ints[4] > big) what = "ksp_iterations", val = ints[4];
     else if (ints[5] < 0 || ints[5] > ints[2]) what = "best_step", val = ints[5];
-    if (what) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
-    PetscCheck(!what, p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);
+    if (what) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+    PetscCheck(!what, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);
   }
   /* a restart of another problem would continue a path that is not this problem's */
   if (rd.hasprint) {
     PetscReal now[NPRINT];
-    PetscCall(ProblemPrint(ct, now));
+    PetscCall(ProblemPrint(el, c, now));
     for (PetscInt i = 0; i < NPRINT; i++) {
       const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - rd.print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(rd.print[i]) : 0));
-      if (!ok) PetscCall(CloseQuietly(p->comm, &rd, &viewer, NULL));
-      PetscCheck(ok, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
+      if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+      PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
     }
   }
   rd.nvert = nvert;
   rd.dim   = dim;
-  PetscCall(Quietly(p->comm, ReadVectors, viewer, &rd, &ierr));
+  PetscCall(Quietly(comm, ReadVectors, viewer, &rd, &ierr));
   {
     PetscErrorCode ierr2 = 0;
-    PetscCall(CloseQuietly(p->comm, &rd, &viewer, &ierr2));
+    PetscCall(CloseQuietly(comm, &rd, &viewer, &ierr2));
     if (ierr2 && !ierr) {
       ierr    = ierr2;
       rd.what = "the file's end (closing it failed)";
     }
   }
   if (ierr) {
-    Vec *v[6] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.G, &rd.H};
-    for (PetscInt i = 0; i < 6; i++) PetscCall(VecDestroy(v[i]));
-    SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
+    Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
+    for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
   }
 
   /* every number read must be possible */
@@ -454,6 +492,8 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   PetscCall(VecGetArrayRead(rd.U, &ua));
   PetscCall(VecGetArrayRead(rd.L, &la));
   PetscCall(VecGetArrayRead(rd.R, &ra));
+  PetscCall(VecGetSize(rd.S, &ns));
+  PetscCall(VecGetArrayRead(rd.S, &sa));
   PetscCall(VecGetSize(rd.G, &ng));
   PetscCall(VecGetArrayRead(rd.G, &ga));
   PetscCall(VecGetSize(rd.H, &nh));
@@ -461,6 +501,7 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   {
     const char *what = NULL;
     PetscReal   val  = 0;
+    char        statewhat[128];
     CheckReals(xa, nvert * dim, PETSC_FALSE, 0, &bad);
     if (bad >= 0) what = "a vertex coordinate", val = PetscRealPart(xa[bad]);
     if (!what) CheckReals(ua, nvert * dim, PETSC_FALSE, 0, &bad);
@@ -471,8 +512,12 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     if (!what && !PetscIsNormalReal(PetscRealPart(ra[1])) && PetscRealPart(ra[1]) != 0) what = "the unconstrained energy", val = PetscRealPart(ra[1]);
     if (!what) CheckReals(&ra[2], 1, PETSC_TRUE, 0, &bad);
     if (!what && bad >= 0) what = "the best KKT residual", val = PetscRealPart(ra[2]);
-    if (!what) CheckReals(&ra[3], 4, PETSC_FALSE, 0, &bad);
-    if (!what && bad >= 0) what = "the controller state", val = PetscRealPart(ra[3 + bad]);
+    if (!what && ns != ck->nstate) what = "the number of controller state values", val = ns;
+    if (!what) CheckReals(sa, ns, PETSC_FALSE, 0, &bad);
+    if (!what && bad >= 0) {
+      PetscCall(PetscSNPrintf(statewhat, sizeof(statewhat), "the controller state %s", ck->state_names[bad]));
+      what = statewhat, val = PetscRealPart(sa[bad]);
+    }
     if (!what && ng != ints[2]) what = "the number of gammas (must be the number of outer steps)", val = ng;
     for (PetscInt i = 0; !what && i < ng; i++)
       if (!(PetscRealPart(ga[i]) > 0)) what = "a gamma of the path (must be positive)", val = PetscRealPart(ga[i]);
@@ -487,13 +532,14 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
       PetscCall(VecRestoreArrayRead(rd.U, &ua));
       PetscCall(VecRestoreArrayRead(rd.L, &la));
       PetscCall(VecRestoreArrayRead(rd.R, &ra));
+      PetscCall(VecRestoreArrayRead(rd.S, &sa));
       PetscCall(VecRestoreArrayRead(rd.G, &ga));
       PetscCall(VecRestoreArrayRead(rd.H, &ha));
       {
-        Vec *v[6] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.G, &rd.H};
-        for (PetscInt i = 0; i < 6; i++) PetscCall(VecDestroy(v[i]));
+        Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
+        for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
       }
-      SETERRQ(p->comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
+      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
     }
   }
 
@@ -502,7 +548,7 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
   SortX   = (const PetscReal *)xa;
   SortDim = dim;
   qsort(perm, nvert, sizeof(PetscInt), CmpIndex);
-  PetscCall(VecGetArray(ct->y, &ya));
+  PetscCall(VecGetArray(ck->y, &ya));
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt idx;
     if (m->goff[v] < 0) continue;
@@ -513,53 +559,56 @@ PetscErrorCode SgCheckpointRead(SgCont ct)
     }
     for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = ua[idx * dim + d];
   }
-  PetscCall(VecRestoreArray(ct->y, &ya));
-  for (PetscInt i = 0; c && i < c->n; i++) {
+  PetscCall(VecRestoreArray(ck->y, &ya));
+  for (PetscInt i = 0; i < cv.n; i++) {
     PetscInt idx;
-    PetscCall(FindVertex(perm, nvert, &m->x[c->vert[i] * dim], &idx));
+    PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
     if (idx < 0) nmiss++;
-    else c->lamhat[i] = PetscRealPart(la[idx]);
+    else ck->lamhat[i] = PetscRealPart(la[idx]);
   }
   PetscCall(PetscFree(perm));
   PetscCall(VecRestoreArrayRead(rd.X, &xa));
   PetscCall(VecRestoreArrayRead(rd.U, &ua));
   PetscCall(VecRestoreArrayRead(rd.L, &la));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, comm));
   if (nmiss) {
     PetscCall(VecRestoreArrayRead(rd.R, &ra));
+    PetscCall(VecRestoreArrayRead(rd.S, &sa));
     PetscCall(VecRestoreArrayRead(rd.G, &ga));
     PetscCall(VecRestoreArrayRead(rd.H, &ha));
   }
-  PetscCheck(!nmiss, p->comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
+  PetscCheck(!nmiss, comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
 
-  ct->gamma    = PetscRealPart(ra[0]);
-  ct->V0       = PetscRealPart(ra[1]);
-  ct->best_kkt = PetscRealPart(ra[2]);
-  for (PetscInt i = 0; i < 4; i++) ct->state[i] = PetscRealPart(ra[3 + i]);
+  ck->gamma    = PetscRealPart(ra[0]);
+  ck->V0       = PetscRealPart(ra[1]);
+  ck->best_kkt = PetscRealPart(ra[2]);
+  for (PetscInt i = 0; i < ns; i++) ck->state[i] = PetscRealPart(sa[i]);
   PetscCall(VecRestoreArrayRead(rd.R, &ra));
-  ct->outer     = ints[2];
-  ct->ssn_its   = ints[3];
-  ct->ksp_its   = ints[4];
-  ct->best_step = ints[5];
-  ct->ngammas   = 0;
-  for (PetscInt i = 0; i < ng; i++) PetscCall(SgContAddGamma(ct, PetscRealPart(ga[i])));
+  PetscCall(VecRestoreArrayRead(rd.S, &sa));
+  ck->outer     = ints[2];
+  ck->ssn_its   = ints[3];
+  ck->ksp_its   = ints[4];
+  ck->best_step = ints[5];
+  ck->ngammas   = ng;
+  PetscCall(PetscMalloc1(ng + 1, &ck->gammas));
+  for (PetscInt i = 0; i < ng; i++) ck->gammas[i] = PetscRealPart(ga[i]);
   PetscCall(VecRestoreArrayRead(rd.G, &ga));
-  ct->hist->n = 0;
+  PetscCall(SgHistoryReset(ck->hist));
   for (PetscInt i = 0; i < nh / NHIST; i++) {
     SgHistoryRow r;
     PetscReal    a[NHIST];
     for (PetscInt k = 0; k < NHIST; k++) a[k] = PetscRealPart(ha[i * NHIST + k]);
     RealsToRow(a, &r);
-    PetscCall(SgHistoryAdd(ct->hist, &r));
+    PetscCall(SgHistoryAdd(ck->hist, &r));
   }
   PetscCall(VecRestoreArrayRead(rd.H, &ha));
   PetscCall(VecDestroy(&rd.X));
   PetscCall(VecDestroy(&rd.U));
   PetscCall(VecDestroy(&rd.L));
   PetscCall(VecDestroy(&rd.R));
+  PetscCall(VecDestroy(&rd.S));
   PetscCall(VecDestroy(&rd.G));
   PetscCall(VecDestroy(&rd.H));
-  ct->restarted = PETSC_TRUE;
-  PetscCall(PetscInfo(NULL, "restarted from %s after outer step %" PetscInt_FMT " (gamma %g)\n", ct->rsfile, ct->outer, (double)ct->gamma));
+  PetscCall(PetscInfo(NULL, "restarted from %s after outer step %" PetscInt_FMT " (gamma %g)\n", f, ck->outer, (double)ck->gamma));
   PetscFunctionReturn(0);
 }

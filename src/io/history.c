@@ -1,5 +1,5 @@
 /* history.c: the per-iteration history (SSN iterations and outer steps), kept in memory and written as CSV. */
-#include "signorini.h"
+#include "io/ioimpl.h"
 
 PetscErrorCode SgHistoryCreate(SgHistory *h)
 {
@@ -90,5 +90,20 @@ PetscErrorCode SgHistoryWrite(MPI_Comm comm, SgHistory h, const char option[], c
     }
   }
   PetscCall(SgFileClose(comm, name, &fp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgHistoryGetRows(SgHistory h, PetscInt *n, SgHistoryRow **rows)
+{
+  PetscFunctionBeginUser;
+  *n    = h->n;
+  *rows = h->rows;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgHistoryReset(SgHistory h)
+{
+  PetscFunctionBeginUser;
+  h->n = 0;
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,5 @@
 /* output.c: result files written atomically: HDF5 fields + XDMF for ParaView, the JSON summary, CSV tables. */
-#include "signorini.h"
+#include "io/ioimpl.h"
 #include <petscviewerhdf5.h>
 #include <errno.h>
 #include <pthread.h>
@@ -680,30 +680,36 @@ static PetscErrorCode DatasetName(Vec v, char name[], size_t len)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteXDMF(SgProblem p, const char h5name[], const char xname[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
+static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char xname[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
   FILE       *fp;
-  const char *h5base, *ctype = p->dim == 2 ? "Triangle" : "Tetrahedron";
-  PetscInt    nvert, ncell;
+  const char *h5base, *ctype;
+  PetscInt    nvert, ncell, dim;
+  MPI_Comm    comm;
+  DM          dmVert;
 
   PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(p, &comm));
+  PetscCall(SgElasticityGetDimension(p, &dim));
+  PetscCall(SgElasticityGetDMs(p, NULL, &dmVert, NULL, NULL));
+  ctype = dim == 2 ? "Triangle" : "Tetrahedron";
   /* the XDMF file sits beside the HDF5 file and names it relative to itself */
   h5base = strrchr(h5name, '/') ? strrchr(h5name, '/') + 1 : h5name;
   PetscCall(VecGetSize(cf[0], &ncell));
   {
     Vec g;
-    PetscCall(DMGetGlobalVector(p->dmVert, &g));
+    PetscCall(DMGetGlobalVector(dmVert, &g));
     PetscCall(VecGetSize(g, &nvert));
-    PetscCall(DMRestoreGlobalVector(p->dmVert, &g));
+    PetscCall(DMRestoreGlobalVector(dmVert, &g));
   }
-  PetscCall(SgFileOpen(p->comm, "-output_file", xname, &fp));
+  PetscCall(SgFileOpen(comm, "-output_file", xname, &fp));
   if (fp) {
     fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"body\" GridType=\"Uniform\">\n");
     fprintf(fp, "   <Information Name=\"magnification\" Value=\"%g\"/>\n", (double)magnification);
     fprintf(fp, "   <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", ctype, ncell);
-    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", ncell, p->dim + 1, h5base);
-    fprintf(fp, "   <Geometry GeometryType=\"%s\">\n", p->dim == 2 ? "XY" : "XYZ");
-    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nvert, p->dim, h5base);
+    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", ncell, dim + 1, h5base);
+    fprintf(fp, "   <Geometry GeometryType=\"%s\">\n", dim == 2 ? "XY" : "XYZ");
+    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nvert, dim, h5base);
     for (PetscInt i = 0; i < nv; i++) {
       const char *name;
       char        dset[256];
@@ -730,12 +736,12 @@ static PetscErrorCode WriteXDMF(SgProblem p, const char h5name[], const char xna
     }
     fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
   }
-  PetscCall(FileFinish(p->comm, xname, &fp, FILE_KEEP)); /* committed with the .h5 file */
+  PetscCall(FileFinish(comm, xname, &fp, FILE_KEEP)); /* committed with the .h5 file */
   PetscFunctionReturn(0);
 }
 
 typedef struct {
-  SgProblem p;
+  DM        dm;
   PetscInt  nv, nc;
   Vec      *vf, *cf;
   PetscReal magnification;
@@ -747,7 +753,7 @@ static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));
-  PetscCall(DMView(f->p->dm, viewer));
+  PetscCall(DMView(f->dm, viewer));
   for (PetscInt i = 0; i < f->nv; i++) PetscCall(VecView(f->vf[i], viewer));
   for (PetscInt i = 0; i < f->nc; i++) PetscCall(VecView(f->cf[i], viewer));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "magnification", PETSC_REAL, &f->magnification));
@@ -758,23 +764,26 @@ static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
 /* Write mesh, vertex fields (first: displacement, on the full mesh with Dirichlet values) and cell fields to
    <name>.h5 and the matching <name>.xmf. Both are written as ".part" first and renamed together, so that a failure of
    either leaves neither new file (and the previous pair intact). */
-PetscErrorCode SgOutputWrite(SgProblem p, const char h5name[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
+PetscErrorCode SgOutputWrite(SgElasticity p, const char h5name[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
   char           xname[PETSC_MAX_PATH_LEN + 8], msg[PETSC_MAX_PATH_LEN + 256];
   PetscBool      ok;
-  FieldsCtx      ctx = {p, nv, nc, vf, cf, magnification};
+  FieldsCtx      ctx = {NULL, nv, nc, vf, cf, magnification};
   PetscErrorCode ierr;
+  MPI_Comm       comm;
 
   PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(p, &comm));
+  PetscCall(SgElasticityGetDMs(p, &ctx.dm, NULL, NULL, NULL));
   PetscCall(PetscLogEventBegin(SG_Output, 0, 0, 0, 0));
-  PetscCall(SgFileWriteHDF5(p->comm, "-output_file", h5name, WriteFieldsH5, &ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
-  PetscCheck(ok, p->comm, PETSC_ERR_FILE_WRITE, "%s", msg);
+  PetscCall(SgFileWriteHDF5(comm, "-output_file", h5name, WriteFieldsH5, &ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "%s", msg);
   PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname)));
   ierr = WriteXDMF(p, h5name, xname, nv, vf, nc, cf, magnification);
-  if (ierr) PetscCall(SgFileAbandon(p->comm, h5name)); /* the .xmf.part is gone already */
+  if (ierr) PetscCall(SgFileAbandon(comm, h5name)); /* the .xmf.part is gone already */
   PetscCall(ierr);
-  PetscCall(SgFileCommit(p->comm, h5name));
-  PetscCall(SgFileCommit(p->comm, xname));
+  PetscCall(SgFileCommit(comm, h5name));
+  PetscCall(SgFileCommit(comm, xname));
   PetscCall(PetscLogEventEnd(SG_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

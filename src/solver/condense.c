@@ -2,7 +2,7 @@
    K is factored once, with its Schur complement S_K on the contact dofs; a contact Jacobian K + gamma sum_A w n n^T
    differs from K only there, so its Schur complement is S_K + the contact blocks: each SSN step factors that small
    dense matrix instead of the whole stiffness, and MUMPS's condensation/expansion solves do the rest. */
-#include "signorini.h"
+#include "solver/ssnimpl.h"
 
 struct _n_SgCondense {
   SgSSN      ssn;
@@ -16,8 +16,8 @@ struct _n_SgCondense {
 static PetscErrorCode CondenseUpdate(SgCondense cd)
 {
   SgSSN          s   = cd->ssn;
-  SgContact      c   = s->c;
-  const PetscInt dim = s->prob->dim;
+  const SgContactView *c = &s->cv;
+  const PetscInt dim = s->dim;
   Mat                  S;
   MatFactorSchurStatus status;
   PetscScalar         *sa;
@@ -55,24 +55,24 @@ static PetscErrorCode PCSetUp_Condense(PC pc)
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &cd));
   if (!cd->ready) { /* the one sparse factorization, with the Schur complement on the contact dofs */
-    const PetscInt dim = cd->ssn->prob->dim;
-    SgContact      c   = cd->ssn->c;
+    const PetscInt dim = cd->ssn->dim;
+    const SgContactView *c = &cd->ssn->cv;
     PetscInt      *idx, rstart;
     IS             is;
     MatFactorInfo  info;
     MatFactorSchurStatus status;
 
-    PetscCall(MatGetOwnershipRange(cd->ssn->prob->K, &rstart, NULL));
+    PetscCall(MatGetOwnershipRange(cd->ssn->K, &rstart, NULL));
     PetscCall(PetscMalloc1(c->n * cd->ncomp, &idx));
     for (PetscInt i = 0; i < c->n; i++)
       for (PetscInt k = 0; k < cd->ncomp; k++) idx[i * cd->ncomp + k] = rstart + c->off[i] + (cd->ncomp == 1 ? cd->axis[i] : k);
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, c->n * cd->ncomp, idx, PETSC_OWN_POINTER, &is));
-    PetscCall(MatGetFactor(cd->ssn->prob->K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
+    PetscCall(MatGetFactor(cd->ssn->K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
     PetscCall(MatFactorSetSchurIS(cd->F, is));
     PetscCall(ISDestroy(&is));
     PetscCall(MatFactorInfoInitialize(&info));
-    PetscCall(MatCholeskyFactorSymbolic(cd->F, cd->ssn->prob->K, NULL, &info));
-    PetscCall(MatCholeskyFactorNumeric(cd->F, cd->ssn->prob->K, &info));
+    PetscCall(MatCholeskyFactorSymbolic(cd->F, cd->ssn->K, NULL, &info));
+    PetscCall(MatCholeskyFactorNumeric(cd->F, cd->ssn->K, &info));
     PetscCall(MatFactorCreateSchurComplement(cd->F, &cd->S0, &status));
     cd->ready = PETSC_TRUE;
     (void)dim;
@@ -99,19 +99,19 @@ PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
   KSP         ksp;
   PC          pc;
   PetscBool   aligned = PETSC_TRUE;
-  const PetscInt dim = s->prob->dim;
+  const PetscInt dim = s->dim;
 
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(s->prob->comm, &size));
-  PetscCheck(size == 1, s->prob->comm, PETSC_ERR_SUP, "-ssn_condense runs on one rank (PETSc's MUMPS interface has no distributed Schur complements); got %d ranks", size);
-  PetscCheck(s->c, s->prob->comm, PETSC_ERR_USER_INPUT, "-ssn_condense needs a contact boundary");
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCheck(size == 1, s->comm, PETSC_ERR_SUP, "-ssn_condense runs on one rank (PETSc's MUMPS interface has no distributed Schur complements); got %d ranks", size);
+  PetscCheck(s->c, s->comm, PETSC_ERR_USER_INPUT, "-ssn_condense needs a contact boundary");
   PetscCall(PetscNew(&cd));
   cd->ssn = s;
-  PetscCall(PetscMalloc1(s->c->n, &cd->axis));
-  for (PetscInt i = 0; i < s->c->n; i++) {
+  PetscCall(PetscMalloc1(s->cv.n, &cd->axis));
+  for (PetscInt i = 0; i < s->cv.n; i++) {
     cd->axis[i] = -1;
     for (PetscInt k = 0; k < dim; k++)
-      if (PetscAbsReal(PetscAbsReal(s->c->normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
+      if (PetscAbsReal(PetscAbsReal(s->cv.normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
     if (cd->axis[i] < 0) aligned = PETSC_FALSE;
   }
   /* axis-aligned normals: the contact block only touches the normal components, so only they are condensed */

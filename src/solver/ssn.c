@@ -1,36 +1,15 @@
 /* ssn.c: semismooth Newton (primal-dual active set) solver for (P_gamma), handed to SNES.
    Residual F(y) = K y - b + sum_i w_i max(0, lamhat_i + gamma g_i(y)) n_i; Jacobian K + gamma sum_{A} w_i n_i n_i^T;
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
-#include "signorini.h"
+#include "solver/ssnimpl.h"
 
 const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED"};
-
-static inline PetscInt64 Mix64(PetscInt64 x)
-{
-  uint64_t z = (uint64_t)x + 0x9e3779b97f4a7c15ULL;
-  z          = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z          = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return (PetscInt64)(z ^ (z >> 31));
-}
-
-/* Order-independent hash of an active set (over global vertex numbers), identical on every rank. */
-PetscErrorCode SgSSNActiveSetHash(SgSSN s, const char act[], PetscInt64 *h)
-{
-  uint64_t loc = 0;
-
-  PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < s->c->n; i++)
-    if (act[i]) loc += (uint64_t)Mix64(s->prob->mesh.gblock[s->c->vert[i]]);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &loc, 1, MPI_UINT64_T, MPI_SUM, s->prob->comm));
-  *h = (PetscInt64)loc;
-  PetscFunctionReturn(0);
-}
 
 static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
 {
   SgSSN              s = (SgSSN)ctx;
-  SgContact          c = s->c;
-  const PetscInt     dim = s->prob->dim;
+  const SgContactView *c = &s->cv;
+  const PetscInt     dim = s->dim;
   const PetscScalar *ya;
   PetscScalar       *fa, dots[2];
   PetscReal          loc[7] = {0}, glob[7], r1corr2;
@@ -38,17 +17,17 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
-  PetscCall(MatMult(s->prob->K, y, F));
+  PetscCall(MatMult(s->K, y, F));
   vecs[0] = F;
-  vecs[1] = s->prob->b;
+  vecs[1] = s->b;
   PetscCall(VecMDot(y, 2, vecs, dots));
-  PetscCall(VecAXPY(F, -1.0, s->prob->b));
+  PetscCall(VecAXPY(F, -1.0, s->b));
   PetscCall(VecGetArrayRead(y, &ya));
-  PetscCall(SgContactGap(c, ya, s->g));
+  PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(PetscLogEventBegin(SG_ActiveSet, 0, 0, 0, 0));
   for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal z = c->lamhat[i] + s->gamma * s->g[i];
+    const PetscReal z = s->lamhat[i] + s->gamma * s->g[i];
     /* the multiplier of the last Newton step: lamhat + gamma g on the set it used, 0 elsewhere */
     const PetscReal lj = s->havejac ? (s->actjac[i] ? z : 0) : PetscMax(0, z);
     s->m[i]   = PetscMax(0, z);
@@ -64,32 +43,32 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   }
   PetscCall(PetscLogEventEnd(SG_ActiveSet, 0, 0, 0, 0));
   PetscCall(VecGetArray(F, &fa));
-  PetscCall(SgContactAddForce(c, s->m, fa));
+  PetscCall(SgContactAddForce(s->c, s->m, fa));
   /* r1 is the dual norm of K y - b + B^T W lam_jac = F - B^T W (m - lam_jac): only contact dofs differ from F */
   r1corr2 = 0;
   {
     const PetscScalar *ma;
-    PetscCall(VecGetArrayRead(s->prob->mass, &ma));
+    PetscCall(VecGetArrayRead(s->mass, &ma));
     for (PetscInt i = 0; i < c->n; i++) {
-      const PetscReal z = c->lamhat[i] + s->gamma * s->g[i], lj = s->havejac ? (s->actjac[i] ? z : 0) : s->m[i];
+      const PetscReal z = s->lamhat[i] + s->gamma * s->g[i], lj = s->havejac ? (s->actjac[i] ? z : 0) : s->m[i];
       for (PetscInt k = 0; k < dim; k++) {
         const PetscInt  j  = c->off[i] + k;
         const PetscReal fj = PetscRealPart(fa[j]), r = fj - c->w[i] * (s->m[i] - lj) * c->normal[i * dim + k];
         r1corr2 += (r * r - fj * fj) / PetscRealPart(ma[j]);
       }
     }
-    PetscCall(VecRestoreArrayRead(s->prob->mass, &ma));
+    PetscCall(VecRestoreArrayRead(s->mass, &ma));
   }
   loc[6] = r1corr2;
   PetscCall(VecRestoreArray(F, &fa));
-  PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->prob->comm));
-  PetscCall(SgProblemDualNorm(s->prob, F, &s->fdual));
+  PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->comm));
+  PetscCall(SgElasticityDualNorm(s->prob, F, &s->fdual));
   s->r1       = PetscSqrtReal(PetscMax(0, s->fdual * s->fdual + glob[6]));
   s->r2       = PetscSqrtReal(glob[5]);
   s->nact     = (PetscInt)glob[2];
   s->nentered = (PetscInt)glob[3];
   s->nleft    = (PetscInt)glob[4];
-  s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->prob->energy_shift + glob[0] / (2 * s->gamma);
+  s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->energy_shift + glob[0] / (2 * s->gamma);
   s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
   PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -98,15 +77,15 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
 static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 {
   SgSSN              s = (SgSSN)ctx;
-  SgContact          c = s->c;
+  const SgContactView *c = &s->cv;
   const PetscScalar *ya;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Jacobian, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(y, &ya));
-  PetscCall(SgContactGap(c, ya, s->g));
+  PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) s->actjac[i] = (char)(c->lamhat[i] + s->gamma * s->g[i] > 0);
+  for (PetscInt i = 0; i < c->n; i++) s->actjac[i] = (char)(s->lamhat[i] + s->gamma * s->g[i] > 0);
   s->havejac = PETSC_TRUE;
   if (s->nhash == s->maxhash) {
     PetscInt64 *h;
@@ -116,7 +95,7 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     PetscCall(PetscFree(s->hash));
     s->hash = h;
   }
-  PetscCall(SgSSNActiveSetHash(s, s->actjac, &s->hash[s->nhash++]));
+  PetscCall(SgContactActiveSetHash(s->c, s->actjac, &s->hash[s->nhash++]));
   /* within one (P_gamma) the Jacobians differ in the few vertices whose state changed: optionally keep the previous
      preconditioner (a factorization, or an AMG hierarchy) while the Krylov solver converges fast with it */
   if (s->pc_reuse_its > 0) {
@@ -128,8 +107,8 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && kits <= s->pc_reuse_its ? -1 : -2));
   }
   /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
-  PetscCall(MatCopy(s->prob->K, P, SAME_NONZERO_PATTERN));
-  PetscCall(SgContactAddJacobian(c, s->actjac, s->gamma, P));
+  PetscCall(MatCopy(s->K, P, SAME_NONZERO_PATTERN));
+  PetscCall(SgContactAddJacobian(s->c, s->actjac, s->gamma, P));
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(SG_Jacobian, 0, 0, 0, 0));
@@ -164,7 +143,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
      lie below sqrt(rtol) max(||F_0||, ||b||) */
-  small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->prob->bnorm)));
+  small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
@@ -176,7 +155,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     s->reason = SG_SSN_NEIGHBOURHOOD;
   } else if (!settled) {
     PetscInt64 h;
-    PetscCall(SgSSNActiveSetHash(s, s->act, &h));
+    PetscCall(SgContactActiveSetHash(s->c, s->act, &h));
     for (PetscInt j = 0; j < s->nhash - 1; j++)
       if (s->hash[j] == h) {
         /* with exact solves the iterate is a function of the active set: a revisited set repeats forever */
@@ -201,7 +180,7 @@ static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx
   if (it > 0) PetscCall(KSPGetIterationNumber(ksp, &kits));
   PetscCall(PetscTime(&t));
   if (s->monitor)
-    PetscCall(PetscPrintf(s->prob->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
+    PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
   if (it > 0 && s->hist) {
     SgHistoryRow row;
     PetscCall(SgHistoryRowInit(&row));
@@ -297,25 +276,97 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm comm, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
+/* The linear solver of every step of a controller: a KSP with the options under the prefix on J, a working copy of K
+   (with the rigid-body near null space if asked for); the types are checked first, and a combination that fails in
+   KSPSetFromOptions is reported naming the solver options. */
+PetscErrorCode SgLinearSolverCreate(SgElasticity el, const char prefix[], KSP *ksp, Mat *J)
+{
+  MPI_Comm       comm;
+  Mat            K;
+  MatNullSpace   nsp;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetOperators(el, &K, NULL));
+  PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, J));
+  if (nsp) PetscCall(MatSetNearNullSpace(*J, nsp));
+  PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  PetscCall(KSPCreate(comm, ksp));
+  PetscCall(KSPSetOptionsPrefix(*ksp, prefix));
+  PetscCall(KSPSetOperators(*ksp, *J, *J));
+  PetscCall(SgCheckSolverTypes(comm, prefix));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetFromOptions(*ksp);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(SgSolverConfigured(comm, ierr));
+  PetscFunctionReturn(0);
+}
+
+/* The elasticity solve without contact, K y = b, with the controller's linear solver (so a factorization's symbolic
+   phase is shared with the later steps); the times of the preconditioner set-up and of the solve. */
+PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y, PetscInt *its, KSPConvergedReason *kr, PetscLogDouble *t_setup, PetscLogDouble *t_solve)
+{
+  MPI_Comm       comm;
+  Mat            K;
+  Vec            b;
+  PetscErrorCode ierr;
+  PetscLogDouble t0, t1, t2;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetOperators(el, &K, &b));
+  PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
+  PetscCall(MatCopy(K, J, SAME_NONZERO_PATTERN));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(PetscTime(&t0));
+  /* the first set-up of the linear solver is where some configurations that cannot work fail */
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetUp(ksp);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(SgSolverConfigured(comm, ierr));
+  PetscCall(PetscTime(&t1));
+  PetscCall(KSPSolve(ksp, b, y));
+  PetscCall(PetscTime(&t2));
+  if (t_setup) *t_setup = t1 - t0;
+  if (t_solve) *t_solve = t2 - t1;
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  PetscCall(KSPGetConvergedReason(ksp, kr));
+  PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The SSN solver of (P_gamma) on the contact boundary c, its SNES (options under the prefix) solving with the linear
+   solver ksp on the working matrix J (SgLinearSolverCreate). */
+PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP ksp, Mat J, SgSSN *ssn)
 {
   SgSSN          s;
   SNESLineSearch ls;
-  KSP            ksp;
   PetscBool      condense = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
   s->prob  = p;
   s->c     = c;
-  s->gamma = c ? c->gamma : 1;
+  s->gamma = 1;
+  PetscCall(SgElasticityGetComm(p, &s->comm));
+  PetscCall(SgElasticityGetDimension(p, &s->dim));
+  PetscCall(SgElasticityGetMesh(p, &s->mesh));
+  PetscCall(SgElasticityGetOperators(p, &s->K, &s->b));
+  PetscCall(SgElasticityGetMass(p, &s->mass));
+  PetscCall(SgElasticityGetScales(p, &s->Knorm, &s->bnorm, &s->bnorm_inf));
+  PetscCall(SgElasticityGetEnergyShift(p, &s->energy_shift));
+  if (c) PetscCall(SgContactGetView(c, &s->cv));
   PetscCall(PetscTime(&s->t0));
-  PetscCall(MatDuplicate(p->K, MAT_COPY_VALUES, &s->J));
-  if (p->use_nearnull) PetscCall(MatSetNearNullSpace(s->J, p->nearnull));
-  PetscCall(MatSetOption(s->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  PetscCall(VecDuplicate(p->b, &s->r));
-  if (c) PetscCall(PetscMalloc4(c->n, &s->g, c->n, &s->m, c->n, &s->act, c->n, &s->actjac));
-  PetscCall(SNESCreate(p->comm, &s->snes));
+  PetscCall(PetscObjectReference((PetscObject)J));
+  s->J = J;
+  PetscCall(VecDuplicate(s->b, &s->r));
+  PetscCall(PetscMalloc5(s->cv.n, &s->g, s->cv.n, &s->m, s->cv.n, &s->act, s->cv.n, &s->actjac, s->cv.n, &s->lamhat));
+  for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
+  PetscCall(SNESCreate(s->comm, &s->snes));
+  PetscCall(SNESSetOptionsPrefix(s->snes, prefix));
+  PetscCall(SNESSetKSP(s->snes, ksp));
   PetscCall(SNESSetType(s->snes, SNESNEWTONLS));
   PetscCall(SNESGetLineSearch(s->snes, &ls));
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
@@ -324,20 +375,18 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
   PetscCall(SNESSetConvergenceTest(s->snes, Converged, s, NULL));
   PetscCall(SNESMonitorSet(s->snes, Monitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
-  PetscCall(SNESGetKSP(s->snes, &ksp));
-  PetscCall(KSPSetOperators(ksp, s->J, s->J));
-  PetscOptionsBegin(p->comm, NULL, "Semismooth Newton (active set) solver", NULL);
+  PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
-  PetscCall(SgCheckSolverTypes(p->comm, NULL));
+  PetscCall(SgCheckSolverTypes(s->comm, prefix));
   {
     PetscErrorCode ierr;
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
     ierr = SNESSetFromOptions(s->snes);
     PetscCall(PetscPopErrorHandler());
-    PetscCall(SgSolverConfigured(p->comm, ierr));
+    PetscCall(SgSolverConfigured(s->comm, ierr));
   }
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   {
@@ -345,8 +394,8 @@ PetscErrorCode SgSSNCreate(SgProblem p, SgContact c, SgSSN *ssn)
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
     s->residual_test = (PetscBool)!preonly;
-    PetscCheck(s->pc_reuse_its >= 0, p->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
-    PetscCheck(!(s->pc_reuse_its > 0 && preonly), p->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
+    PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
+    PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
   *ssn = s;
   PetscFunctionReturn(0);
@@ -362,39 +411,89 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(SgCondenseDestroy(&s->cond));
   PetscCall(MatDestroy(&s->J));
   PetscCall(VecDestroy(&s->r));
-  PetscCall(PetscFree4(s->g, s->m, s->act, s->actjac));
+  PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->hash));
   PetscCall(PetscFree(*ssn));
   PetscFunctionReturn(0);
 }
 
-/* The elasticity solve without contact, with the solver of the SSN steps (so a factorization's symbolic phase is shared). */
-PetscErrorCode SgSSNSolveLinear(SgSSN s, Vec y, PetscInt *its, KSPConvergedReason *kr)
+PetscErrorCode SgSSNGetSNES(SgSSN s, SNES *snes)
 {
-  KSP                ksp;
-  PetscErrorCode     ierr;
+  PetscFunctionBeginUser;
+  *snes = s->snes;
+  PetscFunctionReturn(0);
+}
 
-  PetscLogDouble     t0, t1, t2;
+PetscErrorCode SgSSNGetShift(SgSSN s, PetscReal **lamhat)
+{
+  PetscFunctionBeginUser;
+  *lamhat = s->lamhat;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNGetMultiplier(SgSSN s, const PetscReal **m)
+{
+  PetscFunctionBeginUser;
+  *m = s->m;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNGetPathValues(SgSSN s, PetscReal *gamma, PetscReal *V, PetscReal *dVdg)
+{
+  PetscFunctionBeginUser;
+  if (gamma) *gamma = s->gamma;
+  if (V) *V = s->V;
+  if (dVdg) *dVdg = s->dVdg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNGetReason(SgSSN s, SgSSNReason *reason)
+{
+  PetscFunctionBeginUser;
+  *reason = s->reason;
+  PetscFunctionReturn(0);
+}
+
+/* tau > 0: also stop in the neighbourhood ||(r1, r2)|| <= tau / sqrt(gamma) of the path (IPF); 0: solve exactly */
+PetscErrorCode SgSSNSetNeighbourhood(SgSSN s, PetscReal tau)
+{
+  PetscFunctionBeginUser;
+  s->nbhd_tau = tau;
+  PetscFunctionReturn(0);
+}
+
+/* the history that receives a row per SSN iteration, and its time origin */
+PetscErrorCode SgSSNSetHistory(SgSSN s, SgHistory hist, PetscLogDouble t0)
+{
+  PetscFunctionBeginUser;
+  s->hist = hist;
+  s->t0   = t0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNGetMonitor(SgSSN s, PetscBool *monitor)
+{
+  PetscFunctionBeginUser;
+  *monitor = s->monitor;
+  PetscFunctionReturn(0);
+}
+
+/* rho_F = int max(0, g), rho_C = int_I max(0, g) + int_A -min(0, g) with A, I the active and inactive sets of the
+   iterate (the sets of the last Newton step): the measures of the inexact path-following rule (15). */
+PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
+{
+  const SgContactView *c    = &s->cv;
+  PetscReal            r[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
-  PetscCall(SNESGetKSP(s->snes, &ksp));
-  PetscCall(MatCopy(s->prob->K, s->J, SAME_NONZERO_PATTERN));
-  PetscCall(KSPSetOperators(ksp, s->J, s->J));
-  PetscCall(PetscTime(&t0));
-  /* the first set-up of the linear solver is where some configurations that cannot work fail */
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = KSPSetUp(ksp);
-  PetscCall(PetscPopErrorHandler());
-  PetscCall(SgSolverConfigured(s->prob->comm, ierr));
-  PetscCall(PetscTime(&t1));
-  PetscCall(KSPSolve(ksp, s->prob->b, y));
-  PetscCall(PetscTime(&t2));
-  s->t_linear_setup = t1 - t0;
-  s->t_linear_solve = t2 - t1;
-  PetscCall(KSPGetIterationNumber(ksp, its));
-  PetscCall(KSPGetConvergedReason(ksp, kr));
-  PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscBool act = (PetscBool)(s->havejac ? s->actjac[i] : s->act[i]);
+    r[0] += c->w[i] * PetscMax(0, s->g[i]);
+    r[1] += c->w[i] * (act ? -PetscMin(0, s->g[i]) : PetscMax(0, s->g[i]));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 2, MPIU_REAL, MPI_SUM, s->comm));
+  *rhoF = r[0];
+  *rhoC = r[1];
   PetscFunctionReturn(0);
 }
 
@@ -423,7 +522,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
    resolved in double precision at this gamma. */
 PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *roundoff)
 {
-  SgContact          c   = s->c;
+  const SgContactView *c   = &s->cv;
   Vec                F;
   PetscScalar       *fa;
   const PetscScalar *ya;
@@ -432,25 +531,25 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &m));
   PetscCall(VecDuplicate(y, &F));
-  PetscCall(MatMult(s->prob->K, y, F));
-  PetscCall(VecAXPY(F, -1.0, s->prob->b));
+  PetscCall(MatMult(s->K, y, F));
+  PetscCall(VecAXPY(F, -1.0, s->b));
   PetscCall(VecGetArrayRead(y, &ya));
-  PetscCall(SgContactGap(c, ya, g));
+  PetscCall(SgContactGap(s->c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal z = c->lamhat[i] + s->gamma * g[i];
+    const PetscReal z = s->lamhat[i] + s->gamma * g[i];
     m[i]              = PetscMax(0, z);
     if (z > 0) floor = PetscMax(floor, s->gamma * c->w[i] * (PetscAbsReal(g[i] + c->d[i]) + PetscAbsReal(c->d[i])));
   }
   floor *= 4 * PETSC_MACHINE_EPSILON;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->prob->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->comm));
   PetscCall(VecGetArray(F, &fa));
-  PetscCall(SgContactAddForce(c, m, fa));
+  PetscCall(SgContactAddForce(s->c, m, fa));
   PetscCall(VecRestoreArray(F, &fa));
   PetscCall(VecNorm(F, NORM_INFINITY, &nrm[0]));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   {
-    const PetscReal scale = s->prob->Knorm * nrm[1] + s->prob->bnorm_inf, r = PetscMax(0, nrm[0] - floor);
+    const PetscReal scale = s->Knorm * nrm[1] + s->bnorm_inf, r = PetscMax(0, nrm[0] - floor);
     *err      = r > 0 ? (scale > 0 ? r / scale : PETSC_INFINITY) : nrm[0] - nrm[0]; /* NaN passed on */
     *roundoff = floor > 0 ? (scale > 0 ? floor / scale : PETSC_INFINITY) : 0;
   }

@@ -1,0 +1,96 @@
+/* cont/contimpl.h: the controller object and the interface a controller type implements; included by the files of src/cont
+   only. A new controller is one file with its SgContCreate_<Type> (filling ops), one SgContRegister line in
+   SgContRegisterAll (cont.c) and one options file.
+
+   Continuation controllers (none of ops->solve set) run the outer loop of SgContSolve (cont.c):
+     ops->start     before the first step (not on a restart): the first gamma into ct->gamma and the shift lamhat
+     -- the unconstrained solution y0 and V(0) = J(0, y0) --
+     ops->started   after it (not on a restart), optional
+     repeat: ops->prestep (optional), one SSN solve of (P_gamma) at ct->gamma, the KKT measures of (P),
+             ops->model (optional: the path model's C1, C2, E and the measures for the history row),
+             ops->update (only after a successful solve: the next gamma into *next, the shift lamhat),
+             the stopping tests and the checkpoint (SgContCheck)
+     ops->finish    after the loop, optional
+   A solver that is not a continuation (none, and the baselines pdas and vi, which solve (P) directly without the SSN)
+   sets ops->solve instead, and needs_ssn = PETSC_FALSE if it does not use the SSN.
+   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]). */
+#pragma once
+
+#include "sg.h"
+
+typedef struct {
+  PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
+  PetscErrorCode (*start)(SgCont);
+  PetscErrorCode (*started)(SgCont);
+  PetscErrorCode (*prestep)(SgCont);
+  PetscErrorCode (*model)(SgCont, SgHistoryRow *);
+  PetscErrorCode (*update)(SgCont, PetscReal *);
+  PetscErrorCode (*finish)(SgCont);
+  PetscErrorCode (*solve)(SgCont);
+  PetscErrorCode (*view)(SgCont, PetscViewer);
+  PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
+  PetscBool   needs_ssn;
+  PetscInt    nstate;
+  const char *state_names[SG_STATE_MAX];
+} SgContOps;
+
+struct _n_SgCont {
+  MPI_Comm     comm;
+  char         type[64];
+  char        *prefix;
+  SgProblem    problem_obj;
+  SgElasticity prob;
+  SgContact    c;
+  SgContactView cv;
+  KSP          ksp;          /* the linear solver of every step (-<prefix>ksp_*, -<prefix>pc_*) */
+  Mat          J;            /* its working matrix */
+  SgSSN        ssn;          /* NULL for the baselines */
+  PetscReal   *lamhat;       /* the SSN's shift (NULL without SSN) */
+  Vec          y;            /* the iterate, finally the solution */
+  PetscReal   *lam;          /* the multiplier at y */
+  PetscReal    kkt_tol;
+  PetscReal    gamma;        /* gamma of the next outer step */
+  PetscReal    state[SG_STATE_MAX]; /* a controller's own state between outer steps (checkpointed) */
+  PetscBool    restarted;    /* the state comes from -restart_file */
+  char         ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
+  PetscInt     max_outer, stall_its;
+  PetscReal    gamma_max;
+  PetscReal    best_kkt;     /* progress watch */
+  PetscInt     best_step;
+  PetscInt     outer, ssn_its, ksp_its;
+  PetscInt     ngammas, capgammas;
+  PetscReal   *gammas;       /* gamma of every outer step */
+  PetscBool    setfromoptions_called, setup, solved;
+  PetscBool    converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
+  char         reason[512];
+  const char  *problem;      /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */
+  PetscReal    residual;     /* the measure of that problem: the KKT residual of (P), the equilibrium residual of (P_gamma) or the backward error of K y = b */
+  SgKKT        kkt;
+  PetscReal    V0, V;        /* energy of the unconstrained solution and of the result */
+  PetscLogDouble t_linear_setup, t_linear_solve; /* the unconstrained solve: preconditioner setup and solve */
+  SgHistory    hist;
+  SgSummary    sum;          /* what the solver adds to the summary beside the standard keys (report.c) */
+  PetscLogDouble t0, t1;
+  void        *data;
+  SgContOps    ops;
+};
+
+extern PetscFunctionList SgContList;
+PetscErrorCode SgContStart(SgCont, PetscBool *);
+PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
+PetscErrorCode SgContMeasure(SgCont);
+PetscErrorCode SgContAddGamma(SgCont, PetscReal);
+PetscErrorCode SgContFail(SgCont, const char[], ...);
+PetscErrorCode SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
+PetscErrorCode SgContCheck(SgCont, PetscBool *);
+PetscErrorCode SgContCheckBaseline(SgCont);
+PetscErrorCode SgContCheckpointWrite(SgCont);
+PetscErrorCode SgContCheckpointRead(SgCont);
+const char    *SgContVerdict(SgCont);
+PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
+PetscErrorCode SgContCreate_None(SgCont);
+PetscErrorCode SgContCreate_ALM(SgCont);
+PetscErrorCode SgContCreate_PF(SgCont);
+PetscErrorCode SgContCreate_IPF(SgCont);
+PetscErrorCode SgContCreate_PDAS(SgCont);
+PetscErrorCode SgContCreate_VI(SgCont);

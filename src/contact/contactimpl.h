@@ -1,0 +1,51 @@
+/* contact/contactimpl.h: the obstacle, the contact boundary and the problem (elasticity with contact); included by the files of src/contact only */
+#pragma once
+
+#include "sg.h"
+
+
+struct _n_SgObstacle {
+  MPI_Comm  comm;
+  char      type[64];
+  PetscInt  dim;
+  PetscReal p[16]; /* shape parameters */
+  PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+  PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
+};
+
+
+struct _n_SgContact {
+  SgElasticity prob;
+  /* read once from the elasticity object */
+  MPI_Comm      comm;
+  PetscInt      dim;
+  DM            dm, dmVert, dmVec;
+  const SgMesh *mesh;
+  Mat           K;
+  Vec           b;
+  PetscReal     Knorm, bnorm_inf;
+  char          obstype[64]; /* obstacle type given through the interface ("": plane unless -obstacle_type) */
+  SgBoundary bnd;
+  SgObstacle obs;
+  PetscInt   n, nglobal; /* contact vertices owned here / in all */
+  PetscInt  *vert;       /* local vertex number */
+  PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
+  PetscReal *normal;     /* outward unit normals, n*dim */
+  PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
+  PetscReal *d;          /* gap to the obstacle along the normal */
+  PetscReal  area;
+  char      *prefix;
+};
+
+struct _n_SgProblem {
+  MPI_Comm             comm;
+  char                *prefix;
+  DM                   dm;          /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
+  SgElasticitySettings settings;    /* material and boundary parts given through the interface */
+  SgBoundary           contact;     /* the contact boundary given through the interface */
+  char                 obstacle[64];/* obstacle type given through the interface ("" : from the options) */
+  SgElasticity         el;
+  SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
+  PetscBool            setfromoptions, setup;
+  PetscLogDouble       t_create;
+};

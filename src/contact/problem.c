@@ -1,0 +1,259 @@
+/* contact/problem.c: SgProblem, the public object: linear elasticity on a mesh with a contact boundary and a rigid
+   obstacle. The mesh is the caller's (SgProblemSetDM) or comes from the options; the material and the boundary parts
+   may be given through the interface, and the options (under the problem's prefix) override them. */
+#include "contact/contactimpl.h"
+
+PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
+{
+  SgProblem p;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgLogEventsRegister());
+  PetscCall(SgObstacleRegisterAll());
+  PetscCall(PetscNew(&p));
+  p->comm = comm;
+  PetscCall(PetscTime(&p->t_create));
+  *prob = p;
+  PetscFunctionReturn(0);
+}
+
+/* A problem on the caller's mesh: a DMPlex of triangles (2D) or tetrahedra (3D), distributed as the caller wants,
+   without overlap; its labels name the boundary parts (SgProblemSetBoundary or -dirichlet_label, ...). */
+PetscErrorCode SgProblemCreateFromDM(DM dm, SgProblem *prob)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreate(PetscObjectComm((PetscObject)dm), prob));
+  PetscCall(SgProblemSetDM(*prob, dm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CheckNotSetUp(SgProblem p, const char fn[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!p->setfromoptions && !p->setup, p->comm, PETSC_ERR_ORDER, "%s: call it before SgProblemSetFromOptions/SgProblemSetUp", fn);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemSetDM(SgProblem p, DM dm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetDM"));
+  PetscCall(PetscObjectReference((PetscObject)dm));
+  PetscCall(DMDestroy(&p->dm));
+  p->dm = dm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemSetOptionsPrefix(SgProblem p, const char prefix[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetOptionsPrefix"));
+  PetscCheck(!prefix || prefix[0] != '-', p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetOptionsPrefix: the prefix '%s' must not begin with a hyphen", prefix);
+  PetscCall(PetscFree(p->prefix));
+  PetscCall(PetscStrallocpy(prefix, &p->prefix));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetOptionsPrefix(SgProblem p, const char *prefix[])
+{
+  PetscFunctionBeginUser;
+  *prefix = p->prefix;
+  PetscFunctionReturn(0);
+}
+
+/* Young's modulus and Poisson's ratio (the defaults of -E and -nu) */
+PetscErrorCode SgProblemSetMaterial(SgProblem p, PetscReal E, PetscReal nu)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetMaterial"));
+  p->settings.material_set = PETSC_TRUE;
+  p->settings.E            = E;
+  p->settings.nu           = nu;
+  PetscFunctionReturn(0);
+}
+
+/* A boundary part: the points of the label `label` with the values ids[0..n-1] (n = 0: every value); values holds dim
+   numbers per id (per part if n = 0) for Dirichlet and Neumann parts, NULL for zero data and for the contact part. */
+PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char label[], PetscInt n, const PetscInt ids[], const PetscReal values[])
+{
+  SgBoundary *b = type == SG_BOUNDARY_DIRICHLET ? &p->settings.dirichlet : (type == SG_BOUNDARY_NEUMANN ? &p->settings.neumann : &p->contact);
+  PetscInt    dim = 3, nv;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetBoundary"));
+  PetscCheck(type >= SG_BOUNDARY_DIRICHLET && type <= SG_BOUNDARY_CONTACT, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: unknown boundary type %d", (int)type);
+  PetscCheck(label && label[0], p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetBoundary: a label name is needed");
+  PetscCheck(n >= 0 && n <= SG_MAX_IDS, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: %" PetscInt_FMT " ids, at most %d are supported", n, SG_MAX_IDS);
+  if (p->dm) PetscCall(DMGetDimension(p->dm, &dim));
+  PetscCheck(type != SG_BOUNDARY_CONTACT || !values, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the contact part takes no values");
+  PetscCall(PetscMemzero(b, sizeof(*b)));
+  PetscCall(PetscStrncpy(b->label, label, sizeof(b->label)));
+  b->active = PETSC_TRUE;
+  b->nids   = n;
+  for (PetscInt i = 0; i < n; i++) b->ids[i] = ids[i];
+  nv = values ? dim * PetscMax(n, 1) : 0;
+  for (PetscInt i = 0; i < nv; i++) {
+    PetscCheck(PetscIsNormalReal(values[i]) || values[i] == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: value %" PetscInt_FMT " is %g, must be finite", i, (double)values[i]);
+    b->values[i] = values[i];
+  }
+  b->nvalues = nv;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemSetObstacleType(SgProblem p, const char type[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetObstacleType"));
+  PetscCall(PetscStrncpy(p->obstacle, type ? type : "", sizeof(p->obstacle)));
+  PetscFunctionReturn(0);
+}
+
+/* The options under the prefix (material, mesh, boundary parts, obstacle), the mesh made or checked. */
+PetscErrorCode SgProblemSetFromOptions(SgProblem p)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!p->setfromoptions, p->comm, PETSC_ERR_ORDER, "SgProblemSetFromOptions: called twice");
+  PetscCall(SgElasticityCreate(p->comm, p->prefix, &p->el));
+  PetscCall(SgElasticitySetFromOptions(p->el, p->dm, &p->settings));
+  PetscCall(SgContactCreate(p->el, p->prefix, p->contact.active ? &p->contact : NULL, p->obstacle, &p->c));
+  p->setfromoptions = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* The layout, the assembly of K and b, and the contact geometry (reads the options first if SgProblemSetFromOptions
+   was not called: the mesh has to come from somewhere). */
+PetscErrorCode SgProblemSetUp(SgProblem p)
+{
+  PetscFunctionBeginUser;
+  if (p->setup) PetscFunctionReturn(0);
+  if (!p->setfromoptions) PetscCall(SgProblemSetFromOptions(p));
+  PetscCall(SgElasticitySetUp(p->el));
+  if (p->c) PetscCall(SgContactSetUp(p->c));
+  p->setup = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
+{
+  PetscBool isascii;
+
+  PetscFunctionBeginUser;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(p->comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii || !p->setup) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "SgProblem%s%s:\n", p->prefix ? " with prefix " : "", p->prefix ? p->prefix : ""));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(SgElasticityView(p->el, viewer));
+  if (p->c) {
+    const char   *type;
+    SgContactView cv;
+    PetscCall(SgContactGetView(p->c, &cv));
+    PetscCall(SgContactGetObstacleType(p->c, &type));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "contact boundary: %" PetscInt_FMT " vertices, area %g; obstacle %s\n", cv.nglobal, (double)cv.area, type));
+  } else PetscCall(PetscViewerASCIIPrintf(viewer, "no contact boundary\n"));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemDestroy(SgProblem *prob)
+{
+  SgProblem p = *prob;
+
+  PetscFunctionBeginUser;
+  if (!p) PetscFunctionReturn(0);
+  PetscCall(SgContactDestroy(&p->c));
+  PetscCall(SgElasticityDestroy(&p->el));
+  PetscCall(DMDestroy(&p->dm));
+  PetscCall(PetscFree(p->prefix));
+  PetscCall(PetscFree(*prob));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CheckSetUp(SgProblem p, const char fn[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "%s: call SgProblemSetUp first", fn);
+  PetscFunctionReturn(0);
+}
+
+/* the displacement DM: its global vectors hold the free (non-Dirichlet) dofs */
+PetscErrorCode SgProblemGetDM(SgProblem p, DM *dm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckSetUp(p, "SgProblemGetDM"));
+  PetscCall(SgElasticityGetDMs(p->el, dm, NULL, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetDimension(SgProblem p, PetscInt *dim)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p->el, p->comm, PETSC_ERR_ORDER, "SgProblemGetDimension: call SgProblemSetFromOptions first");
+  PetscCall(SgElasticityGetDimension(p->el, dim));
+  PetscFunctionReturn(0);
+}
+
+/* unknowns, cells and contact vertices, each summed over the ranks */
+PetscErrorCode SgProblemGetSizes(SgProblem p, PetscInt *ndofs, PetscInt *ncells, PetscInt *ncontact)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckSetUp(p, "SgProblemGetSizes"));
+  PetscCall(SgElasticityGetInfo(p->el, ndofs, ncells, NULL, NULL));
+  if (ncontact) *ncontact = p->c ? p->c->nglobal : 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemHasContact(SgProblem p, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p->setfromoptions, p->comm, PETSC_ERR_ORDER, "SgProblemHasContact: call SgProblemSetFromOptions first");
+  *has = p->c ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemCreateVector(SgProblem p, Vec *y)
+{
+  DM dm;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemGetDM(p, &dm));
+  PetscCall(DMCreateGlobalVector(dm, y));
+  PetscFunctionReturn(0);
+}
+
+/* V(y) = 1/2 y K y - b y + the Dirichlet part: the potential energy of the displacement y */
+PetscErrorCode SgProblemComputeEnergy(SgProblem p, Vec y, PetscReal *V)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckSetUp(p, "SgProblemComputeEnergy"));
+  PetscCall(SgElasticityEnergy(p->el, y, V));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetElasticity(SgProblem p, SgElasticity *el)
+{
+  PetscFunctionBeginUser;
+  *el = p->el;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetContact(SgProblem p, SgContact *c)
+{
+  PetscFunctionBeginUser;
+  *c = p->c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetComm(SgProblem p, MPI_Comm *comm)
+{
+  PetscFunctionBeginUser;
+  *comm = p->comm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetCreationTime(SgProblem p, PetscLogDouble *t)
+{
+  PetscFunctionBeginUser;
+  *t = p->t_create;
+  PetscFunctionReturn(0);
+}

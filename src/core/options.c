@@ -1,0 +1,168 @@
+/* core/options.c: option parsers that name the option, with its prefix, in every message (PETSc 3.18's own parsers
+   report an empty value as "not set" and a bad number without the option's name). */
+#include "sg.h"
+#include <errno.h>
+#include <stdlib.h>
+
+/* "-" prefix opt-without-its-dash: the name a user types */
+PetscErrorCode SgOptionsName(const char prefix[], const char opt[], char name[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(name, len, "-%s%s", prefix ? prefix : "", opt[0] == '-' ? opt + 1 : opt));
+  PetscFunctionReturn(0);
+}
+
+/* Split a comma-separated option value; an empty value or entry, or more than max entries, is an error naming opt. */
+static PetscErrorCode SplitList(MPI_Comm comm, const char opt[], const char str[], PetscInt max, char tok[][64], PetscInt *n)
+{
+  const char *s = str;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  while (*s == ' ' || *s == '\t') s++;
+  PetscCheck(*s, comm, PETSC_ERR_USER_INPUT, "%s is given without a value", opt);
+  for (;;) {
+    const char *e = s;
+    size_t      len;
+    while (*e && *e != ',') e++;
+    len = (size_t)(e - s);
+    while (len > 0 && (s[len - 1] == ' ' || s[len - 1] == '\t')) len--;
+    while (len > 0 && (*s == ' ' || *s == '\t')) {
+      s++;
+      len--;
+    }
+    PetscCheck(*n < max, comm, PETSC_ERR_USER_INPUT, "%s '%s': more than %" PetscInt_FMT " entries", opt, str, max);
+    PetscCheck(len > 0, comm, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is empty", opt, str, *n);
+    PetscCheck(len < 64, comm, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " is too long", opt, str, *n);
+    PetscCall(PetscMemcpy(tok[*n], s, len));
+    tok[*n][len] = 0;
+    (*n)++;
+    if (!*e) break;
+    s = e + 1;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -opt as a list of at most max integers: read as a string so that a bad entry is reported with the option's name
+   (PETSc's own parser does not name it, and drops an option given without a value). */
+PetscErrorCode SgOptionsIntList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscInt vals[], PetscInt *n, PetscBool *set)
+{
+  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
+  PetscInt  nt;
+  PetscBool flg;
+
+  MPI_Comm  comm = PetscOptionsObject->comm;
+  char      name[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
+  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
+  for (PetscInt i = 0; i < *n; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(def, &l));
+    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%" PetscInt_FMT : "%" PetscInt_FMT, vals[i]));
+  }
+  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) PetscFunctionReturn(0);
+  PetscCall(SplitList(comm, name, str, max, tok, &nt));
+  for (PetscInt i = 0; i < nt; i++) {
+    char     *end;
+    long long v;
+    errno = 0;
+    v     = strtoll(tok[i], &end, 10);
+    PetscCheck(!*end && end != tok[i], comm, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not an integer", name, str, i, tok[i]);
+    PetscCheck(errno != ERANGE && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is out of range (%" PetscInt_FMT " to %" PetscInt_FMT ")", name, str, i, tok[i], (PetscInt)PETSC_MIN_INT, (PetscInt)PETSC_MAX_INT);
+    vals[i] = (PetscInt)v;
+  }
+  *n = nt;
+  PetscFunctionReturn(0);
+}
+
+/* -opt as a list of at most max reals (see SgOptionsIntList); inf and nan are read, the caller decides on them. */
+PetscErrorCode SgOptionsRealList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt max, PetscReal vals[], PetscInt *n, PetscBool *set)
+{
+  char      def[2048] = "", str[4096], tok[SG_OPT_MAX][64];
+  PetscInt  nt;
+  PetscBool flg;
+
+  MPI_Comm  comm = PetscOptionsObject->comm;
+  char      name[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
+  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
+  for (PetscInt i = 0; i < *n; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(def, &l));
+    PetscCall(PetscSNPrintf(def + l, sizeof(def) - l, i ? ",%g" : "%g", (double)vals[i]));
+  }
+  PetscCall(PetscOptionsString(opt, text, NULL, def, str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) PetscFunctionReturn(0);
+  PetscCall(SplitList(comm, name, str, max, tok, &nt));
+  for (PetscInt i = 0; i < nt; i++) {
+    char *end;
+    vals[i] = (PetscReal)strtod(tok[i], &end);
+    PetscCheck(!*end && end != tok[i], comm, PETSC_ERR_USER_INPUT, "%s '%s': entry %" PetscInt_FMT " '%s' is not a number", name, str, i, tok[i]);
+  }
+  *n = nt;
+  PetscFunctionReturn(0);
+}
+
+/* A single real -opt (see SgOptionsIntList). */
+PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscReal *val, PetscBool *set)
+{
+  PetscInt n = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsRealList(PetscOptionsObject, opt, text, 1, val, &n, set));
+  PetscFunctionReturn(0);
+}
+
+/* A logical -opt as PETSc reads it (alone: true; true/false, yes/no, on/off, 1/0 in any case), but a bad value is
+   reported with the option's name (PETSc says only "Unknown logical value"). */
+PetscErrorCode SgOptionsBoolValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool *val, PetscBool *set)
+{
+  static const char *const yes[] = {"", "true", "yes", "on", "1"}, *const no[] = {"false", "no", "off", "0"};
+  char      str[256], name[256];
+  PetscBool flg, match;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
+  PetscCall(PetscOptionsString(opt, text, NULL, *val ? "true" : "false", str, sizeof(str), &flg));
+  if (set) *set = flg;
+  if (!flg) {
+    /* PetscOptionsString reports a bare option as not set: look for the name itself */
+    PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &flg));
+    if (set) *set = flg;
+    if (flg) *val = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  for (size_t k = 0; k < sizeof(yes) / sizeof(yes[0]); k++) {
+    PetscCall(PetscStrcasecmp(str, yes[k], &match));
+    if (match) {
+      *val = PETSC_TRUE;
+      PetscFunctionReturn(0);
+    }
+  }
+  for (size_t k = 0; k < sizeof(no) / sizeof(no[0]); k++) {
+    PetscCall(PetscStrcasecmp(str, no[k], &match));
+    if (match) {
+      *val = PETSC_FALSE;
+      PetscFunctionReturn(0);
+    }
+  }
+  SETERRQ(PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s '%s': not a logical value (true or false, yes or no, on or off, 1 or 0)", name, str);
+}
+
+/* A single integer -opt (see SgOptionsIntList). */
+PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *val, PetscBool *set)
+{
+  PetscInt n = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsIntList(PetscOptionsObject, opt, text, 1, val, &n, set));
+  PetscFunctionReturn(0);
+}
+

@@ -1,0 +1,37 @@
+/* fem/femimpl.h: the elasticity object of the fem layer; included by the files of src/fem only */
+#pragma once
+
+#include "sg.h"
+
+struct _n_SgElasticity {
+  MPI_Comm     comm;
+  char        *prefix;    /* options prefix (may be NULL) */
+  PetscBool    setup;
+  DM           dm;      /* vertex P1 displacement, Dirichlet vertices constrained in the section */
+  DM           dmCell;  /* one scalar per cell (cell fields) */
+  DM           dmVert;  /* one scalar per vertex, no constraints (contact fields) */
+  DM           dmVec;   /* dim values per vertex, no constraints (output of the full displacement) */
+  SgMesh       mesh;
+  PetscInt     dim;
+  PetscReal    E, nu, lambda, mu;
+  PetscReal    body_force[3];
+  PetscInt     nbody_force;  /* entries given with -body_force (must be dim) */
+  SgBoundary   dirichlet, neumann;
+  PetscBool    mms;          /* manufactured solution: body force and Dirichlet data from a known field */
+  Mat          K;            /* stiffness on the free dofs, block size dim */
+  Vec          b;            /* load with the Dirichlet lifting */
+  Vec          mass;         /* lumped volume of each free dof's vertex (for the discrete dual norm) */
+  Vec          ubc;          /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
+  PetscReal    energy_shift; /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
+  PetscReal    bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
+  PetscReal    Knorm;        /* ||K||_inf */
+  Vec          fpart;        /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
+  PetscReal    diam;         /* diameter of the mesh's bounding box */
+  PetscReal    rigid_shift;  /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
+  PetscBool    rigid_shift_set;
+  PetscBool    energy_check; /* -elasticity_energy_check: compare the energy with a long double evaluation */
+  MatNullSpace nearnull;     /* rigid-body modes */
+  PetscBool    use_nearnull; /* attached to K and the Jacobians */
+  PetscInt     ndofs;
+  PetscLogDouble t_assembly;
+};

@@ -1,0 +1,242 @@
+/* sg.h: the library's internal interface: the opaque handles and functions the layers (src/core, fem, contact,
+   solver, io, cont) call across their borders. Each layer's structs are in its own *impl.h, included by that
+   layer's files only (tests/check_layers.py checks it). */
+#pragma once
+
+#include <signorini.h>
+#include <math.h>
+
+#define SG_MAX_IDS 32 /* label values per boundary part */
+#define SG_OPT_MAX (3 * SG_MAX_IDS) /* entries of a list option read by SgOptionsIntList/RealList */
+#define SG_NAN     ((PetscReal)NAN) /* "not set" in tables and summaries */
+
+/* ------------------------------------------------------------------ core: init.c, options.c */
+extern PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
+PetscErrorCode SgLogEventsRegister(void);
+
+/* ------------------------------------------------------------------ fem: mesh.c, gmshcheck.c, elasticity.c */
+/* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty
+   unless its -<what>_label or -<what>_ids option was given.
+   values[] holds ncomp numbers per id (Dirichlet displacement, Neumann traction). */
+typedef struct {
+  const char *what;       /* option prefix, e.g. "dirichlet" */
+  PetscBool   active;     /* given by the options */
+  char        label[256]; /* label name */
+  PetscInt    nids;
+  PetscInt    ids[SG_MAX_IDS];
+  PetscInt    nvalues;
+  PetscReal   values[3 * SG_MAX_IDS];
+} SgBoundary;
+
+/* The P1 view of a distributed simplex mesh, flattened once for the assembly loops. */
+typedef struct {
+  PetscInt   dim;
+  PetscInt   nv, nc;    /* local vertices and cells */
+  PetscInt   vStart, cStart;
+  PetscInt  *cellv;     /* nc*(dim+1) local vertex numbers (0..nv-1) */
+  PetscReal *x;         /* nv*dim vertex coordinates */
+  PetscInt  *gblock;    /* global block (vertex) index of the free displacement, -1 if Dirichlet */
+  PetscInt  *loff;      /* offset of the vertex in the local displacement vector */
+  PetscInt  *goff;      /* offset in this rank's part of the global vector, -1 if not owned or Dirichlet */
+  PetscInt  *bcgroup;   /* Dirichlet part (index into ids) or -1 */
+  PetscInt   nowned;    /* vertices owned by this rank (free or not) */
+  PetscInt   nfree_glob;/* global number of free vertices */
+} SgMesh;
+
+PetscErrorCode SgMeshCreateDM(MPI_Comm, const char[], DM *);
+PetscErrorCode SgMeshCheckDM(MPI_Comm, const char[], DM);
+PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
+PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
+PetscErrorCode SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
+PetscErrorCode SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
+PetscErrorCode SgMeshDestroy(SgMesh *);
+PetscErrorCode SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
+PetscErrorCode SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
+PetscErrorCode SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
+
+/* ------------------------------------------------------------------ elasticity.c */
+typedef struct _n_SgElasticity *SgElasticity;
+
+/* Settings given through the library's interface before the options are read (the options override them). */
+typedef struct {
+  PetscBool  material_set;
+  PetscReal  E, nu;
+  SgBoundary dirichlet, neumann;
+} SgElasticitySettings;
+PetscErrorCode SgElasticityCreate(MPI_Comm, const char[], SgElasticity *);
+PetscErrorCode SgElasticitySetFromOptions(SgElasticity, DM, const SgElasticitySettings *);
+PetscErrorCode SgElasticitySetUp(SgElasticity);
+PetscErrorCode SgElasticityDestroy(SgElasticity *);
+PetscErrorCode SgElasticityView(SgElasticity, PetscViewer);
+/* accessors: what the other layers read */
+PetscErrorCode SgElasticityGetComm(SgElasticity, MPI_Comm *);
+PetscErrorCode SgElasticityGetDimension(SgElasticity, PetscInt *);
+PetscErrorCode SgElasticityGetDMs(SgElasticity, DM *, DM *, DM *, DM *); /* displacement, vertex scalar, vertex vector, cell scalar */
+PetscErrorCode SgElasticityGetMesh(SgElasticity, const SgMesh **);
+PetscErrorCode SgElasticityGetOperators(SgElasticity, Mat *, Vec *);     /* K and b */
+PetscErrorCode SgElasticityGetMass(SgElasticity, Vec *);
+PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *); /* NULL when not attached */
+PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||K||_inf, ||b||_2, ||b||_inf */
+PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
+PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);
+PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBool *, PetscLogDouble *); /* dofs, cells, mms, assembly time */
+PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
+PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
+PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);
+PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
+PetscErrorCode SgElasticityMMSErrors(SgElasticity, Vec, PetscReal *, PetscReal *);
+PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
+PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
+PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
+PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
+PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
+
+/* ------------------------------------------------------------------ io: output.c (files, summary, fields), history.c, checkpoint.c */
+typedef struct _n_SgSummary *SgSummary;
+PetscErrorCode SgFileTmpName(const char[], char[], size_t);
+PetscErrorCode SgFileCommit(MPI_Comm, const char[]);
+PetscErrorCode SgFileAbandon(MPI_Comm, const char[]);
+PetscErrorCode SgFileOpen(MPI_Comm, const char[], const char[], FILE **);
+PetscErrorCode SgFileClose(MPI_Comm, const char[], FILE **);
+PetscErrorCode SgFileBegin(const char[]);
+void           SgFileCleanup(void);
+const char    *SgFileErrorCause(int, const char[]);
+PetscErrorCode SgFileHDF5NameMax(MPI_Comm, size_t *);
+PetscErrorCode SgFileWriteHDF5(MPI_Comm, const char[], const char[], PetscErrorCode (*)(PetscViewer, void *), void *, PetscBool, PetscBool *, char[], size_t);
+PetscErrorCode SgOutputXdmfName(const char[], char[], size_t);
+PetscErrorCode SgSummaryCreate(SgSummary *);
+PetscErrorCode SgSummaryDestroy(SgSummary *);
+PetscErrorCode SgSummarySetRaw(SgSummary, const char[], const char[]);
+PetscErrorCode SgSummarySetReal(SgSummary, const char[], PetscReal);
+PetscErrorCode SgSummarySetInt(SgSummary, const char[], PetscInt);
+PetscErrorCode SgSummarySetBool(SgSummary, const char[], PetscBool);
+PetscErrorCode SgSummarySetString(SgSummary, const char[], const char[]);
+PetscErrorCode SgSummarySetRealArray(SgSummary, const char[], PetscInt, const PetscReal[]);
+PetscErrorCode SgSummarySetIntArray(SgSummary, const char[], PetscInt, const PetscInt[]);
+PetscErrorCode SgSummaryWrite(MPI_Comm, SgSummary, const char[], const char[]);
+PetscErrorCode SgOutputWrite(SgElasticity, const char[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+
+/* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
+typedef struct _n_SgObstacle *SgObstacle;
+extern PetscFunctionList SgObstacleList;
+PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
+PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
+PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
+PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode SgObstacleDestroy(SgObstacle *);
+PetscErrorCode SgObstacleCreate_Plane(SgObstacle);
+PetscErrorCode SgObstacleCreate_Parabola(SgObstacle);
+PetscErrorCode SgObstacleCreate_Ball(SgObstacle);
+
+/* ------------------------------------------------------------------ contact.c */
+typedef struct _n_SgContact *SgContact;
+
+
+
+PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const char[], SgContact *);
+PetscErrorCode SgContactSetUp(SgContact);
+/* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
+typedef struct {
+  PetscInt         n, nglobal; /* owned here, in all */
+  const PetscInt  *vert;       /* local vertex number */
+  const PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
+  const PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
+  const PetscReal *normal;     /* outward unit normals, n*dim */
+  const PetscReal *d;          /* initial gap to the obstacle along the normal */
+  PetscReal        area;       /* |Gamma_c| */
+} SgContactView;
+PetscErrorCode SgContactGetView(SgContact, SgContactView *);
+PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
+PetscErrorCode SgContactGetElasticity(SgContact, SgElasticity *);
+PetscErrorCode SgContactActiveSetHash(SgContact, const char[], PetscInt64 *);
+PetscErrorCode SgContactDestroy(SgContact *);
+PetscErrorCode SgContactGap(SgContact, const PetscScalar[], PetscReal[]);
+PetscErrorCode SgContactAddForce(SgContact, const PetscReal[], PetscScalar[]);
+PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
+PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
+/* SgContactKKT: measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i, each
+   dimensionless (the same for any load level, material scale and unit system), with the force scale
+   ||K|| ||y|| + ||b|| (infinity norms) and the length scale Y sqrt|Gamma_c|, Y = max(||y||_inf, largest initial
+   penetration):
+   equilibrium     ||K y - b + B^T W lam|| / (||K|| ||y|| + ||b||)          (backward error; interior and tangential part)
+   infeasibility   ||max(0, g)||_{L2(Gamma_c)} / (Y sqrt|Gamma_c|)
+   complementarity (||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}) / (Y sqrt|Gamma_c|), A = {lam > 0}, as an L2 sum of squares
+   dual            max_i w_i max(0, -lam_i) / (||K|| ||y|| + ||b||)        (nodal force a pressure >= 0 cannot balance)
+   residual        max(equilibrium, dual, infeasibility, complementarity): the stopping measure
+   penetration     ||max(0, g)||_{L2(Gamma_c)} in the problem's units (the paper's infeasibility) */
+PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
+PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
+PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
+
+PetscErrorCode SgProblemGetElasticity(SgProblem, SgElasticity *);
+PetscErrorCode SgProblemGetContact(SgProblem, SgContact *); /* NULL without a contact boundary */
+PetscErrorCode SgProblemGetComm(SgProblem, MPI_Comm *);
+PetscErrorCode SgProblemGetCreationTime(SgProblem, PetscLogDouble *);
+
+/* ------------------------------------------------------------------ io: history.c */
+typedef struct {
+  char      kind; /* 's': an SSN iteration, 'o': the end of an outer (continuation) step */
+  PetscInt  outer, it, active, entered, left, ksp_its, ssn_its;
+  PetscReal gamma, fnorm, r1, r2, V, dV, C1, C2, Em, rhoF, rhoC, infeas, kkt, time;
+} SgHistoryRow;
+typedef struct _n_SgHistory *SgHistory;
+PetscErrorCode SgHistoryCreate(SgHistory *);
+PetscErrorCode SgHistoryDestroy(SgHistory *);
+PetscErrorCode SgHistoryRowInit(SgHistoryRow *);
+PetscErrorCode SgHistoryAdd(SgHistory, const SgHistoryRow *);
+PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
+PetscErrorCode SgHistoryGetRows(SgHistory, PetscInt *, SgHistoryRow **);
+PetscErrorCode SgHistoryReset(SgHistory);
+
+/* ------------------------------------------------------------------ io: checkpoint.c
+   The state of a continuation after an outer step, written atomically; vertex data with the vertex coordinates, so
+   that a restart may use another partition. The controller's own numbers are named (nstate, names): no list of
+   controller types here. */
+#define SG_STATE_MAX 8
+typedef struct {
+  char        type[64];
+  PetscReal   gamma, V0, best_kkt;
+  PetscInt    outer, ssn_its, ksp_its, best_step;
+  Vec         y;          /* the displacement (global vector of the problem) */
+  PetscReal  *lamhat;     /* per contact vertex */
+  PetscInt    ngammas;
+  PetscReal  *gammas;     /* written from / read into (allocated on reading; PetscFree) */
+  SgHistory   hist;
+  PetscInt    nstate;
+  const char *state_names[SG_STATE_MAX];
+  PetscReal   state[SG_STATE_MAX];
+} SgCheckpoint;
+PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckpoint *, PetscBool *, char[], size_t);
+PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);
+
+/* ------------------------------------------------------------------ solver: ssn.c, condense.c */
+typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED } SgSSNReason;
+extern const char *const SgSSNReasons[];
+typedef struct _n_SgSSN      *SgSSN;
+typedef struct _n_SgCondense *SgCondense;
+/* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
+   SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
+PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
+PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
+PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
+PetscErrorCode SgSSNDestroy(SgSSN *);
+PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
+PetscErrorCode SgSSNGetSNES(SgSSN, SNES *);
+PetscErrorCode SgSSNGetShift(SgSSN, PetscReal **);            /* lamhat per contact vertex, for the controller to set */
+PetscErrorCode SgSSNGetMultiplier(SgSSN, const PetscReal **); /* max(0, lamhat + gamma g) at the last residual */
+PetscErrorCode SgSSNGetPathValues(SgSSN, PetscReal *, PetscReal *, PetscReal *); /* gamma, J(gamma, y), dJ/dgamma there */
+PetscErrorCode SgSSNGetReason(SgSSN, SgSSNReason *);
+PetscErrorCode SgSSNSetNeighbourhood(SgSSN, PetscReal);
+PetscErrorCode SgSSNSetHistory(SgSSN, SgHistory, PetscLogDouble);
+PetscErrorCode SgSSNGetMonitor(SgSSN, PetscBool *);
+PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
+PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
+PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
+PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
+PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
+PetscErrorCode SgCondenseDestroy(SgCondense *);
+
+/* ------------------------------------------------------------------ cont: cont.c (the object and the outer loop),
+   report.c (views, summary, fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */
+PetscErrorCode SgContRegisterAll(void);
+PetscErrorCode SgObstacleRegisterAll(void);

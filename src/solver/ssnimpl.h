@@ -1,0 +1,41 @@
+/* solver/ssnimpl.h: the semismooth Newton solver of (P_gamma); included by the files of src/solver only */
+#pragma once
+
+#include "sg.h"
+
+
+struct _n_SgSSN {
+  SgElasticity prob;
+  SgContact   c;              /* NULL without a contact boundary */
+  SgContactView cv;           /* its vertices */
+  /* read once from the elasticity object */
+  MPI_Comm      comm;
+  PetscInt      dim;
+  const SgMesh *mesh;
+  Mat           K;
+  Vec           b, mass;
+  PetscReal     Knorm, bnorm, bnorm_inf, energy_shift;
+  PetscReal    *lamhat;       /* the shift of (P_gamma), set by the controller (SgSSNGetShift) */
+  SNES        snes;
+  Mat         J;
+  Vec         r;
+  PetscReal   gamma;
+  PetscReal  *g, *m;          /* gap and max(0, lamhat + gamma g) at the last residual evaluation */
+  char       *act, *actjac;   /* active set there, and the one the last Jacobian used */
+  PetscBool   havejac;
+  PetscInt    nact, nentered, nleft;
+  PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
+  PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
+  PetscBool   prev_settled;
+  PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
+  PetscInt64 *hash;
+  PetscBool   residual_test;  /* inexact linear solves: also require a small residual */
+  PetscInt    pc_reuse_its;   /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
+  SgCondense  cond;           /* -ssn_condense: linear solves condensed onto the contact dofs */
+  PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
+  SgSSNReason reason;
+  PetscBool   monitor;
+  SgHistory   hist;
+  PetscInt    outer;
+  PetscLogDouble t0;          /* the history's time origin */
+};
