@@ -47,24 +47,24 @@ typedef enum {
   SG_BOUNDARY_CONTACT    /* values: none (NULL) */
 } SgBoundaryType;
 
-PetscErrorCode SgProblemCreate(MPI_Comm, SgProblem *);
-PetscErrorCode SgProblemCreateFromDM(DM, SgProblem *);
-PetscErrorCode SgProblemSetDM(SgProblem, DM);
-PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]);
+PetscErrorCode SgProblemCreate(MPI_Comm, SgProblem *); /* an empty problem on the communicator */
+PetscErrorCode SgProblemCreateFromDM(DM, SgProblem *); /* a problem on the caller's DMPlex (SgProblemCreate + SgProblemSetDM) */
+PetscErrorCode SgProblemSetDM(SgProblem, DM); /* use the caller's mesh (triangles/tetrahedra, no overlap; it is cloned, not changed) */
+PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]); /* prefix of the problem's options (-<prefix>E, -<prefix>contact_ids, ...) */
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem, const char *[]);
-PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal);
-PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]);
-PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]);
-PetscErrorCode SgProblemSetFromOptions(SgProblem);
-PetscErrorCode SgProblemSetUp(SgProblem);
-PetscErrorCode SgProblemView(SgProblem, PetscViewer);
+PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal); /* Young's modulus E and Poisson's ratio nu (defaults of -E, -nu) */
+PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL) */
+PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola or ball (default of -obstacle_type) */
+PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
+PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */
+PetscErrorCode SgProblemView(SgProblem, PetscViewer); /* ASCII description (NULL: stdout) */
 PetscErrorCode SgProblemDestroy(SgProblem *);
-PetscErrorCode SgProblemGetDM(SgProblem, DM *);
-PetscErrorCode SgProblemGetDimension(SgProblem, PetscInt *);
-PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *);
-PetscErrorCode SgProblemHasContact(SgProblem, PetscBool *);
-PetscErrorCode SgProblemCreateVector(SgProblem, Vec *);
-PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *);
+PetscErrorCode SgProblemGetDM(SgProblem, DM *); /* the displacement DM (global vectors: the free dofs) */
+PetscErrorCode SgProblemGetDimension(SgProblem, PetscInt *); /* 2 or 3 */
+PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *); /* unknowns, cells, contact vertices (global) */
+PetscErrorCode SgProblemHasContact(SgProblem, PetscBool *); /* a contact boundary was given */
+PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector */
+PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
 
 /* ---- SgCont */
 #define SGCONTNONE "none" /* one regularized problem (P_gamma), gamma from -contact_gamma */
@@ -81,27 +81,27 @@ typedef struct {
   PetscInt  nactive;
 } SgKKT;
 
-PetscErrorCode SgContCreate(SgProblem, SgCont *);
-PetscErrorCode SgContSetType(SgCont, const char[]);
+PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem (type none until set) */
+PetscErrorCode SgContSetType(SgCont, const char[]); /* SGCONTIPF, ... (default of -cont_type) */
 PetscErrorCode SgContGetType(SgCont, const char *[]);
-PetscErrorCode SgContSetOptionsPrefix(SgCont, const char[]);
+PetscErrorCode SgContSetOptionsPrefix(SgCont, const char[]); /* prefix of the solver's options (-<prefix>cont_type, -<prefix>ksp_type, ...) */
 PetscErrorCode SgContGetOptionsPrefix(SgCont, const char *[]);
-PetscErrorCode SgContSetTolerances(SgCont, PetscReal, PetscInt);
-PetscErrorCode SgContSetFromOptions(SgCont);
-PetscErrorCode SgContSetUp(SgCont);
-PetscErrorCode SgContSolve(SgCont);
-PetscErrorCode SgContGetSolution(SgCont, Vec *);
-PetscErrorCode SgContGetConvergedReason(SgCont, PetscBool *, const char *[]);
-PetscErrorCode SgContGetIterationNumbers(SgCont, PetscInt *, PetscInt *, PetscInt *);
-PetscErrorCode SgContGetKKT(SgCont, SgKKT *);
-PetscErrorCode SgContGetEnergy(SgCont, PetscReal *);
-PetscErrorCode SgContGetSNES(SgCont, SNES *);
-PetscErrorCode SgContView(SgCont, PetscViewer);
-PetscErrorCode SgContWriteSummary(SgCont, const char[]);
-PetscErrorCode SgContWriteHistory(SgCont, const char[]);
-PetscErrorCode SgContWriteFields(SgCont, const char[], PetscReal);
+PetscErrorCode SgContSetTolerances(SgCont, PetscReal, PetscInt); /* KKT tolerance, outer-step limit (PETSC_DEFAULT keeps one) */
+PetscErrorCode SgContSetFromOptions(SgCont); /* read the options (sets the problem up first) */
+PetscErrorCode SgContSetUp(SgCont); /* linear solver, SSN solver */
+PetscErrorCode SgContSolve(SgCont); /* solve (once) from the unconstrained start or -restart_file */
+PetscErrorCode SgContGetSolution(SgCont, Vec *); /* the displacement (borrowed: do not destroy) */
+PetscErrorCode SgContGetConvergedReason(SgCont, PetscBool *, const char *[]); /* converged to the tolerance, and why it stopped */
+PetscErrorCode SgContGetIterationNumbers(SgCont, PetscInt *, PetscInt *, PetscInt *); /* outer steps, SSN iterations, Krylov iterations */
+PetscErrorCode SgContGetKKT(SgCont, SgKKT *); /* the KKT measures of the result as a solution of (P) */
+PetscErrorCode SgContGetEnergy(SgCont, PetscReal *); /* V of the result */
+PetscErrorCode SgContGetSNES(SgCont, SNES *); /* the semismooth Newton SNES (NULL for pdas, vi and without contact) */
+PetscErrorCode SgContView(SgCont, PetscViewer); /* ASCII: settings before the solve, the result line after it */
+PetscErrorCode SgContWriteSummary(SgCont, const char[]); /* JSON summary of the solve */
+PetscErrorCode SgContWriteHistory(SgCont, const char[]); /* CSV history: a row per SSN iteration and per outer step */
+PetscErrorCode SgContWriteFields(SgCont, const char[], PetscReal); /* HDF5 + XDMF fields for ParaView (converged solves), magnification */
 PetscErrorCode SgContDestroy(SgCont *);
-PetscErrorCode SgContRegister(const char[], PetscErrorCode (*)(SgCont));
+PetscErrorCode SgContRegister(const char[], PetscErrorCode (*)(SgCont)); /* a new controller type (its implementation needs src/cont/contimpl.h) */
 
 #if defined(__cplusplus)
 }

@@ -337,6 +337,34 @@ PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y
   PetscFunctionReturn(0);
 }
 
+/* -snes_converged_reason for the SSN: our reasons (SgSSNReasons), which PETSc's closed list of SNES reasons cannot
+   name: a settled active set would print as CONVERGED_FNORM_ABS and cycling as DIVERGED_LOCAL_MIN. The option is
+   taken over at set-up (read into the SSN's viewer and removed), so PETSc does not print a second, misleading line;
+   a SNES type of our own would have had to copy newtonls for the same effect. */
+static PetscErrorCode ReasonView(SNES snes, void *ctx)
+{
+  SgSSN               s = (SgSSN)ctx;
+  SNESConvergedReason r;
+  PetscInt            its, tab;
+  PetscBool           isascii;
+
+  PetscFunctionBeginUser;
+  if (!s->reason_viewer) PetscFunctionReturn(0);
+  PetscCall(PetscObjectGetTabLevel((PetscObject)snes, &tab));
+  PetscCall(PetscObjectTypeCompare((PetscObject)s->reason_viewer, PETSCVIEWERASCII, &isascii));
+  if (!isascii) PetscFunctionReturn(0);
+  PetscCall(SNESGetConvergedReason(snes, &r));
+  PetscCall(SNESGetIterationNumber(snes, &its));
+  PetscCall(PetscViewerPushFormat(s->reason_viewer, s->reason_format));
+  PetscCall(PetscViewerASCIIAddTab(s->reason_viewer, tab));
+  if (r > 0) {
+    if (s->reason_format != PETSC_VIEWER_FAILED) PetscCall(PetscViewerASCIIPrintf(s->reason_viewer, "SSN solve of (P_gamma) at gamma %g converged due to %s iterations %" PetscInt_FMT "\n", (double)s->gamma, SgSSNReasons[s->reason], its));
+  } else PetscCall(PetscViewerASCIIPrintf(s->reason_viewer, "SSN solve of (P_gamma) at gamma %g did not converge due to %s (SNES %s) iterations %" PetscInt_FMT "\n", (double)s->gamma, SgSSNReasons[s->reason], SNESConvergedReasons[r], its));
+  PetscCall(PetscViewerASCIISubtractTab(s->reason_viewer, tab));
+  PetscCall(PetscViewerPopFormat(s->reason_viewer));
+  PetscFunctionReturn(0);
+}
+
 /* The SSN solver of (P_gamma) on the contact boundary c, its SNES (options under the prefix) solving with the linear
    solver ksp on the working matrix J (SgLinearSolverCreate). */
 PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP ksp, Mat J, SgSSN *ssn)
@@ -390,6 +418,16 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   }
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   {
+    char      name[256];
+    PetscBool flg;
+    PetscCall(PetscOptionsGetViewer(s->comm, NULL, prefix, "-snes_converged_reason", &s->reason_viewer, &s->reason_format, &flg));
+    if (flg) {
+      PetscCall(SgOptionsName(prefix, "-snes_converged_reason", name, sizeof(name)));
+      PetscCall(PetscOptionsClearValue(NULL, name));
+    }
+    PetscCall(SNESConvergedReasonViewSet(s->snes, ReasonView, s, NULL));
+  }
+  {
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
@@ -408,6 +446,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
   PetscCall(SNESDestroy(&s->snes));
+  PetscCall(PetscViewerDestroy(&s->reason_viewer));
   PetscCall(SgCondenseDestroy(&s->cond));
   PetscCall(MatDestroy(&s->J));
   PetscCall(VecDestroy(&s->r));
