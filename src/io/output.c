@@ -466,6 +466,17 @@ PetscErrorCode SgFileCheckInput(MPI_Comm comm, const char option[], const char n
    for SgFileCommit when commit is false). A failure (a full disk, say) does not raise an error here: the ".part" is
    removed and ok = PETSC_FALSE with a message naming the option, the file and the cause, so that the caller can
    still record it in the summary. HDF5's own error stack is silenced meanwhile. */
+/* errno values a failed write sets (HDF5 leaves errno stale otherwise) */
+static PetscBool WriteErrno(int e)
+{
+  return (PetscBool)(e == ENOSPC || e == EDQUOT || e == EFBIG || e == EROFS || e == EACCES || e == EIO);
+}
+
+static PetscBool DiskFull(const char path[])
+{
+  return (PetscBool)!strcmp(SgFileErrorCause(0, path), "no space left on device");
+}
+
 PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char name[], PetscErrorCode (*body)(PetscViewer, void *), void *ctx, PetscBool commit, PetscBool *ok, char msg[], size_t len)
 {
   char           tmp[PETSC_MAX_PATH_LEN];
@@ -488,10 +499,28 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   if (!ierr) ierr = body(viewer, ctx);
   err[1] = errno;
   if (viewer) {
+    const char *path;
+    PetscBool   direct;
+    hid_t       fid = -1;
+    PetscMPIInt rank;
+    FileResolve(name, &path, &direct);
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    (void)PetscViewerHDF5GetFileId(viewer, &fid);
+    /* a failed write (a full disk): the .part goes anyway; emptying it first frees the space HDF5 needs to close the
+       file, which otherwise stays open in HDF5 and crashes HDF5's clean-up at PetscFinalize (an unlinked file would
+       keep its blocks while open) */
+    if (ierr && !direct) {
+      /* the cause is judged now, while the disk is still full */
+      if (!WriteErrno(err[1]) && DiskFull(path)) err[1] = ENOSPC;
+      if (rank == 0) (void)truncate(tmp, 0);
+    }
     ierr2 = PetscViewerDestroy(&viewer);
-    if (!ierr) {
+    if (ierr2 && !ierr) {
       ierr   = ierr2;
       err[1] = errno;
+      if (!direct && !WriteErrno(err[1]) && DiskFull(path)) err[1] = ENOSPC;
+      if (!direct && rank == 0) (void)truncate(tmp, 0);
+      if (fid >= 0) (void)H5Fclose(fid); /* the close failed (its flush): again, with the space freed */
     }
   }
   (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
@@ -503,7 +532,7 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
     PetscBool   direct;
     FileResolve(name, &path, &direct);
     /* HDF5 leaves errno stale: trust only the codes of a failed write; the cause before the .part is removed */
-    if (!(err[1] == ENOSPC || err[1] == EDQUOT || err[1] == EFBIG || err[1] == EROFS || err[1] == EACCES || err[1] == EIO)) err[1] = 0;
+    if (!WriteErrno(err[1])) err[1] = 0;
     PetscCall(PetscSNPrintf(msg, len, "%s: cannot write '%s': %s", option, name, SgFileErrorCause(err[1], path)));
     PetscCall(SgFileAbandon(comm, name));
     *ok = PETSC_FALSE;
