@@ -14,9 +14,7 @@ usage: harness.py [-j JOBS] [-k PATTERN] FILE.ini ...
 """
 import argparse
 import configparser
-import csv
 import glob
-import json
 import math
 import os
 import re
@@ -27,10 +25,12 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
+
+ROOT = sgrun.ROOT
 OUT = os.path.join(ROOT, "tests", "output")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_btl_vader_single_copy_mechanism="none", OPENBLAS_NUM_THREADS="1")
+ENV = sgrun.mpi_env(single_copy=False)
 
 
 def close(a, b, rtol=1e-10, atol=0.0):
@@ -51,16 +51,6 @@ def order(e_coarse, e_fine, ratio=2.0):
 
 def ssn(rows):
     return [r for r in rows if r["kind"] == "ssn"]
-
-
-def load_history(path):
-    if not os.path.exists(path):
-        return []
-    rows = []
-    with open(path) as f:
-        for r in csv.DictReader(f):
-            rows.append({k: (v if k == "kind" else (float(v) if v != "" else None)) for k, v in r.items()})
-    return rows
 
 
 VALGRIND = []  # --valgrind: the memcheck command put in front of our executables
@@ -97,31 +87,26 @@ class Test:
             vg = VALGRIND
             if vg and self.expect_error is not None:  # PETSc's error handler aborts: memory is not freed then, but errors still count
                 vg = [a for a in vg if not a.startswith("--errors-for-leak-kinds")] + ["--errors-for-leak-kinds=none"]
-            cmd = ["mpiexec", "-n", str(self.nsize)] + vg + [os.path.join(ROOT, self.cmd)] + shlex.split(args)
-            if self.cmd == "bin/signorini":
-                cmd += ["-summary_file", f["summary"], "-history_file", f["history"], "-options_left"]
-            else:
-                cmd += ["-summary_file", f["summary"]]
+            main = self.cmd == "bin/signorini"  # other executables write no history and take no -options_left
+            cmd = sgrun.command(shlex.split(args), self.nsize, os.path.join(ROOT, self.cmd), vg, f["summary"],
+                                f["history"] if main else None) + (["-options_left"] if main else [])
             if not VALGRIND:
                 cmd += ["-malloc_debug", "-malloc_dump"]  # PETSc lists what was not freed: a leak fails the test
         else:
             cmd = shlex.split(self.cmd.replace("@OUT@", OUT).replace("@NAME@", self.name)) + shlex.split(args)
         t0 = time.time()
         try:
-            p = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               timeout=self.timeout, text=True)
+            p = sgrun.execute(cmd, ENV, self.timeout)
             self.returncode, self.output = p.returncode, p.stdout
         except subprocess.TimeoutExpired as e:
             self.returncode, self.output = -1, (e.stdout or "") if isinstance(e.stdout, str) else ""
             self.failures.append("timed out after %g s" % self.timeout)
         self.seconds = time.time() - t0
-        if os.path.exists(f["summary"]):
-            try:
-                with open(f["summary"]) as fp:
-                    self.summary = json.load(fp)
-            except ValueError as e:
-                self.failures.append("summary is not valid JSON: %s" % e)
-        self.history = load_history(f["history"])
+        try:
+            self.summary = sgrun.summary(f["summary"])
+        except ValueError as e:
+            self.failures.append("summary is not valid JSON: %s" % e)
+        self.history = sgrun.history(f["history"])
 
     def evaluate(self, tests):
         if VALGRIND and self.returncode == 201:
