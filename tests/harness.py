@@ -6,6 +6,9 @@ Each section of a tests/*.ini file is one test: a run of bin/signorini (or of a 
 CSV history). A check is a Python expression; it may use
     s            this test's summary (dict),        h   its history rows (list of dicts)
     t[name]      the summary of another test,       H[name] its history
+`depends_on = NAME ...` names tests that must have run first: their results are read by the checks (t, H) or their
+files by the run (a restart reads a checkpoint). -k runs them too, -x leaves out the tests that depend on a left-out
+one. (Not PETSc's `requires`, which names configure features.)
     close(a, b, rtol, atol=0), between(x, lo, hi), order(e_coarse, e_fine, ratio), rel(a, b), ssn(rows)
 Tests with `expect_error = REGEX` must fail: nonzero exit, REGEX found in the output, and no result file left.
 Every run uses -options_left: an option the program did not use fails the test.
@@ -64,7 +67,9 @@ class Test:
         self.cmd = sec.get("cmd", "bin/signorini")
         self.checks = [c.strip() for c in sec.get("checks", "").splitlines() if c.strip()]
         self.expect_error = sec.get("expect_error")
-        self.requires = sec.get("requires", "").split()
+        if "requires" in sec:  # the old name, refused so that a dependency is never dropped silently
+            sys.exit("test %s: the key `requires` is now `depends_on`" % name)
+        self.depends_on = sec.get("depends_on", "").split()
         self.timeout = float(sec.get("timeout", "600")) * (20 if VALGRIND else 1)
         self.outputs = sec.get("outputs", "").split()  # files the run must not leave behind when it fails
         self.returncode = None
@@ -146,7 +151,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="+")
     ap.add_argument("-j", "--jobs", type=int, default=2, help="MPI ranks to keep busy at once")
-    ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and what they require)")
+    ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and the tests they depend on)")
     ap.add_argument("-x", "--exclude", default="", help="leave out tests whose name matches this regex")
     ap.add_argument("--valgrind", action="store_true", help="run our executables under valgrind memcheck (tests/valgrind.supp)")
     opt = ap.parse_args()
@@ -169,32 +174,32 @@ def main():
         want = {n for n in tests if re.search(opt.match, n)}
         grow = True
         while grow:
-            need = {r for n in want for r in tests[n].requires} - want
+            need = {r for n in want for r in tests[n].depends_on} - want
             grow = bool(need)
             want |= need
         tests = {n: t for n, t in tests.items() if n in want}
-    if opt.exclude:  # and what requires a left-out test
+    if opt.exclude:  # and what depends on a left-out test
         tests = {n: t for n, t in tests.items() if not re.search(opt.exclude, n)}
-        while any(r not in tests for t in tests.values() for r in t.requires):
-            tests = {n: t for n, t in tests.items() if all(r in tests for r in t.requires)}
+        while any(r not in tests for t in tests.values() for r in t.depends_on):
+            tests = {n: t for n, t in tests.items() if all(r in tests for r in t.depends_on)}
     for t in tests.values():
-        for r in t.requires:
+        for r in t.depends_on:
             if r not in tests:
-                sys.exit("test %s requires unknown test %s" % (t.name, r))
+                sys.exit("test %s depends on unknown test %s" % (t.name, r))
 
-    # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it requires (so a
+    # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it depends on (so a
     # restart can read a checkpoint), which come earlier in this order and are thus already taken by a worker
     pending = sorted(tests.values(), key=lambda t: -t.nsize)
     order_, placed = [], set()
     while pending:
         for t in pending:
-            if all(r in placed for r in t.requires):
+            if all(r in placed for r in t.depends_on):
                 order_.append(t)
                 placed.add(t.name)
                 pending.remove(t)
                 break
         else:
-            sys.exit("circular requires among: " + " ".join(t.name for t in pending))
+            sys.exit("circular depends_on among: " + " ".join(t.name for t in pending))
     for t in order_:
         t.done = threading.Event()
     t0 = time.time()
@@ -202,7 +207,7 @@ def main():
     cv = threading.Condition()
 
     def go(t):
-        for r in t.requires:
+        for r in t.depends_on:
             tests[r].done.wait()
         need = min(t.nsize, opt.jobs)
         with cv:  # take all the ranks a test needs at once
