@@ -12,7 +12,6 @@ usage: bench.py [--reuse] [--only A,B,C,D] [--quick]
 import argparse
 import json
 import os
-import subprocess
 import sys
 import time
 
@@ -40,7 +39,7 @@ class Bench:
     def run(self, name, args, np=1, check=True):
         path = os.path.join(RUNS, name + ".json")
         if self.reuse and os.path.exists(path):
-            s = json.load(open(path))
+            s = sgrun.summary(path)
         else:
             t0 = time.time()
             print("bench: %-40s np %d ..." % (name, np), end="", flush=True)

@@ -19,7 +19,6 @@ usage: fuzz.py [--count N] [--seed S] [--time-limit T] [--jobs J] [--case I] [--
 Output: one line per violation with the command, a count per generator, and "N passed, N failed" (cases).
 """
 import argparse
-import csv
 import ctypes
 import json
 import math
@@ -35,15 +34,16 @@ import sys
 import tempfile
 import threading
 import time
-import xml.etree.ElementTree as ET
 from concurrent.futures import ThreadPoolExecutor
 
 import h5py
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_btl_vader_single_copy_mechanism="none", OPENBLAS_NUM_THREADS="1")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
+
+ROOT = sgrun.ROOT
+ENV = sgrun.mpi_env(single_copy=False)
 CONTROLLERS = ["none", "alm", "pf", "ipf", "pdas", "vi"]
 DEFAULT_KKT_TOL = 1e-10
 MEM_LIMIT = 2 << 30  # address space per process: an absurd mesh size fails fast instead of swapping the machine
@@ -549,8 +549,8 @@ def make_checkpoints(master):
     out = {}
     for ct, extra in CK_RUNS.items():
         ck = os.path.join(master, "ck_%s.h5" % ct)
-        cmd = [os.path.join(ROOT, "bin", "signorini")] + CK_BASE + extra + ["-cont_max_it", str(CK_STEPS[ct]), "-checkpoint_file", ck]
-        p = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+        cmd = sgrun.command(CK_BASE + extra + ["-cont_max_it", str(CK_STEPS[ct]), "-checkpoint_file", ck], None)
+        p = sgrun.execute(cmd, ENV, 120)
         if not os.path.exists(ck):
             sys.exit("fuzz.py: could not make the base checkpoint (%s): exit %d\n%s" % (" ".join(cmd), p.returncode, p.stdout[-2000:]))
         out[ct] = ck
@@ -676,41 +676,15 @@ def draw_case(seed, index, T, base):
 
 # ---------------------------------------------------------------- running and checking
 
-def command(run):
-    exe = [os.path.join(ROOT, "bin", "signorini")]
-    if run.np > 1:
-        exe = ["mpiexec", "-n", str(run.np)] + exe
-    return exe
-
-
 def shown(run, T):
     """The command as a user would type it in the repository, the case directory written $T."""
-    cmd = (["mpiexec", "-n", str(run.np)] if run.np > 1 else []) + ["bin/signorini"] + run.args + output_args(T) + run.tail
+    cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None, "bin/signorini")
     return " ".join(shlex.quote(a).replace(T, "$T") if T in a else shlex.quote(a) for a in cmd)
 
 
 def valid_result(path):
-    """None if path is a complete result file of its kind, else the reason."""
-    try:
-        if path.endswith(".json"):
-            with open(path) as f:
-                json.load(f)
-            return None
-        if path.endswith(".csv"):
-            with open(path) as f:
-                rows = list(csv.reader(f))
-            return None if rows and rows[0] and rows[0][0] == "kind" and all(len(r) == len(rows[0]) for r in rows) else "incomplete history"
-        if path.endswith(".xmf"):
-            ET.parse(path)
-            return None
-        if path.endswith(".h5"):
-            with h5py.File(path, "r") as f:
-                if "checkpoint" in f:
-                    return None if "displacement" in f["checkpoint"] and "cont_type" in f["checkpoint"].attrs else "incomplete checkpoint"
-                return None if "vertex_fields" in f and "cell_fields" in f else "incomplete fields"
-    except Exception as e:  # any read error is a broken file
-        return "%s: %s" % (type(e).__name__, str(e)[:80])
-    return "unknown kind"
+    """None if path is a readable result file of its kind, else the reason (a read error's text cut at 80 characters)."""
+    return sgrun.result_problem(path, width=80)
 
 
 def error_message(out):
@@ -850,7 +824,7 @@ def check_run(case, run, T, before):
 
 
 def execute(run, T, timeout):
-    cmd = command(run) + run.args + output_args(T) + run.tail
+    cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None)
     t0 = time.time()
     p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True,
                          preexec_fn=_limits)
@@ -1006,7 +980,7 @@ def main():
             with open(opt.summary_file, "w") as f:
                 json.dump({"self_test_failures": bad}, f)
         sys.exit(1 if bad else 0)
-    if not os.access(os.path.join(ROOT, "bin", "signorini"), os.X_OK):
+    if not os.access(sgrun.SIGNORINI, os.X_OK):
         sys.exit("fuzz.py: bin/signorini is missing: run make all")
     t0 = time.time()
     listing = repo_listing()

@@ -6,6 +6,9 @@ Each section of a tests/*.ini file is one test: a run of bin/signorini (or of a 
 CSV history). A check is a Python expression; it may use
     s            this test's summary (dict),        h   its history rows (list of dicts)
     t[name]      the summary of another test,       H[name] its history
+`depends_on = NAME ...` names tests that must have run first: their results are read by the checks (t, H) or their
+files by the run (a restart reads a checkpoint). -k runs them too, -x leaves out the tests that depend on a left-out
+one. (Not PETSc's `requires`, which names configure features.)
     close(a, b, rtol, atol=0), between(x, lo, hi), order(e_coarse, e_fine, ratio), rel(a, b), ssn(rows)
 Tests with `expect_error = REGEX` must fail: nonzero exit, REGEX found in the output, and no result file left.
 Every run uses -options_left: an option the program did not use fails the test.
@@ -14,9 +17,7 @@ usage: harness.py [-j JOBS] [-k PATTERN] FILE.ini ...
 """
 import argparse
 import configparser
-import csv
 import glob
-import json
 import math
 import os
 import re
@@ -27,10 +28,12 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
+
+ROOT = sgrun.ROOT
 OUT = os.path.join(ROOT, "tests", "output")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_btl_vader_single_copy_mechanism="none", OPENBLAS_NUM_THREADS="1")
+ENV = sgrun.mpi_env(single_copy=False)
 
 
 def close(a, b, rtol=1e-10, atol=0.0):
@@ -53,16 +56,6 @@ def ssn(rows):
     return [r for r in rows if r["kind"] == "ssn"]
 
 
-def load_history(path):
-    if not os.path.exists(path):
-        return []
-    rows = []
-    with open(path) as f:
-        for r in csv.DictReader(f):
-            rows.append({k: (v if k == "kind" else (float(v) if v != "" else None)) for k, v in r.items()})
-    return rows
-
-
 VALGRIND = []  # --valgrind: the memcheck command put in front of our executables
 
 
@@ -74,7 +67,9 @@ class Test:
         self.cmd = sec.get("cmd", "bin/signorini")
         self.checks = [c.strip() for c in sec.get("checks", "").splitlines() if c.strip()]
         self.expect_error = sec.get("expect_error")
-        self.requires = sec.get("requires", "").split()
+        if "requires" in sec:  # the old name, refused so that a dependency is never dropped silently
+            sys.exit("test %s: the key `requires` is now `depends_on`" % name)
+        self.depends_on = sec.get("depends_on", "").split()
         self.timeout = float(sec.get("timeout", "600")) * (20 if VALGRIND else 1)
         self.outputs = sec.get("outputs", "").split()  # files the run must not leave behind when it fails
         self.returncode = None
@@ -97,31 +92,26 @@ class Test:
             vg = VALGRIND
             if vg and self.expect_error is not None:  # PETSc's error handler aborts: memory is not freed then, but errors still count
                 vg = [a for a in vg if not a.startswith("--errors-for-leak-kinds")] + ["--errors-for-leak-kinds=none"]
-            cmd = ["mpiexec", "-n", str(self.nsize)] + vg + [os.path.join(ROOT, self.cmd)] + shlex.split(args)
-            if self.cmd == "bin/signorini":
-                cmd += ["-summary_file", f["summary"], "-history_file", f["history"], "-options_left"]
-            else:
-                cmd += ["-summary_file", f["summary"]]
+            main = self.cmd == "bin/signorini"  # other executables write no history and take no -options_left
+            cmd = sgrun.command(shlex.split(args), self.nsize, os.path.join(ROOT, self.cmd), vg, f["summary"],
+                                f["history"] if main else None) + (["-options_left"] if main else [])
             if not VALGRIND:
                 cmd += ["-malloc_debug", "-malloc_dump"]  # PETSc lists what was not freed: a leak fails the test
         else:
             cmd = shlex.split(self.cmd.replace("@OUT@", OUT).replace("@NAME@", self.name)) + shlex.split(args)
         t0 = time.time()
         try:
-            p = subprocess.run(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               timeout=self.timeout, text=True)
+            p = sgrun.execute(cmd, ENV, self.timeout)
             self.returncode, self.output = p.returncode, p.stdout
         except subprocess.TimeoutExpired as e:
             self.returncode, self.output = -1, (e.stdout or "") if isinstance(e.stdout, str) else ""
             self.failures.append("timed out after %g s" % self.timeout)
         self.seconds = time.time() - t0
-        if os.path.exists(f["summary"]):
-            try:
-                with open(f["summary"]) as fp:
-                    self.summary = json.load(fp)
-            except ValueError as e:
-                self.failures.append("summary is not valid JSON: %s" % e)
-        self.history = load_history(f["history"])
+        try:
+            self.summary = sgrun.summary(f["summary"])
+        except ValueError as e:
+            self.failures.append("summary is not valid JSON: %s" % e)
+        self.history = sgrun.history(f["history"])
 
     def evaluate(self, tests):
         if VALGRIND and self.returncode == 201:
@@ -161,7 +151,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="+")
     ap.add_argument("-j", "--jobs", type=int, default=2, help="MPI ranks to keep busy at once")
-    ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and what they require)")
+    ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and the tests they depend on)")
     ap.add_argument("-x", "--exclude", default="", help="leave out tests whose name matches this regex")
     ap.add_argument("--valgrind", action="store_true", help="run our executables under valgrind memcheck (tests/valgrind.supp)")
     opt = ap.parse_args()
@@ -184,32 +174,32 @@ def main():
         want = {n for n in tests if re.search(opt.match, n)}
         grow = True
         while grow:
-            need = {r for n in want for r in tests[n].requires} - want
+            need = {r for n in want for r in tests[n].depends_on} - want
             grow = bool(need)
             want |= need
         tests = {n: t for n, t in tests.items() if n in want}
-    if opt.exclude:  # and what requires a left-out test
+    if opt.exclude:  # and what depends on a left-out test
         tests = {n: t for n, t in tests.items() if not re.search(opt.exclude, n)}
-        while any(r not in tests for t in tests.values() for r in t.requires):
-            tests = {n: t for n, t in tests.items() if all(r in tests for r in t.requires)}
+        while any(r not in tests for t in tests.values() for r in t.depends_on):
+            tests = {n: t for n, t in tests.items() if all(r in tests for r in t.depends_on)}
     for t in tests.values():
-        for r in t.requires:
+        for r in t.depends_on:
             if r not in tests:
-                sys.exit("test %s requires unknown test %s" % (t.name, r))
+                sys.exit("test %s depends on unknown test %s" % (t.name, r))
 
-    # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it requires (so a
+    # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it depends on (so a
     # restart can read a checkpoint), which come earlier in this order and are thus already taken by a worker
     pending = sorted(tests.values(), key=lambda t: -t.nsize)
     order_, placed = [], set()
     while pending:
         for t in pending:
-            if all(r in placed for r in t.requires):
+            if all(r in placed for r in t.depends_on):
                 order_.append(t)
                 placed.add(t.name)
                 pending.remove(t)
                 break
         else:
-            sys.exit("circular requires among: " + " ".join(t.name for t in pending))
+            sys.exit("circular depends_on among: " + " ".join(t.name for t in pending))
     for t in order_:
         t.done = threading.Event()
     t0 = time.time()
@@ -217,7 +207,7 @@ def main():
     cv = threading.Condition()
 
     def go(t):
-        for r in t.requires:
+        for r in t.depends_on:
             tests[r].done.wait()
         need = min(t.nsize, opt.jobs)
         with cv:  # take all the ranks a test needs at once

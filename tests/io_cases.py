@@ -16,14 +16,17 @@ import re
 import shutil
 import signal
 import subprocess
+import sys
 import time
 import tempfile
 
 import h5py
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OPENBLAS_NUM_THREADS="1")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
+
+ROOT = sgrun.ROOT
+ENV = sgrun.mpi_env()
 ENV.pop("PETSC_OPTIONS", None)
 BASE = ["-options_file", "tests/opts/ex1_coarse.opts", "-box_faces", "24,8", "-options_file", "options/cont/ipf.opts"]
 CRASH = re.compile(r"Segmentation Violation|signal number 11|Caught signal|buffer overflow|HDF5-DIAG|core dumped")
@@ -35,8 +38,7 @@ class Cases:
         self.passed, self.failed, self.skipped = [], [], []
 
     def run(self, args, np=1, env=None, timeout=120):
-        cmd = (["mpiexec", "-n", str(np)] if np > 1 else []) + [os.path.join(ROOT, "bin", "signorini")] + args
-        p = subprocess.run(cmd, cwd=ROOT, env=env or ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout)
+        p = sgrun.execute(sgrun.command(args, np if np > 1 else None), env or ENV, timeout)
         return p.returncode, p.stdout
 
     def check(self, name, args, error=None, ok=True, np=1, env=None, absent=(), present=(), extra=None):
@@ -265,12 +267,12 @@ def group_diskfull(c):
         left, killed = [], 0
         # kill at fractions of an undisturbed run's duration, so that the kills land mid-run on any machine speed
         t0 = time.time()
-        subprocess.run([os.path.join(ROOT, "bin", "signorini")] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        subprocess.run([sgrun.SIGNORINI] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         full = time.time() - t0
         for f in os.listdir(d):
             os.remove(os.path.join(d, f))
         for delay in [full * x for x in (0.1, 0.25, 0.4, 0.55, 0.7, 0.85)]:
-            p = subprocess.Popen([os.path.join(ROOT, "bin", "signorini")] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+            p = subprocess.Popen([sgrun.SIGNORINI] + args, cwd=ROOT, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
             try:
                 p.wait(timeout=delay)
             except subprocess.TimeoutExpired:

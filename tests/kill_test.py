@@ -9,43 +9,24 @@ SIGTERM and SIGINT are caught: the run removes its ".part" files before it ends,
 ("left_part_files_caught"). SIGKILL cannot be caught: its ".part" files are counted apart and removed before the next run.
 """
 import argparse
-import csv
 import json
 import os
 import shutil
 import signal
 import subprocess
+import sys
 import time
-import xml.etree.ElementTree as ET
 
-import h5py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+ROOT = sgrun.ROOT
+ENV = sgrun.mpi_env(oversubscribe=False)
 
 
 def valid(path):
-    """A complete result file of its kind, or the reason it is not."""
-    if not os.path.exists(path):
-        return "missing"
-    try:
-        if path.endswith(".json"):
-            d = json.load(open(path))
-            return None if "converged" in d and "wall_time" in d else "incomplete summary"
-        if path.endswith(".csv"):
-            rows = list(csv.reader(open(path)))
-            return None if rows and rows[0][0] == "kind" and all(len(r) == len(rows[0]) for r in rows) and rows[-1][0] == "outer" else "incomplete history"
-        if path.endswith(".xmf"):
-            ET.parse(path)
-            return None
-        if path.endswith(".h5"):
-            with h5py.File(path, "r") as f:
-                if "checkpoint" in f:
-                    return None if "displacement" in f["checkpoint"] and "cont_type" in f["checkpoint"].attrs else "incomplete checkpoint"
-                return None if "vertex_fields" in f and "cell_fields" in f and "viz" in f else "incomplete fields"
-    except Exception as e:  # any read error is a broken file
-        return "%s: %s" % (type(e).__name__, e)
-    return "unknown kind"
+    """A complete result file of its kind (of a finished run), or the reason it is not."""
+    return sgrun.result_problem(path, complete=True)
 
 
 def main():
@@ -58,7 +39,7 @@ def main():
     os.makedirs(work)
     names = {k: os.path.join(work, "r" + k) for k in (".h5", ".xmf", ".json", ".csv")}
     names["ck"] = os.path.join(work, "ck.h5")
-    cmd = [os.path.join(ROOT, "bin", "signorini"), "-options_file", "tests/opts/ex1_coarse.opts", "-options_file", "options/cont/ipf.opts",
+    cmd = [sgrun.SIGNORINI, "-options_file", "tests/opts/ex1_coarse.opts", "-options_file", "options/cont/ipf.opts",
            "-box_faces", "240,80", "-output_file", names[".h5"], "-summary_file", names[".json"], "-history_file", names[".csv"],
            "-checkpoint_file", names["ck"]]
     t0 = time.time()
