@@ -341,6 +341,13 @@ PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y
    name: a settled active set would print as CONVERGED_FNORM_ABS and cycling as DIVERGED_LOCAL_MIN. The option is
    taken over at set-up (read into the SSN's viewer and removed), so PETSc does not print a second, misleading line;
    a SNES type of our own would have had to copy newtonls for the same effect. */
+/* Our reason for a SNES reason: a failure our convergence test did not name is PETSc's (the iteration limit, ...). */
+static SgSSNReason SSNReason(SgSSN s, SNESConvergedReason r)
+{
+  if (r >= 0 || s->reason != SG_SSN_ITERATING) return s->reason;
+  return r == SNES_DIVERGED_MAX_IT ? SG_SSN_MAX_IT : (r == SNES_DIVERGED_LINEAR_SOLVE ? SG_SSN_LINEAR_SOLVE : (r == SNES_DIVERGED_FNORM_NAN ? SG_SSN_NAN : SG_SSN_SNES_FAILED));
+}
+
 static PetscErrorCode ReasonView(SNES snes, void *ctx)
 {
   SgSSN               s = (SgSSN)ctx;
@@ -359,7 +366,7 @@ static PetscErrorCode ReasonView(SNES snes, void *ctx)
   PetscCall(PetscViewerASCIIAddTab(s->reason_viewer, tab));
   if (r > 0) {
     if (s->reason_format != PETSC_VIEWER_FAILED) PetscCall(PetscViewerASCIIPrintf(s->reason_viewer, "SSN solve of (P_gamma) at gamma %g converged due to %s iterations %" PetscInt_FMT "\n", (double)s->gamma, SgSSNReasons[s->reason], its));
-  } else PetscCall(PetscViewerASCIIPrintf(s->reason_viewer, "SSN solve of (P_gamma) at gamma %g did not converge due to %s (SNES %s) iterations %" PetscInt_FMT "\n", (double)s->gamma, SgSSNReasons[s->reason], SNESConvergedReasons[r], its));
+  } else PetscCall(PetscViewerASCIIPrintf(s->reason_viewer, "SSN solve of (P_gamma) at gamma %g did not converge due to %s (SNES %s) iterations %" PetscInt_FMT "\n", (double)s->gamma, SgSSNReasons[SSNReason(s, r)], SNESConvergedReasons[r], its));
   PetscCall(PetscViewerASCIISubtractTab(s->reason_viewer, tab));
   PetscCall(PetscViewerPopFormat(s->reason_viewer));
   PetscFunctionReturn(0);
@@ -548,7 +555,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCall(SNESGetIterationNumber(s->snes, its));
   PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
   PetscCall(SNESGetConvergedReason(s->snes, reason));
-  if (*reason < 0 && s->reason == SG_SSN_ITERATING) s->reason = *reason == SNES_DIVERGED_MAX_IT ? SG_SSN_MAX_IT : (*reason == SNES_DIVERGED_LINEAR_SOLVE ? SG_SSN_LINEAR_SOLVE : (*reason == SNES_DIVERGED_FNORM_NAN ? SG_SSN_NAN : SG_SSN_SNES_FAILED));
+  s->reason = SSNReason(s, *reason);
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }
