@@ -1,4 +1,5 @@
-# Signorini contact solver.  `make run` solves Example 1, `make test` runs the tests (README.md).
+# Signorini contact solver.  `make` builds the library (lib/) and the driver (bin/), `make run` solves Example 1,
+# `make test` runs the tests, `make install PREFIX=...` installs the library (README.md).
 PETSC_DIR ?= /usr/lib/petsc
 PETSC_VARIABLES := $(wildcard $(PETSC_DIR)/lib/petsc/conf/variables)
 ifneq ($(PETSC_VARIABLES),)
@@ -14,9 +15,33 @@ export OMPI_MCA_rmaps_base_oversubscribe = 1
 export OPENBLAS_NUM_THREADS = 1
 
 CC     := mpicc
+AR     ?= ar
 CFLAGS ?= -O2 -g
+# include/: the public header (installed); src/: the library's private headers
 CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP -Iinclude -Isrc $(PETSC_CC_INCLUDES)
 LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
+
+# The library: VERSION names the release (signorini.pc, the file name of the shared library); SOVERSION is the ABI
+# in the soname, libsignorini.so.$(SOVERSION): raise it whenever a program built against include/signorini.h would
+# break with the new library (a function's arguments, SgKKT's fields, a removed function), not for additions.
+VERSION   = 0.1.0
+SOVERSION = 0
+LIBA      = lib/libsignorini.a
+LIBSO     = lib/libsignorini.so
+LIBSOV    = $(LIBSO).$(VERSION)
+LIBSONAME = libsignorini.so.$(SOVERSION)
+
+# make install PREFIX=... (DESTDIR= for a staged install); the pkg-config file records $(PREFIX)
+PREFIX  ?= /usr/local
+ABSPREFIX = $(abspath $(PREFIX))
+INSTALL ?= install
+# signorini.pc requires the PETSc minor release the library was built with (PETSc's ABI changes with each)
+PETSC_VERSION_H := $(firstword $(wildcard $(PETSC_DIR)/include/petscversion.h))
+ifneq ($(PETSC_VERSION_H),)
+PETSC_MAJOR := $(shell sed -n 's/^.define PETSC_VERSION_MAJOR *//p' $(PETSC_VERSION_H))
+PETSC_MINOR := $(shell sed -n 's/^.define PETSC_VERSION_MINOR *//p' $(PETSC_VERSION_H))
+PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
+endif
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh
 SRC    := $(wildcard src/*/*.c)
@@ -26,7 +51,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
 TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench
 
-.PHONY: $(TARGETS) deps clean
+.PHONY: $(TARGETS) install uninstall deps clean
 
 ifeq ($(PETSC_VARIABLES),)
 # PETSc is missing: install the Debian packages when root, otherwise say how.
@@ -34,7 +59,7 @@ $(TARGETS):
 	@scripts/install-deps.sh
 	@$(MAKE) --no-print-directory $@
 else
-all: bin/signorini bin/unit_tests $(MESHES)
+all: $(LIBA) $(LIBSO) bin/signorini bin/unit_tests $(MESHES)
 
 run: all
 	@scripts/install-deps.sh
@@ -80,6 +105,27 @@ figures: all
 # Benchmarks (not tests): bench/results.md and bench/results.json; about an hour on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
+
+# The public header, both libraries, signorini.pc (from signorini.pc.in: the prefix, PETSc's version and libraries)
+# and the driver. The shared library's links as ldconfig would make them, so no ldconfig run is needed.
+install: $(LIBA) $(LIBSO) bin/signorini
+	$(INSTALL) -d $(DESTDIR)$(ABSPREFIX)/include $(DESTDIR)$(ABSPREFIX)/lib/pkgconfig $(DESTDIR)$(ABSPREFIX)/bin
+	$(INSTALL) -m 644 include/signorini.h $(DESTDIR)$(ABSPREFIX)/include/
+	$(INSTALL) -m 644 $(LIBA) $(DESTDIR)$(ABSPREFIX)/lib/
+	$(INSTALL) -m 755 $(LIBSOV) $(DESTDIR)$(ABSPREFIX)/lib/
+	ln -sf $(notdir $(LIBSOV)) $(DESTDIR)$(ABSPREFIX)/lib/$(LIBSONAME)
+	ln -sf $(LIBSONAME) $(DESTDIR)$(ABSPREFIX)/lib/libsignorini.so
+	sed -e 's|@PREFIX@|$(ABSPREFIX)|g' -e 's|@VERSION@|$(VERSION)|g' -e 's|@CC@|$(CC)|g' \
+	    -e 's|@PETSC_MAJOR@|$(PETSC_MAJOR)|g' -e 's|@PETSC_MINOR@|$(PETSC_MINOR)|g' \
+	    -e 's|@PETSC_NEXT_MINOR@|$(PETSC_NEXT_MINOR)|g' -e 's|@PETSC_EXTERNAL_LIBS@|$(PETSC_EXTERNAL_LIB_BASIC)|g' \
+	    signorini.pc.in > $(DESTDIR)$(ABSPREFIX)/lib/pkgconfig/signorini.pc
+	$(INSTALL) -m 755 bin/signorini $(DESTDIR)$(ABSPREFIX)/bin/
+
+uninstall:
+	rm -f $(DESTDIR)$(ABSPREFIX)/include/signorini.h $(DESTDIR)$(ABSPREFIX)/lib/pkgconfig/signorini.pc \
+	      $(DESTDIR)$(ABSPREFIX)/lib/libsignorini.a $(DESTDIR)$(ABSPREFIX)/lib/libsignorini.so \
+	      $(DESTDIR)$(ABSPREFIX)/lib/$(LIBSONAME) $(DESTDIR)$(ABSPREFIX)/lib/$(notdir $(LIBSOV)) \
+	      $(DESTDIR)$(ABSPREFIX)/bin/signorini
 endif
 
 deps:
@@ -94,23 +140,36 @@ meshes/ex2_coarse.msh: meshes/ex2.geo
 meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 
+# The library's objects are position independent, for the shared library; the static one holds the same objects.
 build/%.o: src/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(CC) $(CFLAGS) -fPIC -c $< -o $@
 build/app/%.o: app/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 build/unit_tests.o: tests/unit_tests.c | build
 	$(CC) $(CFLAGS) -c $< -o $@
-bin/signorini: build/app/signorini.o $(LIBOBJ) | bin
+$(LIBA): $(LIBOBJ) | lib
+	rm -f $@
+	$(AR) rcs $@ $^
+# --no-undefined: every symbol the library uses is found now (PETSc, HDF5, MPI), not when a program loads it;
+# --as-needed: of PETSc's long external list only what the library calls becomes a dependency
+$(LIBSOV): $(LIBOBJ) | lib
+	$(CC) -shared -Wl,-soname,$(LIBSONAME) -Wl,--no-undefined -o $@ $^ -Wl,--as-needed $(LDLIBS)
+$(LIBSO): $(LIBSOV)
+	ln -sf $(notdir $(LIBSOV)) lib/$(LIBSONAME)
+	ln -sf $(LIBSONAME) $@
+# The driver and the unit tests link the static library: they run without LD_LIBRARY_PATH or an installed library,
+# and a test always runs the code just built
+bin/signorini: build/app/signorini.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
-bin/unit_tests: build/unit_tests.o $(LIBOBJ) | bin
+bin/unit_tests: build/unit_tests.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
-build bin:
+build bin lib:
 	mkdir -p $@
 
 clean:
-	rm -rf build bin tests/output
+	rm -rf build bin lib tests/output
 
 -include $(wildcard build/*.d build/*/*.d)
 
