@@ -51,7 +51,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
 TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench
 
-.PHONY: $(TARGETS) install uninstall deps clean
+.PHONY: $(TARGETS) install uninstall deps clean print-cflags
 
 ifeq ($(PETSC_VARIABLES),)
 # PETSc is missing: install the Debian packages when root, otherwise say how.
@@ -80,11 +80,11 @@ meshes:
 # The 2D tests (and the unit tests) under valgrind memcheck: no errors, no definite leaks (tests/valgrind.supp holds
 # OpenMPI's own start-up leaks); about 15 minutes on 2 cores. The 3D, parallel-heavy and long regression runs are left
 # out, and variants of a path another test covers (the second SNESVI and SSN agreement runs, ...), and so are the
-# scripted cases (io_*: they run bin/signorini themselves, not under valgrind) and the variants of a code path already
+# scripted cases (io_*: they run bin/signorini themselves, not under valgrind; examples_*: the installed library) and the variants of a code path already
 # covered: of the reliability tests one or two per class stay (untouched/barely touched obstacle, none's verdicts,
 # options parsed by us, floating bodies, z coordinates, box sizes, nu = 0, the file checks); the energy tests compare
 # with long double, which valgrind computes in double precision.
-MEMCHECK_EXCLUDE = 3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_|fuzz|agree_vi|agree_ssn_1e7|ctl_alm_growing|par_pdas_np1|par_vi_np2|fail_pdas_max_it|none_gamma_unverifiable|gamma_max_first|noload_vi|opt_contact_gamma_not|rin_contact_ids_not|rin_fixed|rin_mesh_tilted|rin_nu0_bar2d|io_summary_is|io_checkpoint_is|io_(long|special|same|disk|options|checkpoint_damaged|killed)|units_|untouched_(pf|alm|pdas|none|far)|barely_(pf|alm|vi|ipf_np2)|alltouch|loose_linear_ipf|noload_ipf|huge_load|opt_(contact_gamma_bare|cont_max|ipf|obstacle|vi_pc|factor_package_unknown)|rin_.*np2|rin_(float_2d_no|dirichlet_every|shift|help|mesh_z0|mesh_not|empty_(contact_label|dirichlet|neumann)|bare|contact_ids_empty|dirichlet_ids|neumann_traction|dirichlet_values|box_(faces_(memory|out|abc|real|one|extra)|diagonal|dim|upper|lower)|overlap|body_force|E_|nu_|nu0_contact|energy_)|gmsh_(?!node0$$|plate_41$$)
+MEMCHECK_EXCLUDE = examples_|3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_|fuzz|agree_vi|agree_ssn_1e7|ctl_alm_growing|par_pdas_np1|par_vi_np2|fail_pdas_max_it|none_gamma_unverifiable|gamma_max_first|noload_vi|opt_contact_gamma_not|rin_contact_ids_not|rin_fixed|rin_mesh_tilted|rin_nu0_bar2d|io_summary_is|io_checkpoint_is|io_(long|special|same|disk|options|checkpoint_damaged|killed)|units_|untouched_(pf|alm|pdas|none|far)|barely_(pf|alm|vi|ipf_np2)|alltouch|loose_linear_ipf|noload_ipf|huge_load|opt_(contact_gamma_bare|cont_max|ipf|obstacle|vi_pc|factor_package_unknown)|rin_.*np2|rin_(float_2d_no|dirichlet_every|shift|help|mesh_z0|mesh_not|empty_(contact_label|dirichlet|neumann)|bare|contact_ids_empty|dirichlet_ids|neumann_traction|dirichlet_values|box_(faces_(memory|out|abc|real|one|extra)|diagonal|dim|upper|lower)|overlap|body_force|E_|nu_|nu0_contact|energy_)|gmsh_(?!node0$$|plate_41$$)
 check-memory: all
 	$(PYTHON) tests/harness.py --valgrind -x '$(MEMCHECK_EXCLUDE)' tests/*.ini
 
