@@ -49,9 +49,9 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
 # Example 1 with exact solves and the inexact path-following controller (options files compose; later ones override)
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
-TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench
+TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench install
 
-.PHONY: $(TARGETS) install uninstall deps clean print-cflags
+.PHONY: $(TARGETS) uninstall deps clean print-cflags
 
 ifeq ($(PETSC_VARIABLES),)
 # PETSc is missing: install the Debian packages when root, otherwise say how.
@@ -120,16 +120,17 @@ install: $(LIBA) $(LIBSO) bin/signorini
 	    -e 's|@PETSC_NEXT_MINOR@|$(PETSC_NEXT_MINOR)|g' -e 's|@PETSC_EXTERNAL_LIBS@|$(PETSC_EXTERNAL_LIB_BASIC)|g' \
 	    signorini.pc.in > $(DESTDIR)$(ABSPREFIX)/lib/pkgconfig/signorini.pc
 	$(INSTALL) -m 755 bin/signorini $(DESTDIR)$(ABSPREFIX)/bin/
+endif
 
+deps:
+	scripts/install-deps.sh
+
+# what make install put under PREFIX (needs no PETSc)
 uninstall:
 	rm -f $(DESTDIR)$(ABSPREFIX)/include/signorini.h $(DESTDIR)$(ABSPREFIX)/lib/pkgconfig/signorini.pc \
 	      $(DESTDIR)$(ABSPREFIX)/lib/libsignorini.a $(DESTDIR)$(ABSPREFIX)/lib/libsignorini.so \
 	      $(DESTDIR)$(ABSPREFIX)/lib/$(LIBSONAME) $(DESTDIR)$(ABSPREFIX)/lib/$(notdir $(LIBSOV)) \
 	      $(DESTDIR)$(ABSPREFIX)/bin/signorini
-endif
-
-deps:
-	scripts/install-deps.sh
 
 meshes/beam.msh: meshes/beam.geo
 	gmsh -2 $< -o $@ > /dev/null
