@@ -142,9 +142,11 @@ meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 
 # The library's objects are position independent, for the shared library; the static one holds the same objects.
+# -fno-semantic-interposition: calls inside the library stay direct and inlinable (no LD_PRELOAD of our own symbols);
+# with it our code runs the same instruction count as without -fPIC (callgrind, Example 1: +1.3% without it).
 build/%.o: src/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -fPIC -c $< -o $@
+	$(CC) $(CFLAGS) -fPIC -fno-semantic-interposition -c $< -o $@
 build/app/%.o: app/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
