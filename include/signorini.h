@@ -71,6 +71,7 @@ PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential
 #define SGCONTALM  "alm"  /* first-order augmented Lagrangian */
 #define SGCONTPF   "pf"   /* exact path-following */
 #define SGCONTIPF  "ipf"  /* inexact path-following */
+#define SGCONTFAST "fast" /* one (P_gamma) at a capped gamma with inexact Newton steps (iterative solves) */
 #define SGCONTPDAS "pdas" /* baseline: unregularized primal-dual active set */
 #define SGCONTVI   "vi"   /* baseline: PETSc's SNESVI on the same discrete problem */
 

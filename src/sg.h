@@ -210,7 +210,7 @@ PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckp
 PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);
 
 /* ------------------------------------------------------------------ solver: ssn.c, condense.c */
-typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED } SgSSNReason;
+typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT } SgSSNReason;
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;
 typedef struct _n_SgCondense *SgCondense;
@@ -230,6 +230,14 @@ PetscErrorCode SgSSNSetNeighbourhood(SgSSN, PetscReal);
 PetscErrorCode SgSSNSetHistory(SgSSN, SgHistory, PetscLogDouble);
 PetscErrorCode SgSSNGetMonitor(SgSSN, PetscBool *);
 PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
+/* a controller's own stopping test, called after every Newton step instead of the SSN's (it sets the SNES reason and
+   the SSN's): hook(ssn, iteration, ||F||, settled, &reason, ctx); NULL restores the SSN's test */
+typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, SNESConvergedReason *, void *);
+PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
+PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
+PetscErrorCode SgSSNGetJacobianSet(SgSSN, const char **);  /* the active set of the last Jacobian */
+PetscErrorCode SgSSNIsCondensed(SgSSN, PetscBool *);
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);

@@ -24,6 +24,7 @@ PetscErrorCode SgContRegisterAll(void)
   PetscCall(SgContRegister(SGCONTALM, SgContCreate_ALM));
   PetscCall(SgContRegister(SGCONTPF, SgContCreate_PF));
   PetscCall(SgContRegister(SGCONTIPF, SgContCreate_IPF));
+  PetscCall(SgContRegister(SGCONTFAST, SgContCreate_Fast));
   PetscCall(SgContRegister(SGCONTPDAS, SgContCreate_PDAS));
   PetscCall(SgContRegister(SGCONTVI, SgContCreate_VI));
   PetscFunctionReturn(0);
@@ -135,7 +136,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   if (ct->c) PetscCall(SgContactGetView(ct->c, &ct->cv));
   ct->problem = ct->c ? "P" : "elasticity";
   PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
-  PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
+  PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));

@@ -92,5 +92,6 @@ PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);
 PetscErrorCode SgContCreate_IPF(SgCont);
+PetscErrorCode SgContCreate_Fast(SgCont);
 PetscErrorCode SgContCreate_PDAS(SgCont);
 PetscErrorCode SgContCreate_VI(SgCont);

@@ -3,7 +3,7 @@
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
 #include "solver/ssnimpl.h"
 
-const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED"};
+const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL"};
 
 static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
 {
@@ -105,6 +105,9 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     if (s->nhash > 1) PetscCall(KSPGetIterationNumber(ksp, &kits));
     /* SNES decides the reuse after this callback from its lag: -1 reuses, -2 rebuilds once */
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && kits <= s->pc_reuse_its ? -1 : -2));
+  } else if (s->pc_same_set) {
+    /* the same active set at the same gamma is the same matrix: keep its preconditioner */
+    PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && s->hash[s->nhash - 1] == s->hash[s->nhash - 2] ? -1 : -2));
   }
   /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
   PetscCall(MatCopy(s->K, P, SAME_NONZERO_PATTERN));
@@ -140,6 +143,10 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     PetscFunctionReturn(0);
   }
   settled = (PetscBool)(s->nentered + s->nleft == 0);
+  if (s->stop_test) { /* a controller's own test replaces the one below */
+    PetscCall(s->stop_test(s, it, fnorm, settled, reason, s->stop_ctx));
+    PetscFunctionReturn(0);
+  }
   /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
      lie below sqrt(rtol) max(||F_0||, ||b||) */
@@ -521,6 +528,42 @@ PetscErrorCode SgSSNGetMonitor(SgSSN s, PetscBool *monitor)
 {
   PetscFunctionBeginUser;
   *monitor = s->monitor;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNSetStopTest(SgSSN s, SgSSNStopTest test, void *ctx)
+{
+  PetscFunctionBeginUser;
+  s->stop_test = test;
+  s->stop_ctx  = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNSetReason(SgSSN s, SgSSNReason reason)
+{
+  PetscFunctionBeginUser;
+  s->reason = reason;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN s, PetscBool flg)
+{
+  PetscFunctionBeginUser;
+  s->pc_same_set = flg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNGetJacobianSet(SgSSN s, const char **act)
+{
+  PetscFunctionBeginUser;
+  *act = s->actjac;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgSSNIsCondensed(SgSSN s, PetscBool *flg)
+{
+  PetscFunctionBeginUser;
+  *flg = s->cond ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

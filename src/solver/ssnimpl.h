@@ -40,4 +40,7 @@ struct _n_SgSSN {
   SgHistory   hist;
   PetscInt    outer;
   PetscLogDouble t0;          /* the history's time origin */
+  SgSSNStopTest stop_test;    /* a controller's own stopping test (SgSSNSetStopTest) */
+  void         *stop_ctx;
+  PetscBool     pc_same_set;  /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
 };

@@ -1,0 +1,255 @@
+/* cont/fast.c: a cheap path for iterative linear solves (the performance issue): one (P_gamma)
+   at a gamma large enough for the KKT tolerance of (P), solved by SSN with
+   - an inexact start: the unconstrained solve at a loose tolerance (-fast_start_rtol);
+   - CG that stops as soon as its prospective Newton iterate y - dy changes the active set of the step (checked once
+     the residual fell by -fast_ksp_loose); otherwise it runs to -ksp_rtol, so the last step is accurate;
+   - a preconditioner kept while gamma and the active set are unchanged (the Jacobian is then the same matrix);
+   - a stop on the KKT residual of (P) itself (no ||F|| <= rtol ||F_0|| test: with loose solves and ||F_0|| ~ gamma
+     times the initial penetration, that test accepts wrong answers).
+   gamma: 10 ||lam~|| / (tol Y sqrt|Gamma_c|) as in IPF's cap, with lam~ = (normal diagonal stiffness) x (penetration
+   of the start) / w, an estimate from above of the multiplier; if SSN settles with exact steps and only the
+   infeasibility is above the tolerance, gamma is raised to IPF's cap from the multiplier found (fallback). If the
+   inexact steps fail (cycling, too many steps), the same gamma is solved again with exact steps. */
+#include "cont/contimpl.h"
+
+typedef struct {
+  PetscReal gamma;      /* > 0: fixed first gamma instead of the estimate */
+  PetscReal start_rtol; /* tolerance of the unconstrained start */
+  PetscReal loose;      /* the early CG stop is tested once ||r|| <= loose ||r_0|| */
+  PetscBool early;      /* CG stops when the prospective active set changes */
+  PetscInt  max_it;     /* SSN steps per (P_gamma) */
+  /* run time */
+  SgCont    ct;
+  Vec       w;
+  PetscReal *g;
+  void     *defctx;     /* KSPConvergedDefault's context */
+  PetscReal rnorm0;
+  PetscBool on, last_full, stopped;
+  PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol */
+} Fast;
+
+static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  Fast *f = (Fast *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_gamma", "gamma of (P_gamma) (0: estimated from the unconstrained start)", &f->gamma, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_start_rtol", "Relative tolerance of the unconstrained start solve", &f->start_rtol, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-fast_early", "Stop CG when its prospective iterate changes the active set", &f->early, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-fast_max_it", "Maximum number of SSN steps per (P_gamma)", &f->max_it, NULL));
+  PetscCheck(f->gamma >= 0 && !PetscIsInfOrNanReal(f->gamma), ct->comm, PETSC_ERR_USER_INPUT, "-fast_gamma: must be >= 0 and finite, got %g", (double)f->gamma);
+  PetscCheck(f->start_rtol > 0 && f->start_rtol < 1, ct->comm, PETSC_ERR_USER_INPUT, "-fast_start_rtol: must be in (0, 1), got %g", (double)f->start_rtol);
+  PetscCheck(f->loose > 0 && f->loose <= 1, ct->comm, PETSC_ERR_USER_INPUT, "-fast_ksp_loose: must be in (0, 1], got %g", (double)f->loose);
+  PetscCheck(f->max_it > 0, ct->comm, PETSC_ERR_USER_INPUT, "-fast_max_it: must be positive, got %" PetscInt_FMT, f->max_it);
+  PetscFunctionReturn(0);
+}
+
+/* CG's test: the default one, and, in an SSN step, a stop as soon as the Newton iterate y - dy that CG would give now
+   has another active set than the Jacobian's (an accurate step on a set about to change is wasted), tested once
+   ||r|| <= loose ||r_0|| (preconditioned norms: the unpreconditioned one is dominated by the gamma rows). */
+static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
+{
+  Fast                *f = (Fast *)ctx;
+  SgSSN                s = f->ct->ssn;
+  const SgContactView *c = &f->ct->cv;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, f->defctx));
+  if (!f->on) PetscFunctionReturn(0);
+  if (it == 0) {
+    f->rnorm0  = rnorm;
+    f->stopped = PETSC_FALSE;
+  }
+  if (*reason) {
+    if (*reason > 0) f->last_full = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  if (f->early && it > 0 && rnorm <= f->loose * f->rnorm0) {
+    Vec                x, y;
+    const PetscScalar *wa;
+    const char        *actjac;
+    PetscInt           changed = 0;
+    PetscReal          gamma;
+    SNES               snes;
+    PetscCall(SgSSNGetSNES(s, &snes));
+    PetscCall(SgSSNGetJacobianSet(s, &actjac));
+    PetscCall(SgSSNGetPathValues(s, &gamma, NULL, NULL));
+    PetscCall(KSPBuildSolution(ksp, NULL, &x));
+    PetscCall(SNESGetSolution(snes, &y));
+    PetscCall(VecWAXPY(f->w, -1.0, x, y));
+    PetscCall(VecGetArrayRead(f->w, &wa));
+    PetscCall(SgContactGap(f->ct->c, wa, f->g));
+    PetscCall(VecRestoreArrayRead(f->w, &wa));
+    for (PetscInt i = 0; i < c->n; i++) changed += ((f->ct->lamhat[i] + gamma * f->g[i] > 0) != (actjac[i] != 0));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, f->ct->comm));
+    if (changed) {
+      *reason      = KSP_CONVERGED_RTOL;
+      f->last_full = PETSC_FALSE;
+      f->stopped   = PETSC_TRUE;
+      PetscCall(PetscInfo(ksp, "CG stopped at iteration %" PetscInt_FMT " (||r||/||r0|| %g): the prospective iterate changes %" PetscInt_FMT " vertices of the active set\n", it, (double)(rnorm / f->rnorm0), changed));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* SSN's stop: the KKT residual of (P) at the iterate; settled after a step to -ksp_rtol with only the infeasibility
+   above the tolerance means gamma is too small (the controller raises it). Any other part above the tolerance: one
+   more step (on an unchanged set with the same preconditioner), so loose -ksp_rtol only costs steps. */
+static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscBool settled, SNESConvergedReason *reason, void *ctx)
+{
+  Fast  *f = (Fast *)ctx;
+  SgKKT  kkt;
+  Vec    y;
+  SNES   snes;
+  SgCont ct = f->ct;
+
+  PetscFunctionBeginUser;
+  if (f->stopped) f->nearly++;
+  else f->nfull++;
+  PetscCall(SgSSNGetSNES(s, &snes));
+  PetscCall(SNESGetSolution(snes, &y));
+  PetscCall(SgContactKKT(ct->c, y, &kkt));
+  PetscCall(PetscInfo(snes, "fast: SSN %" PetscInt_FMT " KKT %.3e (equilibrium %.3e dual %.3e infeasibility %.3e complementarity %.3e) settled %d last CG %s\n", it, (double)kkt.residual, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity, (int)settled, f->last_full ? "full" : "stopped early"));
+  if (kkt.residual <= ct->kkt_tol) {
+    *reason = SNES_CONVERGED_FNORM_ABS;
+    PetscCall(SgSSNSetReason(s, SG_SSN_KKT));
+  } else if (settled && f->last_full && PetscMax(PetscMax(kkt.equilibrium, kkt.dual), kkt.complementarity) <= ct->kkt_tol) {
+    /* only the infeasibility ||lam|| / gamma is left: gamma too small */
+    *reason = SNES_CONVERGED_FNORM_ABS;
+    PetscCall(SgSSNSetReason(s, SG_SSN_SETTLED));
+  } else if (it >= f->max_it) {
+    *reason = SNES_DIVERGED_MAX_IT;
+    PetscCall(SgSSNSetReason(s, SG_SSN_MAX_IT));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i */
+static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
+{
+  const SgContactView *c = &ct->cv;
+  PetscInt            dim;
+  Mat                 K;
+  Vec                 diag;
+  const PetscScalar  *da, *ya;
+  PetscReal           s = 0, *g, E;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
+  PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
+  PetscCall(PetscMalloc1(c->n, &g));
+  PetscCall(VecDuplicate(ct->y, &diag));
+  PetscCall(MatGetDiagonal(K, diag));
+  PetscCall(VecGetArrayRead(ct->y, &ya));
+  PetscCall(SgContactGap(ct->c, ya, g));
+  PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  PetscCall(VecGetArrayRead(diag, &da));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal kn = 0, l;
+    for (PetscInt k = 0; k < dim; k++) kn += PetscSqr(c->normal[i * dim + k]) * PetscRealPart(da[c->off[i] + k]);
+    l = kn * PetscMax(0, g[i]) / c->w[i];
+    s += c->w[i] * l * l;
+  }
+  PetscCall(VecRestoreArrayRead(diag, &da));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
+  PetscCall(VecDestroy(&diag));
+  PetscCall(PetscFree(g));
+  *gamma = ct->kkt.lscale > 0 && s > 0 ? 10 * PetscSqrtReal(s) / (ct->kkt_tol * ct->kkt.lscale) : E;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_Fast(SgCont ct)
+{
+  Fast       *f = (Fast *)ct->data;
+  SgSSN       s = ct->ssn;
+  KSP         ksp = ct->ksp;
+  SNES        snes;
+  SgSSNReason sr;
+  PetscReal   rtol, atol, dtol;
+  PetscInt    maxits;
+  PetscBool   ok, stop = PETSC_FALSE, cond;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNIsCondensed(s, &cond));
+  PetscCheck(!cond, ct->comm, PETSC_ERR_SUP, "-cont_type fast is for iterative linear solves, not -ssn_condense");
+  PetscCall(SgSSNGetSNES(s, &snes));
+  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
+  PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxits));
+  PetscCall(KSPSetTolerances(ksp, PetscMax(rtol, f->start_rtol), atol, dtol, maxits));
+  ct->gamma = f->gamma > 0 ? f->gamma : 1; /* checked against -cont_gamma_max by SgContStart */
+  PetscCall(SgContStart(ct, &ok));
+  PetscCall(KSPSetTolerances(ksp, rtol, atol, dtol, maxits));
+  if (!ok) PetscFunctionReturn(0);
+  PetscCall(SgContMeasure(ct));
+  if (f->gamma > 0) ct->gamma = f->gamma;
+  else PetscCall(EstimateGamma(ct, &ct->gamma));
+  PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)\n", (double)ct->gamma, (double)ct->kkt.residual));
+
+  f->ct = ct;
+  PetscCall(VecDuplicate(ct->y, &f->w));
+  PetscCall(PetscMalloc1(ct->cv.n, &f->g));
+  PetscCall(KSPConvergedDefaultCreate(&f->defctx));
+  PetscCall(KSPSetConvergenceTest(ksp, KSPConverged_Fast, f, NULL));
+  PetscCall(SgSSNSetStopTest(s, SSNStop_Fast, f));
+  PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_TRUE));
+  f->on = PETSC_TRUE;
+  while (!stop) {
+    const PetscReal gamma = ct->gamma;
+    PetscInt        its0  = ct->ssn_its;
+    PetscBool       ok1;
+
+    if (!(gamma <= ct->gamma_max)) {
+      PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: gamma %g exceeds -cont_gamma_max %g", (double)gamma, (double)ct->gamma_max));
+      break;
+    }
+    ct->outer++;
+    PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContSSN(ct, gamma, &ok1));
+    PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
+    PetscCall(SgContMeasure(ct));
+    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, NULL));
+    PetscCall(SgSSNGetReason(s, &sr));
+    if (!ok1 && f->early && (sr == SG_SSN_MAX_IT || sr == SG_SSN_CYCLING)) {
+      f->early = PETSC_FALSE; /* fallback: the same gamma again, exact steps */
+      PetscCall(PetscInfo(snes, "fast: inexact SSN failed (%s); exact steps from here\n", SgSSNReasons[sr]));
+    } else if (!ok1) break;
+    else if (ct->kkt.residual > ct->kkt_tol && sr == SG_SSN_SETTLED) {
+      /* gamma too small: IPF's cap from the multiplier found */
+      PetscReal l2 = 0;
+      for (PetscInt i = 0; i < ct->cv.n; i++) l2 += ct->cv.w[i] * PetscSqr(ct->lam[i]);
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &l2, 1, MPIU_REAL, MPI_SUM, ct->comm));
+      ct->gamma = PetscMax(10 * gamma, ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(l2) / (ct->kkt_tol * ct->kkt.lscale) : 10 * gamma);
+      PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+    }
+    PetscCall(SgContCheck(ct, &stop));
+  }
+  f->on = PETSC_FALSE;
+  PetscCall(SgSSNSetStopTest(s, NULL, NULL));
+  PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_FALSE));
+  PetscCall(KSPSetConvergenceTest(ksp, KSPConvergedDefault, f->defctx, KSPConvergedDefaultDestroy));
+  f->defctx = NULL;
+  PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_stopped_early", f->nearly));
+  PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_full", f->nfull));
+  PetscCall(VecDestroy(&f->w));
+  PetscCall(PetscFree(f->g));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContCreate_Fast(SgCont ct)
+{
+  Fast *f;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&f));
+  f->gamma           = 0;
+  f->start_rtol      = 1e-2;
+  f->loose           = 1e-2;
+  f->early           = PETSC_TRUE;
+  f->max_it          = 30;
+  ct->data               = f;
+  ct->ops.setfromoptions = SetFromOptions_Fast;
+  ct->ops.solve          = Solve_Fast; /* its own loop: one (P_gamma), gamma raised only if it proves too small */
+  PetscFunctionReturn(0);
+}
