@@ -89,6 +89,9 @@ static void SignalCleanup(int sig)
       (void)pthread_sigmask(SIG_UNBLOCK, &set, NULL);
       (void)raise(sig);
     }
+  /* the handler before ours returned (PETSc's, run on an MPI progress thread, may print and return): the process
+     still has to end, or the main thread waits in SgFileBegin for ever (seen in the suite's killed runs) */
+  _exit(128 + sig);
 }
 
 PetscErrorCode SgFileInstallCleanup(void)
