@@ -36,7 +36,7 @@ PetscErrorCode SgOptionsName(const char[], const char[], char[], size_t);
 
 /* Safe result files: a result is written to <name>.part and renamed when complete; these refuse, before any work, a
    location that cannot be written or is one of the run's inputs, and remove unfinished files on a fatal signal. */
-PetscErrorCode SgFileCheckWritable(MPI_Comm, const char[], const char[]); /* option name (for messages), file name */
+PetscErrorCode SgFileCheckWritable(MPI_Comm, const char[], const char[]); /* refuse, before any work, a result file (option, name) that cannot be written or is an input */
 PetscErrorCode SgFileCheckInput(MPI_Comm, const char[], const char[]);
 PetscErrorCode SgFileInstallCleanup(void);
 
