@@ -80,6 +80,19 @@ static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print
   PetscFunctionReturn(0);
 }
 
+/* The controller's state names as stored: comma-separated. */
+static PetscErrorCode StateNames(const SgCheckpoint *ck, char names[], size_t len)
+{
+  PetscFunctionBeginUser;
+  names[0] = 0;
+  for (PetscInt i = 0; i < ck->nstate; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(names, &l));
+    PetscCall(PetscSNPrintf(names + l, len - l, i ? ",%s" : "%s", ck->state_names[i]));
+  }
+  PetscFunctionReturn(0);
+}
+
 typedef struct {
   SgCheckpoint *ck;
   Vec       v[7];
@@ -99,12 +112,8 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
   for (PetscInt i = 0; i < NPRINT; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, &ctx->print[i]));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ctx->ck->type));
   {
-    char names[SG_STATE_MAX * 64] = "";
-    for (PetscInt i = 0; i < ctx->ck->nstate; i++) {
-      size_t l;
-      PetscCall(PetscStrlen(names, &l));
-      PetscCall(PetscSNPrintf(names + l, sizeof(names) - l, i ? ",%s" : "%s", ctx->ck->state_names[i]));
-    }
+    char names[SG_STATE_MAX * 64];
+    PetscCall(StateNames(ctx->ck, names, sizeof(names)));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, names));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
@@ -422,12 +431,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
   PetscCall(PetscFree(rd.type));
   {
     /* the controller's own numbers, by name: a file of another version of the controller is not resumed */
-    char names[SG_STATE_MAX * 64] = "";
-    for (PetscInt i = 0; i < ck->nstate; i++) {
-      size_t l;
-      PetscCall(PetscStrlen(names, &l));
-      PetscCall(PetscSNPrintf(names + l, sizeof(names) - l, i ? ",%s" : "%s", ck->state_names[i]));
-    }
+    char names[SG_STATE_MAX * 64];
+    PetscCall(StateNames(ck, names, sizeof(names)));
     PetscCall(PetscStrcmp(rd.state_names, names, &same));
     if (!same) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
     PetscCheck(same, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' holds the controller state (%s), -cont_type %s keeps (%s)", f, rd.state_names, ck->type, names);

@@ -480,6 +480,16 @@ static PetscBool DiskFull(const char path[])
   return (PetscBool)!strcmp(SgFileErrorCause(0, path), "no space left on device");
 }
 
+/* A write of tmp (the .part of path) failed: the cause is judged while the disk is still full, then the file, which
+   goes anyway, is emptied, so that HDF5 has the space to close it (a file left open in HDF5 crashes HDF5's clean-up
+   at PetscFinalize; an unlinked file would keep its blocks while open). */
+static void PartFailed(const char tmp[], const char path[], PetscBool direct, PetscMPIInt rank, int *cause)
+{
+  if (direct) return;
+  if (!WriteErrno(*cause) && DiskFull(path)) *cause = ENOSPC;
+  if (rank == 0) (void)truncate(tmp, 0);
+}
+
 PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char name[], PetscErrorCode (*body)(PetscViewer, void *), void *ctx, PetscBool commit, PetscBool *ok, char msg[], size_t len)
 {
   char           tmp[PETSC_MAX_PATH_LEN];
@@ -488,9 +498,14 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   H5E_auto2_t    efunc;
   void          *edata;
   int            err[2];
+  const char    *path;
+  PetscBool      direct;
+  PetscMPIInt    rank;
 
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
+  FileResolve(name, &path, &direct);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
   PetscCall(SgFileBegin(name));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
@@ -502,27 +517,14 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   if (!ierr) ierr = body(viewer, ctx);
   err[1] = errno;
   if (viewer) {
-    const char *path;
-    PetscBool   direct;
-    hid_t       fid = -1;
-    PetscMPIInt rank;
-    FileResolve(name, &path, &direct);
-    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    hid_t fid = -1;
     (void)PetscViewerHDF5GetFileId(viewer, &fid);
-    /* a failed write (a full disk): the .part goes anyway; emptying it first frees the space HDF5 needs to close the
-       file, which otherwise stays open in HDF5 and crashes HDF5's clean-up at PetscFinalize (an unlinked file would
-       keep its blocks while open) */
-    if (ierr && !direct) {
-      /* the cause is judged now, while the disk is still full */
-      if (!WriteErrno(err[1]) && DiskFull(path)) err[1] = ENOSPC;
-      if (rank == 0) (void)truncate(tmp, 0);
-    }
+    if (ierr) PartFailed(tmp, path, direct, rank, &err[1]);
     ierr2 = PetscViewerDestroy(&viewer);
     if (ierr2 && !ierr) {
       ierr   = ierr2;
       err[1] = errno;
-      if (!direct && !WriteErrno(err[1]) && DiskFull(path)) err[1] = ENOSPC;
-      if (!direct && rank == 0) (void)truncate(tmp, 0);
+      PartFailed(tmp, path, direct, rank, &err[1]);
       if (fid >= 0) (void)H5Fclose(fid); /* the close failed (its flush): again, with the space freed */
     }
   }
@@ -531,9 +533,6 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   err[0] = ierr ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, err, 2, MPI_INT, MPI_MAX, comm));
   if (err[0]) {
-    const char *path;
-    PetscBool   direct;
-    FileResolve(name, &path, &direct);
     /* HDF5 leaves errno stale: trust only the codes of a failed write; the cause before the .part is removed */
     if (!WriteErrno(err[1])) err[1] = 0;
     PetscCall(PetscSNPrintf(msg, len, "%s: cannot write '%s': %s", option, name, SgFileErrorCause(err[1], path)));
