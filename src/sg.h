@@ -236,7 +236,7 @@ typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, S
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNGetJacobianSet(SgSSN, const char **);  /* the active set of the last Jacobian */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
 PetscErrorCode SgSSNIsCondensed(SgSSN, PetscBool *);
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);

@@ -372,6 +372,16 @@ PetscBool SgModelFit(PetscReal V0, PetscReal g, PetscReal V, PetscReal dV, Petsc
   return PETSC_TRUE;
 }
 
+/* The gamma where the path meets the KKT tolerance with a margin: on the path the infeasibility is ||lam|| / gamma, so
+   gamma = 10 ||lam||_L2 / (tol Y sqrt|Gamma_c|), Y sqrt|Gamma_c| the length scale of the KKT measures (ct->kkt must
+   be measured). PETSC_FALSE when there is no length scale yet (nothing to measure against). */
+PetscBool SgContGammaCap(SgCont ct, PetscReal lamnorm, PetscReal *cap)
+{
+  if (!(ct->kkt.lscale > 0)) return PETSC_FALSE;
+  *cap = 10 * lamnorm / (ct->kkt_tol * ct->kkt.lscale);
+  return PETSC_TRUE;
+}
+
 /* After an outer step (ct->gamma and ct->state already hold the next step's): converged (KKT residual below the
    tolerance), or failed because the outer-step limit is reached, the next gamma overflows, or the KKT residual has not
    improved for -cont_stall_it steps. Then the checkpoint, if asked for. */
@@ -415,10 +425,11 @@ PetscErrorCode SgContCheckBaseline(SgCont ct)
 }
 
 /* The checkpoint's record of the controller: the common state and the type's own named numbers. */
-static void CheckpointFill(SgCont ct, SgCheckpoint *ck)
+static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
 {
-  PetscMemzero(ck, sizeof(*ck));
-  PetscStrncpy(ck->type, ct->type, sizeof(ck->type));
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(ck, sizeof(*ck)));
+  PetscCall(PetscStrncpy(ck->type, ct->type, sizeof(ck->type)));
   ck->gamma     = ct->gamma;
   ck->V0        = ct->V0;
   ck->best_kkt  = ct->best_kkt;
@@ -436,6 +447,7 @@ static void CheckpointFill(SgCont ct, SgCheckpoint *ck)
     ck->state_names[i] = ct->ops.state_names[i];
     ck->state[i]       = ct->state[i];
   }
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgContCheckpointWrite(SgCont ct)
@@ -446,7 +458,7 @@ PetscErrorCode SgContCheckpointWrite(SgCont ct)
 
   PetscFunctionBeginUser;
   if (!ct->ckfile[0]) PetscFunctionReturn(0);
-  CheckpointFill(ct, &ck);
+  PetscCall(CheckpointFill(ct, &ck));
   PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
   if (!ok) {
     /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
@@ -464,7 +476,7 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   PetscFunctionBeginUser;
   if (!ct->rsfile[0]) PetscFunctionReturn(0);
   PetscCheck(!ct->ops.solve, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have)", ct->type);
-  CheckpointFill(ct, &ck);
+  PetscCall(CheckpointFill(ct, &ck));
   ck.gammas = NULL;
   PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
   ct->gamma     = ck.gamma;

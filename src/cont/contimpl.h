@@ -88,6 +88,7 @@ PetscErrorCode SgContCheckpointWrite(SgCont);
 PetscErrorCode SgContCheckpointRead(SgCont);
 const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
+PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);
 PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);

@@ -20,8 +20,7 @@ typedef struct {
   PetscInt  max_it;     /* SSN steps per (P_gamma) */
   /* run time */
   SgCont    ct;
-  Vec       w;
-  PetscReal *g;
+  Vec       w;         /* the prospective Newton iterate */
   void     *defctx;     /* KSPConvergedDefault's context */
   PetscReal rnorm0;
   PetscBool on, last_full, stopped;
@@ -50,9 +49,8 @@ static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOpti
    ||r|| <= loose ||r_0|| (preconditioned norms: the unpreconditioned one is dominated by the gamma rows). */
 static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
 {
-  Fast                *f = (Fast *)ctx;
-  SgSSN                s = f->ct->ssn;
-  const SgContactView *c = &f->ct->cv;
+  Fast *f = (Fast *)ctx;
+  SgSSN s = f->ct->ssn;
 
   PetscFunctionBeginUser;
   PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, f->defctx));
@@ -66,23 +64,14 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
     PetscFunctionReturn(0);
   }
   if (f->early && it > 0 && rnorm <= f->loose * f->rnorm0) {
-    Vec                x, y;
-    const PetscScalar *wa;
-    const char        *actjac;
-    PetscInt           changed = 0;
-    PetscReal          gamma;
-    SNES               snes;
+    Vec      x, y;
+    PetscInt changed;
+    SNES     snes;
     PetscCall(SgSSNGetSNES(s, &snes));
-    PetscCall(SgSSNGetJacobianSet(s, &actjac));
-    PetscCall(SgSSNGetPathValues(s, &gamma, NULL, NULL));
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
     PetscCall(SNESGetSolution(snes, &y));
     PetscCall(VecWAXPY(f->w, -1.0, x, y));
-    PetscCall(VecGetArrayRead(f->w, &wa));
-    PetscCall(SgContactGap(f->ct->c, wa, f->g));
-    PetscCall(VecRestoreArrayRead(f->w, &wa));
-    for (PetscInt i = 0; i < c->n; i++) changed += ((f->ct->lamhat[i] + gamma * f->g[i] > 0) != (actjac[i] != 0));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, f->ct->comm));
+    PetscCall(SgSSNCountSetChanges(s, f->w, &changed));
     if (changed) {
       *reason      = KSP_CONVERGED_RTOL;
       f->last_full = PETSC_FALSE;
@@ -156,7 +145,7 @@ static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
   PetscCall(VecDestroy(&diag));
   PetscCall(PetscFree(g));
-  *gamma = ct->kkt.lscale > 0 && s > 0 ? 10 * PetscSqrtReal(s) / (ct->kkt_tol * ct->kkt.lscale) : E;
+  if (!(s > 0 && SgContGammaCap(ct, PetscSqrtReal(s), gamma))) *gamma = E;
   PetscFunctionReturn(0);
 }
 
@@ -189,7 +178,6 @@ static PetscErrorCode Solve_Fast(SgCont ct)
 
   f->ct = ct;
   PetscCall(VecDuplicate(ct->y, &f->w));
-  PetscCall(PetscMalloc1(ct->cv.n, &f->g));
   PetscCall(KSPConvergedDefaultCreate(&f->defctx));
   PetscCall(KSPSetConvergenceTest(ksp, KSPConverged_Fast, f, NULL));
   PetscCall(SgSSNSetStopTest(s, SSNStop_Fast, f));
@@ -217,10 +205,10 @@ static PetscErrorCode Solve_Fast(SgCont ct)
     } else if (!ok1) break;
     else if (ct->kkt.residual > ct->kkt_tol && sr == SG_SSN_SETTLED) {
       /* gamma too small: IPF's cap from the multiplier found */
-      PetscReal l2 = 0;
+      PetscReal l2 = 0, cap;
       for (PetscInt i = 0; i < ct->cv.n; i++) l2 += ct->cv.w[i] * PetscSqr(ct->lam[i]);
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &l2, 1, MPIU_REAL, MPI_SUM, ct->comm));
-      ct->gamma = PetscMax(10 * gamma, ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(l2) / (ct->kkt_tol * ct->kkt.lscale) : 10 * gamma);
+      ct->gamma = PetscMax(10 * gamma, SgContGammaCap(ct, PetscSqrtReal(l2), &cap) ? cap : 10 * gamma);
       PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
     }
     PetscCall(SgContCheck(ct, &stop));
@@ -233,7 +221,6 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_stopped_early", f->nearly));
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_full", f->nfull));
   PetscCall(VecDestroy(&f->w));
-  PetscCall(PetscFree(f->g));
   PetscFunctionReturn(0);
 }
 

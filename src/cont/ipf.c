@@ -83,7 +83,7 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
 
   PetscFunctionBeginUser;
   /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
-  cap = ct->kkt.lscale > 0 ? 10 * PetscSqrtReal(2 * gamma * gamma * dJ) / (ct->kkt_tol * ct->kkt.lscale) : PETSC_MAX_REAL;
+  if (!SgContGammaCap(ct, PetscSqrtReal(2 * gamma * gamma * dJ), &cap)) cap = PETSC_MAX_REAL;
   /* rule (15) */
   next = PetscMax(gamma * PetscMax(ipf->tau1, rhoC > 0 ? rhoF / rhoC : PETSC_MAX_REAL), PetscMax(rhoF, rhoC) > 0 ? PetscPowReal(PetscMax(rhoF, rhoC), -ipf->q) : PETSC_MAX_REAL);
   next = PetscMin(next, PETSC_MAX_REAL);

@@ -465,6 +465,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(MatDestroy(&s->J));
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
+  PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree(s->hash));
   PetscCall(PetscFree(*ssn));
   PetscFunctionReturn(0);
@@ -553,10 +554,20 @@ PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN s, PetscBool flg)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgSSNGetJacobianSet(SgSSN s, const char **act)
+/* The contact vertices whose state at y (active: lamhat + gamma g(y) > 0, the rule of the Jacobian) differs from the
+   active set of the last Jacobian, summed over the ranks: whether a Newton iterate y would change the set. */
+PetscErrorCode SgSSNCountSetChanges(SgSSN s, Vec y, PetscInt *changed)
 {
+  const PetscScalar *ya;
+
   PetscFunctionBeginUser;
-  *act = s->actjac;
+  if (!s->gy) PetscCall(PetscMalloc1(s->cv.n, &s->gy));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(s->c, ya, s->gy));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  *changed = 0;
+  for (PetscInt i = 0; i < s->cv.n; i++) *changed += ((s->lamhat[i] + s->gamma * s->gy[i] > 0) != (s->actjac[i] != 0));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, changed, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);
 }
 

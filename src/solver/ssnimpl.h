@@ -43,4 +43,5 @@ struct _n_SgSSN {
   SgSSNStopTest stop_test;    /* a controller's own stopping test (SgSSNSetStopTest) */
   void         *stop_ctx;
   PetscBool     pc_same_set;  /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
+  PetscReal    *gy;           /* gaps of a prospective iterate (SgSSNCountSetChanges) */
 };
