@@ -173,7 +173,12 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   if (!ok) PetscFunctionReturn(0);
   PetscCall(SgContMeasure(ct));
   if (f->gamma > 0) ct->gamma = f->gamma;
-  else PetscCall(EstimateGamma(ct, &ct->gamma));
+  else {
+    /* the estimate is from above: where it passes -cont_gamma_max, the largest gamma allowed is tried (a gamma that
+       proves too small is raised, and past -cont_gamma_max the run stops with GAMMA_OVERFLOW) */
+    PetscCall(EstimateGamma(ct, &ct->gamma));
+    ct->gamma = PetscMin(ct->gamma, ct->gamma_max);
+  }
   PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)\n", (double)ct->gamma, (double)ct->kkt.residual));
 
   f->ct = ct;
