@@ -14,6 +14,7 @@ static const char help[] = "Frictionless contact of a linear elastic body with a
 typedef struct {
   char      outfile[PETSC_MAX_PATH_LEN], sumfile[PETSC_MAX_PATH_LEN], histfile[PETSC_MAX_PATH_LEN];
   PetscReal magnification;
+  PetscBool quiet;
 } Output;
 
 /* ---- options files that include themselves
@@ -166,7 +167,13 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
   PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, o->sumfile, o->sumfile, sizeof(o->sumfile), NULL));
   PetscCall(PetscOptionsString("-history_file", "CSV history: one row per SSN iteration and per outer step", NULL, o->histfile, o->histfile, sizeof(o->histfile), NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-output_magnification", "Displacement magnification stored for the pictures", &o->magnification, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-quiet", "Print only the result line: neither the settings nor a line per step (-cont_monitor false)", &o->quiet, NULL));
   PetscOptionsEnd();
+  if (o->quiet) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_monitor", &set));
+    if (!set) PetscCall(PetscOptionsSetValue(NULL, "-cont_monitor", "false"));
+  }
   PetscCheck(PetscIsNormalReal(o->magnification) && o->magnification > 0, comm, PETSC_ERR_USER_INPUT, "-output_magnification: must be positive and finite, got %g", (double)o->magnification);
   /* refuse unwritable locations before any work is done */
   PetscCall(SgFileCheckWritable(comm, "-output_file", o->outfile));
@@ -218,6 +225,10 @@ int main(int argc, char **argv)
   PetscCall(SgContCreate(prob, &cont));
   PetscCall(SgContSetFromOptions(cont));
   PetscCall(SgContSetUp(cont));
+  if (!out.quiet) { /* what runs, and how to change it */
+    PetscCall(SgProblemView(prob, NULL));
+    PetscCall(SgContView(cont, NULL));
+  }
   PetscCall(SgContSolve(cont));
   PetscCall(SgContGetConvergedReason(cont, &converged, NULL));
   /* the history is kept whatever happened, the fields only for a converged solve; a failed write (a full disk, say)

@@ -217,6 +217,7 @@ typedef struct _n_SgCondense *SgCondense;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
@@ -229,6 +230,7 @@ PetscErrorCode SgSSNGetReason(SgSSN, SgSSNReason *);
 PetscErrorCode SgSSNSetNeighbourhood(SgSSN, PetscReal);
 PetscErrorCode SgSSNSetHistory(SgSSN, SgHistory, PetscLogDouble);
 PetscErrorCode SgSSNGetMonitor(SgSSN, PetscBool *);
+PetscErrorCode SgSSNSetProgress(SgSSN, PetscBool);
 PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 /* a controller's own stopping test, called after every Newton step instead of the SSN's (it sets the SNES reason and
    the SSN's): hook(ssn, iteration, ||F||, settled, &reason, ctx); NULL restores the SSN's test */

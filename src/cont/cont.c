@@ -63,7 +63,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   ct->stall_its   = 10;
   ct->residual    = SG_NAN;
   ct->V0 = ct->V = SG_NAN;
-  PetscCall(PetscStrcpy(ct->type, SGCONTNONE));
+  ct->monitor     = PETSC_TRUE;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   PetscCall(SgHistoryCreate(&ct->hist));
   PetscCall(SgSummaryCreate(&ct->sum));
@@ -135,13 +135,22 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(SgProblemGetContact(p, &ct->c));
   if (ct->c) PetscCall(SgContactGetView(ct->c, &ct->cv));
   ct->problem = ct->c ? "P" : "elasticity";
+  /* the default solves the problem given: the contact problem (P) with the default controller, or the elasticity
+     problem alone (none) without a contact boundary */
+  ct->type_default = (PetscBool)!ct->type[0];
+  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, ct->c ? SG_CONT_DEFAULT : SGCONTNONE));
   PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
-  PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
+    if (set) ct->type_default = PETSC_FALSE;
+  }
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
@@ -173,6 +182,7 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
@@ -353,6 +363,11 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, const SgHistoryRow *m
   row.kkt     = ct->kkt.residual;
   row.time    = t - ct->t0;
   PetscCall(SgHistoryAdd(ct->hist, &row));
+  if (ct->monitor) {
+    char g[32] = "-";
+    if (!PetscIsNanReal(row.gamma)) PetscCall(PetscSNPrintf(g, sizeof(g), "%.3e", (double)row.gamma));
+    PetscCall(PetscPrintf(ct->comm, "  %s step %2" PetscInt_FMT ": gamma %s, SSN %" PetscInt_FMT " (total %" PetscInt_FMT "), KSP total %" PetscInt_FMT ", active %" PetscInt_FMT "/%" PetscInt_FMT ", KKT residual %.3e, %.2f s\n", ct->type, ct->outer, g, ssn_its, ct->ssn_its, ct->ksp_its, ct->kkt.nactive, ct->cv.nglobal, (double)ct->kkt.residual, (double)row.time));
+  }
   PetscFunctionReturn(0);
 }
 

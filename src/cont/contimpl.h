@@ -18,6 +18,9 @@
 
 #include "sg.h"
 
+/* the controller of a problem with a contact boundary when none is given (-cont_type) */
+#define SG_CONT_DEFAULT SGCONTIPF
+
 typedef struct {
   PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
   PetscErrorCode (*start)(SgCont);
@@ -36,8 +39,11 @@ typedef struct {
 
 struct _n_SgCont {
   MPI_Comm     comm;
-  char         type[64];
+  char         type[64];     /* empty until set: then the default for the problem (SgContSetFromOptions) */
   char        *prefix;
+  PetscBool    monitor;      /* -cont_monitor: a line per outer step */
+  PetscBool    type_default; /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
+  char         solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */
   SgProblem    problem_obj;
   SgElasticity prob;
   SgContact    c;

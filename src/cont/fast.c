@@ -187,6 +187,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscCall(KSPSetConvergenceTest(ksp, KSPConverged_Fast, f, NULL));
   PetscCall(SgSSNSetStopTest(s, SSNStop_Fast, f));
   PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_TRUE));
+  PetscCall(SgSSNSetProgress(s, ct->monitor)); /* its one outer step is the whole solve: show the Newton steps */
   f->on = PETSC_TRUE;
   while (!stop) {
     const PetscReal gamma = ct->gamma;
@@ -221,6 +222,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   f->on = PETSC_FALSE;
   PetscCall(SgSSNSetStopTest(s, NULL, NULL));
   PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_FALSE));
+  PetscCall(SgSSNSetProgress(s, PETSC_FALSE));
   PetscCall(KSPSetConvergenceTest(ksp, KSPConvergedDefault, f->defctx, KSPConvergedDefaultDestroy));
   f->defctx = NULL;
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_stopped_early", f->nearly));

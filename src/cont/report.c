@@ -37,6 +37,25 @@ static PetscErrorCode SummaryPath(SgCont ct, SgSummary sum)
   PetscFunctionReturn(0);
 }
 
+/* "KSP type + PC type (factorization package)" of the controller's linear solver */
+static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
+{
+  KSPType       kt;
+  PCType        pt;
+  PC            pc;
+  MatSolverType st = NULL;
+  PetscBool     factor;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetType(ct->ksp, &kt));
+  PetscCall(KSPGetPC(ct->ksp, &pc));
+  PetscCall(PCGetType(pc, &pt));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  if (factor) PetscCall(PCFactorGetMatSolverType(pc, &st));
+  PetscCall(PetscSNPrintf(name, len, "%s + %s%s%s%s", kt ? kt : "(unset)", pt ? pt : "(unset)", st ? " (" : "", st ? st : "", st ? ")" : ""));
+  PetscFunctionReturn(0);
+}
+
 /* Every key of the summary: the run's result, the problem's data and sizes, times and memory. */
 static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 {
@@ -48,6 +67,13 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 
   PetscFunctionBeginUser;
   PetscCall(SgSummarySetString(sum, "cont_type", ct->type));
+  PetscCall(SgSummarySetBool(sum, "cont_type_default", ct->type_default));
+  if (ct->ksp) {
+    char name[128];
+    PetscCall(LinearSolverName(ct, name, sizeof(name)));
+    PetscCall(SgSummarySetString(sum, "linear_solver", name));
+    PetscCall(SgSummarySetString(sum, "linear_solver_choice", ct->solver_desc));
+  }
   PetscCall(SgSummarySetBool(sum, "converged", ct->converged));
   PetscCall(SgSummarySetString(sum, "reason", ct->reason));
   PetscCall(SgSummarySetString(sum, "problem", ct->problem));
@@ -232,8 +258,13 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   if (!ct->solved) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps\n", ct->type, ct->prefix ? " with prefix " : "", ct->prefix ? ct->prefix : "", (double)ct->kkt_tol, ct->max_outer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps\n", ct->type, ct->type_default ? " (the default; -cont_type changes it)" : "", ct->prefix ? " with prefix " : "", ct->prefix ? ct->prefix : "", (double)ct->kkt_tol, ct->max_outer));
     if (ct->ops.view) PetscCall(ct->ops.view(ct, viewer));
+    if (ct->ksp) {
+      char name[128];
+      PetscCall(LinearSolverName(ct, name, sizeof(name)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  linear solver: %s, %s%s\n", name, ct->solver_desc, strcmp(ct->solver_desc, "from the options") ? "; -ksp_type, -pc_type or a file of options/solver/ change it" : ""));
+    }
     PetscFunctionReturn(0);
   }
   if (ct->c) {
