@@ -64,23 +64,17 @@ static const char *PrintOptions[NPRINT] = {"-E", "-nu", "the loads (-body_force,
 
 static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print[NPRINT])
 {
-  SgContactView cv = {0};
-  MPI_Comm      comm;
-  PetscReal     gs = 0;
+  PetscReal gs = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  if (c) PetscCall(SgContactGetView(c, &cv));
-  for (PetscInt i = 0; i < cv.n; i++) gs += cv.w[i] * cv.d[i];
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gs, 1, MPIU_REAL, MPI_SUM, comm));
+  /* the full load and the obstacle at its full placement: the same problem at every load step */
+  if (c) PetscCall(SgContactGapSum(c, 1.0, &gs));
   PetscCall(SgElasticityGetMaterial(el, &print[0], &print[1]));
-  PetscCall(SgElasticityGetScales(el, NULL, &print[2], &print[3]));
-  PetscCall(SgElasticityGetEnergyShift(el, &print[4]));
+  PetscCall(SgElasticityGetFullLoadScales(el, &print[2], &print[3], &print[4]));
   print[5] = gs;
   PetscFunctionReturn(0);
 }
 
-/* The controller's state names as stored: comma-separated. */
 static PetscErrorCode StateNames(const SgCheckpoint *ck, char names[], size_t len)
 {
   PetscFunctionBeginUser;
@@ -98,7 +92,30 @@ typedef struct {
   Vec       v[7];
   PetscInt  ints[6];
   PetscReal print[NPRINT];
+  Vec       steps; /* load steps (NULL without) */
 } CkCtx;
+
+static void StepToReals(const SgLoadStep *r, PetscReal a[])
+{
+  const PetscReal v[SG_LOADSTEP_NREAL] = {r->t, r->obstacle_displacement, r->normal_displacement_max, r->force, r->kkt, r->energy, r->time, r->outer, r->ssn_its, r->ksp_its, r->nactive, r->converged};
+  for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = v[k];
+}
+
+static void RealsToStep(const PetscReal a[], SgLoadStep *r)
+{
+  r->t                       = a[0];
+  r->obstacle_displacement   = a[1];
+  r->normal_displacement_max = a[2];
+  r->force                   = a[3];
+  r->kkt                     = a[4];
+  r->energy                  = a[5];
+  r->time                    = a[6];
+  r->outer                   = (PetscInt)a[7];
+  r->ssn_its                 = (PetscInt)a[8];
+  r->ksp_its                 = (PetscInt)a[9];
+  r->nactive                 = (PetscInt)a[10];
+  r->converged               = (PetscBool)(a[11] != 0);
+}
 
 static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
 {
@@ -115,6 +132,13 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
     char names[SG_STATE_MAX * 64];
     PetscCall(StateNames(ctx->ck, names, sizeof(names)));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, names));
+  }
+  if (ctx->steps) {
+    const PetscInt open = ctx->ck->step_open;
+    PetscCall(VecView(ctx->steps, viewer));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, &ctx->ck->load));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, &ctx->ck->nsteps));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, &open));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
@@ -201,10 +225,18 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
   ints[5] = ck->best_step;
 
   {
-    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}};
+    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL};
     for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
     PetscCall(ProblemPrint(el, c, ctx.print));
+    if (ck->loadsteps) {
+      PetscReal *a;
+      PetscCall(PetscMalloc1(SG_LOADSTEP_NREAL * ck->nsteps + 1, &a));
+      for (PetscInt i = 0; i < ck->nsteps; i++) StepToReals(&ck->steps[i], &a[i * SG_LOADSTEP_NREAL]);
+      PetscCall(RootVec(comm, "load_steps", SG_LOADSTEP_NREAL * ck->nsteps, a, &ctx.steps));
+      PetscCall(PetscFree(a));
+    }
     PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
+    PetscCall(VecDestroy(&ctx.steps));
   }
   PetscCall(VecDestroy(&X));
   PetscCall(VecDestroy(&U));
@@ -272,6 +304,10 @@ typedef struct {
   PetscReal   print[NPRINT];
   char       *state_names;
   Vec         X, U, L, R, S, G, H;
+  PetscBool   hasload; /* written by a run with load steps */
+  PetscReal   load;
+  PetscInt    nsteps, open;
+  Vec         LS;
 } CkRead;
 
 /* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
@@ -294,6 +330,13 @@ static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
   rd->what = "the problem data";
   PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", PrintNames[0], &rd->hasprint));
   for (PetscInt i = 0; rd->hasprint && i < NPRINT; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, NULL, &rd->print[i]));
+  rd->what = "the load steps";
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "load_factor", &rd->hasload));
+  if (rd->hasload) {
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, NULL, &rd->load));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, NULL, &rd->nsteps));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, NULL, &rd->open));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -315,6 +358,10 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
   PetscCall(LoadSeq(viewer, "gammas", -1, &rd->G));
   rd->what = "history";
   PetscCall(LoadSeq(viewer, "history", -1, &rd->H));
+  if (rd->hasload) {
+    rd->what = "load_steps";
+    PetscCall(LoadSeq(viewer, "load_steps", -1, &rd->LS));
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
 }
@@ -487,8 +534,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     }
   }
   if (ierr) {
-    Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
-    for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
+    Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
+    for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
     SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
   }
 
@@ -530,7 +577,7 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
       const PetscReal kind = PetscRealPart(ha[i * NHIST]), outer = PetscRealPart(ha[i * NHIST + 1]);
       if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
-      else if (!(outer >= 0 && outer <= ints[2] && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+      else if (!(outer >= 0 && (outer <= ints[2] || rd.hasload) && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer; /* with load steps the history holds every step's rows */
     }
     if (what) {
       PetscCall(VecRestoreArrayRead(rd.X, &xa));
@@ -541,8 +588,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       PetscCall(VecRestoreArrayRead(rd.G, &ga));
       PetscCall(VecRestoreArrayRead(rd.H, &ha));
       {
-        Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
-        for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
+        Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
+        for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
       }
       SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
     }
@@ -607,6 +654,28 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     PetscCall(SgHistoryAdd(ck->hist, &r));
   }
   PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  /* the load steps: a file of a run without them is the full load, inside its only step */
+  ck->load      = rd.hasload ? rd.load : 1;
+  ck->nsteps    = 0;
+  ck->step_open = PETSC_TRUE;
+  ck->steps     = NULL;
+  if (rd.hasload) {
+    PetscInt           nls;
+    const PetscScalar *lsa;
+    PetscCall(VecGetSize(rd.LS, &nls));
+    PetscCheck(PetscIsNormalReal(rd.load) && rd.load > 0 && rd.nsteps >= 0 && nls == SG_LOADSTEP_NREAL * rd.nsteps && (rd.open == 0 || rd.open == 1), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: its load steps (factor %g, %" PetscInt_FMT " steps done, %" PetscInt_FMT " numbers) are impossible", f, (double)rd.load, rd.nsteps, nls);
+    ck->nsteps    = rd.nsteps;
+    ck->step_open = (PetscBool)rd.open;
+    PetscCall(PetscMalloc1(rd.nsteps + 1, &ck->steps));
+    PetscCall(VecGetArrayRead(rd.LS, &lsa));
+    for (PetscInt i = 0; i < rd.nsteps; i++) {
+      PetscReal a[SG_LOADSTEP_NREAL];
+      for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = PetscRealPart(lsa[i * SG_LOADSTEP_NREAL + k]);
+      RealsToStep(a, &ck->steps[i]);
+    }
+    PetscCall(VecRestoreArrayRead(rd.LS, &lsa));
+    PetscCall(VecDestroy(&rd.LS));
+  }
   PetscCall(VecDestroy(&rd.X));
   PetscCall(VecDestroy(&rd.U));
   PetscCall(VecDestroy(&rd.L));
