@@ -450,7 +450,7 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
   ck->ksp_its   = ct->ksp_its;
   ck->best_step = ct->best_step;
   ck->y         = ct->y;
-  ck->lamhat    = ct->lamhat;
+  ck->lamhat    = ct->lamhat ? ct->lamhat : ct->lam; /* without SSN (pdas, vi): the multiplier, the next load step's start */
   ck->ngammas   = ct->ngammas;
   ck->gammas    = ct->gammas;
   ck->hist      = ct->hist;
@@ -504,12 +504,15 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   PetscFunctionBeginUser;
   if (ct->rsread || !ct->rsfile[0]) PetscFunctionReturn(0);
   ct->rsread = PETSC_TRUE;
-  PetscCheck(!ct->ops.solve, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have)", ct->type);
   PetscCall(SgContSetUp(ct));
   PetscCall(CheckpointFill(ct, &ck));
   ck.gammas = NULL;
   ck.steps  = NULL;
   PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
+  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.gammas));
+  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.steps));
+  /* any type resumes after a load step; inside one, only a continuation has outer steps to resume */
+  PetscCheck(!ct->ops.solve || !ck.step_open, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have; any type resumes from the end of a load step)", ct->type);
   ct->gamma     = ck.gamma;
   ct->V0        = ck.V0;
   ct->best_kkt  = ck.best_kkt;
@@ -529,7 +532,7 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   if (ck.step_open) ct->restarted = PETSC_TRUE;
   else {
     ct->have_state = PETSC_TRUE;
-    ct->gamma_warm = ct->ngammas ? ct->gammas[ct->ngammas - 1] : ct->gamma;
+    ct->gamma_warm = ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1]) ? ct->gammas[ct->ngammas - 1] : ct->gamma;
   }
   PetscFunctionReturn(0);
 }

@@ -560,7 +560,9 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     if (!what && bad >= 0) what = "a displacement", val = PetscRealPart(ua[bad]);
     if (!what) CheckReals(la, nvert, PETSC_TRUE, 0, &bad);
     if (!what && bad >= 0) what = "a multiplier shift lamhat (must be >= 0)", val = PetscRealPart(la[bad]);
-    if (!what && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
+    /* the end of a load step of a solver without gamma (pdas, vi) holds no gamma to check */
+    const PetscBool step_end = (PetscBool)(rd.hasload && !rd.open);
+    if (!what && !step_end && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
     if (!what && !PetscIsNormalReal(PetscRealPart(ra[1])) && PetscRealPart(ra[1]) != 0) what = "the unconstrained energy", val = PetscRealPart(ra[1]);
     if (!what) CheckReals(&ra[2], 1, PETSC_TRUE, 0, &bad);
     if (!what && bad >= 0) what = "the best KKT residual", val = PetscRealPart(ra[2]);
@@ -571,7 +573,7 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       what = statewhat, val = PetscRealPart(sa[bad]);
     }
     if (!what && ng != ints[2]) what = "the number of gammas (must be the number of outer steps)", val = ng;
-    for (PetscInt i = 0; !what && i < ng; i++)
+    for (PetscInt i = 0; !what && !step_end && i < ng; i++)
       if (!(PetscRealPart(ga[i]) > 0)) what = "a gamma of the path (must be positive)", val = PetscRealPart(ga[i]);
     if (!what && nh % NHIST) what = "the length of the history", val = nh;
     for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
