@@ -230,6 +230,9 @@ typedef struct {
   PetscInt    nsteps;     /* load steps finished */
   PetscBool   step_open;  /* y is an outer step inside load step nsteps+1, not the end of load step nsteps */
   SgLoadStep *steps;      /* written from / read into (allocated on reading; PetscFree) */
+  PetscBool   kept;       /* every finished step's displacement and multiplier (for the fields of all steps) */
+  Vec        *ysteps;     /* nsteps of each (allocated on reading) */
+  PetscReal **lamsteps;
 } SgCheckpoint;
 PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckpoint *, PetscBool *, char[], size_t);
 PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);

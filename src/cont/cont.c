@@ -464,6 +464,12 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
   ck->nsteps    = ct->nsteps;
   ck->step_open = PETSC_TRUE; /* an outer step's checkpoint; the end of a load step is written by SgContSolve */
   ck->steps     = ct->steps;
+  /* the finished steps' solutions, when they are kept for the fields and none is missing */
+  ck->kept = (PetscBool)(ct->store_steps && ct->ysteps && ct->nsteps > 0);
+  for (PetscInt k = 0; ck->kept && k < ct->nsteps; k++)
+    if (!ct->ysteps[k]) ck->kept = PETSC_FALSE;
+  ck->ysteps   = ct->ysteps;
+  ck->lamsteps = ct->lamsteps;
   PetscFunctionReturn(0);
 }
 
@@ -527,6 +533,10 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   PetscCall(PetscFree(ct->steps));
   ct->steps    = ck.steps;
   ct->nsteps   = ct->capsteps = ck.nsteps;
+  if (ck.kept) { /* the fields of the steps before the restart */
+    ct->ysteps   = ck.ysteps;
+    ct->lamsteps = ck.lamsteps;
+  }
   ct->rsload   = ck.load;
   ct->V0unit   = ck.V0 / (ck.load * ck.load);
   if (ck.step_open) ct->restarted = PETSC_TRUE;

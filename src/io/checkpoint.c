@@ -93,6 +93,8 @@ typedef struct {
   PetscInt  ints[6];
   PetscReal print[NPRINT];
   Vec       steps; /* load steps (NULL without) */
+  PetscInt  nkept;
+  Vec      *kept;  /* 2 per kept step: displacement, multiplier */
 } CkCtx;
 
 static void StepToReals(const SgLoadStep *r, PetscReal a[])
@@ -139,8 +141,67 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, &ctx->ck->load));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, &ctx->ck->nsteps));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, &open));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, &ctx->nkept));
+    for (PetscInt i = 0; i < 2 * ctx->nkept; i++) PetscCall(VecView(ctx->kept[i], viewer));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* A displacement y and a per-contact-vertex array as vertex-ordered vectors (the owned vertices in local order, as the
+   coordinates are written), for a kept load step. */
+static PetscErrorCode StepVectors(SgElasticity el, SgContact c, Vec y, const PetscReal lam[], PetscInt step, Vec *U, Vec *L)
+{
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscInt           dim, nown = 0, k = 0;
+  MPI_Comm           comm;
+  DM                 dm, dmVert;
+  PetscSection       gs;
+  PetscReal         *vl;
+  Vec                yloc;
+  PetscScalar       *ua, *la;
+  const PetscScalar *ya;
+  char               name[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
+  if (c) PetscCall(SgContactGetView(c, &cv));
+  PetscCall(DMGetGlobalSection(dmVert, &gs));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off >= 0) nown++;
+  }
+  PetscCall(PetscCalloc1(m->nv, &vl));
+  for (PetscInt i = 0; i < cv.n; i++) vl[cv.vert[i]] = lam[i];
+  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, U));
+  PetscCall(VecCreateMPI(comm, nown, PETSC_DETERMINE, L));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, step));
+  PetscCall(PetscObjectSetName((PetscObject)*U, name));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, step));
+  PetscCall(PetscObjectSetName((PetscObject)*L, name));
+  PetscCall(DMGetLocalVector(dm, &yloc));
+  PetscCall(VecSet(yloc, 0));
+  PetscCall(DMGlobalToLocal(dm, y, INSERT_VALUES, yloc)); /* the free values: the Dirichlet ones are not read back */
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArray(*U, &ua));
+  PetscCall(VecGetArray(*L, &la));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) ua[k * dim + d] = ya[m->loff[v] + d];
+    la[k++] = vl[v];
+  }
+  PetscCall(VecRestoreArray(*U, &ua));
+  PetscCall(VecRestoreArray(*L, &la));
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(dm, &yloc));
+  PetscCall(PetscFree(vl));
   PetscFunctionReturn(0);
 }
 
@@ -225,7 +286,7 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
   ints[5] = ck->best_step;
 
   {
-    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL};
+    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL, 0, NULL};
     for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
     PetscCall(ProblemPrint(el, c, ctx.print));
     if (ck->loadsteps) {
@@ -234,9 +295,16 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
       for (PetscInt i = 0; i < ck->nsteps; i++) StepToReals(&ck->steps[i], &a[i * SG_LOADSTEP_NREAL]);
       PetscCall(RootVec(comm, "load_steps", SG_LOADSTEP_NREAL * ck->nsteps, a, &ctx.steps));
       PetscCall(PetscFree(a));
+      if (ck->kept) {
+        ctx.nkept = ck->nsteps;
+        PetscCall(PetscMalloc1(2 * ck->nsteps + 1, &ctx.kept));
+        for (PetscInt i = 0; i < ck->nsteps; i++) PetscCall(StepVectors(el, c, ck->ysteps[i], ck->lamsteps[i], i, &ctx.kept[2 * i], &ctx.kept[2 * i + 1]));
+      }
     }
     PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
     PetscCall(VecDestroy(&ctx.steps));
+    for (PetscInt i = 0; i < 2 * ctx.nkept; i++) PetscCall(VecDestroy(&ctx.kept[i]));
+    PetscCall(PetscFree(ctx.kept));
   }
   PetscCall(VecDestroy(&X));
   PetscCall(VecDestroy(&U));
@@ -306,8 +374,9 @@ typedef struct {
   Vec         X, U, L, R, S, G, H;
   PetscBool   hasload; /* written by a run with load steps */
   PetscReal   load;
-  PetscInt    nsteps, open;
+  PetscInt    nsteps, open, nkept;
   Vec         LS;
+  Vec        *kept; /* 2 per kept step */
 } CkRead;
 
 /* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
@@ -336,6 +405,7 @@ static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, NULL, &rd->load));
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, NULL, &rd->nsteps));
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, NULL, &rd->open));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, NULL, &rd->nkept));
   }
   PetscFunctionReturn(0);
 }
@@ -361,6 +431,16 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
   if (rd->hasload) {
     rd->what = "load_steps";
     PetscCall(LoadSeq(viewer, "load_steps", -1, &rd->LS));
+    rd->what = "the kept load steps";
+    PetscCheck(rd->nkept == 0 || rd->nkept == rd->nsteps, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "kept steps");
+    PetscCall(PetscCalloc1(2 * rd->nkept + 1, &rd->kept));
+    for (PetscInt i = 0; i < rd->nkept; i++) {
+      char name[64];
+      PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, i));
+      PetscCall(LoadSeq(viewer, name, rd->nvert * rd->dim, &rd->kept[2 * i]));
+      PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, i));
+      PetscCall(LoadSeq(viewer, name, rd->nvert, &rd->kept[2 * i + 1]));
+    }
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
@@ -620,6 +700,38 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     if (idx < 0) nmiss++;
     else ck->lamhat[i] = PetscRealPart(la[idx]);
   }
+  /* the kept load steps' displacements and multipliers, matched by the coordinates as y and lamhat */
+  ck->kept     = (PetscBool)(rd.nkept > 0);
+  ck->ysteps   = NULL;
+  ck->lamsteps = NULL;
+  if (ck->kept) {
+    PetscCall(PetscCalloc2(rd.nkept, &ck->ysteps, rd.nkept, &ck->lamsteps));
+    for (PetscInt j = 0; j < rd.nkept; j++) {
+      const PetscScalar *sua, *sla;
+      PetscCall(VecDuplicate(ck->y, &ck->ysteps[j]));
+      PetscCall(PetscMalloc1(cv.n + 1, &ck->lamsteps[j]));
+      PetscCall(VecGetArrayRead(rd.kept[2 * j], &sua));
+      PetscCall(VecGetArrayRead(rd.kept[2 * j + 1], &sla));
+      PetscCall(VecGetArray(ck->ysteps[j], &ya));
+      for (PetscInt v = 0; v < m->nv; v++) {
+        PetscInt idx;
+        if (m->goff[v] < 0) continue;
+        PetscCall(FindVertex(perm, nvert, &m->x[v * dim], &idx));
+        if (idx >= 0)
+          for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = sua[idx * dim + d];
+      }
+      PetscCall(VecRestoreArray(ck->ysteps[j], &ya));
+      for (PetscInt i = 0; i < cv.n; i++) {
+        PetscInt idx;
+        PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
+        ck->lamsteps[j][i] = idx >= 0 ? PetscRealPart(sla[idx]) : 0;
+      }
+      PetscCall(VecRestoreArrayRead(rd.kept[2 * j], &sua));
+      PetscCall(VecRestoreArrayRead(rd.kept[2 * j + 1], &sla));
+    }
+  }
+  for (PetscInt i = 0; i < 2 * rd.nkept && rd.kept; i++) PetscCall(VecDestroy(&rd.kept[i]));
+  PetscCall(PetscFree(rd.kept));
   PetscCall(PetscFree(perm));
   PetscCall(VecRestoreArrayRead(rd.X, &xa));
   PetscCall(VecRestoreArrayRead(rd.U, &ua));
