@@ -117,9 +117,9 @@ def loadsteps():
     name = "loadcurve"
     sgrun.run("-options_file options/ex2_problem.opts -dm_plex_filename meshes/ex2_coarse.msh -options_file options/solver/mumps.opts "
               "-options_file options/cont/ipf.opts -obstacle_translation 0,0,0.02 -load_steps 10 -load_curve_file %s"
-              % os.path.join(RUNS, name + ".csv"), name, RUNS)
-    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "load_curve.py"), os.path.join(RUNS, name + ".csv"), os.path.join(RES, name + ".png"),
-                    "--title", "Coarse Example 2, 10 load steps (Dirichlet values and the ball's 0.02 lift scaled together)"], check=True)
+              % os.path.join(RUNS, name + "_curve.csv"), name, RUNS)
+    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "load_curve.py"), os.path.join(RUNS, name + "_curve.csv"), os.path.join(RES, name + ".png"),
+                    "--title", "Coarse Example 2 in 10 load steps (Dirichlet values and the ball's 0.02 lift scaled together)"], check=True)
     print("wrote results/%s.png" % name)
 
 

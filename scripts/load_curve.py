@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The load-displacement curve of a run with load steps: total contact force against the load factor (and against
-the obstacle's displacement when -obstacle_translation moved it), from the CSV of -load_curve_file, as a PNG.
+"""The load-displacement curve of a run with load steps: total contact force against the load factor and against the
+approach of body and obstacle, from the CSV of -load_curve_file, as a PNG.
 
 usage: load_curve.py CURVE.csv OUT.png [--title TEXT]
 """
@@ -19,22 +19,18 @@ def read(path):
 
 
 def plot(rows, out, title=""):
+    """Force against the load factor, and against the approach of body and obstacle: the obstacle's displacement plus
+    the largest normal displacement of the contact boundary towards it (the indentation of a punch or ball test)."""
     t = [0.0] + [r["load_factor"] for r in rows]
     F = [0.0] + [r["contact_force"] for r in rows]
-    u = [0.0] + [r["obstacle_displacement"] for r in rows]
-    moved = any(x > 0 for x in u)
-    fig, axes = plt.subplots(1, 2 if moved else 1, figsize=(10 if moved else 5.5, 4), squeeze=False)
-    ax = axes[0][0]
-    ax.plot(t, F, "o-")
-    ax.set_xlabel("load factor t")
-    ax.set_ylabel("total contact force")
-    ax.grid(True, alpha=0.3)
-    if moved:
-        ax = axes[0][1]
-        ax.plot(u, F, "o-")
-        ax.set_xlabel("obstacle displacement (indentation)")
+    a = [0.0] + [r["obstacle_displacement"] + r["normal_displacement_max"] for r in rows]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, x, label in ((axes[0], t, "load factor t"), (axes[1], a, "approach: obstacle displacement + largest normal displacement")):
+        ax.plot(x, F, "o-")
+        ax.set_xlabel(label)
         ax.set_ylabel("total contact force")
         ax.grid(True, alpha=0.3)
+        ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
     if title:
         fig.suptitle(title)
     fig.tight_layout()
