@@ -579,8 +579,8 @@ static PetscErrorCode SolveContinuation(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* A load step after the first: the counters of this step from zero, the load scales of the SSN anew, the first gamma
-   the last one solved at; y, lamhat and the controller's state stay. */
+/* A load step after the first: the counters of this step from zero, the first gamma the last one solved at; y, lamhat
+   and the controller's state stay (the SSN's load scales are read again by SgContSolve before every solve). */
 static PetscErrorCode PrepareWarm(SgCont ct)
 {
   PetscFunctionBeginUser;
