@@ -226,6 +226,11 @@ static PetscErrorCode SolveLoadSteps(MPI_Comm comm, SgProblem prob, SgCont cont,
   PetscCall(SgContSetStoreSteps(cont, keep));
   PetscCall(SgContGetLoadSteps(cont, &k0));
   PetscCheck(k0 < ls->n, comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint has %" PetscInt_FMT " load steps done, this run has -load_steps %" PetscInt_FMT ": nothing left to solve", k0, ls->n);
+  for (PetscInt k = 0; k < k0; k++) { /* the steps done must be this run's first ones */
+    PetscReal t;
+    PetscCall(SgContGetLoadStepFactor(cont, k, &t));
+    PetscCheck(PetscAbsReal(t - ls->t[k]) <= 1e-12 * ls->t[k], comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint's load step %" PetscInt_FMT " was solved at load factor %.15g, this run's step %" PetscInt_FMT " is at %.15g (give the same -load_steps and -load_factors)", k + 1, (double)t, k + 1, (double)ls->t[k]);
+  }
   if (k0) PetscCall(PetscPrintf(comm, "load steps: resuming after step %" PetscInt_FMT " of %" PetscInt_FMT " (-restart_file)\n", k0, ls->n));
   for (PetscInt k = k0; k < ls->n; k++) {
     PetscBool      converged;

@@ -94,6 +94,7 @@ PetscErrorCode SgContSetFromOptions(SgCont); /* read the options (sets the probl
 PetscErrorCode SgContSetUp(SgCont); /* linear solver, SSN solver */
 PetscErrorCode SgContSolve(SgCont); /* solve from the unconstrained start or -restart_file; called again (after SgProblemSetLoadFactor): a load step warm-started from the last solution and controller state */
 PetscErrorCode SgContGetLoadSteps(SgCont, PetscInt *); /* load steps solved so far (with those of a -restart_file checkpoint taken between load steps) */
+PetscErrorCode SgContGetLoadStepFactor(SgCont, PetscInt, PetscReal *); /* the load factor of solved load step k (0-based) */
 PetscErrorCode SgContSetStoreSteps(SgCont, PetscBool); /* keep every load step's solution, so that SgContWriteFields writes them all (an XDMF temporal collection) */
 PetscErrorCode SgContWriteLoadCurve(SgCont, const char[]); /* CSV: one row per load step (factor, obstacle displacement, contact force, ...) */
 PetscErrorCode SgContGetSolution(SgCont, Vec *); /* the displacement (borrowed: do not destroy) */

@@ -696,6 +696,15 @@ PetscErrorCode SgContGetLoadSteps(SgCont ct, PetscInt *n)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgContGetLoadStepFactor(SgCont ct, PetscInt k, PetscReal *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContCheckpointRead(ct));
+  PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepFactor: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
+  *t = ct->steps[k].t;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContSetStoreSteps(SgCont ct, PetscBool store)
 {
   PetscFunctionBeginUser;
