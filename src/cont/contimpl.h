@@ -13,7 +13,10 @@
      ops->finish    after the loop, optional
    A solver that is not a continuation (none, and the baselines pdas and vi, which solve (P) directly without the SSN)
    sets ops->solve instead, and needs_ssn = PETSC_FALSE if it does not use the SSN.
-   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]). */
+   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]).
+   Load steps: a second SgContSolve (after SgProblemSetLoadFactor) is warm (ct->warm): SgContStart keeps y and takes
+   V(0) = t^2 V0unit, ops->start and ops->started are skipped, ct->gamma = ct->gamma_warm (the last gamma solved at),
+   and lamhat and ct->state[] stay as the last step left them; a type with ops->solve reads ct->warm itself. */
 #pragma once
 
 #include "sg.h"
@@ -79,6 +82,18 @@ struct _n_SgCont {
   PetscLogDouble t0, t1;
   void        *data;
   SgContOps    ops;
+  /* load stepping: SgContSolve called again after SgProblemSetLoadFactor */
+  PetscBool    warm;         /* this solve starts from the last load step's solution and controller state */
+  PetscBool    have_state;   /* a load step was solved (or restored from a checkpoint taken between load steps) */
+  PetscBool    rsread;       /* -restart_file was read */
+  PetscReal    gamma_warm;   /* the last gamma solved at: the warm start's first */
+  PetscReal    V0unit;       /* V(0) / t^2 (the unconstrained solution is linear in the load factor t) */
+  PetscReal    rsload;       /* the load factor of -restart_file's state */
+  PetscInt     nsteps, capsteps;
+  SgLoadStep  *steps;
+  PetscBool    store_steps;  /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
+  Vec         *ysteps;
+  PetscReal  **lamsteps;
 };
 
 extern PetscFunctionList SgContList;

@@ -173,6 +173,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   if (!ok) PetscFunctionReturn(0);
   PetscCall(SgContMeasure(ct));
   if (f->gamma > 0) ct->gamma = f->gamma;
+  else if (ct->warm) ct->gamma = ct->gamma_warm; /* a load step: the last step's gamma */
   else {
     /* the estimate is from above: where it passes -cont_gamma_max, the largest gamma allowed is tried (a gamma that
        proves too small is raised, and past -cont_gamma_max the run stops with GAMMA_OVERFLOW) */

@@ -473,6 +473,16 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscFunctionReturn(0);
 }
 
+/* The load scales and the energy shift read again after the problem's load factor changed (load stepping; b and the
+   gaps are shared, not copied). */
+PetscErrorCode SgSSNUpdateLoad(SgSSN s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetScales(s->prob, &s->Knorm, &s->bnorm, &s->bnorm_inf));
+  PetscCall(SgElasticityGetEnergyShift(s->prob, &s->energy_shift));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNGetSNES(SgSSN s, SNES *snes)
 {
   PetscFunctionBeginUser;
