@@ -514,6 +514,9 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   errno = 0;
   /* not PetscCall: the error is caught, reported with its cause and the .part removed below */
   ierr = PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer);
+  /* collective MPI-IO transfers (PETSc's default is independent): every rank writes its part of each dataset in one
+     collective call, which MPI-IO can aggregate on a parallel file system */
+  if (!ierr) ierr = PetscViewerHDF5SetCollective(viewer, PETSC_TRUE);
   if (!ierr) ierr = body(viewer, ctx);
   err[1] = errno;
   if (viewer) {
