@@ -9,7 +9,8 @@
    gamma: 10 ||lam~|| / (tol Y sqrt|Gamma_c|) as in IPF's cap, with lam~ = (normal diagonal stiffness) x (penetration
    of the start) / w, an estimate from above of the multiplier; if SSN settles with exact steps and only the
    infeasibility is above the tolerance, gamma is raised to IPF's cap from the multiplier found (fallback). If the
-   inexact steps fail (cycling, too many steps), the same gamma is solved again with exact steps. */
+   inexact steps fail (cycling, too many steps), the same gamma is solved again with exact steps.
+   With a direct solver (preonly, -ssn_condense included) every step is exact: no early stop, no second try. */
 #include "cont/contimpl.h"
 
 typedef struct {
@@ -158,12 +159,16 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   SgSSNReason sr;
   PetscReal   rtol, atol, dtol;
   PetscInt    maxits;
-  PetscBool   ok, stop = PETSC_FALSE, cond;
+  PetscBool   ok, stop = PETSC_FALSE, exact;
 
   PetscFunctionBeginUser;
-  PetscCall(SgSSNIsCondensed(s, &cond));
-  PetscCheck(!cond, ct->comm, PETSC_ERR_SUP, "-cont_type fast is for iterative linear solves, not -ssn_condense");
   PetscCall(SgSSNGetSNES(s, &snes));
+  /* a direct solve (preonly; -ssn_condense sets it too) calls no convergence test: every step is a full one */
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &exact));
+  if (exact) {
+    f->early     = PETSC_FALSE;
+    f->last_full = PETSC_TRUE;
+  }
   for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
   PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxits));
   PetscCall(KSPSetTolerances(ksp, PetscMax(rtol, f->start_rtol), atol, dtol, maxits));
