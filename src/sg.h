@@ -245,7 +245,8 @@ typedef struct _n_SgCondense *SgCondense;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
-PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
+PetscErrorCode SgLinearSolverDefaultCondense(SgElasticity, SgContact, const char[], char[], size_t);
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);

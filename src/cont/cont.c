@@ -127,6 +127,8 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
 {
   PetscErrorCode (*create)(SgCont) = NULL;
   SgProblem p = ct->problem_obj;
+  PetscBool solver_default, iterative;
+  PetscInt  dim;
 
   PetscFunctionBeginUser;
   PetscCheck(!ct->setfromoptions_called, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: called twice");
@@ -137,8 +139,13 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   ct->problem = ct->c ? "P" : "elasticity";
   /* the default solves the problem given: the contact problem (P) with the default controller, or the elasticity
      problem alone (none) without a contact boundary */
+  /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
+     fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
+     can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
+  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
-  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, ct->c ? SG_CONT_DEFAULT : SGCONTNONE));
+  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : (dim == 3 || iterative ? SGCONTFAST : SGCONTIPF)));
   PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
   {
     PetscBool set;
@@ -158,6 +165,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(create(ct));
   if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
   PetscOptionsEnd();
+  if (solver_default && !iterative && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultCondense(ct->prob, ct->c, ct->prefix, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
@@ -182,7 +190,6 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
-  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));

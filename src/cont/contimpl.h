@@ -21,9 +21,6 @@
 
 #include "sg.h"
 
-/* the controller of a problem with a contact boundary when none is given (-cont_type) */
-#define SG_CONT_DEFAULT SGCONTIPF
-
 typedef struct {
   PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
   PetscErrorCode (*start)(SgCont);

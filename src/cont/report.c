@@ -46,7 +46,7 @@ static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
   PCType        pt;
   PC            pc;
   MatSolverType st = NULL;
-  PetscBool     factor;
+  PetscBool     factor, shell;
 
   PetscFunctionBeginUser;
   PetscCall(KSPGetType(ct->ksp, &kt));
@@ -54,6 +54,8 @@ static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
   PetscCall(PCGetType(pc, &pt));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
   if (factor) PetscCall(PCFactorGetMatSolverType(pc, &st));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCSHELL, &shell));
+  if (shell) PetscCall(PCShellGetName(pc, &st)); /* the SSN's condensed solve (-ssn_condense) */
   PetscCall(PetscSNPrintf(name, len, "%s + %s%s%s%s", kt ? kt : "(unset)", pt ? pt : "(unset)", st ? " (" : "", st ? st : "", st ? ")" : ""));
   PetscFunctionReturn(0);
 }

@@ -1,15 +1,19 @@
 /* solver/linear.c: the default linear solver, chosen from the problem when the options name none.
    A problem file alone must solve: PETSc's own default (GMRES + ILU(0)) does not converge on elasticity of any size
-   worth solving. Without -<prefix>ksp_type and -<prefix>pc_type the solver is
-     - an exact sparse Cholesky factorization (MUMPS) in 2D, and in 3D up to -cont_direct_max_unknowns unknowns;
-     - CG + BoomerAMG with the settings of options/solver/hypre_l1gs.opts (relative tolerance 1e-8) above that.
-   The threshold is measured (bench/perf_notes.md, "Default controller and linear solver"): the size where the
-   contact solve with CG + BoomerAMG becomes faster than with MUMPS on Example 2. Each default is entered into the
-   options database only where the user gave no value, so every -ksp_* / -pc_* option or options file still wins. */
+   worth solving. Without -<prefix>ksp_type and -<prefix>pc_type the solver is an exact sparse Cholesky factorization
+   (MUMPS) for problems up to -cont_direct_max_unknowns unknowns, and CG + BoomerAMG with the settings of
+   options/solver/hypre_l1gs.opts (relative tolerance 1e-8) above. The default threshold is measured
+   (bench/perf_notes.md, "Default controller and linear solver"; contact solves with the default controller):
+     one rank: the factorization condensed onto the contact dofs (-ssn_condense) wins in 2D at every size measured
+               (to 6.2e5 unknowns), and in 3D up to about 2e4 unknowns;
+     several ranks (no condensation there): plain MUMPS against CG + BoomerAMG crosses at about 2e4 unknowns in 2D,
+               1e4 in 3D.
+   Each default is entered into the options database only where the user gave no value, so every -ksp_* / -pc_*
+   option or options file still wins. */
 #include "sg.h"
 
-/* the default of -cont_direct_max_unknowns: 3D problems up to this many unknowns are solved with MUMPS (see the header) */
-#define SG_DIRECT_MAX_DOFS_3D 60000
+/* condensation keeps a dense Schur complement on the contact dofs: not beyond this many of them */
+#define SG_CONDENSE_MAX_DOFS 4000
 
 static PetscErrorCode SetDefault(const char prefix[], const char name[], const char value[])
 {
@@ -23,39 +27,45 @@ static PetscErrorCode SetDefault(const char prefix[], const char name[], const c
   PetscFunctionReturn(0);
 }
 
-/* Enter the default solver's options unless -<prefix>ksp_type or -<prefix>pc_type is given; desc says what was chosen
-   and why (for the run's first lines). */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], char desc[], size_t len)
+/* Enter the default solver's options unless -<prefix>ksp_type or -<prefix>pc_type is given. defaulted: the default
+   was entered; iterative: the solver that will run is a Krylov method with a preconditioner (not preonly: the
+   controller's default depends on it); desc says what was chosen and why (for the run's first lines). */
+PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
 {
-  char      opt[256];
-  PetscBool kset, pset;
-  PetscInt  dim, dofs;
-
-  PetscInt  maxdirect = SG_DIRECT_MAX_DOFS_3D;
-  MPI_Comm  comm;
+  char        opt[256], ktype[64] = "";
+  PetscBool   kset, pset;
+  PetscInt    dim, dofs, maxdirect;
+  PetscMPIInt size;
+  MPI_Comm    comm;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetInfo(el, &dofs, NULL, NULL, NULL));
+  maxdirect = size == 1 ? (dim == 2 ? PETSC_MAX_INT : 20000) : (dim == 2 ? 20000 : 10000);
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: 3D problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (2D: always MUMPS)", &maxdirect, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: one rank: 2D all, 3D 20000; several ranks: 2D 20000, 3D 10000)", &maxdirect, NULL));
   PetscOptionsEnd();
   PetscCheck(maxdirect >= 0, comm, PETSC_ERR_USER_INPUT, "-%scont_direct_max_unknowns: must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", maxdirect);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sksp_type", prefix ? prefix : ""));
   PetscCall(PetscOptionsHasName(NULL, NULL, opt, &kset));
+  if (kset) PetscCall(PetscOptionsGetString(NULL, NULL, opt, ktype, sizeof(ktype), NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%spc_type", prefix ? prefix : ""));
   PetscCall(PetscOptionsHasName(NULL, NULL, opt, &pset));
-  if (kset || pset) {
+  *defaulted = (PetscBool)!(kset || pset);
+  if (!*defaulted) {
+    *iterative = (PetscBool)strcmp(ktype, KSPPREONLY); /* PETSc's default Krylov method is GMRES */
     PetscCall(PetscSNPrintf(desc, len, "from the options"));
     PetscFunctionReturn(0);
   }
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgElasticityGetInfo(el, &dofs, NULL, NULL, NULL));
-  if (dim == 2 || dofs <= maxdirect) {
+  *iterative = (PetscBool)(dofs > maxdirect);
+  if (!*iterative) {
     PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
     PetscCall(SetDefault(prefix, "pc_type", "cholesky"));
     PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
-    if (dim == 2) PetscCall(PetscSNPrintf(desc, len, "default for 2D: sparse Cholesky (MUMPS)"));
-    else PetscCall(PetscSNPrintf(desc, len, "default for 3D up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
+    if (maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for %" PetscInt_FMT "D on one rank: sparse Cholesky (MUMPS)", dim));
+    else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
   } else {
     PetscCall(SetDefault(prefix, "ksp_type", "cg"));
     PetscCall(SetDefault(prefix, "ksp_rtol", "1e-8"));
@@ -68,7 +78,44 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], char
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_agg_nl", "1"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_down", "l1-Gauss-Seidel"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
-    PetscCall(PetscSNPrintf(desc, len, "default for 3D above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): CG + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect));
+    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): CG + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect));
   }
+  PetscFunctionReturn(0);
+}
+
+/* With the default direct solver on one rank, a controller that runs the SSN solves its steps condensed onto the
+   contact dofs (-ssn_condense: K factored once), unless the dense Schur complement would be large. */
+PetscErrorCode SgLinearSolverDefaultCondense(SgElasticity el, SgContact c, const char prefix[], char desc[], size_t len)
+{
+  PetscMPIInt   size;
+  MPI_Comm      comm;
+  SgContactView cv;
+  PetscInt      dim, ncond, aligned = 1;
+  size_t        n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size > 1 || !c) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgContactGetView(c, &cv));
+  for (PetscInt i = 0; i < cv.n && aligned; i++) { /* axis-aligned normals condense one component (condense.c) */
+    PetscInt k;
+    for (k = 0; k < dim; k++)
+      if (PetscAbsReal(PetscAbsReal(cv.normal[i * dim + k]) - 1) < 1e-12) break;
+    if (k == dim) aligned = 0;
+  }
+  ncond = cv.nglobal * (aligned ? 1 : dim);
+  if (ncond > SG_CONDENSE_MAX_DOFS) PetscFunctionReturn(0);
+  PetscCall(SetDefault(prefix, "ssn_condense", "true"));
+  {
+    char      opt[256];
+    PetscBool on = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_condense", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &on, NULL));
+    if (!on) PetscFunctionReturn(0); /* the user's -ssn_condense false */
+  }
+  PetscCall(PetscStrlen(desc, &n));
+  PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps condensed onto the %" PetscInt_FMT " contact dofs (-ssn_condense)", ncond));
   PetscFunctionReturn(0);
 }
