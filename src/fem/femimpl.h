@@ -33,5 +33,6 @@ struct _n_SgElasticity {
   MatNullSpace nearnull;     /* rigid-body modes */
   PetscBool    use_nearnull; /* attached to K and the Jacobians */
   PetscInt     ndofs;
+  PetscInt     npartial, *partial; /* local offsets of the fixed components of partly fixed vertices */
   PetscLogDouble t_assembly;
 };
