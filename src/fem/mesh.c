@@ -1,6 +1,7 @@
 /* mesh.c: the DMPlex mesh (structured simplex box or gmsh file), boundary parts and the P1 displacement layout. */
 #include "fem/femimpl.h"
 #include <petscblaslapack.h>
+#include <petscsf.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -601,6 +602,56 @@ PetscErrorCode SgBoundaryGetFacets(DM dm, const SgBoundary *bnd, PetscInt *n, Pe
   PetscFunctionReturn(0);
 }
 
+/* A vertex shared by ranks may lie on a Dirichlet facet that only some of them hold (their cells touch the boundary
+   at the vertex alone): every copy gets the union of the components fixed and, per component, the first part, so
+   that the ranks agree on the layout and on which unknowns are decoupled. */
+static PetscErrorCode SyncDirichletVertices(DM dm, SgMesh *m)
+{
+  const PetscInt dim = m->dim, ns = 1 + dim, big = PETSC_MAX_INT / 4;
+  PetscSF        sf;
+  PetscInt       pStart, pEnd, np, nchanged = 0, *a, *b;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)dm), &size));
+  if (size == 1) PetscFunctionReturn(0);
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  np = pEnd - pStart;
+  /* per point, in ns arrays of np: the first part of any component (bcgroup) and of each component, "none" as big;
+     the minimum over the copies (the parts are numbered in the order they are marked) */
+  PetscCall(PetscMalloc2(ns * np, &a, ns * np, &b));
+  for (PetscInt i = 0; i < ns * np; i++) a[i] = big;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt p = m->vStart + v - pStart;
+    a[p] = m->bcgroup[v] >= 0 ? m->bcgroup[v] : big;
+    for (PetscInt d = 0; d < dim; d++) a[(1 + d) * np + p] = m->bcpart[v * dim + d] >= 0 ? m->bcpart[v * dim + d] : big;
+  }
+  PetscCall(PetscArraycpy(b, a, ns * np));
+  for (PetscInt k = 0; k < ns; k++) {
+    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, a + k * np, b + k * np, MPI_MIN));
+    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, a + k * np, b + k * np, MPI_MIN));
+    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, b + k * np, b + k * np, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, b + k * np, b + k * np, MPI_REPLACE));
+  }
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt p    = m->vStart + v - pStart;
+    PetscInt       mask = 0;
+    for (PetscInt d = 0; d < dim; d++) {
+      const PetscInt g = b[(1 + d) * np + p];
+      m->bcpart[v * dim + d] = g < big ? g : -1;
+      if (g < big) mask |= 1 << d;
+    }
+    if (mask != m->bcmask[v]) nchanged++;
+    m->bcmask[v]  = mask;
+    m->bcgroup[v] = b[p] < big ? b[p] : -1;
+  }
+  PetscCall(PetscFree2(a, b));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nchanged, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  PetscCall(PetscInfo(dm, "%" PetscInt_FMT " copies of shared Dirichlet vertices completed from other ranks\n", nchanged));
+  PetscFunctionReturn(0);
+}
+
 /* Build the P1 displacement section (dim dofs per vertex, Dirichlet vertices constrained) and the flat mesh arrays. */
 PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
 {
@@ -636,6 +687,7 @@ PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
   pc.vcomp  = m->bcpart;
   pc.comps  = dirichlet->ncomps ? dirichlet->comps : NULL;
   PetscCall(BoundaryForEachPoint(dm, dirichlet, MarkClosureVertices, &pc));
+  PetscCall(SyncDirichletVertices(dm, m));
 
   PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
