@@ -283,6 +283,12 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(SgContactGap(c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(VecGetArray(R, &ra));
+  /* the fixed components of rollers are data: their decoupled unknowns (0 up to the linear solver's error) are no
+     part of the equilibrium of the body */
+  for (PetscInt v = 0; v < c->mesh->nv; v++)
+    if (c->mesh->goff[v] >= 0 && SgMeshPartial(c->mesh, v))
+      for (PetscInt k = 0; k < dim; k++)
+        if (SgMeshFixed(c->mesh, v, k)) ra[c->mesh->goff[v] + k] = 0;
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal rn = 0;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
