@@ -43,7 +43,7 @@ PETSC_MINOR := $(shell sed -n 's/^.define PETSC_VERSION_MINOR *//p' $(PETSC_VERS
 PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
-MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh
+MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -84,7 +84,7 @@ meshes:
 # the variants of a code path already covered: of the reliability tests one or two per class stay (untouched/barely
 # touched obstacle, none's verdicts, options parsed by us, floating bodies, z coordinates, box sizes, nu = 0, the file
 # checks); the energy tests compare with long double, which valgrind computes in double precision.
-MEMCHECK_EXCLUDE = examples_|fast_(ref_pdas|np|loose|gamma)|fail_fast|3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_|fuzz|agree_vi|agree_ssn_1e7|ctl_alm_growing|par_pdas_np1|par_vi_np2|fail_pdas_max_it|none_gamma_unverifiable|gamma_max_first|noload_vi|opt_contact_gamma_not|rin_contact_ids_not|rin_fixed|rin_mesh_tilted|rin_nu0_bar2d|io_summary_is|io_checkpoint_is|io_(long|special|same|disk|options|checkpoint_damaged|killed)|units_|untouched_(pf|alm|pdas|none|far)|barely_(pf|alm|vi|ipf_np2)|alltouch|loose_linear_ipf|noload_ipf|huge_load|opt_(contact_gamma_bare|cont_max|ipf|obstacle|vi_pc|factor_package_unknown)|rin_.*np2|rin_(float_2d_no|dirichlet_every|shift|help|mesh_z0|mesh_not|empty_(contact_label|dirichlet|neumann)|bare|contact_ids_empty|dirichlet_ids|neumann_traction|dirichlet_values|box_(faces_(memory|out|abc|real|one|extra)|diagonal|dim|upper|lower)|overlap|body_force|E_|nu_|nu0_contact|energy_)|gmsh_(?!node0$$|plate_41$$)
+MEMCHECK_EXCLUDE = examples_|hertz_s[24]|fast_(ref_pdas|np|loose|gamma)|fail_fast|3d|ex2|rigid3d|killed_runs|table1_|table2_|ipf_nu|mms2d_c|restart_|fuzz|agree_vi|agree_ssn_1e7|ctl_alm_growing|par_pdas_np1|par_vi_np2|fail_pdas_max_it|none_gamma_unverifiable|gamma_max_first|noload_vi|opt_contact_gamma_not|rin_contact_ids_not|rin_fixed|rin_mesh_tilted|rin_nu0_bar2d|io_summary_is|io_checkpoint_is|io_(long|special|same|disk|options|checkpoint_damaged|killed)|units_|untouched_(pf|alm|pdas|none|far)|barely_(pf|alm|vi|ipf_np2)|alltouch|loose_linear_ipf|noload_ipf|huge_load|opt_(contact_gamma_bare|cont_max|ipf|obstacle|vi_pc|factor_package_unknown)|rin_.*np2|rin_(float_2d_no|dirichlet_every|shift|help|mesh_z0|mesh_not|empty_(contact_label|dirichlet|neumann)|bare|contact_ids_empty|dirichlet_ids|neumann_traction|dirichlet_values|box_(faces_(memory|out|abc|real|one|extra)|diagonal|dim|upper|lower)|overlap|body_force|E_|nu_|nu0_contact|energy_)|gmsh_(?!node0$$|plate_41$$)
 check-memory: all
 	$(PYTHON) tests/harness.py --valgrind -x '$(MEMCHECK_EXCLUDE)' tests/*.ini
 
@@ -138,6 +138,8 @@ meshes/ex2.msh: meshes/ex2.geo
 	gmsh -3 $< -o $@ > /dev/null
 meshes/ex2_coarse.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale 0.5 $< -o $@ > /dev/null
+meshes/hertz_s%.msh: meshes/hertz.geo
+	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 

@@ -54,6 +54,13 @@ PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]); /* prefix of 
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem, const char *[]);
 PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal); /* Young's modulus E and Poisson's ratio nu (defaults of -E, -nu) */
 PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL) */
+/* Components fixed by the Dirichlet part (rollers, symmetry planes): one bit mask per id of SgProblemSetBoundary (one
+   if it gave no ids), SG_COMPONENT_X | SG_COMPONENT_Y ...; the values of the free components are ignored. Without this
+   call (or -dirichlet_components) every component is fixed. Call after SgProblemSetBoundary(SG_BOUNDARY_DIRICHLET). */
+#define SG_COMPONENT_X 1
+#define SG_COMPONENT_Y 2
+#define SG_COMPONENT_Z 4
+PetscErrorCode SgProblemSetDirichletComponents(SgProblem, PetscInt, const PetscInt[]);
 PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola or ball (default of -obstacle_type) */
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */

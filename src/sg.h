@@ -17,7 +17,8 @@ PetscErrorCode SgLogEventsRegister(void);
 /* ------------------------------------------------------------------ fem: mesh.c, gmshcheck.c, elasticity.c */
 /* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty
    unless its -<what>_label or -<what>_ids option was given.
-   values[] holds ncomp numbers per id (Dirichlet displacement, Neumann traction). */
+   values[] holds ncomp numbers per id (Dirichlet displacement, Neumann traction); comps[] the components a Dirichlet
+   part fixes per id (bits SG_COMPONENT_X/Y/Z; ncomps = 0: every component of every id). */
 typedef struct {
   const char *what;       /* option prefix, e.g. "dirichlet" */
   PetscBool   active;     /* given by the options */
@@ -26,6 +27,8 @@ typedef struct {
   PetscInt    ids[SG_MAX_IDS];
   PetscInt    nvalues;
   PetscReal   values[3 * SG_MAX_IDS];
+  PetscInt    ncomps;
+  PetscInt    comps[SG_MAX_IDS];
 } SgBoundary;
 
 /* The P1 view of a distributed simplex mesh, flattened once for the assembly loops. */
@@ -38,7 +41,10 @@ typedef struct {
   PetscInt  *gblock;    /* global block (vertex) index of the free displacement, -1 if Dirichlet */
   PetscInt  *loff;      /* offset of the vertex in the local displacement vector */
   PetscInt  *goff;      /* offset in this rank's part of the global vector, -1 if not owned or Dirichlet */
-  PetscInt  *bcgroup;   /* Dirichlet part (index into ids) or -1 */
+  PetscInt  *bcgroup;   /* Dirichlet part (index into ids) fixing some component, or -1 */
+  PetscInt  *bcmask;    /* components fixed (bit d: component d); all dim bits: the vertex is left out of the global
+                           vector; some: its fixed components stay in it as decoupled unknowns that stay 0 ("rollers") */
+  PetscInt  *bcpart;    /* nv*dim: the Dirichlet part whose value fixes component d of vertex v, or -1 */
   PetscInt   nowned;    /* vertices owned by this rank (free or not) */
   PetscInt   nfree_glob;/* global number of free vertices */
 } SgMesh;
@@ -46,11 +52,15 @@ typedef struct {
 PetscErrorCode SgMeshCreateDM(MPI_Comm, const char[], DM *);
 PetscErrorCode SgMeshCheckDM(MPI_Comm, const char[], DM);
 PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
+PetscErrorCode SgBoundaryComponentsFromOptions(PetscOptionItems *, SgBoundary *, PetscInt);
 PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
 PetscErrorCode SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
 PetscErrorCode SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode SgMeshDestroy(SgMesh *);
 PetscErrorCode SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
+PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
+static inline PetscBool SgMeshFixed(const SgMesh *m, PetscInt v, PetscInt d) { return (PetscBool)((m->bcmask[v] >> d) & 1); }
+static inline PetscBool SgMeshPartial(const SgMesh *m, PetscInt v) { return (PetscBool)(m->bcmask[v] && m->bcmask[v] != (1 << m->dim) - 1); }
 PetscErrorCode SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
 PetscErrorCode SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
 

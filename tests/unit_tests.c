@@ -4,7 +4,7 @@
 #include "fem/femimpl.h"
 #include "cont/contimpl.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -168,6 +168,41 @@ static PetscErrorCode TestModelFit(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* Rollers through the public interface (SgProblemSetDirichletComponents): the box [0,2] x [0,1] on rollers (u_y = 0 at
+   the bottom, u_x = 0 on the left) under the traction (0,-1) on the top is in uniaxial plane-strain stress, linear, so
+   P1 is exact: V = -1/2 int_top t.u = -(1 - nu^2) / E * width / 2. -bad_mask M: pass M as the left face's mask. */
+static PetscErrorCode TestRollerAPI(SgSummary s)
+{
+  SgProblem       prob;
+  SgCont          ct;
+  const PetscInt  ids[2] = {1, 4}, top[1] = {3};
+  PetscInt        masks[2] = {SG_COMPONENT_Y, SG_COMPONENT_X};
+  const PetscReal t[2]     = {0, -1};
+  PetscReal       V;
+  PetscBool       conv;
+  const char     *reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-bad_mask", &masks[1], NULL));
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetMaterial(prob, 1000, 0.3));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_DIRICHLET, "Face Sets", 2, ids, NULL));
+  PetscCall(SgProblemSetDirichletComponents(prob, 2, masks));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_NEUMANN, "Face Sets", 1, top, t));
+  PetscCall(SgProblemSetFromOptions(prob));
+  PetscCall(SgContCreate(prob, &ct));
+  PetscCall(SgContSetFromOptions(ct));
+  PetscCall(SgContSolve(ct));
+  PetscCall(SgContGetConvergedReason(ct, &conv, &reason));
+  PetscCall(SgContGetEnergy(ct, &V));
+  PetscCall(SgSummarySetBool(s, "converged", conv));
+  PetscCall(SgSummarySetReal(s, "energy", V));
+  PetscCall(SgSummarySetReal(s, "energy_exact", -(1 - 0.09) / 1000 * 2 / 2));
+  PetscCall(SgContDestroy(&ct));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -187,6 +222,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
+  else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

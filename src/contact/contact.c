@@ -93,6 +93,24 @@ PetscErrorCode SgContactSetUp(SgContact c)
 
   PetscCall(VecGetArray(wl, &wa));
   PetscCall(VecGetArray(nl, &na));
+  /* at a partly fixed vertex (a roller) only the free components can move towards the obstacle: the normal is the
+     projection onto them, renormalized (on a symmetry plane it is the normal of the whole model's mirror-symmetric
+     mesh); a vertex whose free components are tangential cannot come into contact, as a fully fixed one */
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt  noff;
+    PetscReal n0 = 0, n1 = 0;
+    if (!SgMeshPartial(m, v)) continue;
+    PetscCall(PetscSectionGetOffset(ns, m->vStart + v, &noff));
+    for (PetscInt k = 0; k < dim; k++) {
+      n0 += PetscSqr(PetscRealPart(na[noff + k]));
+      if (SgMeshFixed(m, v, k)) na[noff + k] = 0;
+      n1 += PetscSqr(PetscRealPart(na[noff + k]));
+    }
+    if (n1 <= 1e-16 * n0) {
+      PetscCall(PetscSectionGetOffset(ws, m->vStart + v, &noff));
+      wa[noff] = 0;
+    }
+  }
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(ws, m->vStart + v, &off));
@@ -265,6 +283,12 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(SgContactGap(c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(VecGetArray(R, &ra));
+  /* the fixed components of rollers are data: their decoupled unknowns (0 up to the linear solver's error) are no
+     part of the equilibrium of the body */
+  for (PetscInt v = 0; v < c->mesh->nv; v++)
+    if (c->mesh->goff[v] >= 0 && SgMeshPartial(c->mesh, v))
+      for (PetscInt k = 0; k < dim; k++)
+        if (SgMeshFixed(c->mesh, v, k)) ra[c->mesh->goff[v] + k] = 0;
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal rn = 0;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];

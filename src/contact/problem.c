@@ -100,6 +100,24 @@ PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char
   PetscFunctionReturn(0);
 }
 
+/* The components the Dirichlet part fixes, one mask per id (SG_COMPONENT_X | ...; the default of
+   -dirichlet_components); checked against the dimension when the options are read. */
+PetscErrorCode SgProblemSetDirichletComponents(SgProblem p, PetscInt n, const PetscInt masks[])
+{
+  SgBoundary *b = &p->settings.dirichlet;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetDirichletComponents"));
+  PetscCheck(b->active, p->comm, PETSC_ERR_ORDER, "SgProblemSetDirichletComponents: set the Dirichlet part first (SgProblemSetBoundary)");
+  PetscCheck(n == PetscMax(b->nids, 1), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetDirichletComponents: %" PetscInt_FMT " masks, need %" PetscInt_FMT " (one per id of the Dirichlet part)", n, PetscMax(b->nids, 1));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscCheck(masks[i] > 0 && masks[i] <= (SG_COMPONENT_X | SG_COMPONENT_Y | SG_COMPONENT_Z), p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetDirichletComponents: mask %" PetscInt_FMT " is %" PetscInt_FMT ", must be a nonzero sum of SG_COMPONENT_X, _Y, _Z", i, masks[i]);
+    b->comps[i] = masks[i];
+  }
+  b->ncomps = n;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgProblemSetObstacleType(SgProblem p, const char type[])
 {
   PetscFunctionBeginUser;

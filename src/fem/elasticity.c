@@ -164,6 +164,7 @@ static PetscErrorCode BoundaryValueOptions(SgElasticity p)
   PetscFunctionBeginUser;
   PetscOptionsBegin(p->comm, p->prefix, "Boundary data", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->dirichlet, p->dim, "values", "Dirichlet displacement"));
+  PetscCall(SgBoundaryComponentsFromOptions(PetscOptionsObject, &p->dirichlet, p->dim));
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &p->neumann, p->dim, "traction", "Neumann traction"));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
@@ -198,10 +199,12 @@ static PetscErrorCode CreateFieldDM(DM dm, PetscInt height, PetscInt ncomp, cons
 /* Dirichlet value of vertex v (local number) */
 static void DirichletValue(SgElasticity p, PetscInt v, PetscReal u[])
 {
-  const PetscInt g = p->mesh.bcgroup[v];
   if (p->mms) MMSExact(p->dim, &p->mesh.x[v * p->dim], u, NULL);
-  else
-    for (PetscInt d = 0; d < p->dim; d++) u[d] = p->dirichlet.nvalues ? p->dirichlet.values[g * p->dim + d] : 0.0;
+  for (PetscInt d = 0; d < p->dim; d++) {
+    const PetscInt g = p->mesh.bcpart[v * p->dim + d];
+    if (g < 0) u[d] = 0.0; /* a free component of a partly fixed vertex */
+    else if (!p->mms) u[d] = p->dirichlet.nvalues ? p->dirichlet.values[g * p->dim + d] : 0.0;
+  }
 }
 
 /* The stiffness (BAIJ, block size dim) with its nonzero pattern from the mesh graph: block row v couples v with the
@@ -316,7 +319,7 @@ static PetscErrorCode Assemble(SgElasticity p)
 
   PetscCall(VecGetArray(p->ubc, &ua));
   for (PetscInt v = 0; v < m->nv; v++)
-    if (m->bcgroup[v] >= 0) {
+    if (m->bcmask[v]) {
       PetscReal u[3];
       DirichletValue(p, v, u);
       for (PetscInt d = 0; d < dim; d++) ua[m->loff[v] + d] = u[d];
@@ -326,9 +329,9 @@ static PetscErrorCode Assemble(SgElasticity p)
   PetscCall(VecGetArray(p->fpart, &pa));
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], fe[12], ud[12], vol;
+    PetscReal       xe[12], Ke[144], Kd[144], fe[12], ud[12], vol;
     PetscInt        gb[4];
-    PetscBool       lift = PETSC_FALSE;
+    PetscBool       lift = PETSC_FALSE, partial = PETSC_FALSE;
 
     for (PetscInt a = 0; a < nv; a++) {
       gb[a] = m->gblock[cv[a]];
@@ -336,10 +339,23 @@ static PetscErrorCode Assemble(SgElasticity p)
         xe[a * dim + d] = m->x[cv[a] * dim + d];
         ud[a * dim + d] = PetscRealPart(ua[m->loff[cv[a]] + d]);
       }
-      if (gb[a] < 0) lift = PETSC_TRUE;
+      if (m->bcmask[cv[a]]) lift = PETSC_TRUE;
+      if (SgMeshPartial(m, cv[a])) partial = PETSC_TRUE;
     }
     PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
-    PetscCall(MatSetValuesBlocked(p->K, nv, gb, nv, gb, Ke, ADD_VALUES));
+    if (partial) {
+      /* a fixed component of a partly fixed vertex: its row and column decoupled, its diagonal kept (the scale of
+         its neighbours for the preconditioners), so that its unknown stays 0; its value enters by the lifting */
+      PetscCall(PetscArraycpy(Kd, Ke, ne * ne));
+      for (PetscInt a = 0; a < nv; a++)
+        for (PetscInt i = 0; i < dim; i++) {
+          const PetscInt r = a * dim + i;
+          if (gb[a] < 0 || !SgMeshFixed(m, cv[a], i)) continue;
+          for (PetscInt j = 0; j < ne; j++)
+            if (j != r) Kd[r * ne + j] = Kd[j * ne + r] = 0;
+        }
+      PetscCall(MatSetValuesBlocked(p->K, nv, gb, nv, gb, Kd, ADD_VALUES));
+    } else PetscCall(MatSetValuesBlocked(p->K, nv, gb, nv, gb, Ke, ADD_VALUES));
     if (p->mms) {
       PetscCall(PetscArrayzero(fe, ne));
       for (PetscInt q = 0; q < nq; q++) {
@@ -386,6 +402,11 @@ static PetscErrorCode Assemble(SgElasticity p)
     }
     PetscCall(PetscFree2(facets, part));
   }
+  /* no load on the fixed components of partly fixed vertices: their unknowns stay 0 */
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (SgMeshPartial(m, v))
+      for (PetscInt d = 0; d < dim; d++)
+        if (SgMeshFixed(m, v, d)) fa[m->loff[v] + d] = 0;
   PetscCall(VecRestoreArray(floc, &fa));
   PetscCall(VecRestoreArray(mloc, &ma));
   PetscCall(VecRestoreArray(p->fpart, &pa));
@@ -434,6 +455,65 @@ static PetscErrorCode Assemble(SgElasticity p)
   PetscFunctionReturn(0);
 }
 
+/* CheckRigidMotions for a Dirichlet part that fixes only some components (rollers): the rigid motions whose fixed
+   components vanish at every Dirichlet vertex are free; the message names them. */
+static PetscErrorCode CheckRigidMotionsPartial(SgElasticity p)
+{
+  const PetscInt dim = p->dim, nr = dim == 2 ? 3 : 6;
+  PetscInt       nfree;
+  PetscReal      modes[36], c[3];
+  char           ids[256] = "", what[1024] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(SgMeshFreeRigidMotions(p->comm, &p->mesh, &nfree, modes, c));
+  if (!nfree) PetscFunctionReturn(0);
+  if (p->rigid_shift_set) {
+    PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves %" PetscInt_FMT " rigid motions free: regularized with -elasticity_rigid_shift %g\n", nfree, (double)p->rigid_shift));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < p->dirichlet.nids; i++) {
+    size_t l;
+    PetscCall(PetscStrlen(ids, &l));
+    PetscCall(PetscSNPrintf(ids + l, sizeof(ids) - l, i ? ",%" PetscInt_FMT : "%" PetscInt_FMT, p->dirichlet.ids[i]));
+  }
+  for (PetscInt k = 0; k < nfree && k < 3; k++) {
+    const PetscReal *q = &modes[k * nr];
+    PetscReal        t[3] = {0, 0, 0}, w[3] = {0, 0, 0}, tn = 0, wn = 0, tw = 0, x0[3], ax[3];
+    size_t           l;
+    char             buf[256];
+
+    for (PetscInt d = 0; d < dim; d++) t[d] = q[d];
+    if (dim == 2) w[2] = q[2];
+    else
+      for (PetscInt d = 0; d < 3; d++) w[d] = q[3 + d];
+    for (PetscInt d = 0; d < 3; d++) {
+      tn += t[d] * t[d];
+      wn += w[d] * w[d];
+      tw += t[d] * w[d];
+    }
+    /* as a motion people picture: a translation, or a rotation about an axis through x0 (with a slide along the axis
+       in 3D): t + w x (x - c) = t_par + w x (x - x0), x0 = c + w x t / |w|^2 */
+    if (wn * PetscSqr(p->diam) <= 1e-16 * tn) {
+      tn = PetscSqrtReal(tn);
+      for (PetscInt d = 0; d < 3; d++)
+        if (PetscAbsReal(t[d]) < 1e-10 * tn) t[d] = 0;
+      PetscCall(PetscSNPrintf(buf, sizeof(buf), dim == 2 ? "the translation along (%.4g, %.4g)" : "the translation along (%.4g, %.4g, %.4g)", (double)(t[0] / tn), (double)(t[1] / tn), (double)(t[2] / tn)));
+    } else {
+      x0[0] = c[0] + (w[1] * t[2] - w[2] * t[1]) / wn;
+      x0[1] = c[1] + (w[2] * t[0] - w[0] * t[2]) / wn;
+      x0[2] = c[2] + (w[0] * t[1] - w[1] * t[0]) / wn;
+      for (PetscInt d = 0; d < 3; d++) ax[d] = w[d] / PetscSqrtReal(wn);
+      for (PetscInt d = 0; d < 3; d++)
+        if (PetscAbsReal(x0[d]) < 1e-10 * p->diam) x0[d] = 0;
+      if (dim == 2) PetscCall(PetscSNPrintf(buf, sizeof(buf), "the rotation about (%.4g, %.4g)", (double)x0[0], (double)x0[1]));
+      else PetscCall(PetscSNPrintf(buf, sizeof(buf), "the rotation about the axis along (%.4g, %.4g, %.4g) through (%.4g, %.4g, %.4g)%s", (double)ax[0], (double)ax[1], (double)ax[2], (double)x0[0], (double)x0[1], (double)x0[2], PetscAbsReal(tw) > 1e-8 * PetscSqrtReal(tn * wn) ? " with a slide along it" : ""));
+    }
+    PetscCall(PetscStrlen(what, &l));
+    PetscCall(PetscSNPrintf(what + l, sizeof(what) - l, "%s %s", k ? ";" : "", buf));
+  }
+  SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "the Dirichlet part (-dirichlet_label '%s'%s%s with -dirichlet_components) leaves %" PetscInt_FMT " rigid motion%s free:%s%s, so the stiffness is singular and the body floats. Fix more components (e.g. a roller normal to a second face), or regularize on purpose with -elasticity_rigid_shift eps (adds eps E/L^2 times the lumped volumes to K)", p->dirichlet.label, p->dirichlet.nids ? " -dirichlet_ids " : "", ids, nfree, nfree > 1 ? "s" : "", what, nfree > 3 ? " and more" : "");
+}
+
 /* The Dirichlet part must fix all rigid motions: otherwise K is singular and any solution is garbage. A part that fixes
    every component of 2 distinct points (2D) or 3 non-collinear points (3D) does; contact with a frictionless obstacle
    does not count (it leaves the tangential motions free). -elasticity_rigid_shift accepts such a body on purpose. */
@@ -448,6 +528,11 @@ static PetscErrorCode CheckRigidMotions(SgElasticity p)
   PetscCall(SgMeshConstrainedDimension(p->comm, &p->mesh, &adim, p0, dir, &p->diam));
   /* the other extreme: a label of cells (or of every boundary part of a 1-layer mesh) leaves nothing to solve for */
   PetscCheck(p->mesh.nfree_glob > 0, p->comm, PETSC_ERR_USER_INPUT, "-dirichlet_label '%s': every vertex of the mesh is a Dirichlet vertex, nothing is left to solve for (give a label of boundary faces)", p->dirichlet.label);
+  if (p->dirichlet.ncomps) {
+    PetscBool partial = PETSC_FALSE;
+    for (PetscInt i = 0; i < p->dirichlet.ncomps; i++) partial = (PetscBool)(partial || p->dirichlet.comps[i] != (1 << dim) - 1);
+    if (partial) PetscFunctionReturn(CheckRigidMotionsPartial(p));
+  }
   if (adim >= dim - 1) PetscFunctionReturn(0);
   if (p->rigid_shift_set) {
     PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves rigid motions free (affine dimension %" PetscInt_FMT "): regularized with -elasticity_rigid_shift %g\n", adim, (double)p->rigid_shift));
@@ -511,6 +596,17 @@ PetscErrorCode SgElasticitySetUp(SgElasticity p)
   PetscCheck(p->dm, comm, PETSC_ERR_ORDER, "SgElasticitySetUp: the mesh is missing (SgElasticitySetFromOptions first)");
   PetscCall(SgMeshSetUp(p->dm, &p->dirichlet, &p->mesh));
   PetscCall(CheckRigidMotions(p));
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    p->npartial = 0;
+    for (PetscInt v = 0; v < p->mesh.nv; v++)
+      if (SgMeshPartial(&p->mesh, v))
+        for (PetscInt d = 0; d < p->dim; d++)
+          if (SgMeshFixed(&p->mesh, v, d)) {
+            if (pass) p->partial[p->npartial] = p->mesh.loff[v] + d;
+            p->npartial++;
+          }
+    if (!pass) PetscCall(PetscMalloc1(p->npartial, &p->partial));
+  }
   PetscCall(CreateFieldDM(p->dm, 0, 1, "cell", &p->dmCell));
   PetscCall(CreateFieldDM(p->dm, p->dim, 1, "vertex", &p->dmVert));
   PetscCall(CreateFieldDM(p->dm, p->dim, p->dim, "vector", &p->dmVec));
@@ -529,7 +625,18 @@ PetscErrorCode SgElasticityView(SgElasticity p, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, p->comm));
   PetscCall(PetscViewerASCIIPrintf(viewer, "linear elasticity (P1, %s): %" PetscInt_FMT "D, %" PetscInt_FMT " cells, %" PetscInt_FMT " unknowns, E %g, nu %g\n", p->dim == 2 ? "plane strain" : "3D", p->dim, nc, p->ndofs, (double)p->E, (double)p->nu));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  Dirichlet part: %s%s, Neumann part: %s\n", p->dirichlet.active ? "label " : "none", p->dirichlet.active ? p->dirichlet.label : "", p->neumann.nvalues ? p->neumann.label : "none"));
+  {
+    char comps[SG_MAX_IDS * 5 + 32] = "";
+    if (p->dirichlet.ncomps) {
+      size_t l;
+      PetscCall(PetscStrcpy(comps, " fixing "));
+      for (PetscInt i = 0; i < p->dirichlet.ncomps; i++) {
+        PetscCall(PetscStrlen(comps, &l));
+        PetscCall(PetscSNPrintf(comps + l, sizeof(comps) - l, "%s%s%s%s", i ? "," : "", p->dirichlet.comps[i] & 1 ? "x" : "", p->dirichlet.comps[i] & 2 ? "y" : "", p->dirichlet.comps[i] & 4 ? "z" : ""));
+      }
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  Dirichlet part: %s%s%s, Neumann part: %s\n", p->dirichlet.active ? "label " : "none", p->dirichlet.active ? p->dirichlet.label : "", comps, p->neumann.nvalues ? p->neumann.label : "none"));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -640,6 +747,7 @@ PetscErrorCode SgElasticityDestroy(SgElasticity *prob)
   PetscCall(VecDestroy(&p->fpart1));
   PetscCall(MatNullSpaceDestroy(&p->nearnull));
   PetscCall(SgMeshDestroy(&p->mesh));
+  PetscCall(PetscFree(p->partial));
   PetscCall(DMDestroy(&p->dmCell));
   PetscCall(DMDestroy(&p->dmVert));
   PetscCall(DMDestroy(&p->dmVec));
@@ -908,6 +1016,15 @@ PetscErrorCode SgElasticityGlobalToLocal(SgElasticity p, Vec y, Vec yloc)
   PetscFunctionBeginUser;
   PetscCall(VecCopy(p->ubc, yloc));
   PetscCall(DMGlobalToLocal(p->dm, y, INSERT_VALUES, yloc));
+  if (p->npartial) { /* the fixed components of partly fixed vertices: the data, not their (zero) unknowns */
+    const PetscScalar *ua;
+    PetscScalar       *ya;
+    PetscCall(VecGetArrayRead(p->ubc, &ua));
+    PetscCall(VecGetArray(yloc, &ya));
+    for (PetscInt i = 0; i < p->npartial; i++) ya[p->partial[i]] = ua[p->partial[i]];
+    PetscCall(VecRestoreArray(yloc, &ya));
+    PetscCall(VecRestoreArrayRead(p->ubc, &ua));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -1027,7 +1144,7 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
     PetscReal       xe[12], Ke[144], ue[12], vol;
     PetscBool       has = PETSC_FALSE;
 
-    for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcgroup[cv[a]] >= 0);
+    for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcmask[cv[a]]);
     if (!has) continue;
     for (PetscInt a = 0; a < nv; a++)
       for (PetscInt d = 0; d < dim; d++) {
@@ -1036,9 +1153,9 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
       }
     PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
     for (PetscInt a = 0; a < nv; a++) {
-      if (m->bcgroup[cv[a]] < 0) continue;
       for (PetscInt i = 0; i < dim; i++) {
         PetscReal r = -vol / nv * p->body_force[i];
+        if (!SgMeshFixed(m, cv[a], i)) continue;
         for (PetscInt j = 0; j < nv * dim; j++) r += Ke[(a * dim + i) * nv * dim + j] * ue[j];
         loc[i] += r;
       }
@@ -1054,8 +1171,8 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
       PetscReal area, nrm[3];
       PetscCall(SgFacetGeometry(p->dm, m, facets[f], &nfv, fv, &area, nrm));
       for (PetscInt a = 0; a < nfv; a++)
-        if (m->bcgroup[fv[a]] >= 0)
-          for (PetscInt d = 0; d < dim; d++) loc[d] -= area / nfv * p->neumann.values[part[f] * dim + d];
+        for (PetscInt d = 0; d < dim; d++)
+          if (SgMeshFixed(m, fv[a], d)) loc[d] -= area / nfv * p->neumann.values[part[f] * dim + d];
     }
     PetscCall(PetscFree2(facets, part));
   }

@@ -33,6 +33,7 @@ struct _n_SgElasticity {
   MatNullSpace nearnull;     /* rigid-body modes */
   PetscBool    use_nearnull; /* attached to K and the Jacobians */
   PetscInt     ndofs;
+  PetscInt     npartial, *partial; /* local offsets of the fixed components of partly fixed vertices */
   PetscLogDouble t_assembly;
   /* load stepping (SgElasticitySetLoadFactor): the loads above are the full ones times load; the full ones are kept
      here once a factor is set (NULL until then) */

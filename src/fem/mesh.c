@@ -1,11 +1,15 @@
 /* mesh.c: the DMPlex mesh (structured simplex box or gmsh file), boundary parts and the P1 displacement layout. */
 #include "fem/femimpl.h"
+#include <petscblaslapack.h>
+#include <petscsf.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <unistd.h>
 
-const char *const SgBoxDiagonals[] = {"right", "left", "SgBoxDiagonal", "SG_BOX_", NULL};
-typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT } SgBoxDiagonal;
+const char *const SgBoxDiagonals[] = {"right", "left", "mirror", "SgBoxDiagonal", "SG_BOX_", NULL};
+/* mirror: left in the lower half of x, right in the upper half, so that the mesh is symmetric about the box's middle
+   x = (lower + upper) / 2 and its upper half is the -box_diagonal right mesh of that half (half models) */
+typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT, SG_BOX_MIRROR } SgBoxDiagonal;
 
 /* Face markers follow DMPlexCreateBoxMesh(): 2D bottom 1, right 2, top 3, left 4;
    3D bottom 1, top 2, front 3, back 4, right 5, left 6 ("Face Sets"). */
@@ -87,8 +91,9 @@ static PetscErrorCode BoxMeshCreate(MPI_Comm comm, PetscInt dim, const PetscInt 
             {{v00, v10, v11}, {v00, v11, v01}},
             {{v00, v10, v01}, {v10, v11, v01}}
           };
+          const PetscInt  k = diag == SG_BOX_MIRROR ? (2 * i < nx ? SG_BOX_LEFT : SG_BOX_RIGHT) : diag;
           for (PetscInt t = 0; t < 2; t++)
-            for (PetscInt a = 0; a < 3; a++) cells[c * 3 + t * 3 + a] = tr[diag][t][a];
+            for (PetscInt a = 0; a < 3; a++) cells[c * 3 + t * 3 + a] = tr[k][t][a];
           c += 2;
         }
     } else {
@@ -318,14 +323,14 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
   PetscCall(SgOptionsIntList(PetscOptionsObject, "-box_faces", "Number of cells along each axis (dim numbers)", SG_OPT_MAX, faces, &nfaces, NULL));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-box_lower", "Lower corner of the box (dim numbers)", SG_OPT_MAX, lo, &nlo, NULL));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-box_upper", "Upper corner of the box (dim numbers)", SG_OPT_MAX, hi, &nhi, NULL));
-  PetscCall(PetscOptionsEnum("-box_diagonal", "2D: direction of the diagonal splitting each square", NULL, SgBoxDiagonals, (PetscEnum)diag, (PetscEnum *)&diag, NULL));
+  PetscCall(PetscOptionsEnum("-box_diagonal", "2D: direction of the diagonal splitting each square (mirror: symmetric about the middle of x)", NULL, SgBoxDiagonals, (PetscEnum)diag, (PetscEnum *)&diag, NULL));
   PetscOptionsEnd();
   {
     /* PETSc keeps the default for an enum given without a value */
     const char *val;
     PetscBool   has;
     PetscCall(PetscOptionsFindPair(NULL, prefix, "-box_diagonal", &val, &has));
-    PetscCheck(!has || (val && val[0]), comm, PETSC_ERR_USER_INPUT, "-box_diagonal is given without a value (right or left)");
+    PetscCheck(!has || (val && val[0]), comm, PETSC_ERR_USER_INPUT, "-box_diagonal is given without a value (right, left or mirror)");
   }
 
   if (file) PetscCall(MeshReadFile(comm, fname, dm));
@@ -338,6 +343,7 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
       PetscCheck(faces[d] > 0, comm, PETSC_ERR_USER_INPUT, "-box_faces: entry %" PetscInt_FMT " is %" PetscInt_FMT ", must be positive", d, faces[d]);
       PetscCheck(PetscIsNormalReal(hi[d] - lo[d]) && hi[d] > lo[d], comm, PETSC_ERR_USER_INPUT, "-box_lower/-box_upper: axis %" PetscInt_FMT " has lower %g >= upper %g", d, (double)lo[d], (double)hi[d]);
     }
+    PetscCheck(diag != SG_BOX_MIRROR || (dim == 2 && faces[0] % 2 == 0), comm, PETSC_ERR_USER_INPUT, "-box_diagonal mirror: needs -box_dim 2 and an even number of squares along x (-box_faces %" PetscInt_FMT ",...)", faces[0]);
     PetscCall(BoxMeshCreate(comm, dim, faces, lo, hi, diag, dm));
   }
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
@@ -426,6 +432,56 @@ PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *PetscOptionsObject, SgBou
   PetscFunctionReturn(0);
 }
 
+/* -<what>_components: which components a Dirichlet part fixes, one word per id (one if the part has no ids), made of
+   the letters x, y (and z in 3D): "xyz" fixes all (the default), "x" only u_x (a roller, a symmetry plane x = c). */
+PetscErrorCode SgBoundaryComponentsFromOptions(PetscOptionItems *PetscOptionsObject, SgBoundary *bnd, PetscInt dim)
+{
+  char      opt[64], name[256], pre[256], *words[SG_MAX_IDS];
+  PetscInt  n = SG_MAX_IDS, need = PetscMax(bnd->nids, 1);
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(pre, sizeof(pre), "%s", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : ""));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_components", bnd->what));
+  PetscCall(SgOptionsName(pre, opt, name, sizeof(name)));
+  PetscCall(PetscOptionsStringArray(opt, dim == 2 ? "Components fixed per label value: x, y or xy (default xy)" : "Components fixed per label value: letters of xyz, e.g. x, yz (default xyz)", NULL, words, &n, &set));
+  {
+    /* PETSc reads an empty value as not set and drops empty entries: both would silently fix every component */
+    const char *val;
+    PetscBool   has;
+    size_t      len;
+    PetscCall(PetscOptionsFindPair(NULL, PetscOptionsObject->prefix, opt, &val, &has));
+    if (has) {
+      PetscCheck(val && val[0], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s is given without a value (x, y%s per id)", name, dim == 3 ? ", z, xy, ..." : " or xy");
+      PetscCall(PetscStrlen(val, &len));
+      PetscCheck(val[0] != ',' && val[len - 1] != ',' && !strstr(val, ",,"), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s '%s': an entry is empty", name, val);
+    }
+  }
+  if (!set) {
+    /* SgProblemSetDirichletComponents: its masks must still fit the ids and the dimension */
+    for (PetscInt i = 0; i < bnd->ncomps; i++) PetscCheck(bnd->comps[i] > 0 && bnd->comps[i] < (1 << dim), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetDirichletComponents: mask %" PetscInt_FMT " is %" PetscInt_FMT ", must be a nonzero sum of SG_COMPONENT_X, SG_COMPONENT_Y%s", i, bnd->comps[i], dim == 3 ? ", SG_COMPONENT_Z" : " (2D)");
+    PetscCheck(!bnd->ncomps || bnd->ncomps == need, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetDirichletComponents: got %" PetscInt_FMT " masks, need %" PetscInt_FMT " (one per Dirichlet id)", bnd->ncomps, need);
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(bnd->active, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s is given, but no -%s%s_label or -%s%s_ids says where", name, pre, bnd->what, pre, bnd->what);
+  PetscCheck(n > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s is given without a value (x, y%s per id)", name, dim == 3 ? ", z, xy, ..." : " or xy");
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt mask = 0;
+    for (const char *c = words[i]; *c; c++) {
+      const PetscInt d = *c == 'x' ? 0 : *c == 'y' ? 1 : *c == 'z' ? 2 : -1;
+      PetscCheck(d >= 0 && d < dim, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " '%s' has '%c': use the letters x, y%s", name, i, words[i], *c, dim == 3 ? ", z" : " (2D)");
+      PetscCheck(!(mask & (1 << d)), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " '%s' names '%c' twice", name, i, words[i], *c);
+      mask |= 1 << d;
+    }
+    PetscCheck(mask, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is empty (a part fixing nothing is no Dirichlet part)", name, i);
+    bnd->comps[i] = mask;
+  }
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(words[i]));
+  PetscCheck(n == need, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " entries, need %" PetscInt_FMT " (one per value of -%s%s_ids)", name, n, need, pre, bnd->what);
+  bnd->ncomps = n;
+  PetscFunctionReturn(0);
+}
+
 /* The label of a boundary part; an error naming the option if the mesh lacks it or a requested value. */
 PetscErrorCode SgBoundaryGetLabel(DM dm, const SgBoundary *bnd, DMLabel *label)
 {
@@ -488,6 +544,8 @@ typedef struct {
   PetscInt  fStart, fEnd, vStart, vEnd;
   PetscInt  n, *facets, *part; /* facet collection */
   PetscInt *vpart;             /* vertex marking */
+  PetscInt  dim, *vmask, *vcomp; /* Dirichlet components: fixed per vertex (bits), part per vertex component */
+  const PetscInt *comps;         /* components per part (NULL: all) */
 } PointCollect;
 
 static PetscErrorCode CollectFacet(void *ctx, PetscInt p, PetscInt part)
@@ -511,8 +569,18 @@ static PetscErrorCode MarkClosureVertices(void *ctx, PetscInt p, PetscInt part)
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetTransitiveClosure(pc->dm, p, PETSC_TRUE, &ncl, &cl));
-  for (PetscInt q = 0; q < 2 * ncl; q += 2)
-    if (cl[q] >= pc->vStart && cl[q] < pc->vEnd && pc->vpart[cl[q] - pc->vStart] < 0) pc->vpart[cl[q] - pc->vStart] = part;
+  for (PetscInt q = 0; q < 2 * ncl; q += 2) {
+    PetscInt i, mask;
+    if (cl[q] < pc->vStart || cl[q] >= pc->vEnd) continue;
+    i    = cl[q] - pc->vStart;
+    mask = pc->comps ? pc->comps[part] : (1 << pc->dim) - 1;
+    if (pc->vpart[i] < 0) pc->vpart[i] = part;
+    if (!pc->vmask) continue;
+    /* a component fixed by several parts takes the value of the first */
+    for (PetscInt d = 0; d < pc->dim; d++)
+      if ((mask >> d & 1) && pc->vcomp[i * pc->dim + d] < 0) pc->vcomp[i * pc->dim + d] = part;
+    pc->vmask[i] |= mask;
+  }
   PetscCall(DMPlexRestoreTransitiveClosure(pc->dm, p, PETSC_TRUE, &ncl, &cl));
   PetscFunctionReturn(0);
 }
@@ -520,7 +588,7 @@ static PetscErrorCode MarkClosureVertices(void *ctx, PetscInt p, PetscInt part)
 /* The local facets (codimension-1 points) of a boundary part and the index of the label value of each. */
 PetscErrorCode SgBoundaryGetFacets(DM dm, const SgBoundary *bnd, PetscInt *n, PetscInt **facets, PetscInt **part)
 {
-  PointCollect pc = {dm, 0, 0, 0, 0, 0, NULL, NULL, NULL};
+  PointCollect pc = {dm, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL, NULL, NULL};
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetHeightStratum(dm, 1, &pc.fStart, &pc.fEnd));
@@ -531,6 +599,56 @@ PetscErrorCode SgBoundaryGetFacets(DM dm, const SgBoundary *bnd, PetscInt *n, Pe
   *n        = pc.n;
   pc.n      = 0;
   PetscCall(BoundaryForEachPoint(dm, bnd, CollectFacet, &pc));
+  PetscFunctionReturn(0);
+}
+
+/* A vertex shared by ranks may lie on a Dirichlet facet that only some of them hold (their cells touch the boundary
+   at the vertex alone): every copy gets the union of the components fixed and, per component, the first part, so
+   that the ranks agree on the layout and on which unknowns are decoupled. */
+static PetscErrorCode SyncDirichletVertices(DM dm, SgMesh *m)
+{
+  const PetscInt dim = m->dim, ns = 1 + dim, big = PETSC_MAX_INT / 4;
+  PetscSF        sf;
+  PetscInt       pStart, pEnd, np, nchanged = 0, *a, *b;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)dm), &size));
+  if (size == 1) PetscFunctionReturn(0);
+  PetscCall(DMGetPointSF(dm, &sf));
+  PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+  np = pEnd - pStart;
+  /* per point, in ns arrays of np: the first part of any component (bcgroup) and of each component, "none" as big;
+     the minimum over the copies (the parts are numbered in the order they are marked) */
+  PetscCall(PetscMalloc2(ns * np, &a, ns * np, &b));
+  for (PetscInt i = 0; i < ns * np; i++) a[i] = big;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt p = m->vStart + v - pStart;
+    a[p] = m->bcgroup[v] >= 0 ? m->bcgroup[v] : big;
+    for (PetscInt d = 0; d < dim; d++) a[(1 + d) * np + p] = m->bcpart[v * dim + d] >= 0 ? m->bcpart[v * dim + d] : big;
+  }
+  PetscCall(PetscArraycpy(b, a, ns * np));
+  for (PetscInt k = 0; k < ns; k++) {
+    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, a + k * np, b + k * np, MPI_MIN));
+    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, a + k * np, b + k * np, MPI_MIN));
+    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, b + k * np, b + k * np, MPI_REPLACE));
+    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, b + k * np, b + k * np, MPI_REPLACE));
+  }
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt p    = m->vStart + v - pStart;
+    PetscInt       mask = 0;
+    for (PetscInt d = 0; d < dim; d++) {
+      const PetscInt g = b[(1 + d) * np + p];
+      m->bcpart[v * dim + d] = g < big ? g : -1;
+      if (g < big) mask |= 1 << d;
+    }
+    if (mask != m->bcmask[v]) nchanged++;
+    m->bcmask[v]  = mask;
+    m->bcgroup[v] = b[p] < big ? b[p] : -1;
+  }
+  PetscCall(PetscFree2(a, b));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nchanged, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)dm)));
+  PetscCall(PetscInfo(dm, "%" PetscInt_FMT " copies of shared Dirichlet vertices completed from other ranks\n", nchanged));
   PetscFunctionReturn(0);
 }
 
@@ -554,14 +672,22 @@ PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
   m->nv = vEnd - m->vStart;
   m->nc = cEnd - m->cStart;
   PetscCall(PetscMalloc6(m->nc * (dim + 1), &m->cellv, m->nv * dim, &m->x, m->nv, &m->gblock, m->nv, &m->loff, m->nv, &m->goff, m->nv, &m->bcgroup));
+  PetscCall(PetscCalloc2(m->nv, &m->bcmask, m->nv * dim, &m->bcpart));
   for (PetscInt v = 0; v < m->nv; v++) m->bcgroup[v] = -1;
+  for (PetscInt i = 0; i < m->nv * dim; i++) m->bcpart[i] = -1;
 
   /* Dirichlet vertices: closure of the labelled points */
+  PetscCall(PetscMemzero(&pc, sizeof(pc)));
   pc.dm     = dm;
   pc.vStart = m->vStart;
   pc.vEnd   = vEnd;
   pc.vpart  = m->bcgroup;
+  pc.dim    = dim;
+  pc.vmask  = m->bcmask;
+  pc.vcomp  = m->bcpart;
+  pc.comps  = dirichlet->ncomps ? dirichlet->comps : NULL;
   PetscCall(BoundaryForEachPoint(dm, dirichlet, MarkClosureVertices, &pc));
+  PetscCall(SyncDirichletVertices(dm, m));
 
   PetscCall(PetscSectionCreate(PetscObjectComm((PetscObject)dm), &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
@@ -571,14 +697,14 @@ PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
   for (PetscInt v = m->vStart; v < vEnd; v++) {
     PetscCall(PetscSectionSetDof(s, v, dim));
     PetscCall(PetscSectionSetFieldDof(s, v, 0, dim));
-    if (m->bcgroup[v - m->vStart] >= 0) {
+    if (m->bcmask[v - m->vStart] == (1 << dim) - 1) { /* partly fixed vertices keep their block (see bcmask) */
       PetscCall(PetscSectionSetConstraintDof(s, v, dim));
       PetscCall(PetscSectionSetFieldConstraintDof(s, v, 0, dim));
     }
   }
   PetscCall(PetscSectionSetUp(s));
   for (PetscInt v = m->vStart; v < vEnd; v++)
-    if (m->bcgroup[v - m->vStart] >= 0) {
+    if (m->bcmask[v - m->vStart] == (1 << dim) - 1) {
       PetscCall(PetscSectionSetConstraintIndices(s, v, cidx));
       PetscCall(PetscSectionSetFieldConstraintIndices(s, v, 0, cidx));
     }
@@ -602,7 +728,7 @@ PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
       PetscCall(PetscSectionGetDof(gs, v, &gdof));
       PetscCall(PetscSectionGetOffset(gs, v, &goff));
       if (gdof >= 0) m->nowned++; /* owned (possibly constrained: gdof 0) */
-      if (m->bcgroup[i] >= 0) {
+      if (m->bcmask[i] == (1 << dim) - 1) {
         m->gblock[i] = -1;
         m->goff[i]   = -1;
       } else {
@@ -665,7 +791,7 @@ static PetscErrorCode FarthestConstrained(MPI_Comm comm, const SgMesh *m, PointD
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscReal dv;
-    if (m->bcgroup[v] < 0) continue;
+    if (m->bcmask[v] != (1 << m->dim) - 1) continue;
     dv = dist(&m->x[v * m->dim], p0, e, m->dim);
     if (dv > loc.v) {
       loc.v = (double)dv;
@@ -700,7 +826,7 @@ PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscI
       box[d]     = PetscMin(box[d], m->x[v * dim + d]);
       box[3 + d] = PetscMin(box[3 + d], -m->x[v * dim + d]);
     }
-    if (v0 < 0 && m->bcgroup[v] >= 0) v0 = v;
+    if (v0 < 0 && m->bcmask[v] == (1 << dim) - 1) v0 = v;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, box, 6, MPIU_REAL, MPIU_MIN, comm));
   *diam = 0;
@@ -728,10 +854,68 @@ PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscI
   PetscFunctionReturn(0);
 }
 
+/* The rigid motions u(x) = t + w x (x - c) that every fixed component of the Dirichlet vertices leaves free (that
+   part of the data is u_d(x_v) = (t + w x (x_v - c))_d = 0), for parts that fix only some components: the null space
+   of the Gram matrix of those linear functionals, in the coordinates of the bounding box's centre c scaled by its
+   diameter. nfree modes of nr = 3 (2D: t_x, t_y, w) or 6 (3D: t, w) numbers each, translations in units of length,
+   rotations per unit length (so that both move the body by about as much). */
+PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm comm, const SgMesh *m, PetscInt *nfree, PetscReal modes[], PetscReal c[3])
+{
+  const PetscInt dim = m->dim, nr = dim == 2 ? 3 : 6;
+  PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, L = 0;
+  PetscScalar    G[36] = {0}, work[64];
+  PetscReal      ev[6];
+  PetscBLASInt   n, lwork = 64, info;
+
+  PetscFunctionBeginUser;
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) {
+      box[d]     = PetscMin(box[d], m->x[v * dim + d]);
+      box[3 + d] = PetscMin(box[3 + d], -m->x[v * dim + d]);
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, box, 6, MPIU_REAL, MPIU_MIN, comm));
+  for (PetscInt d = 0; d < 3; d++) c[d] = d < dim ? 0.5 * (box[d] - box[3 + d]) : 0;
+  for (PetscInt d = 0; d < dim; d++) L += PetscSqr(-box[3 + d] - box[d]);
+  L = PetscSqrtReal(L);
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscReal x[3] = {0, 0, 0};
+    if (!m->bcmask[v] || (m->goff[v] < 0 && m->gblock[v] >= 0)) continue; /* each owned vertex once (fixed ones: see below) */
+    for (PetscInt d = 0; d < dim; d++) x[d] = (m->x[v * dim + d] - c[d]) / L;
+    for (PetscInt d = 0; d < dim; d++) {
+      PetscReal r[6] = {0, 0, 0, 0, 0, 0};
+      if (!SgMeshFixed(m, v, d)) continue;
+      r[d] = 1;
+      if (dim == 2) r[2] = d == 0 ? -x[1] : x[0];
+      else { /* e_d . (w x x) = w . (x x e_d) */
+        const PetscInt d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+        r[3 + d1] = x[d2];
+        r[3 + d2] = -x[d1];
+      }
+      for (PetscInt a = 0; a < nr; a++)
+        for (PetscInt b = 0; b < nr; b++) G[a * nr + b] += r[a] * r[b];
+    }
+  }
+  /* a vertex shared by ranks counts on each of them for the fully fixed ones (they have no owner in goff): only the
+     rank of the null space matters, not the weights */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, G, 36, MPIU_SCALAR, MPIU_SUM, comm));
+  PetscCall(PetscBLASIntCast(nr, &n));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, G, &n, ev, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: %d", (int)info);
+  /* ascending eigenvalues: the ones below 1e-12 of the largest (round-off of the sums) span the free motions */
+  *nfree = 0;
+  for (PetscInt k = 0; k < nr; k++) {
+    if (ev[k] > 1e-12 * ev[nr - 1]) break;
+    for (PetscInt a = 0; a < nr; a++) modes[*nfree * nr + a] = PetscRealPart(G[k * nr + a]) * (a < dim ? 1 : 1 / L);
+    (*nfree)++;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgMeshDestroy(SgMesh *m)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFree6(m->cellv, m->x, m->gblock, m->loff, m->goff, m->bcgroup));
+  PetscCall(PetscFree2(m->bcmask, m->bcpart));
   PetscFunctionReturn(0);
 }
 

@@ -691,7 +691,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       nmiss++;
       continue;
     }
-    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = ua[idx * dim + d];
+    /* the file holds the full displacement: a fixed component of a roller is data, its unknown stays 0 */
+    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : ua[idx * dim + d];
   }
   PetscCall(VecRestoreArray(ck->y, &ya));
   for (PetscInt i = 0; i < cv.n; i++) {
