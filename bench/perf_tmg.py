@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Truncated multigrid (-ssn_pc_truncated_mg, src/solver/tmg.c) against a new BoomerAMG setup per active set, in the
+contact solve of -cont_type fast on Example 2. Runs are made in rounds (every configuration once per round) and the
+minimum time of each is kept (a shared machine). Besides the summary's times: the preconditioner set-ups from
+-log_view (BoomerAMG: the PCSetUp event; truncated multigrid: SgTMGBuild, the AMG set up once on K and its
+interpolations taken, and SgTMGUpdate, the truncation and the Galerkin products of each new Jacobian) and the CG
+iterations of each SSN step from the history. Measurements for the performance issue (bench/perf_notes.md); not part
+of `make bench`. OMP_NUM_THREADS=1 for every run (libHYPRE's OpenMP thread otherwise spins beside the solver).
+
+usage: perf_tmg.py MESH [--repeat N] [--only NAME,...] [--exe BINARY]
+"""
+import argparse
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+import sgrun  # noqa: E402
+
+ELASTIC = "-dm_plex_gmsh_use_regions -E 1e6 -nu 0.45 -dirichlet_label top -dirichlet_values 0,0,-0.2"
+CONTACT = "-options_file options/ex2_problem.opts"
+L1GS = "-options_file options/solver/hypre_l1gs.opts"
+FAST = "-options_file options/cont/fast.opts"
+CONFIGS = [
+    # (name, kind, options); kind "linear": the block without contact (the yardstick), "contact": Example 2
+    ("lin_hypre_l1gs", "linear", L1GS + " -ksp_rtol 1e-8"),
+    ("fast_l1gs", "contact", L1GS + " " + FAST),
+    ("fast_l1gs_tmg", "contact", L1GS + " " + FAST + " -ssn_pc_truncated_mg"),
+    ("fast_l1gs_tmg_notrunc", "contact", L1GS + " " + FAST + " -ssn_pc_truncated_mg -ssn_tmg_truncate 0"),
+    ("ipf_l1gs", "contact", L1GS + " -options_file options/cont/ipf.opts -ipf_tau 1e8"),
+    ("ipf_l1gs_tmg", "contact", L1GS + " -options_file options/cont/ipf.opts -ipf_tau 1e8 -ssn_pc_truncated_mg"),
+]
+EVENTS = ("PCSetUp", "PCApply", "KSPSolve", "SgTMGBuild", "SgTMGUpdate", "MatPtAPNumeric", "MatPtAPSymbolic")
+
+
+def log_events(path):
+    """{event: (count, time)} of the -log_view table in a run's log."""
+    ev = {}
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"^(\w+)\s+(\d+) [\d.]+ ([\d.e+-]+) ", line)
+            if m and m.group(1) in EVENTS:
+                ev[m.group(1)] = (int(m.group(2)), float(m.group(3)))
+    return ev
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("mesh")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--only", default="")
+    ap.add_argument("--out", default="/tmp/perf_tmg")
+    ap.add_argument("--exe", default=sgrun.SIGNORINI, help="the solver binary (a copy, to keep measuring while rebuilding)")
+    opt = ap.parse_args()
+    only = [o for o in opt.only.split(",") if o]
+    todo = [c for c in CONFIGS if not only or c[0] in only]
+    env = dict(sgrun.ENV, OMP_NUM_THREADS="1")
+    best, failed = {}, {}
+    for r in range(opt.repeat):
+        for name, kind, args in todo:
+            if name in failed:
+                continue
+            base = ELASTIC if kind == "linear" else CONTACT
+            tag = "%s_%d" % (name, r)
+            stem = os.path.join(opt.out, tag)
+            os.makedirs(opt.out, exist_ok=True)
+            cmd = sgrun.command(("%s -dm_plex_filename %s %s -log_view" % (base, opt.mesh, args)).split(), 1, exe=opt.exe, summary=stem + ".json", history=stem + ".csv")
+            p = sgrun.execute(cmd, env=env)
+            with open(stem + ".log", "w") as f:
+                f.write(" ".join(cmd) + "\n" + p.stdout)
+            s = sgrun.summary(stem + ".json")
+            if not s.get("converged"):
+                failed[name] = s.get("reason", "no summary (see %s.log)" % stem)
+                continue
+            t = s["linear_solve_time"] if kind == "linear" else s["solve_time"]
+            print("round %d %s: %.3g s" % (r, name, t), flush=True)
+            if name not in best or t < best[name][0]:
+                best[name] = (t, s, log_events(stem + ".log"), sgrun.history(stem + ".csv"))
+    lin = [(v[0], n) for n, v in best.items() if n.startswith("lin_")]
+    yard = min(lin) if lin else (None, None)
+    print("yardstick: %s, %.3g s" % (yard[1], yard[0] or float("nan")))
+    print("| configuration | unknowns | time [s] | / yardstick | outer | SSN | CG its | PC set-ups | set-up time [s] (per set-up) | AMG once [s] | KKT | CG its per SSN step |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, kind, _ in todo:
+        if name in failed:
+            print("| %s | | failed: %s | | | | | | | | | |" % (name, failed[name][:90]))
+            continue
+        t, s, ev, hist = best[name]
+        ratio = t / yard[0] if yard[0] else float("nan")
+        if "SgTMGUpdate" in ev:
+            n, tu = ev["SgTMGUpdate"]
+            once = "%.3g" % ev["SgTMGBuild"][1]
+        else:
+            n, tu = ev.get("PCSetUp", (0, float("nan")))
+            once = ""
+        if kind == "linear":
+            print("| %s | %d | %.3g | %.2f | | | %d | %d | %.3g | | | |" % (name, s["dofs"], t, ratio, s["ksp_iterations"], n, tu))
+            continue
+        steps = [int(h["ksp_its"]) for h in hist if h["kind"] == "ssn"]
+        print("| %s | %d | %.3g | %.2f | %d | %d | %d | %d | %.3g (%.3g) | %s | %.1e | %s |" % (name, s["dofs"], t, ratio, s["outer_iterations"], s["ssn_iterations"], s["ksp_iterations"], n, tu, tu / max(n, 1), once, s["kkt_residual"], " ".join(map(str, steps))))
+    print("minimum of %d runs per configuration, made in rounds, one rank; options: CONFIGS in bench/perf_tmg.py" % opt.repeat)
+
+
+if __name__ == "__main__":
+    main()
