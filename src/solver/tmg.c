@@ -12,28 +12,35 @@
 struct _n_SgTMG {
   SgSSN          ssn;
   PC             amg;     /* the configured AMG, set up once; destroyed after its interpolations are taken */
-  PC             mg;      /* PCMG on the interpolations, Galerkin coarse operators */
-  Mat            P0, Pt;  /* the finest interpolation and its truncated copy (held by mg) */
+  PC             mg;      /* PCMG on the interpolations, coarse operators set here */
   PetscInt       nlevels;
+  Mat           *P;       /* P[l]: interpolation from level l-1 to l (PCMG numbering, 0 coarsest); P[n-1] the finest */
+  Mat            Pt;      /* the finest one truncated (held by mg) */
+  Mat           *AK;      /* AK[l]: Galerkin operators of K with the whole interpolations, l < n-1 */
+  Mat           *A;       /* A[l]: the coarse operators of the current Jacobian, l < n-1 */
+  Mat            KP;      /* K P[n-1] */
+  IS             cols;    /* the owned columns of P[n-1] */
   PetscInt      *axis;    /* normal axis of each contact vertex */
   PetscReal     *sign;
   char          *want;    /* the active set of the last Jacobian (SgTMGSetActiveSet) */
-  char          *have;    /* the set Pt is truncated for */
-  PetscBool      truncate, has_set;
+  char          *have;    /* the set the coarse operators were made for */
+  PetscReal      gamma;   /* gamma of that Jacobian (only without truncation) */
+  PetscBool      truncate, has_set, fresh;
 };
 
 static PetscBool     tmg_registered = PETSC_FALSE;
 static PetscLogEvent SG_TMGBuild, SG_TMGUpdate;
 
-/* The first set-up: the AMG on the operator, its interpolations into a PCMG with Galerkin coarse operators and the
-   smoothers: one Gauss-Seidel sweep forward before and one backward after the coarse correction (as hypre's
-   l1-Gauss-Seidel pair; -<prefix>tmg_mg_levels_* override). */
+/* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
+   level (kept), and the smoothers: one Gauss-Seidel sweep forward before and one backward after the coarse correction
+   (as hypre's l1-Gauss-Seidel pair; -<prefix>tmg_mg_levels_* override). */
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
-  PetscInt    n;
+  PetscInt    n, lo, hi;
   Mat        *P;
   const char *prefix;
   char        mgprefix[256];
+  KSP         ksp;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
@@ -42,32 +49,41 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(PCGetInterpolations(t->amg, &n, &P));
   PetscCall(PCDestroy(&t->amg));
   t->nlevels = n;
+  PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
+  for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
+  PetscCall(PetscFree(P));
+  /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
+  PetscCall(MatMatMult(t->ssn->K, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
+  PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  for (PetscInt l = n - 2; l > 0; l--) PetscCall(MatPtAP(t->AK[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[l - 1]));
+  for (PetscInt l = 0; l < n - 1; l++) PetscCall(MatDuplicate(t->AK[l], MAT_COPY_VALUES, &t->A[l]));
+  PetscCall(MatGetOwnershipRangeColumn(t->P[n - 1], &lo, &hi));
+  PetscCall(ISCreateStride(t->ssn->comm, hi - lo, lo, 1, &t->cols));
+  PetscCall(MatDuplicate(t->P[n - 1], MAT_COPY_VALUES, &t->Pt));
+  PetscCall(MatSetOption(t->Pt, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+
   PetscCall(PCCreate(t->ssn->comm, &t->mg));
-  {
-    KSP ksp;
-    PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
-    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-  }
+  PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
   PetscCall(PetscSNPrintf(mgprefix, sizeof(mgprefix), "%stmg_", prefix ? prefix : ""));
   PetscCall(PCSetOptionsPrefix(t->mg, mgprefix));
   PetscCall(PCSetType(t->mg, PCMG));
   PetscCall(PCMGSetLevels(t->mg, n, NULL));
   PetscCall(PCMGSetType(t->mg, PC_MG_MULTIPLICATIVE));
-  PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_BOTH));
-  t->P0 = P[n - 2];
-  PetscCall(MatDuplicate(t->P0, MAT_COPY_VALUES, &t->Pt));
-  PetscCall(MatSetOption(t->Pt, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  for (PetscInt l = n - 1; l > 0; l--) {
-    PetscCall(PCMGSetInterpolation(t->mg, l, l == n - 1 ? t->Pt : P[l - 1]));
-    if (l < n - 1) PetscCall(MatDestroy(&P[l - 1]));
-  }
-  PetscCall(PetscFree(P));
-  for (PetscInt l = 1; l < n; l++) {
+  PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_NONE));
+  for (PetscInt l = n - 1; l > 0; l--) PetscCall(PCMGSetInterpolation(t->mg, l, l == n - 1 ? t->Pt : t->P[l]));
+  for (PetscInt l = 0; l < n; l++) {
     KSP sm[2];
     PC  spc;
     PetscCall(PCMGGetSmootherDown(t->mg, l, &sm[0]));
+    if (l == 0) {
+      PetscCall(KSPSetOperators(sm[0], t->A[0], t->A[0]));
+      continue;
+    }
     PetscCall(PCMGGetSmootherUp(t->mg, l, &sm[1]));
     for (PetscInt k = 0; k < 2; k++) {
+      if (l < n - 1) PetscCall(KSPSetOperators(sm[k], t->A[l], t->A[l]));
+      else PetscCall(KSPSetOperators(sm[k], A, B));
       PetscCall(KSPSetType(sm[k], KSPRICHARDSON));
       PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
@@ -81,27 +97,82 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscFunctionReturn(0);
 }
 
-/* Pt = P0 with the rows of the active normal dofs zeroed (the pattern kept, so the Galerkin products reuse their
-   symbolic phase). */
-static PetscErrorCode Truncate(SgTMG t)
+/* The coarse operators for the active set `want`. With E the rows of the finest interpolation P at the active normal
+   dofs (A), the truncated P_t = P - E gives P_t^T J P_t = P_t^T K P_t = P^T K P - E^T (K P) - (K P)^T E + E^T K_AA E:
+   a correction of the kept Galerkin operator that only involves the rows in A; without truncation the correction is
+   E^T (gamma W)_A E = (W^1/2 E)^T (W^1/2 E). It is carried to the coarser levels by their (whole) interpolations. */
+static PetscErrorCode Update(SgTMG t)
 {
   const SgContactView *c = &t->ssn->cv;
-  PetscInt             rstart, nz = 0, *rows;
+  const PetscInt       n = t->nlevels;
+  PetscInt             rstart, na = 0, nag, *rows;
   PetscBool            same = PETSC_TRUE;
+  Mat                  D = NULL;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
+  same = (PetscBool)(same && (t->truncate || t->gamma == t->ssn->gamma) && !t->fresh);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, t->ssn->comm));
   if (same) PetscFunctionReturn(0);
+  t->fresh = PETSC_FALSE;
+  t->gamma = t->ssn->gamma;
   PetscCall(MatGetOwnershipRange(t->Pt, &rstart, NULL));
   PetscCall(PetscMalloc1(c->n, &rows));
   for (PetscInt i = 0; i < c->n; i++) {
     t->have[i] = t->want[i];
-    if (t->want[i]) rows[nz++] = rstart + c->off[i] + t->axis[i];
+    if (t->want[i]) rows[na++] = rstart + c->off[i] + t->axis[i];
   }
-  PetscCall(MatCopy(t->P0, t->Pt, SAME_NONZERO_PATTERN));
-  PetscCall(MatZeroRows(t->Pt, nz, rows, 0.0, NULL, NULL));
+  PetscCall(MPIU_Allreduce(&na, &nag, 1, MPIU_INT, MPI_SUM, t->ssn->comm));
+  if (t->truncate) {
+    PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
+    PetscCall(MatZeroRows(t->Pt, na, rows, 0.0, NULL, NULL));
+  }
+  if (nag > 0) {
+    IS  isA;
+    Mat E;
+    PetscCall(ISCreateGeneral(t->ssn->comm, na, rows, PETSC_USE_POINTER, &isA));
+    PetscCall(MatCreateSubMatrix(t->P[n - 1], isA, t->cols, MAT_INITIAL_MATRIX, &E));
+    if (t->truncate) {
+      Mat KAA, M, C, Ct;
+      PetscCall(MatCreateSubMatrix(t->KP, isA, t->cols, MAT_INITIAL_MATRIX, &M));
+      PetscCall(MatCreateSubMatrix(t->ssn->K, isA, isA, MAT_INITIAL_MATRIX, &KAA));
+      PetscCall(MatPtAP(KAA, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+      PetscCall(MatTransposeMatMult(E, M, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+      PetscCall(MatTranspose(C, MAT_INITIAL_MATRIX, &Ct));
+      PetscCall(MatAXPY(D, -1.0, C, DIFFERENT_NONZERO_PATTERN));
+      PetscCall(MatAXPY(D, -1.0, Ct, DIFFERENT_NONZERO_PATTERN));
+      PetscCall(MatDestroy(&KAA));
+      PetscCall(MatDestroy(&M));
+      PetscCall(MatDestroy(&C));
+      PetscCall(MatDestroy(&Ct));
+    } else {
+      Vec      d;
+      PetscInt lo;
+      PetscCall(MatCreateVecs(E, NULL, &d));
+      PetscCall(VecGetOwnershipRange(d, &lo, NULL));
+      for (PetscInt i = 0, k = 0; i < c->n; i++)
+        if (t->want[i]) PetscCall(VecSetValue(d, lo + k++, PetscSqrtReal(t->gamma * c->w[i]), INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(d));
+      PetscCall(VecAssemblyEnd(d));
+      PetscCall(MatDiagonalScale(E, d, NULL));
+      PetscCall(MatTransposeMatMult(E, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+      PetscCall(VecDestroy(&d));
+    }
+    PetscCall(MatDestroy(&E));
+    PetscCall(ISDestroy(&isA));
+  }
   PetscCall(PetscFree(rows));
+  /* A[l] = AK[l] + D_l, D_{l-1} = P[l]^T D_l P[l]; the corrections' patterns lie in those of the kept operators */
+  for (PetscInt l = n - 2; l >= 0; l--) {
+    PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
+    if (D) {
+      Mat Dc = NULL;
+      PetscCall(MatAXPY(t->A[l], 1.0, D, SUBSET_NONZERO_PATTERN));
+      if (l > 0) PetscCall(MatPtAP(D, t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Dc));
+      PetscCall(MatDestroy(&D));
+      D = Dc;
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -115,7 +186,7 @@ static PetscErrorCode SetUp_TMG(PC pc)
   PetscCall(PCGetOperators(pc, &A, &B));
   if (!t->mg) PetscCall(Build(t, A, B));
   PetscCall(PetscLogEventBegin(SG_TMGUpdate, 0, 0, 0, 0));
-  if (t->truncate && t->has_set) PetscCall(Truncate(t));
+  if (t->has_set) PetscCall(Update(t));
   PetscCall(PCSetOperators(t->mg, A, B));
   PetscCall(PCSetUp(t->mg));
   PetscCall(PetscLogEventEnd(SG_TMGUpdate, 0, 0, 0, 0));
@@ -168,6 +239,7 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool truncate, SgTMG *tmg)
   PetscCall(PetscNew(&t));
   t->ssn      = s;
   t->truncate = truncate;
+  t->fresh    = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
   for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
   if (truncate) PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
@@ -204,7 +276,14 @@ PetscErrorCode SgTMGDestroy(SgTMG *tmg)
   if (!t) PetscFunctionReturn(0);
   PetscCall(PCDestroy(&t->amg));
   PetscCall(PCDestroy(&t->mg));
-  PetscCall(MatDestroy(&t->P0));
+  for (PetscInt l = 0; l < t->nlevels; l++) {
+    PetscCall(MatDestroy(&t->P[l]));
+    PetscCall(MatDestroy(&t->AK[l]));
+    PetscCall(MatDestroy(&t->A[l]));
+  }
+  PetscCall(PetscFree3(t->P, t->AK, t->A));
+  PetscCall(MatDestroy(&t->KP));
+  PetscCall(ISDestroy(&t->cols));
   PetscCall(MatDestroy(&t->Pt));
   PetscCall(PetscFree4(t->axis, t->sign, t->want, t->have));
   PetscCall(PetscFree(*tmg));
