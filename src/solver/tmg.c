@@ -26,14 +26,16 @@ struct _n_SgTMG {
   char          *have;    /* the set the coarse operators were made for */
   PetscReal      gamma;   /* gamma of that Jacobian (only without truncation) */
   PetscBool      truncate, has_set, fresh;
+  PetscBool      gamg;    /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
 };
 
 static PetscBool     tmg_registered = PETSC_FALSE;
 static PetscLogEvent SG_TMGBuild, SG_TMGUpdate;
 
 /* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
-   level (kept), and the smoothers: one Gauss-Seidel sweep forward before and one backward after the coarse correction
-   (as hypre's l1-Gauss-Seidel pair; -<prefix>tmg_mg_levels_* override). */
+   level (kept), and the smoothers: after BoomerAMG one Gauss-Seidel sweep forward before and one backward after the
+   coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel diverges on
+   smoothed-aggregation interpolations); -<prefix>tmg_mg_levels_* override. */
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
@@ -84,6 +86,15 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     for (PetscInt k = 0; k < 2; k++) {
       if (l < n - 1) PetscCall(KSPSetOperators(sm[k], t->A[l], t->A[l]));
       else PetscCall(KSPSetOperators(sm[k], A, B));
+      if (t->gamg) {
+        PetscCall(KSPSetType(sm[k], KSPCHEBYSHEV));
+        PetscCall(KSPChebyshevEstEigSet(sm[k], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE));
+        PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2));
+        PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
+        PetscCall(KSPGetPC(sm[k], &spc));
+        PetscCall(PCSetType(spc, PCJACOBI));
+        continue;
+      }
       PetscCall(KSPSetType(sm[k], KSPRICHARDSON));
       PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
@@ -147,6 +158,7 @@ static PetscErrorCode Update(SgTMG t)
       PetscCall(MatDestroy(&Ct));
     } else {
       Vec      d;
+      Mat      Et;
       PetscInt lo;
       PetscCall(MatCreateVecs(E, NULL, &d));
       PetscCall(VecGetOwnershipRange(d, &lo, NULL));
@@ -155,7 +167,11 @@ static PetscErrorCode Update(SgTMG t)
       PetscCall(VecAssemblyBegin(d));
       PetscCall(VecAssemblyEnd(d));
       PetscCall(MatDiagonalScale(E, d, NULL));
-      PetscCall(MatTransposeMatMult(E, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+      /* not MatTransposeMatMult(E, E): with the same matrix twice, PETSc 3.18 did not return from it for minutes (twice
+         in bench runs on 1.7e4 unknowns, where the step itself takes milliseconds) */
+      PetscCall(MatTranspose(E, MAT_INITIAL_MATRIX, &Et));
+      PetscCall(MatMatMult(Et, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+      PetscCall(MatDestroy(&Et));
       PetscCall(VecDestroy(&d));
     }
     PetscCall(MatDestroy(&E));
@@ -239,6 +255,7 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool truncate, SgTMG *tmg)
   PetscCall(PetscNew(&t));
   t->ssn      = s;
   t->truncate = truncate;
+  t->gamg     = gamg;
   t->fresh    = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
   for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
