@@ -244,7 +244,7 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
 PetscErrorCode SgCondenseDestroy(SgCondense *);
-PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG */
+PetscErrorCode SgTMGCreate(SgSSN, KSP, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG */
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 

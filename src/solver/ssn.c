@@ -386,7 +386,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
 {
   SgSSN          s;
   SNESLineSearch ls;
-  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE, tmg_truncate = PETSC_TRUE;
+  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -422,7 +422,6 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", &tmg, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_tmg_truncate", "With -ssn_pc_truncated_mg: truncate the finest interpolation (0: keep it whole, for comparison)", &tmg_truncate, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
@@ -435,7 +434,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   }
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
-  if (tmg) PetscCall(SgTMGCreate(s, ksp, tmg_truncate, &s->tmg));
+  if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
   {
     char      name[256];
     PetscBool flg;

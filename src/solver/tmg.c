@@ -4,8 +4,9 @@
    up once, on the first operator (K, in the unconstrained start solve); its interpolations P_l are kept. For each
    Jacobian, the finest level is J itself (its smoother sees gamma), the finest interpolation is truncated at the
    active normal dofs (their rows of P set to zero: coarse corrections leave the normal displacement of an active
-   vertex to the smoother, where gamma fixes it), and the coarse operators are recomputed by Galerkin products
-   P^T A P (PCMG). With the truncation the gamma block drops out of the coarse operators: P_t^T J P_t = P_t^T K P_t.
+   vertex to the smoother, where gamma fixes it), and the coarse operators are the Galerkin products P_t^T J P_t, made
+   as a correction of K's Galerkin hierarchy (Update). With the truncation the gamma block drops out of the coarse
+   operators: P_t^T J P_t = P_t^T K P_t.
    Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block). */
 #include "solver/ssnimpl.h"
 
@@ -24,8 +25,7 @@ struct _n_SgTMG {
   PetscReal     *sign;
   char          *want;    /* the active set of the last Jacobian (SgTMGSetActiveSet) */
   char          *have;    /* the set the coarse operators were made for */
-  PetscReal      gamma;   /* gamma of that Jacobian (only without truncation) */
-  PetscBool      truncate, has_set, fresh;
+  PetscBool      has_set, fresh;
   PetscBool      gamg;    /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
 };
 
@@ -108,10 +108,45 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscFunctionReturn(0);
 }
 
+/* A coarse dof whose interpolation column lay only on active normal dofs has lost it to the truncation: its row and
+   column of the coarse operator are zero up to round-off (seen on 2 ranks, where BoomerAMG coarsens otherwise). Its
+   restricted residual is zero too, so any positive diagonal leaves it out of the correction: K's is taken, and the
+   smoothers and the coarse LU see no zero pivot. */
+static PetscErrorCode DeadDofs(Mat A, Mat AK)
+{
+  Vec          d, dk;
+  PetscScalar *da;
+  const PetscScalar *dka;
+  PetscInt     n, dead = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(A, &d, &dk));
+  PetscCall(MatGetDiagonal(A, d));
+  PetscCall(MatGetDiagonal(AK, dk));
+  PetscCall(VecGetLocalSize(d, &n));
+  PetscCall(VecGetArray(d, &da));
+  PetscCall(VecGetArrayRead(dk, &dka));
+  for (PetscInt i = 0; i < n; i++)
+    if (PetscAbsScalar(da[i]) <= 1e-8 * PetscAbsScalar(dka[i])) {
+      da[i] = dka[i];
+      dead++;
+    }
+  PetscCall(VecRestoreArrayRead(dk, &dka));
+  PetscCall(VecRestoreArray(d, &da));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dead, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)A)));
+  if (dead) {
+    PetscCall(PetscInfo(A, "truncated multigrid: %" PetscInt_FMT " coarse dofs cut off by the truncation\n", dead));
+    PetscCall(MatDiagonalSet(A, d, INSERT_VALUES));
+  }
+  PetscCall(VecDestroy(&d));
+  PetscCall(VecDestroy(&dk));
+  PetscFunctionReturn(0);
+}
+
 /* The coarse operators for the active set `want`. With E the rows of the finest interpolation P at the active normal
    dofs (A), the truncated P_t = P - E gives P_t^T J P_t = P_t^T K P_t = P^T K P - E^T (K P) - (K P)^T E + E^T K_AA E:
-   a correction of the kept Galerkin operator that only involves the rows in A; without truncation the correction is
-   E^T (gamma W)_A E = (W^1/2 E)^T (W^1/2 E). It is carried to the coarser levels by their (whole) interpolations. */
+   a correction of the kept Galerkin operator that only involves the rows in A. It is carried to the coarser levels by
+   their (whole) interpolations. */
 static PetscErrorCode Update(SgTMG t)
 {
   const SgContactView *c = &t->ssn->cv;
@@ -122,11 +157,10 @@ static PetscErrorCode Update(SgTMG t)
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
-  same = (PetscBool)(same && (t->truncate || t->gamma == t->ssn->gamma) && !t->fresh);
+  same = (PetscBool)(same && !t->fresh);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, t->ssn->comm));
   if (same) PetscFunctionReturn(0);
   t->fresh = PETSC_FALSE;
-  t->gamma = t->ssn->gamma;
   PetscCall(MatGetOwnershipRange(t->Pt, &rstart, NULL));
   PetscCall(PetscMalloc1(c->n, &rows));
   for (PetscInt i = 0; i < c->n; i++) {
@@ -134,46 +168,24 @@ static PetscErrorCode Update(SgTMG t)
     if (t->want[i]) rows[na++] = rstart + c->off[i] + t->axis[i];
   }
   PetscCall(MPIU_Allreduce(&na, &nag, 1, MPIU_INT, MPI_SUM, t->ssn->comm));
-  if (t->truncate) {
-    PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
-    PetscCall(MatZeroRows(t->Pt, na, rows, 0.0, NULL, NULL));
-  }
+  PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
+  PetscCall(MatZeroRows(t->Pt, na, rows, 0.0, NULL, NULL));
   if (nag > 0) {
     IS  isA;
-    Mat E;
+    Mat E, KAA, M, C, Ct;
     PetscCall(ISCreateGeneral(t->ssn->comm, na, rows, PETSC_USE_POINTER, &isA));
     PetscCall(MatCreateSubMatrix(t->P[n - 1], isA, t->cols, MAT_INITIAL_MATRIX, &E));
-    if (t->truncate) {
-      Mat KAA, M, C, Ct;
-      PetscCall(MatCreateSubMatrix(t->KP, isA, t->cols, MAT_INITIAL_MATRIX, &M));
-      PetscCall(MatCreateSubMatrix(t->ssn->K, isA, isA, MAT_INITIAL_MATRIX, &KAA));
-      PetscCall(MatPtAP(KAA, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
-      PetscCall(MatTransposeMatMult(E, M, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
-      PetscCall(MatTranspose(C, MAT_INITIAL_MATRIX, &Ct));
-      PetscCall(MatAXPY(D, -1.0, C, DIFFERENT_NONZERO_PATTERN));
-      PetscCall(MatAXPY(D, -1.0, Ct, DIFFERENT_NONZERO_PATTERN));
-      PetscCall(MatDestroy(&KAA));
-      PetscCall(MatDestroy(&M));
-      PetscCall(MatDestroy(&C));
-      PetscCall(MatDestroy(&Ct));
-    } else {
-      Vec      d;
-      Mat      Et;
-      PetscInt lo;
-      PetscCall(MatCreateVecs(E, NULL, &d));
-      PetscCall(VecGetOwnershipRange(d, &lo, NULL));
-      for (PetscInt i = 0, k = 0; i < c->n; i++)
-        if (t->want[i]) PetscCall(VecSetValue(d, lo + k++, PetscSqrtReal(t->gamma * c->w[i]), INSERT_VALUES));
-      PetscCall(VecAssemblyBegin(d));
-      PetscCall(VecAssemblyEnd(d));
-      PetscCall(MatDiagonalScale(E, d, NULL));
-      /* not MatTransposeMatMult(E, E): with the same matrix twice, PETSc 3.18 did not return from it for minutes (twice
-         in bench runs on 1.7e4 unknowns, where the step itself takes milliseconds) */
-      PetscCall(MatTranspose(E, MAT_INITIAL_MATRIX, &Et));
-      PetscCall(MatMatMult(Et, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
-      PetscCall(MatDestroy(&Et));
-      PetscCall(VecDestroy(&d));
-    }
+    PetscCall(MatCreateSubMatrix(t->KP, isA, t->cols, MAT_INITIAL_MATRIX, &M));
+    PetscCall(MatCreateSubMatrix(t->ssn->K, isA, isA, MAT_INITIAL_MATRIX, &KAA));
+    PetscCall(MatPtAP(KAA, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+    PetscCall(MatTransposeMatMult(E, M, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+    PetscCall(MatTranspose(C, MAT_INITIAL_MATRIX, &Ct));
+    PetscCall(MatAXPY(D, -1.0, C, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatAXPY(D, -1.0, Ct, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatDestroy(&KAA));
+    PetscCall(MatDestroy(&M));
+    PetscCall(MatDestroy(&C));
+    PetscCall(MatDestroy(&Ct));
     PetscCall(MatDestroy(&E));
     PetscCall(ISDestroy(&isA));
   }
@@ -187,6 +199,7 @@ static PetscErrorCode Update(SgTMG t)
       if (l > 0) PetscCall(MatPtAP(D, t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Dc));
       PetscCall(MatDestroy(&D));
       D = Dc;
+      PetscCall(DeadDofs(t->A[l], t->AK[l]));
     }
   }
   PetscFunctionReturn(0);
@@ -225,7 +238,7 @@ static PetscErrorCode View_TMG(PC pc, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &t));
-  PetscCall(PetscViewerASCIIPrintf(v, "truncated multigrid (-ssn_pc_truncated_mg): %" PetscInt_FMT " levels, interpolations of the AMG set up once%s\n", t->nlevels, t->truncate ? ", finest truncated at the active normal dofs" : ""));
+  PetscCall(PetscViewerASCIIPrintf(v, "truncated multigrid (-ssn_pc_truncated_mg): %" PetscInt_FMT " levels, interpolations of the AMG set up once, finest truncated at the active normal dofs\n", t->nlevels));
   if (t->mg) {
     PetscCall(PetscViewerASCIIPushTab(v));
     PetscCall(PCView(t->mg, v));
@@ -235,8 +248,8 @@ static PetscErrorCode View_TMG(PC pc, PetscViewer v)
 }
 
 /* The KSP's configured preconditioner becomes the AMG whose interpolations the truncated multigrid keeps; the KSP
-   gets the truncated multigrid (a PCSHELL) instead. truncate = PETSC_FALSE keeps P untruncated (for comparison). */
-PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool truncate, SgTMG *tmg)
+   gets the truncated multigrid (a PCSHELL) instead. */
+PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
 {
   SgTMG     t;
   PC        pc;
@@ -254,12 +267,11 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool truncate, SgTMG *tmg)
   PetscCheck(hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
   PetscCall(PetscNew(&t));
   t->ssn      = s;
-  t->truncate = truncate;
   t->gamg     = gamg;
   t->fresh    = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
   for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
-  if (truncate) PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
+  PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
   PetscCall(PetscObjectReference((PetscObject)pc));
   t->amg = pc;
   PetscCall(PCCreate(s->comm, &pc));
