@@ -34,8 +34,8 @@ static PetscLogEvent SG_TMGBuild, SG_TMGUpdate;
 
 /* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
    level (kept), and the smoothers: after BoomerAMG one Gauss-Seidel sweep forward before and one backward after the
-   coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel diverges on
-   smoothed-aggregation interpolations); -<prefix>tmg_mg_levels_* override. */
+   coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel gave NaN
+   there, as it diverges in GAMG itself, part A of bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
