@@ -5,10 +5,11 @@ minimum time of each is kept (a shared machine). Besides the summary's times: th
 -log_view (BoomerAMG: the PCSetUp event; truncated multigrid: SgTMGBuild, the AMG set up once on K and its
 interpolations taken, and SgTMGUpdate, the truncation and the coarse operators of each new Jacobian), the CG
 iterations of each SSN step from the history, and the CPU time (user + system) of each whole run (mesh and assembly
-included, the same in every configuration; less disturbed by the load than the wall times). Measurements for the performance issue (bench/perf_notes.md); not part
-of `make bench`. OMP_NUM_THREADS=1 for every run (libHYPRE's OpenMP thread otherwise spins beside the solver).
+included: the configuration `overhead` measures them without a solve; less disturbed by the load than the wall
+times). Measurements for the performance issue (bench/perf_notes.md, part D); not part of `make bench`.
+OMP_NUM_THREADS=1 for every run (libHYPRE's OpenMP thread otherwise spins beside the solver).
 
-usage: perf_tmg.py MESH [--repeat N] [--only NAME,...] [--exe BINARY]
+usage: perf_tmg.py MESH [--repeat N] [--only NAME,...] [--exe BINARY] [--timeout SECONDS]
 """
 import argparse
 import os
