@@ -252,6 +252,7 @@ typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZE
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;
 typedef struct _n_SgCondense *SgCondense;
+typedef struct _n_SgTMG      *SgTMG;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
@@ -285,6 +286,9 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
 PetscErrorCode SgCondenseDestroy(SgCondense *);
+PetscErrorCode SgTMGCreate(SgSSN, KSP, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG */
+PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
+PetscErrorCode SgTMGDestroy(SgTMG *);
 
 /* ------------------------------------------------------------------ cont: cont.c (the object and the outer loop),
    report.c (views, summary, fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */

@@ -96,6 +96,7 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     s->hash = h;
   }
   PetscCall(SgContactActiveSetHash(s->c, s->actjac, &s->hash[s->nhash++]));
+  PetscCall(SgTMGSetActiveSet(s->tmg, s->actjac));
   /* within one (P_gamma) the Jacobians differ in the few vertices whose state changed: optionally keep the previous
      preconditioner (a factorization, or an AMG hierarchy) while the Krylov solver converges fast with it */
   if (s->pc_reuse_its > 0) {
@@ -387,7 +388,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
 {
   SgSSN          s;
   SNESLineSearch ls;
-  PetscBool      condense = PETSC_FALSE;
+  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -422,6 +423,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", &tmg, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
@@ -433,6 +435,8 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(SgSolverConfigured(s->comm, ierr));
   }
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
+  PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
+  if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
   {
     char      name[256];
     PetscBool flg;
@@ -464,6 +468,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(SNESDestroy(&s->snes));
   PetscCall(PetscViewerDestroy(&s->reason_viewer));
   PetscCall(SgCondenseDestroy(&s->cond));
+  PetscCall(SgTMGDestroy(&s->tmg));
   PetscCall(MatDestroy(&s->J));
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));

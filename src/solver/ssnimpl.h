@@ -32,6 +32,7 @@ struct _n_SgSSN {
   PetscBool   residual_test;  /* inexact linear solves: also require a small residual */
   PetscInt    pc_reuse_its;   /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
   SgCondense  cond;           /* -ssn_condense: linear solves condensed onto the contact dofs */
+  SgTMG       tmg;            /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
   PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason reason;
   PetscBool   monitor;

@@ -1,0 +1,320 @@
+/* tmg.c: truncated multigrid (-ssn_pc_truncated_mg), a preconditioner for the SSN's Jacobians
+   J = K + gamma sum_{A} w_i n_i n_i^T that follows the active set A without a new AMG setup (truncated nonsmooth
+   Newton multigrid, Graeser and Kornhuber). The configured AMG (the KSP's own -pc_type: BoomerAMG or GAMG) is set
+   up once, on the first operator (K, in the unconstrained start solve); its interpolations P_l are kept. For each
+   Jacobian, the finest level is J itself (its smoother sees gamma), the finest interpolation is truncated at the
+   active normal dofs (their rows of P set to zero: coarse corrections leave the normal displacement of an active
+   vertex to the smoother, where gamma fixes it), and the coarse operators are the Galerkin products P_t^T J P_t, made
+   as a correction of K's Galerkin hierarchy (Update). With the truncation the gamma block drops out of the coarse
+   operators: P_t^T J P_t = P_t^T K P_t.
+   Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block). */
+#include "solver/ssnimpl.h"
+
+struct _n_SgTMG {
+  SgSSN          ssn;
+  PC             amg;     /* the configured AMG, set up once; destroyed after its interpolations are taken */
+  PC             mg;      /* PCMG on the interpolations, coarse operators set here */
+  PetscInt       nlevels;
+  Mat           *P;       /* P[l]: interpolation from level l-1 to l (PCMG numbering, 0 coarsest); P[n-1] the finest */
+  Mat            Pt;      /* the finest one truncated (held by mg) */
+  Mat           *AK;      /* AK[l]: Galerkin operators of K with the whole interpolations, l < n-1 */
+  Mat           *A;       /* A[l]: the coarse operators of the current Jacobian, l < n-1 */
+  Mat            KP;      /* K P[n-1] */
+  IS             cols;    /* the owned columns of P[n-1] */
+  PetscInt      *axis;    /* normal axis of each contact vertex */
+  PetscReal     *sign;
+  char          *want;    /* the active set of the last Jacobian (SgTMGSetActiveSet) */
+  char          *have;    /* the set the coarse operators were made for */
+  PetscBool      has_set, fresh;
+  PetscBool      gamg;    /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
+};
+
+static PetscBool     tmg_registered = PETSC_FALSE;
+static PetscLogEvent SG_TMGBuild, SG_TMGUpdate;
+
+/* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
+   level (kept), and the smoothers: after BoomerAMG one Gauss-Seidel sweep forward before and one backward after the
+   coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel gave NaN
+   there, as it diverges in GAMG itself, part A of bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
+static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
+{
+  PetscInt    n, lo, hi;
+  Mat        *P;
+  const char *prefix;
+  char        mgprefix[256];
+  KSP         ksp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
+  PetscCall(PCSetOperators(t->amg, A, B));
+  PetscCall(PCSetUp(t->amg));
+  PetscCall(PCGetInterpolations(t->amg, &n, &P));
+  PetscCall(PCDestroy(&t->amg));
+  t->nlevels = n;
+  PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
+  for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
+  PetscCall(PetscFree(P));
+  /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
+  PetscCall(MatMatMult(t->ssn->K, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
+  PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  for (PetscInt l = n - 2; l > 0; l--) PetscCall(MatPtAP(t->AK[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[l - 1]));
+  for (PetscInt l = 0; l < n - 1; l++) PetscCall(MatDuplicate(t->AK[l], MAT_COPY_VALUES, &t->A[l]));
+  PetscCall(MatGetOwnershipRangeColumn(t->P[n - 1], &lo, &hi));
+  PetscCall(ISCreateStride(t->ssn->comm, hi - lo, lo, 1, &t->cols));
+  PetscCall(MatDuplicate(t->P[n - 1], MAT_COPY_VALUES, &t->Pt));
+  PetscCall(MatSetOption(t->Pt, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+
+  PetscCall(PCCreate(t->ssn->comm, &t->mg));
+  PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(PetscSNPrintf(mgprefix, sizeof(mgprefix), "%stmg_", prefix ? prefix : ""));
+  PetscCall(PCSetOptionsPrefix(t->mg, mgprefix));
+  PetscCall(PCSetType(t->mg, PCMG));
+  PetscCall(PCMGSetLevels(t->mg, n, NULL));
+  PetscCall(PCMGSetType(t->mg, PC_MG_MULTIPLICATIVE));
+  PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_NONE));
+  for (PetscInt l = n - 1; l > 0; l--) PetscCall(PCMGSetInterpolation(t->mg, l, l == n - 1 ? t->Pt : t->P[l]));
+  for (PetscInt l = 0; l < n; l++) {
+    KSP sm[2];
+    PC  spc;
+    PetscCall(PCMGGetSmootherDown(t->mg, l, &sm[0]));
+    if (l == 0) {
+      PetscCall(KSPSetOperators(sm[0], t->A[0], t->A[0]));
+      continue;
+    }
+    PetscCall(PCMGGetSmootherUp(t->mg, l, &sm[1]));
+    for (PetscInt k = 0; k < 2; k++) {
+      if (l < n - 1) PetscCall(KSPSetOperators(sm[k], t->A[l], t->A[l]));
+      else PetscCall(KSPSetOperators(sm[k], A, B));
+      if (t->gamg) {
+        PetscCall(KSPSetType(sm[k], KSPCHEBYSHEV));
+        PetscCall(KSPChebyshevEstEigSet(sm[k], PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE));
+        PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 2));
+        PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
+        PetscCall(KSPGetPC(sm[k], &spc));
+        PetscCall(PCSetType(spc, PCJACOBI));
+        continue;
+      }
+      PetscCall(KSPSetType(sm[k], KSPRICHARDSON));
+      PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
+      PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
+      PetscCall(KSPGetPC(sm[k], &spc));
+      PetscCall(PCSetType(spc, PCSOR));
+      PetscCall(PCSORSetSymmetric(spc, k == 0 ? SOR_LOCAL_FORWARD_SWEEP : SOR_LOCAL_BACKWARD_SWEEP));
+    }
+  }
+  PetscCall(PCSetFromOptions(t->mg));
+  PetscCall(PetscLogEventEnd(SG_TMGBuild, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* A coarse dof whose interpolation column lay only on active normal dofs has lost it to the truncation: its row and
+   column of the coarse operator are zero up to round-off (seen on 2 ranks, where BoomerAMG coarsens otherwise). Its
+   restricted residual is zero too, so any positive diagonal leaves it out of the correction: K's is taken, and the
+   smoothers and the coarse LU see no zero pivot. */
+static PetscErrorCode DeadDofs(Mat A, Mat AK)
+{
+  Vec          d, dk;
+  PetscScalar *da;
+  const PetscScalar *dka;
+  PetscInt     n, dead = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(A, &d, &dk));
+  PetscCall(MatGetDiagonal(A, d));
+  PetscCall(MatGetDiagonal(AK, dk));
+  PetscCall(VecGetLocalSize(d, &n));
+  PetscCall(VecGetArray(d, &da));
+  PetscCall(VecGetArrayRead(dk, &dka));
+  for (PetscInt i = 0; i < n; i++)
+    if (PetscAbsScalar(da[i]) <= 1e-8 * PetscAbsScalar(dka[i])) {
+      da[i] = dka[i];
+      dead++;
+    }
+  PetscCall(VecRestoreArrayRead(dk, &dka));
+  PetscCall(VecRestoreArray(d, &da));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dead, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)A)));
+  if (dead) {
+    PetscCall(PetscInfo(A, "truncated multigrid: %" PetscInt_FMT " coarse dofs cut off by the truncation\n", dead));
+    PetscCall(MatDiagonalSet(A, d, INSERT_VALUES));
+  }
+  PetscCall(VecDestroy(&d));
+  PetscCall(VecDestroy(&dk));
+  PetscFunctionReturn(0);
+}
+
+/* The coarse operators for the active set `want`. With E the rows of the finest interpolation P at the active normal
+   dofs (A), the truncated P_t = P - E gives P_t^T J P_t = P_t^T K P_t = P^T K P - E^T (K P) - (K P)^T E + E^T K_AA E:
+   a correction of the kept Galerkin operator that only involves the rows in A. It is carried to the coarser levels by
+   their (whole) interpolations. */
+static PetscErrorCode Update(SgTMG t)
+{
+  const SgContactView *c = &t->ssn->cv;
+  const PetscInt       n = t->nlevels;
+  PetscInt             rstart, na = 0, nag, *rows;
+  PetscBool            same = PETSC_TRUE;
+  Mat                  D = NULL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
+  same = (PetscBool)(same && !t->fresh);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, t->ssn->comm));
+  if (same) PetscFunctionReturn(0);
+  t->fresh = PETSC_FALSE;
+  PetscCall(MatGetOwnershipRange(t->Pt, &rstart, NULL));
+  PetscCall(PetscMalloc1(c->n, &rows));
+  for (PetscInt i = 0; i < c->n; i++) {
+    t->have[i] = t->want[i];
+    if (t->want[i]) rows[na++] = rstart + c->off[i] + t->axis[i];
+  }
+  PetscCall(MPIU_Allreduce(&na, &nag, 1, MPIU_INT, MPI_SUM, t->ssn->comm));
+  PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
+  PetscCall(MatZeroRows(t->Pt, na, rows, 0.0, NULL, NULL));
+  if (nag > 0) {
+    IS  isA;
+    Mat E, KAA, M, C, Ct;
+    PetscCall(ISCreateGeneral(t->ssn->comm, na, rows, PETSC_USE_POINTER, &isA));
+    PetscCall(MatCreateSubMatrix(t->P[n - 1], isA, t->cols, MAT_INITIAL_MATRIX, &E));
+    PetscCall(MatCreateSubMatrix(t->KP, isA, t->cols, MAT_INITIAL_MATRIX, &M));
+    PetscCall(MatCreateSubMatrix(t->ssn->K, isA, isA, MAT_INITIAL_MATRIX, &KAA));
+    PetscCall(MatPtAP(KAA, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
+    PetscCall(MatTransposeMatMult(E, M, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+    PetscCall(MatTranspose(C, MAT_INITIAL_MATRIX, &Ct));
+    PetscCall(MatAXPY(D, -1.0, C, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatAXPY(D, -1.0, Ct, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatDestroy(&KAA));
+    PetscCall(MatDestroy(&M));
+    PetscCall(MatDestroy(&C));
+    PetscCall(MatDestroy(&Ct));
+    PetscCall(MatDestroy(&E));
+    PetscCall(ISDestroy(&isA));
+  }
+  PetscCall(PetscFree(rows));
+  /* A[l] = AK[l] + D_l, D_{l-1} = P[l]^T D_l P[l]; the corrections' patterns lie in those of the kept operators */
+  for (PetscInt l = n - 2; l >= 0; l--) {
+    PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
+    if (D) {
+      Mat Dc = NULL;
+      PetscCall(MatAXPY(t->A[l], 1.0, D, SUBSET_NONZERO_PATTERN));
+      if (l > 0) PetscCall(MatPtAP(D, t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Dc));
+      PetscCall(MatDestroy(&D));
+      D = Dc;
+      PetscCall(DeadDofs(t->A[l], t->AK[l]));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUp_TMG(PC pc)
+{
+  SgTMG t;
+  Mat   A, B;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &t));
+  PetscCall(PCGetOperators(pc, &A, &B));
+  if (!t->mg) PetscCall(Build(t, A, B));
+  PetscCall(PetscLogEventBegin(SG_TMGUpdate, 0, 0, 0, 0));
+  if (t->has_set) PetscCall(Update(t));
+  PetscCall(PCSetOperators(t->mg, A, B));
+  PetscCall(PCSetUp(t->mg));
+  PetscCall(PetscLogEventEnd(SG_TMGUpdate, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Apply_TMG(PC pc, Vec x, Vec y)
+{
+  SgTMG t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &t));
+  PetscCall(PCApply(t->mg, x, y));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode View_TMG(PC pc, PetscViewer v)
+{
+  SgTMG t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &t));
+  PetscCall(PetscViewerASCIIPrintf(v, "truncated multigrid (-ssn_pc_truncated_mg): %" PetscInt_FMT " levels, interpolations of the AMG set up once, finest truncated at the active normal dofs\n", t->nlevels));
+  if (t->mg) {
+    PetscCall(PetscViewerASCIIPushTab(v));
+    PetscCall(PCView(t->mg, v));
+    PetscCall(PetscViewerASCIIPopTab(v));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The KSP's configured preconditioner becomes the AMG whose interpolations the truncated multigrid keeps; the KSP
+   gets the truncated multigrid (a PCSHELL) instead. */
+PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
+{
+  SgTMG     t;
+  PC        pc;
+  PetscBool hypre, gamg;
+
+  PetscFunctionBeginUser;
+  if (!tmg_registered) {
+    PetscCall(PetscLogEventRegister("SgTMGBuild", PC_CLASSID, &SG_TMGBuild));
+    PetscCall(PetscLogEventRegister("SgTMGUpdate", PC_CLASSID, &SG_TMGUpdate));
+    tmg_registered = PETSC_TRUE;
+  }
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
+  PetscCheck(hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
+  PetscCall(PetscNew(&t));
+  t->ssn      = s;
+  t->gamg     = gamg;
+  t->fresh    = PETSC_TRUE;
+  PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
+  for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
+  PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
+  PetscCall(PetscObjectReference((PetscObject)pc));
+  t->amg = pc;
+  PetscCall(PCCreate(s->comm, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, t));
+  PetscCall(PCShellSetName(pc, "truncated multigrid"));
+  PetscCall(PCShellSetSetUp(pc, SetUp_TMG));
+  PetscCall(PCShellSetApply(pc, Apply_TMG));
+  PetscCall(PCShellSetView(pc, View_TMG));
+  PetscCall(KSPSetPC(ksp, pc));
+  PetscCall(PCDestroy(&pc));
+  *tmg = t;
+  PetscFunctionReturn(0);
+}
+
+/* the active set of the Jacobian about to be solved with (read at the next set-up) */
+PetscErrorCode SgTMGSetActiveSet(SgTMG t, const char act[])
+{
+  PetscFunctionBeginUser;
+  if (!t) PetscFunctionReturn(0);
+  PetscCall(PetscArraycpy(t->want, act, t->ssn->cv.n));
+  t->has_set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgTMGDestroy(SgTMG *tmg)
+{
+  SgTMG t = *tmg;
+
+  PetscFunctionBeginUser;
+  if (!t) PetscFunctionReturn(0);
+  PetscCall(PCDestroy(&t->amg));
+  PetscCall(PCDestroy(&t->mg));
+  for (PetscInt l = 0; l < t->nlevels; l++) {
+    PetscCall(MatDestroy(&t->P[l]));
+    PetscCall(MatDestroy(&t->AK[l]));
+    PetscCall(MatDestroy(&t->A[l]));
+  }
+  PetscCall(PetscFree3(t->P, t->AK, t->A));
+  PetscCall(MatDestroy(&t->KP));
+  PetscCall(ISDestroy(&t->cols));
+  PetscCall(MatDestroy(&t->Pt));
+  PetscCall(PetscFree4(t->axis, t->sign, t->want, t->have));
+  PetscCall(PetscFree(*tmg));
+  PetscFunctionReturn(0);
+}
