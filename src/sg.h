@@ -257,7 +257,7 @@ typedef struct _n_SgTMG      *SgTMG;
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
 PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
-PetscErrorCode SgLinearSolverDefaultCondense(SgElasticity, SgContact, const char[], char[], size_t);
+PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);

@@ -165,7 +165,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(create(ct));
   if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
   PetscOptionsEnd();
-  if (solver_default && !iterative && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultCondense(ct->prob, ct->c, ct->prefix, ct->solver_desc, sizeof(ct->solver_desc)));
+  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ct->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);

@@ -83,39 +83,73 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   PetscFunctionReturn(0);
 }
 
-/* With the default direct solver on one rank, a controller that runs the SSN solves its steps condensed onto the
-   contact dofs (-ssn_condense: K factored once), unless the dense Schur complement would be large. */
-PetscErrorCode SgLinearSolverDefaultCondense(SgElasticity el, SgContact c, const char prefix[], char desc[], size_t len)
+/* whether every contact normal is a coordinate axis (on every rank) */
+static PetscErrorCode NormalsAxisAligned(SgElasticity el, SgContact c, PetscBool *aligned)
+{
+  SgContactView cv;
+  PetscInt      dim, ok = 1;
+  MPI_Comm      comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgContactGetView(c, &cv));
+  for (PetscInt i = 0; i < cv.n && ok; i++) {
+    PetscInt k;
+    for (k = 0; k < dim; k++)
+      if (PetscAbsReal(PetscAbsReal(cv.normal[i * dim + k]) - 1) < 1e-12) break;
+    if (k == dim) ok = 0;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, comm));
+  *aligned = (PetscBool)ok;
+  PetscFunctionReturn(0);
+}
+
+/* Enter a default SSN option unless given; PETSC_TRUE if it is on (the user may have said false). */
+static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], PetscBool *on)
+{
+  char opt[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(SetDefault(prefix, name, "true"));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", name));
+  *on = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, opt, on, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The SSN's part of the default solver, for a controller that runs the SSN:
+   - direct, one rank: the steps condensed onto the contact dofs (-ssn_condense: K factored once), unless the dense
+     Schur complement would be large;
+   - iterative (BoomerAMG): the truncated multigrid (-ssn_pc_truncated_mg, tmg.c: one AMG setup on K, no new one per
+     active set; 0.61x the contact solve's time of a BoomerAMG setup per set on 124,128 unknowns, bench/perf_notes.md
+     part D) where the contact normals are coordinate axes, which it needs. */
+PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char prefix[], PetscBool iterative, char desc[], size_t len)
 {
   PetscMPIInt   size;
   MPI_Comm      comm;
   SgContactView cv;
-  PetscInt      dim, ncond, aligned = 1;
+  PetscInt      dim, ncond;
+  PetscBool     aligned = PETSC_FALSE, on;
   size_t        n;
 
   PetscFunctionBeginUser;
+  if (!c) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (size > 1 || !c) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgContactGetView(c, &cv));
-  for (PetscInt i = 0; i < cv.n && aligned; i++) { /* axis-aligned normals condense one component (condense.c) */
-    PetscInt k;
-    for (k = 0; k < dim; k++)
-      if (PetscAbsReal(PetscAbsReal(cv.normal[i * dim + k]) - 1) < 1e-12) break;
-    if (k == dim) aligned = 0;
-  }
-  ncond = cv.nglobal * (aligned ? 1 : dim);
-  if (ncond > SG_CONDENSE_MAX_DOFS) PetscFunctionReturn(0);
-  PetscCall(SetDefault(prefix, "ssn_condense", "true"));
-  {
-    char      opt[256];
-    PetscBool on = PETSC_FALSE;
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_condense", prefix ? prefix : ""));
-    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &on, NULL));
-    if (!on) PetscFunctionReturn(0); /* the user's -ssn_condense false */
-  }
+  PetscCall(NormalsAxisAligned(el, c, &aligned));
   PetscCall(PetscStrlen(desc, &n));
-  PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps condensed onto the %" PetscInt_FMT " contact dofs (-ssn_condense)", ncond));
+  if (iterative) {
+    if (!aligned) PetscFunctionReturn(0);
+    PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
+    if (on) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
+    PetscFunctionReturn(0);
+  }
+  ncond = cv.nglobal * (aligned ? 1 : dim); /* axis-aligned normals condense one component (condense.c) */
+  if (size > 1 || ncond > SG_CONDENSE_MAX_DOFS) PetscFunctionReturn(0);
+  PetscCall(SetDefaultSSN(prefix, "ssn_condense", &on));
+  if (on) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps condensed onto the %" PetscInt_FMT " contact dofs (-ssn_condense)", ncond));
   PetscFunctionReturn(0);
 }
