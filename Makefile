@@ -19,7 +19,7 @@ AR     ?= ar
 CFLAGS ?= -O2 -g
 # include/: the public header (installed); src/: the library's private headers
 CFLAGS += -Wall -Wextra -Wno-unused-parameter -MMD -MP -Iinclude -Isrc $(PETSC_CC_INCLUDES)
-LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lm
+LDLIBS  = $(PETSC_WITH_EXTERNAL_LIB) -lgmsh -lm
 
 # The library: VERSION names the release (signorini.pc, the file name of the shared library); SOVERSION is the ABI
 # in the soname, libsignorini.so.$(SOVERSION): raise it whenever a program built against include/signorini.h would
@@ -43,7 +43,7 @@ PETSC_MINOR := $(shell sed -n 's/^.define PETSC_VERSION_MINOR *//p' $(PETSC_VERS
 PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
-MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh
+MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/punch_block.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -140,6 +140,8 @@ meshes/ex2_coarse.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale 0.5 $< -o $@ > /dev/null
 meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
+meshes/punch_block.msh: meshes/punch_block.geo
+	gmsh -3 $< -o $@ > /dev/null
 
 # The library's objects are position independent, for the shared library; the static one holds the same objects.
 # -fno-semantic-interposition: calls inside the library stay direct and inlinable (no LD_PRELOAD of our own symbols);

@@ -11,6 +11,8 @@ struct _n_SgObstacle {
   PetscReal p[16]; /* shape parameters */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
   PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
+  PetscErrorCode (*destroy)(SgObstacle); /* NULL, or frees data */
+  void *data;                            /* a type's own state (cad) */
 };
 
 
