@@ -20,8 +20,10 @@ typedef struct {
   double   *xyz;             /* their vertices, 3 coordinates each, dim vertices per element */
   int      *tag;             /* the CAD face (3D) or curve (2D) of each element */
   double    len;             /* the diagonal of the CAD model's bounding box */
-  PetscReal *hit, *sorted;   /* work: ray parameters of the crossings */
-  int       *hitel;
+  double    *dev;            /* per CAD entity tag: how far its tessellation strays from it (at element centres) */
+  int        maxent;
+  PetscReal *hit, *sorted, *roott; /* work: ray parameters of candidate and exact crossings and of refined ones */
+  int       *hitel, *roottag;
   PetscInt   nquery, nnewton, nkept;
   double     rmax; /* the largest distance left between a refined crossing and the CAD face (CAD units) */
 } Obstacle_CAD;
@@ -142,9 +144,25 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
       if (etags) gmshFree(etags);
       if (enodes) gmshFree(enodes);
     }
-    if (pass == 0) PetscCall(PetscMalloc5(cad->nel * nv * 3, &cad->xyz, cad->nel, &cad->tag, cad->nel, &cad->hit, cad->nel, &cad->sorted, cad->nel, &cad->hitel));
+    if (pass == 0) PetscCall(PetscMalloc7(cad->nel * nv * 3, &cad->xyz, cad->nel, &cad->tag, cad->nel, &cad->hit, cad->nel, &cad->sorted, cad->nel, &cad->hitel, cad->nel, &cad->roott, cad->nel, &cad->roottag));
   }
   PetscCall(PetscFree(index));
+  /* how far each entity's tessellation strays from it: the distance of its element centres to the CAD entity */
+  cad->maxent = 0;
+  for (size_t k = 0; k < nents; k += 2) cad->maxent = PetscMax(cad->maxent, ents[k + 1]);
+  PetscCall(PetscCalloc1(cad->maxent + 1, &cad->dev));
+  for (PetscInt e = 0; e < cad->nel; e++) {
+    double g[3] = {0, 0, 0}, *c = NULL, *par = NULL, r = 0;
+    size_t nc, npar;
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt q = 0; q < 3; q++) g[q] += cad->xyz[(e * nv + a) * 3 + q] / nv;
+    gmshModelGetClosestPoint((int)sdim, cad->tag[e], g, 3, &c, &nc, &par, &npar, &ierr);
+    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, cad->tag[e]);
+    for (PetscInt q = 0; q < 3; q++) r += PetscSqr(g[q] - c[q]);
+    gmshFree(c);
+    if (par) gmshFree(par);
+    cad->dev[cad->tag[e]] = PetscMax(cad->dev[cad->tag[e]], PetscSqrtReal(r));
+  }
   gmshFree(ntags);
   gmshFree(ncoord);
   if (npar) gmshFree(npar);
@@ -154,18 +172,18 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   PetscFunctionReturn(0);
 }
 
-/* the line x + t n against element e: *t, or PETSC_FALSE if they do not meet (edges count, with a tolerance) */
-static PetscBool RayElement(PetscInt dim, const double *v, const double x[], const double n[], double *t)
+/* The line x + t n against the plane of element v: *t, and how far outside the element the crossing lies
+   (*out <= 0: inside; in barycentric units); PETSC_FALSE if the line is parallel to the element. */
+static PetscBool RayElement(PetscInt dim, const double *v, const double x[], const double n[], double *t, double *out)
 {
-  const double tol = 1e-9;
-
   if (dim == 2) {
     double e0 = v[3] - v[0], e1 = v[4] - v[1], w0 = v[0] - x[0], w1 = v[1] - x[1];
     double det = e0 * n[1] - n[0] * e1, u;
     if (PetscAbsReal(det) <= 1e-14 * (PetscAbsReal(e0) + PetscAbsReal(e1))) return PETSC_FALSE;
-    u  = (n[0] * w1 - n[1] * w0) / det;
-    *t = (e0 * w1 - w0 * e1) / det;
-    return u >= -tol && u <= 1 + tol ? PETSC_TRUE : PETSC_FALSE;
+    u    = (n[0] * w1 - n[1] * w0) / det;
+    *t   = (e0 * w1 - w0 * e1) / det;
+    *out = PetscMax(-u, u - 1);
+    return PETSC_TRUE;
   } else {
     double e1[3], e2[3], p[3], s[3], q[3], det = 0, u = 0, w = 0, tt = 0, h = 0;
     for (int k = 0; k < 3; k++) {
@@ -191,9 +209,70 @@ static PetscBool RayElement(PetscInt dim, const double *v, const double x[], con
     }
     u /= det;
     w /= det;
-    *t = tt / det;
-    return u >= -tol && w >= -tol && u + w <= 1 + tol ? PETSC_TRUE : PETSC_FALSE;
+    *t   = tt / det;
+    *out = PetscMax(PetscMax(-u, -w), u + w - 1);
+    return PETSC_TRUE;
   }
+}
+
+/* distance from p to the segment [a, b] */
+static double DistSegment(const double p[3], const double a[3], const double b[3])
+{
+  double ab = 0, ap = 0, s, d = 0;
+  for (int k = 0; k < 3; k++) {
+    ab += (b[k] - a[k]) * (b[k] - a[k]);
+    ap += (p[k] - a[k]) * (b[k] - a[k]);
+  }
+  s = ab > 0 ? PetscMin(1, PetscMax(0, ap / ab)) : 0;
+  for (int k = 0; k < 3; k++) d += PetscSqr(p[k] - a[k] - s * (b[k] - a[k]));
+  return PetscSqrtReal(d);
+}
+
+/* distance from p to the triangle abc: to its plane if p projects inside, else to the nearest edge */
+static double DistTriangle(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+  double e1[3], e2[3], m[3], w[3], mm = 0, h = 0, q[3], g[3][3];
+  for (int k = 0; k < 3; k++) {
+    e1[k] = b[k] - a[k];
+    e2[k] = c[k] - a[k];
+  }
+  m[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  m[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  m[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  for (int k = 0; k < 3; k++) {
+    mm += m[k] * m[k];
+    h += (p[k] - a[k]) * m[k];
+  }
+  if (mm > 0) {
+    PetscBool in = PETSC_TRUE;
+    const double *v[3] = {a, b, c};
+    for (int k = 0; k < 3; k++) q[k] = p[k] - h / mm * m[k];
+    /* q inside: on the same side of the three edges as the normal says */
+    for (int e = 0; e < 3 && in; e++) {
+      const double *s0 = v[e], *s1 = v[(e + 1) % 3];
+      double        side = 0;
+      for (int k = 0; k < 3; k++) w[k] = q[k] - s0[k];
+      g[e][0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
+      g[e][1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
+      g[e][2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
+      for (int k = 0; k < 3; k++) side += g[e][k] * m[k];
+      if (side < 0) in = PETSC_FALSE;
+    }
+    if (in) return PetscAbsReal(h) / PetscSqrtReal(mm);
+  }
+  return PetscMin(DistSegment(p, a, b), PetscMin(DistSegment(p, b, c), DistSegment(p, c, a)));
+}
+
+/* distance from p to the tessellation of the CAD entity tag */
+static double DistTessellation(Obstacle_CAD *cad, PetscInt dim, int tag, const double p[3])
+{
+  double dmin = PETSC_MAX_REAL;
+  for (PetscInt e = 0; e < cad->nel; e++) {
+    const double *v = &cad->xyz[e * dim * 3];
+    if (cad->tag[e] != tag) continue;
+    dmin = PetscMin(dmin, dim == 3 ? DistTriangle(p, v, v + 3, v + 6) : DistSegment(p, v, v + 3));
+  }
+  return dmin;
 }
 
 static int CompareHits(const void *a, const void *b)
@@ -207,7 +286,7 @@ static int CompareHits(const void *a, const void *b)
    Newton's step is the ray's meeting with the tangent plane at c (exact in one step for a plane), kept inside the
    bracket of the root found so far, bisection otherwise (rays nearly tangent to the face). Stops at the accuracy of
    gmsh's projection (its closest point comes no nearer in 3 steps). */
-static PetscErrorCode Refine(SgObstacle o, Obstacle_CAD *cad, int tag, const double x[], const double n[], double *t)
+static PetscErrorCode Refine(SgObstacle o, Obstacle_CAD *cad, int tag, const double x[], const double n[], double *t, double *rfinal)
 {
   int    sdim = (int)o->dim - 1, ierr, stall = 0;
   double t0 = *t, tt = t0, tbest = t0, rbest = PETSC_MAX_REAL, a = -PETSC_MAX_REAL, b = PETSC_MAX_REAL;
@@ -242,20 +321,17 @@ static PetscErrorCode Refine(SgObstacle o, Obstacle_CAD *cad, int tag, const dou
     else break; /* no bracket and no Newton step: keep the best so far */
     if (b - a <= 1e-14 * cad->len) break;
   }
-  if (PetscAbsReal(tbest - t0) > 2 * cad->msize) { /* left the face the tessellation found: keep its crossing */
-    tbest = t0;
-    cad->nkept++;
-  } else cad->rmax = PetscMax(cad->rmax, rbest);
-  *t = tbest;
+  *t      = tbest;
+  *rfinal = rbest;
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscReal nb[], PetscReal *d)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
-  PetscInt      dim = o->dim, nhit = 0, best = -1;
-  double        x[3] = {0, 0, 0}, n[3] = {0, 0, 0}, t, tol = 1e-9 * cad->len;
-  PetscBool     inside = PETSC_FALSE;
+  PetscInt      dim = o->dim, ncand = 0, nexact = 0, nroot = 0;
+  double        x[3] = {0, 0, 0}, n[3] = {0, 0, 0}, t, out, tol = 1e-9 * cad->len, best = 0, texact = 0;
+  PetscBool     inside = PETSC_FALSE, found = PETSC_FALSE, fexact = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(CadLoad(o, cad));
@@ -264,33 +340,57 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
     x[k] = (xb[k] - cad->shift[k]) / cad->scale;
     n[k] = nb[k];
   }
-  for (PetscInt e = 0; e < cad->nel; e++)
-    if (RayElement(dim, &cad->xyz[e * dim * 3], x, n, &t)) {
-      cad->hit[nhit]   = t;
-      cad->hitel[nhit] = (int)e;
-      nhit++;
-    }
+  /* crossings with the tessellation (exact), and the elements the line passes close to (candidates: near an edge of
+     a curved face its tessellation misses a sliver of it) */
+  for (PetscInt e = 0; e < cad->nel; e++) {
+    if (!RayElement(dim, &cad->xyz[e * dim * 3], x, n, &t, &out) || out > 0.25) continue;
+    cad->hit[ncand]   = t;
+    cad->hitel[ncand] = (int)e;
+    ncand++;
+    if (out <= 1e-9) cad->sorted[nexact++] = t;
+  }
   if (cad->solid) { /* inside if the ray leaves the solid an odd number of times (one count per distinct crossing) */
-    PetscReal *ts = cad->sorted;
+    PetscReal *ts   = cad->sorted;
     PetscInt   nout = 0;
-    for (PetscInt i = 0; i < nhit; i++) ts[i] = cad->hit[i];
-    qsort(ts, (size_t)nhit, sizeof(PetscReal), CompareHits);
-    for (PetscInt i = 0; i < nhit; i++)
+    qsort(ts, (size_t)nexact, sizeof(PetscReal), CompareHits);
+    for (PetscInt i = 0; i < nexact; i++)
       if (ts[i] > tol && (i == 0 || ts[i] - ts[i - 1] > tol)) nout++;
     inside = nout % 2 ? PETSC_TRUE : PETSC_FALSE;
   }
   /* outside: the first crossing ahead; inside: the last one behind (where the ray entered) */
-  for (PetscInt i = 0; i < nhit; i++) {
-    if (inside ? cad->hit[i] > tol : cad->hit[i] < -tol) continue;
-    if (best < 0 || (inside ? cad->hit[i] > cad->hit[best] : cad->hit[i] < cad->hit[best])) best = i;
+  for (PetscInt i = 0; i < nexact; i++) {
+    t = cad->sorted[i];
+    if (inside ? t > tol : t < -tol) continue;
+    if (!fexact || (inside ? t > texact : t < texact)) texact = t;
+    fexact = PETSC_TRUE;
   }
-  if (best < 0) {
-    *d = PETSC_MAX_REAL;
-    PetscFunctionReturn(0);
+  /* each candidate made exact on its CAD entity (once per crossing), kept if it lies on the entity's tessellated,
+     trimmed part (within the tessellation's own distance to it) */
+  for (PetscInt i = 0; i < ncand; i++) {
+    int       tag   = cad->tag[cad->hitel[i]];
+    double    slack = 4 * cad->dev[tag] + tol, r, y[3];
+    PetscBool seen  = PETSC_FALSE;
+    t               = cad->hit[i];
+    if (inside ? t > slack : t < -slack) continue;
+    for (PetscInt j = 0; j < nroot && !seen; j++) seen = (PetscBool)(cad->roottag[j] == tag && PetscAbsReal(cad->roott[j] - t) <= slack);
+    if (seen) continue;
+    PetscCall(Refine(o, cad, tag, x, n, &t, &r));
+    cad->roott[nroot]   = t;
+    cad->roottag[nroot] = tag;
+    nroot++;
+    if (r > 1e-8 * cad->len || (inside ? t > tol : t < -tol)) continue;
+    for (PetscInt k = 0; k < 3; k++) y[k] = x[k] + t * n[k];
+    if (DistTessellation(cad, dim, tag, y) > slack) continue;
+    if (!found || (inside ? t > best : t < best)) best = t;
+    cad->rmax = PetscMax(cad->rmax, r);
+    found = PETSC_TRUE;
   }
-  t = cad->hit[best];
-  PetscCall(Refine(o, cad, cad->tag[cad->hitel[best]], x, n, &t));
-  *d = cad->scale * t;
+  if (!found && fexact) { /* no candidate made exact: the tessellation's crossing */
+    best  = texact;
+    found = PETSC_TRUE;
+    cad->nkept++;
+  }
+  *d = found ? cad->scale * best : PETSC_MAX_REAL;
   PetscFunctionReturn(0);
 }
 
@@ -325,7 +425,8 @@ static PetscErrorCode Destroy_CAD(SgObstacle o)
   PetscFunctionBeginUser;
   if (!cad) PetscFunctionReturn(0);
   PetscCall(PetscInfo(NULL, "CAD obstacle %s: %" PetscInt_FMT " gap queries, %" PetscInt_FMT " closest-point calls, %" PetscInt_FMT " crossings kept from the tessellation, largest distance left to the CAD face %g\n", cad->file, cad->nquery, cad->nnewton, cad->nkept, cad->rmax));
-  PetscCall(PetscFree5(cad->xyz, cad->tag, cad->hit, cad->sorted, cad->hitel));
+  PetscCall(PetscFree7(cad->xyz, cad->tag, cad->hit, cad->sorted, cad->hitel, cad->roott, cad->roottag));
+  PetscCall(PetscFree(cad->dev));
   PetscCall(PetscFree(o->data));
   PetscFunctionReturn(0);
 }
