@@ -6,8 +6,9 @@
   fig6.png  Example 1, V along the IPF iterates against the path, log gamma axis
   fig7.png  Example 2, V(gamma) against the models fitted at g* = 1e6, 1e8, 1e10       (with --only ex2)
   fig8.png  Example 2, deformed mesh coloured by von Mises stress; fig8_pressure.png the contact pressure on the bottom
+  punch_pressure.png  the CAD punch with rounded edges (options/punch.opts): contact pressure on the block's top face
 
-usage: figures.py [--only ex1,ex2]
+usage: figures.py [--only ex1,ex2,punch]
 """
 import argparse
 import os
@@ -111,12 +112,20 @@ def ex2():
     value_figure([("Example 2", d)], [1e6, 1e8, 1e10], "Example 2: path value V(gamma) and models m(gamma)", "fig7.png")
 
 
+def punch():
+    base = "-options_file options/punch.opts -options_file options/solver/mumps.opts -options_file options/cont/pdas.opts"
+    sgrun.run(base, "punch", RUNS, fields=True)
+    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_pressure.py"), os.path.join(RUNS, "punch.h5"), os.path.join(RES, "punch_pressure.png"),
+                    "CAD punch: contact pressure on the top face"], check=True)
+    print("wrote results/punch_pressure.png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", default="ex1")
     opt = ap.parse_args()
     for part in opt.only.split(","):
-        {"ex1": ex1, "ex2": ex2}[part]()
+        {"ex1": ex1, "ex2": ex2, "punch": punch}[part]()
 
 
 if __name__ == "__main__":

@@ -28,7 +28,8 @@ typedef struct {
   double     rmax; /* the largest distance left between a refined crossing and the CAD face (CAD units) */
 } Obstacle_CAD;
 
-static PetscBool gmsh_up = PETSC_FALSE;
+static PetscBool     gmsh_up = PETSC_FALSE;
+static PetscLogEvent CAD_SetUp, CAD_Gap; /* -log_view: reading and tessellating the file; the gap queries */
 static char      gmsh_file[PETSC_MAX_PATH_LEN]; /* the file gmsh's current model was read from */
 
 static PetscErrorCode GmshFinalize(void)
@@ -334,6 +335,7 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
   PetscBool     inside = PETSC_FALSE, found = PETSC_FALSE, fexact = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(CAD_Gap, 0, 0, 0, 0));
   PetscCall(CadLoad(o, cad));
   cad->nquery++;
   for (PetscInt k = 0; k < dim; k++) {
@@ -391,6 +393,7 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
     cad->nkept++;
   }
   *d = found ? cad->scale * best : PETSC_MAX_REAL;
+  PetscCall(PetscLogEventEnd(CAD_Gap, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -413,8 +416,10 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-obstacle_cad_verbose", "Let gmsh print its messages", &verbose, NULL));
   PetscCall(PetscTestFile(cad->file, 'r', &exists));
   PetscCheck(exists, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: no such file, or not readable", cad->file);
+  PetscCall(PetscLogEventBegin(CAD_SetUp, 0, 0, 0, 0));
   PetscCall(GmshStart(o->comm, verbose));
   PetscCall(CadSetUp(o, cad));
+  PetscCall(PetscLogEventEnd(CAD_SetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -436,6 +441,12 @@ PetscErrorCode SgObstacleCreate_CAD(SgObstacle o)
   Obstacle_CAD *cad;
 
   PetscFunctionBeginUser;
+  if (!CAD_SetUp) {
+    PetscClassId cid;
+    PetscCall(PetscClassIdRegister("SgObstacleCAD", &cid));
+    PetscCall(PetscLogEventRegister("SgCadSetUp", cid, &CAD_SetUp));
+    PetscCall(PetscLogEventRegister("SgCadGap", cid, &CAD_Gap));
+  }
   PetscCall(PetscNew(&cad));
   cad->scale        = 1;
   o->data           = cad;
