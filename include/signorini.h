@@ -54,7 +54,7 @@ PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]); /* prefix of 
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem, const char *[]);
 PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal); /* Young's modulus E and Poisson's ratio nu (defaults of -E, -nu) */
 PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL) */
-PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola or ball (default of -obstacle_type) */
+PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola, ball or cad (default of -obstacle_type) */
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */
 PetscErrorCode SgProblemView(SgProblem, PetscViewer); /* ASCII description (NULL: stdout) */
