@@ -330,8 +330,8 @@ static PetscErrorCode Refine(SgObstacle o, Obstacle_CAD *cad, int tag, const dou
 static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscReal nb[], PetscReal *d)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
-  PetscInt      dim = o->dim, ncand = 0, nexact = 0, nroot = 0;
-  double        x[3] = {0, 0, 0}, n[3] = {0, 0, 0}, t, out, tol = 1e-9 * cad->len, best = 0, texact = 0;
+  PetscInt      dim = o->dim, ncand = 0, nexact = 0, nroot = 0, near = -1;
+  double        x[3] = {0, 0, 0}, n[3] = {0, 0, 0}, t, out, tol = 1e-9 * cad->len, best = 0, texact = 0, tnear = 0;
   PetscBool     inside = PETSC_FALSE, found = PETSC_FALSE, fexact = PETSC_FALSE;
 
   PetscFunctionBeginUser;
@@ -349,7 +349,13 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
     cad->hit[ncand]   = t;
     cad->hitel[ncand] = (int)e;
     ncand++;
-    if (out <= 1e-9) cad->sorted[nexact++] = t;
+    if (out <= 1e-9) {
+      if (near < 0 || PetscAbsReal(t) < PetscAbsReal(tnear)) {
+        near  = e;
+        tnear = t;
+      }
+      cad->sorted[nexact++] = t;
+    }
   }
   if (cad->solid) { /* inside if the ray leaves the solid an odd number of times (one count per distinct crossing) */
     PetscReal *ts   = cad->sorted;
@@ -358,6 +364,13 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
     for (PetscInt i = 0; i < nexact; i++)
       if (ts[i] > tol && (i == 0 || ts[i] - ts[i - 1] > tol)) nout++;
     inside = nout % 2 ? PETSC_TRUE : PETSC_FALSE;
+    /* a vertex nearer to a curved face than the tessellation's distance to it may lie on the other side of the
+       tessellation than of the face: then the nearest crossing, made exact, moves across the vertex */
+    if (near >= 0 && PetscAbsReal(tnear) <= 4 * cad->dev[cad->tag[near]] + tol) {
+      double tx = tnear, r;
+      PetscCall(Refine(o, cad, cad->tag[near], x, n, &tx, &r));
+      if (r <= 1e-8 * cad->len && (tnear > tol) != (tx > tol)) inside = inside ? PETSC_FALSE : PETSC_TRUE;
+    }
   }
   /* outside: the first crossing ahead; inside: the last one behind (where the ray entered) */
   for (PetscInt i = 0; i < nexact; i++) {
