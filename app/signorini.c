@@ -12,9 +12,17 @@ static const char help[] = "Frictionless contact of a linear elastic body with a
                            "See README.md for the options; options/ holds ready-made option files.\n\n";
 
 typedef struct {
-  char      outfile[PETSC_MAX_PATH_LEN], sumfile[PETSC_MAX_PATH_LEN], histfile[PETSC_MAX_PATH_LEN];
+  char      outfile[PETSC_MAX_PATH_LEN], sumfile[PETSC_MAX_PATH_LEN], histfile[PETSC_MAX_PATH_LEN], curvefile[PETSC_MAX_PATH_LEN];
   PetscReal magnification;
+  PetscBool quiet;
 } Output;
+
+/* quasi-static load stepping: n steps at the load factors t[0] < ... < t[n-1] = 1 */
+#define SG_LOAD_STEPS_MAX 10000
+typedef struct {
+  PetscInt  n, stop;
+  PetscReal t[SG_LOAD_STEPS_MAX];
+} LoadSteps;
 
 /* ---- options files that include themselves
    PETSc's options parser follows -options_file lines recursively without a depth limit: a file that includes itself
@@ -166,12 +174,93 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
   PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, o->sumfile, o->sumfile, sizeof(o->sumfile), NULL));
   PetscCall(PetscOptionsString("-history_file", "CSV history: one row per SSN iteration and per outer step", NULL, o->histfile, o->histfile, sizeof(o->histfile), NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-output_magnification", "Displacement magnification stored for the pictures", &o->magnification, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-quiet", "Print the results only: neither the settings nor a line per outer step (-cont_monitor false)", &o->quiet, NULL));
+  PetscCall(PetscOptionsString("-load_curve_file", "CSV load-displacement curve: one row per load step (with -load_steps)", NULL, o->curvefile, o->curvefile, sizeof(o->curvefile), NULL));
   PetscOptionsEnd();
+  if (o->quiet) {
+    PetscBool set;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_monitor", &set));
+    if (!set) PetscCall(PetscOptionsSetValue(NULL, "-cont_monitor", "false"));
+  }
   PetscCheck(PetscIsNormalReal(o->magnification) && o->magnification > 0, comm, PETSC_ERR_USER_INPUT, "-output_magnification: must be positive and finite, got %g", (double)o->magnification);
   /* refuse unwritable locations before any work is done */
   PetscCall(SgFileCheckWritable(comm, "-output_file", o->outfile));
   PetscCall(SgFileCheckWritable(comm, "-summary_file", o->sumfile));
   PetscCall(SgFileCheckWritable(comm, "-history_file", o->histfile));
+  PetscCall(SgFileCheckWritable(comm, "-load_curve_file", o->curvefile));
+  PetscFunctionReturn(0);
+}
+
+/* -load_steps N and -load_factors t1,...,tN (default k/N): increasing, positive, the last 1. */
+static PetscErrorCode LoadStepOptions(MPI_Comm comm, LoadSteps *ls)
+{
+  PetscInt  n = 1, nf = 0; /* -load_factors: no default list (the default is k/N) */
+  PetscBool nset, fset;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Quasi-static load stepping", NULL);
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-load_steps", "Number of load steps: loads, Dirichlet values and -obstacle_translation scaled from 0 to their full value, each step warm-started from the last", &n, &nset));
+  PetscCall(SgOptionsRealList(PetscOptionsObject, "-load_factors", "Load factors of the steps, increasing, the last 1 (default: k/N; at most 96 factors)", 96, ls->t, &nf, &fset));
+  ls->stop = 0;
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-load_step_stop", "Stop after this load step (a run split over several jobs: the next one continues with -restart_file from -checkpoint_file); 0: run all", &ls->stop, NULL));
+  PetscOptionsEnd();
+  PetscCheck(ls->stop >= 0, comm, PETSC_ERR_USER_INPUT, "-load_step_stop: must be >= 0, got %" PetscInt_FMT, ls->stop);
+  PetscCheck(n >= 1 && n <= SG_LOAD_STEPS_MAX, comm, PETSC_ERR_USER_INPUT, "-load_steps: must be between 1 and %d, got %" PetscInt_FMT, SG_LOAD_STEPS_MAX, n);
+  if (fset) {
+    PetscCheck(!nset || nf == n, comm, PETSC_ERR_USER_INPUT, "-load_factors: %" PetscInt_FMT " factors given for -load_steps %" PetscInt_FMT, nf, n);
+    n = nf;
+    for (PetscInt k = 0; k < n; k++) {
+      PetscCheck(PetscIsNormalReal(ls->t[k]) && ls->t[k] > 0, comm, PETSC_ERR_USER_INPUT, "-load_factors: factor %" PetscInt_FMT " is %g, must be positive and finite", k + 1, (double)ls->t[k]);
+      PetscCheck(k == 0 || ls->t[k] > ls->t[k - 1], comm, PETSC_ERR_USER_INPUT, "-load_factors: must increase, but factor %" PetscInt_FMT " (%g) follows %g", k + 1, (double)ls->t[k], (double)ls->t[k - 1]);
+    }
+    PetscCheck(PetscAbsReal(ls->t[n - 1] - 1) <= 1e-12, comm, PETSC_ERR_USER_INPUT, "-load_factors: the last factor must be 1 (the full load), got %.17g", (double)ls->t[n - 1]);
+    ls->t[n - 1] = 1;
+  } else
+    for (PetscInt k = 0; k < n; k++) ls->t[k] = (PetscReal)(k + 1) / n;
+  ls->n = n;
+  PetscFunctionReturn(0);
+}
+
+/* The load steps the driver runs: one warm-started SgContSolve per factor, a line per step. A checkpoint taken
+   between load steps (-restart_file) resumes after its last step. */
+static PetscErrorCode SolveLoadSteps(MPI_Comm comm, SgProblem prob, SgCont cont, const LoadSteps *ls, PetscBool keep)
+{
+  PetscInt  k0;
+  PetscBool contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemHasContact(prob, &contact));
+  PetscCall(SgContSetStoreSteps(cont, keep));
+  PetscCall(SgContGetLoadSteps(cont, &k0));
+  PetscCheck(k0 < ls->n, comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint has %" PetscInt_FMT " load steps done, this run has -load_steps %" PetscInt_FMT ": nothing left to solve", k0, ls->n);
+  for (PetscInt k = 0; k < k0; k++) { /* the steps done must be this run's first ones */
+    PetscReal t;
+    PetscCall(SgContGetLoadStepFactor(cont, k, &t));
+    PetscCheck(PetscAbsReal(t - ls->t[k]) <= 1e-12 * ls->t[k], comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint's load step %" PetscInt_FMT " was solved at load factor %.15g, this run's step %" PetscInt_FMT " is at %.15g (give the same -load_steps and -load_factors)", k + 1, (double)t, k + 1, (double)ls->t[k]);
+  }
+  if (k0) PetscCall(PetscPrintf(comm, "load steps: resuming after step %" PetscInt_FMT " of %" PetscInt_FMT " (-restart_file)\n", k0, ls->n));
+  for (PetscInt k = k0; k < ls->n; k++) {
+    PetscBool      converged;
+    PetscInt       outer, ssn, ksp;
+    PetscLogDouble t0, t1;
+    SgKKT          kkt;
+
+    PetscCall(PetscTime(&t0));
+    PetscCall(SgProblemSetLoadFactor(prob, ls->t[k]));
+    PetscCall(SgContSolve(cont));
+    PetscCall(PetscTime(&t1));
+    PetscCall(SgContGetConvergedReason(cont, &converged, NULL));
+    PetscCall(SgContGetIterationNumbers(cont, &outer, &ssn, &ksp));
+    if (contact) {
+      PetscCall(SgContGetKKT(cont, &kkt));
+      PetscCall(PetscPrintf(comm, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %.6g, %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN, %" PetscInt_FMT " KSP iterations, active %" PetscInt_FMT ", contact force %.6e, KKT %.3e, %.3g s%s\n", k + 1, ls->n, (double)ls->t[k], outer, ssn, ksp, kkt.nactive, (double)kkt.force, (double)kkt.residual, (double)(t1 - t0), converged ? "" : " FAILED"));
+    } else PetscCall(PetscPrintf(comm, "load step %" PetscInt_FMT "/%" PetscInt_FMT ": factor %.6g, %" PetscInt_FMT " KSP iterations, %.3g s%s\n", k + 1, ls->n, (double)ls->t[k], ksp, (double)(t1 - t0), converged ? "" : " FAILED"));
+    if (!converged) break; /* the next step would start from a failed one */
+    if (ls->stop && k + 1 == ls->stop && k + 1 < ls->n) {
+      PetscCall(PetscPrintf(comm, "load steps: stopped after step %" PetscInt_FMT " of %" PetscInt_FMT " (-load_step_stop); the next run continues with -restart_file\n", k + 1, ls->n));
+      break;
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -179,11 +268,11 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
    values are taken as given (PetscOptionsString would cut them at PETSC_MAX_PATH_LEN - 1 characters). */
 static PetscErrorCode CheckFileOptions(MPI_Comm comm)
 {
-  const char *inputs[3] = {"-dm_plex_filename", "-restart_file", "-obstacle_cad_file"}, *results[4] = {"-output_file", "-summary_file", "-history_file", "-checkpoint_file"};
+  const char *inputs[3] = {"-dm_plex_filename", "-restart_file", "-obstacle_cad_file"}, *results[5] = {"-output_file", "-summary_file", "-history_file", "-checkpoint_file", "-load_curve_file"};
 
   PetscFunctionBeginUser;
   for (int i = 0; i < NOptionsFiles; i++) PetscCall(SgFileCheckInput(comm, "-options_file", OptionsFiles[i]));
-  for (PetscInt k = 0; k < 7; k++) {
+  for (PetscInt k = 0; k < 8; k++) {
     const char *opt = k < 3 ? inputs[k] : results[k - 3], *val = NULL;
     PetscBool   set;
     size_t      len;
@@ -201,6 +290,7 @@ int main(int argc, char **argv)
 {
   MPI_Comm       comm;
   Output         out;
+  static LoadSteps ls; /* large: not on the stack */
   SgProblem      prob;
   SgCont         cont;
   PetscBool      converged;
@@ -212,17 +302,24 @@ int main(int argc, char **argv)
   PetscCall(SgFileInstallCleanup());
   PetscCall(CheckFileOptions(comm));
   PetscCall(OutputOptions(comm, &out));
+  PetscCall(LoadStepOptions(comm, &ls));
   PetscCall(SgProblemCreate(comm, &prob));
   PetscCall(SgProblemSetFromOptions(prob));
   PetscCall(SgProblemSetUp(prob));
   PetscCall(SgContCreate(prob, &cont));
   PetscCall(SgContSetFromOptions(cont));
   PetscCall(SgContSetUp(cont));
-  PetscCall(SgContSolve(cont));
+  if (!out.quiet) { /* what runs, and how to change it */
+    PetscCall(SgProblemView(prob, NULL));
+    PetscCall(SgContView(cont, NULL));
+  }
+  if (ls.n > 1) PetscCall(SolveLoadSteps(comm, prob, cont, &ls, (PetscBool)(out.outfile[0] != 0)));
+  else PetscCall(SgContSolve(cont));
   PetscCall(SgContGetConvergedReason(cont, &converged, NULL));
   /* the history is kept whatever happened, the fields only for a converged solve; a failed write (a full disk, say)
      is recorded in the summary, which is still written, and the run then exits with that error */
   ierr_hist = SgContWriteHistory(cont, out.histfile);
+  if (!ierr_hist) ierr_hist = SgContWriteLoadCurve(cont, out.curvefile);
   if (converged && out.outfile[0]) ierr_fields = SgContWriteFields(cont, out.outfile, out.magnification);
   PetscCall(SgContWriteSummary(cont, out.sumfile));
   PetscCall(ierr_hist);

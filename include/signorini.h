@@ -65,6 +65,8 @@ PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *);
 PetscErrorCode SgProblemHasContact(SgProblem, PetscBool *); /* a contact boundary was given */
 PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector */
 PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
+PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t in (0, 1] (after SetUp) */
+PetscErrorCode SgProblemGetLoadFactor(SgProblem, PetscReal *); /* 1 unless set */
 
 /* ---- SgCont */
 #define SGCONTNONE "none" /* one regularized problem (P_gamma), gamma from -contact_gamma */
@@ -90,7 +92,11 @@ PetscErrorCode SgContGetOptionsPrefix(SgCont, const char *[]);
 PetscErrorCode SgContSetTolerances(SgCont, PetscReal, PetscInt); /* KKT tolerance, outer-step limit (PETSC_DEFAULT keeps one) */
 PetscErrorCode SgContSetFromOptions(SgCont); /* read the options (sets the problem up first) */
 PetscErrorCode SgContSetUp(SgCont); /* linear solver, SSN solver */
-PetscErrorCode SgContSolve(SgCont); /* solve (once) from the unconstrained start or -restart_file */
+PetscErrorCode SgContSolve(SgCont); /* solve from the unconstrained start or -restart_file; called again (after SgProblemSetLoadFactor): a load step warm-started from the last solution and controller state */
+PetscErrorCode SgContGetLoadSteps(SgCont, PetscInt *); /* load steps solved so far (with those of a -restart_file checkpoint taken between load steps) */
+PetscErrorCode SgContGetLoadStepFactor(SgCont, PetscInt, PetscReal *); /* the load factor of solved load step k (0-based) */
+PetscErrorCode SgContSetStoreSteps(SgCont, PetscBool); /* keep every load step's solution, so that SgContWriteFields writes them all (an XDMF temporal collection) */
+PetscErrorCode SgContWriteLoadCurve(SgCont, const char[]); /* CSV: one row per load step (factor, obstacle displacement, contact force, ...) */
 PetscErrorCode SgContGetSolution(SgCont, Vec *); /* the displacement (borrowed: do not destroy) */
 PetscErrorCode SgContGetConvergedReason(SgCont, PetscBool *, const char *[]); /* converged to the tolerance, and why it stopped */
 PetscErrorCode SgContGetIterationNumbers(SgCont, PetscInt *, PetscInt *, PetscInt *); /* outer steps, SSN iterations, Krylov iterations */

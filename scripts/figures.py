@@ -6,9 +6,12 @@
   fig6.png  Example 1, V along the IPF iterates against the path, log gamma axis
   fig7.png  Example 2, V(gamma) against the models fitted at g* = 1e6, 1e8, 1e10       (with --only ex2)
   fig8.png  Example 2, deformed mesh coloured by von Mises stress; fig8_pressure.png the contact pressure on the bottom
+  loadcurve.png  coarse Example 2 in 10 load steps, the ball moved 0.02 up: contact force against load factor and
+            indentation (with --only loadsteps)
   punch_pressure.png  the CAD punch with rounded edges (options/punch.opts): contact pressure on the block's top face
+            (with --only punch)
 
-usage: figures.py [--only ex1,ex2,punch]
+usage: figures.py [--only ex1,ex2,loadsteps,punch]
 """
 import argparse
 import os
@@ -112,6 +115,16 @@ def ex2():
     value_figure([("Example 2", d)], [1e6, 1e8, 1e10], "Example 2: path value V(gamma) and models m(gamma)", "fig7.png")
 
 
+def loadsteps():
+    name = "loadcurve"
+    sgrun.run("-options_file options/ex2_problem.opts -dm_plex_filename meshes/ex2_coarse.msh -options_file options/solver/mumps.opts "
+              "-options_file options/cont/ipf.opts -obstacle_translation 0,0,0.02 -load_steps 10 -load_curve_file %s"
+              % os.path.join(RUNS, name + "_curve.csv"), name, RUNS)
+    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "load_curve.py"), os.path.join(RUNS, name + "_curve.csv"), os.path.join(RES, name + ".png"),
+                    "--title", "Coarse Example 2 in 10 load steps (Dirichlet values and the ball's 0.02 lift scaled together)"], check=True)
+    print("wrote results/%s.png" % name)
+
+
 def punch():
     base = "-options_file options/punch.opts -options_file options/solver/mumps.opts -options_file options/cont/pdas.opts"
     sgrun.run(base, "punch", RUNS, fields=True)
@@ -125,7 +138,7 @@ def main():
     ap.add_argument("--only", default="ex1")
     opt = ap.parse_args()
     for part in opt.only.split(","):
-        {"ex1": ex1, "ex2": ex2, "punch": punch}[part]()
+        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch}[part]()
 
 
 if __name__ == "__main__":

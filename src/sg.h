@@ -81,6 +81,9 @@ PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
 PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);
 PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBool *, PetscLogDouble *); /* dofs, cells, mms, assembly time */
 PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
+PetscErrorCode SgElasticitySetLoadFactor(SgElasticity, PetscReal); /* loads and Dirichlet values times the factor */
+PetscErrorCode SgElasticityGetLoadFactor(SgElasticity, PetscReal *);
+PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||b||_2, ||b||_inf, energy shift at factor 1 */
 PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
@@ -115,6 +118,8 @@ PetscErrorCode SgSummarySetRealArray(SgSummary, const char[], PetscInt, const Pe
 PetscErrorCode SgSummarySetIntArray(SgSummary, const char[], PetscInt, const PetscInt[]);
 PetscErrorCode SgSummaryWrite(MPI_Comm, SgSummary, const char[], const char[]);
 PetscErrorCode SgOutputWrite(SgElasticity, const char[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+typedef PetscErrorCode (*SgOutputFill)(void *, PetscInt, PetscInt, Vec[], PetscInt, Vec[]);
+PetscErrorCode SgOutputWriteSteps(SgElasticity, const char[], PetscInt, const PetscInt[], const PetscReal[], SgOutputFill, void *, PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 
 /* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
 typedef struct _n_SgObstacle *SgObstacle;
@@ -123,6 +128,8 @@ PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
 PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
 PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
 PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode SgObstacleSetPlacement(SgObstacle, PetscReal);
+PetscErrorCode SgObstacleGetTranslation(SgObstacle, PetscReal[3]);
 PetscErrorCode SgObstacleDestroy(SgObstacle *);
 PetscErrorCode SgObstacleCreate_Plane(SgObstacle);
 PetscErrorCode SgObstacleCreate_Parabola(SgObstacle);
@@ -168,11 +175,16 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
 PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
 PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
+PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
+PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
+PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */
+PetscErrorCode SgContactNormalDisplacementMax(SgContact, Vec, PetscReal *); /* max_i n_i . y_i */
 
 PetscErrorCode SgProblemGetElasticity(SgProblem, SgElasticity *);
 PetscErrorCode SgProblemGetContact(SgProblem, SgContact *); /* NULL without a contact boundary */
 PetscErrorCode SgProblemGetComm(SgProblem, MPI_Comm *);
 PetscErrorCode SgProblemGetCreationTime(SgProblem, PetscLogDouble *);
+PetscErrorCode SgProblemHasLoadSteps(SgProblem, PetscBool *);
 
 /* ------------------------------------------------------------------ io: history.c */
 typedef struct {
@@ -194,6 +206,13 @@ PetscErrorCode SgHistoryReset(SgHistory);
    that a restart may use another partition. The controller's own numbers are named (nstate, names): no list of
    controller types here. */
 #define SG_STATE_MAX 8
+/* one load step's result (quasi-static load stepping: SgProblemSetLoadFactor, SgContSolve again) */
+typedef struct {
+  PetscReal t, obstacle_displacement, normal_displacement_max, force, kkt, energy, time;
+  PetscInt  outer, ssn_its, ksp_its, nactive;
+  PetscBool converged;
+} SgLoadStep;
+#define SG_LOADSTEP_NREAL 12
 typedef struct {
   char        type[64];
   PetscReal   gamma, V0, best_kkt;
@@ -206,6 +225,15 @@ typedef struct {
   PetscInt    nstate;
   const char *state_names[SG_STATE_MAX];
   PetscReal   state[SG_STATE_MAX];
+  /* load stepping (only with loadsteps set: a run without load steps writes the file as before) */
+  PetscBool   loadsteps;
+  PetscReal   load;       /* the load factor of y */
+  PetscInt    nsteps;     /* load steps finished */
+  PetscBool   step_open;  /* y is an outer step inside load step nsteps+1, not the end of load step nsteps */
+  SgLoadStep *steps;      /* written from / read into (allocated on reading; PetscFree) */
+  PetscBool   kept;       /* every finished step's displacement and multiplier (for the fields of all steps) */
+  Vec        *ysteps;     /* nsteps of each (allocated on reading) */
+  PetscReal **lamsteps;
 } SgCheckpoint;
 PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckpoint *, PetscBool *, char[], size_t);
 PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);
@@ -218,11 +246,13 @@ typedef struct _n_SgCondense *SgCondense;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgSSNGetSNES(SgSSN, SNES *);
+PetscErrorCode SgSSNUpdateLoad(SgSSN); /* the load scales again after the load factor changed */
 PetscErrorCode SgSSNGetShift(SgSSN, PetscReal **);            /* lamhat per contact vertex, for the controller to set */
 PetscErrorCode SgSSNGetMultiplier(SgSSN, const PetscReal **); /* max(0, lamhat + gamma g) at the last residual */
 PetscErrorCode SgSSNGetPathValues(SgSSN, PetscReal *, PetscReal *, PetscReal *); /* gamma, J(gamma, y), dJ/dgamma there */
@@ -230,6 +260,7 @@ PetscErrorCode SgSSNGetReason(SgSSN, SgSSNReason *);
 PetscErrorCode SgSSNSetNeighbourhood(SgSSN, PetscReal);
 PetscErrorCode SgSSNSetHistory(SgSSN, SgHistory, PetscLogDouble);
 PetscErrorCode SgSSNGetMonitor(SgSSN, PetscBool *);
+PetscErrorCode SgSSNSetProgress(SgSSN, PetscBool);
 PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 /* a controller's own stopping test, called after every Newton step instead of the SSN's (it sets the SNES reason and
    the SSN's): hook(ssn, iteration, ||F||, settled, &reason, ctx); NULL restores the SSN's test */

@@ -63,7 +63,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   ct->stall_its   = 10;
   ct->residual    = SG_NAN;
   ct->V0 = ct->V = SG_NAN;
-  PetscCall(PetscStrcpy(ct->type, SGCONTNONE));
+  ct->monitor     = PETSC_TRUE;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   PetscCall(SgHistoryCreate(&ct->hist));
   PetscCall(SgSummaryCreate(&ct->sum));
@@ -135,13 +135,22 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(SgProblemGetContact(p, &ct->c));
   if (ct->c) PetscCall(SgContactGetView(ct->c, &ct->cv));
   ct->problem = ct->c ? "P" : "elasticity";
+  /* the default solves the problem given: the contact problem (P) with the default controller, or the elasticity
+     problem alone (none) without a contact boundary */
+  ct->type_default = (PetscBool)!ct->type[0];
+  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, ct->c ? SG_CONT_DEFAULT : SGCONTNONE));
   PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
-  PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), NULL));
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
+    if (set) ct->type_default = PETSC_FALSE;
+  }
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
@@ -173,6 +182,7 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
@@ -199,6 +209,12 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
   PetscCall(SgSummaryDestroy(&ct->sum));
+  for (PetscInt k = 0; k < ct->nsteps && ct->ysteps; k++) {
+    PetscCall(VecDestroy(&ct->ysteps[k]));
+    PetscCall(PetscFree(ct->lamsteps[k]));
+  }
+  PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
+  PetscCall(PetscFree(ct->steps));
   PetscCall(PetscFree(*cont));
   PetscFunctionReturn(0);
 }
@@ -245,6 +261,12 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
     PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the first gamma %g exceeds -cont_gamma_max %g: no step taken", (double)ct->gamma, (double)ct->gamma_max));
     if (!ct->restarted) PetscCall(VecZeroEntries(ct->y));
     PetscCall(SgContMeasure(ct));
+    PetscFunctionReturn(0);
+  }
+  if (ct->warm) { /* a load step: y is the last step's solution; the unconstrained one is linear in the factor */
+    PetscReal t;
+    PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+    ct->V0 = t * t * ct->V0unit;
     PetscFunctionReturn(0);
   }
   if (ct->restarted && ct->outer >= ct->max_outer) { /* the checkpoint is at or beyond the limit: no step to take */
@@ -353,6 +375,11 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, const SgHistoryRow *m
   row.kkt     = ct->kkt.residual;
   row.time    = t - ct->t0;
   PetscCall(SgHistoryAdd(ct->hist, &row));
+  if (ct->monitor) {
+    char g[32] = "-";
+    if (!PetscIsNanReal(row.gamma)) PetscCall(PetscSNPrintf(g, sizeof(g), "%.3e", (double)row.gamma));
+    PetscCall(PetscPrintf(ct->comm, "  %s step %2" PetscInt_FMT ": gamma %s, SSN %" PetscInt_FMT " (total %" PetscInt_FMT "), KSP total %" PetscInt_FMT ", active %" PetscInt_FMT "/%" PetscInt_FMT ", KKT residual %.3e, %.2f s\n", ct->type, ct->outer, g, ssn_its, ct->ssn_its, ct->ksp_its, ct->kkt.nactive, ct->cv.nglobal, (double)ct->kkt.residual, (double)row.time));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -438,7 +465,7 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
   ck->ksp_its   = ct->ksp_its;
   ck->best_step = ct->best_step;
   ck->y         = ct->y;
-  ck->lamhat    = ct->lamhat;
+  ck->lamhat    = ct->lamhat ? ct->lamhat : ct->lam; /* without SSN (pdas, vi): the multiplier, the next load step's start */
   ck->ngammas   = ct->ngammas;
   ck->gammas    = ct->gammas;
   ck->hist      = ct->hist;
@@ -447,10 +474,21 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
     ck->state_names[i] = ct->ops.state_names[i];
     ck->state[i]       = ct->state[i];
   }
+  PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &ck->loadsteps));
+  PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &ck->load));
+  ck->nsteps    = ct->nsteps;
+  ck->step_open = PETSC_TRUE; /* an outer step's checkpoint; the end of a load step is written by SgContSolve */
+  ck->steps     = ct->steps;
+  /* the finished steps' solutions, when they are kept for the fields and none is missing */
+  ck->kept = (PetscBool)(ct->store_steps && ct->ysteps && ct->nsteps > 0);
+  for (PetscInt k = 0; ck->kept && k < ct->nsteps; k++)
+    if (!ct->ysteps[k]) ck->kept = PETSC_FALSE;
+  ck->ysteps   = ct->ysteps;
+  ck->lamsteps = ct->lamsteps;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgContCheckpointWrite(SgCont ct)
+static PetscErrorCode CheckpointWrite(SgCont ct, PetscBool step_open)
 {
   SgCheckpoint ck;
   PetscBool    ok;
@@ -459,6 +497,7 @@ PetscErrorCode SgContCheckpointWrite(SgCont ct)
   PetscFunctionBeginUser;
   if (!ct->ckfile[0]) PetscFunctionReturn(0);
   PetscCall(CheckpointFill(ct, &ck));
+  ck.step_open = step_open;
   PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
   if (!ok) {
     /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
@@ -469,16 +508,32 @@ PetscErrorCode SgContCheckpointWrite(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgContCheckpointWrite(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckpointWrite(ct, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+/* The state of -restart_file (read once, by the first SgContSolve or SgContGetLoadSteps). A checkpoint taken after an
+   outer step resumes that continuation (ct->restarted); one taken at the end of a load step holds that step's solution
+   and controller state, from which the next SgContSolve is a warm start. */
 PetscErrorCode SgContCheckpointRead(SgCont ct)
 {
   SgCheckpoint ck;
 
   PetscFunctionBeginUser;
-  if (!ct->rsfile[0]) PetscFunctionReturn(0);
-  PetscCheck(!ct->ops.solve, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have)", ct->type);
+  if (ct->rsread || !ct->rsfile[0]) PetscFunctionReturn(0);
+  ct->rsread = PETSC_TRUE;
+  PetscCall(SgContSetUp(ct));
   PetscCall(CheckpointFill(ct, &ck));
   ck.gammas = NULL;
+  ck.steps  = NULL;
   PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
+  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.gammas));
+  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.steps));
+  /* any type resumes after a load step; inside one, only a continuation has outer steps to resume */
+  PetscCheck(!ct->ops.solve || !ck.step_open, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have; any type resumes from the end of a load step)", ct->type);
   ct->gamma     = ck.gamma;
   ct->V0        = ck.V0;
   ct->best_kkt  = ck.best_kkt;
@@ -490,7 +545,20 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   ct->ngammas = 0;
   for (PetscInt i = 0; i < ck.ngammas; i++) PetscCall(SgContAddGamma(ct, ck.gammas[i]));
   PetscCall(PetscFree(ck.gammas));
-  ct->restarted = PETSC_TRUE;
+  PetscCall(PetscFree(ct->steps));
+  ct->steps    = ck.steps;
+  ct->nsteps   = ct->capsteps = ck.nsteps;
+  if (ck.kept) { /* the fields of the steps before the restart */
+    ct->ysteps   = ck.ysteps;
+    ct->lamsteps = ck.lamsteps;
+  }
+  ct->rsload   = ck.load;
+  ct->V0unit   = ck.V0 / (ck.load * ck.load);
+  if (ck.step_open) ct->restarted = PETSC_TRUE;
+  else {
+    ct->have_state = PETSC_TRUE;
+    ct->gamma_warm = ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1]) ? ct->gammas[ct->ngammas - 1] : ct->gamma;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -500,9 +568,9 @@ static PetscErrorCode SolveContinuation(SgCont ct)
   PetscBool stop = PETSC_FALSE, ok;
 
   PetscFunctionBeginUser;
-  if (!ct->restarted) PetscCall(ct->ops.start(ct));
+  if (!ct->restarted && !ct->warm) PetscCall(ct->ops.start(ct));
   PetscCall(SgContStart(ct, &ok)); /* V(0) */
-  if (!ct->restarted && ct->ops.started) PetscCall(ct->ops.started(ct));
+  if (!ct->restarted && !ct->warm && ct->ops.started) PetscCall(ct->ops.started(ct));
   while (ok && !stop) {
     const PetscInt its0 = ct->ssn_its;
     SgHistoryRow   mdl;
@@ -526,16 +594,95 @@ static PetscErrorCode SolveContinuation(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* Solve: the controller's steps from the unconstrained start (or the restart file's state), then the energy and the
-   KKT measures of the result. Reporting is separate (SgContView, SgContWriteSummary, ...). */
-PetscErrorCode SgContSolve(SgCont ct)
+/* A load step after the first: the counters of this step from zero, the first gamma the last one solved at; y, lamhat
+   and the controller's state stay (the SSN's load scales are read again by SgContSolve before every solve). */
+static PetscErrorCode PrepareWarm(SgCont ct)
 {
   PetscFunctionBeginUser;
+  ct->outer = ct->ssn_its = ct->ksp_its = 0;
+  ct->ngammas   = 0;
+  ct->best_kkt  = 0;
+  ct->best_step = 0;
+  ct->converged = PETSC_FALSE;
+  ct->residual  = SG_NAN;
+  PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
+  ct->gamma = ct->gamma_warm;
+  PetscFunctionReturn(0);
+}
+
+/* The record of a finished load step (and its solution, if kept). */
+static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
+{
+  SgLoadStep *r;
+  PetscReal   T[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  if (ct->nsteps == ct->capsteps) {
+    SgLoadStep *a;
+    Vec        *ys;
+    PetscReal **ls;
+    ct->capsteps = PetscMax(8, 2 * ct->capsteps);
+    PetscCall(PetscCalloc1(ct->capsteps, &a));
+    PetscCall(PetscArraycpy(a, ct->steps, ct->nsteps));
+    PetscCall(PetscFree(ct->steps));
+    ct->steps = a;
+    PetscCall(PetscCalloc2(ct->capsteps, &ys, ct->capsteps, &ls));
+    if (ct->ysteps) {
+      PetscCall(PetscArraycpy(ys, ct->ysteps, ct->nsteps));
+      PetscCall(PetscArraycpy(ls, ct->lamsteps, ct->nsteps));
+    }
+    PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
+    ct->ysteps   = ys;
+    ct->lamsteps = ls;
+  }
+  r = &ct->steps[ct->nsteps];
+  PetscCall(PetscMemzero(r, sizeof(*r)));
+  r->t         = t;
+  r->outer     = ct->outer;
+  r->ssn_its   = ct->ssn_its;
+  r->ksp_its   = ct->ksp_its;
+  r->energy    = ct->V;
+  r->time      = ct->t1 - ct->t0;
+  r->converged = ct->converged;
+  r->kkt       = ct->residual;
+  if (ct->c) {
+    PetscCall(SgContactGetObstacleTranslation(ct->c, T));
+    r->obstacle_displacement = t * PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
+    PetscCall(SgContactNormalDisplacementMax(ct->c, ct->y, &r->normal_displacement_max));
+    r->force   = ct->kkt.force;
+    r->nactive = ct->kkt.nactive;
+  }
+  if (ct->store_steps) {
+    PetscCall(VecDuplicate(ct->y, &ct->ysteps[ct->nsteps]));
+    PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
+    PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
+    PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
+  }
+  ct->nsteps++;
+  PetscFunctionReturn(0);
+}
+
+/* Solve: the controller's steps from the unconstrained start (or the restart file's state), then the energy and the
+   KKT measures of the result. Called again (a load step, after SgProblemSetLoadFactor): the steps start from the last
+   solution and controller state (see contimpl.h). Reporting is separate (SgContView, SgContWriteSummary, ...). */
+PetscErrorCode SgContSolve(SgCont ct)
+{
+  PetscReal t;
+  PetscBool loadsteps;
+
+  PetscFunctionBeginUser;
   PetscCall(SgContSetUp(ct));
-  PetscCheck(!ct->solved, ct->comm, PETSC_ERR_ORDER, "SgContSolve: a controller solves once (create another for another solve)");
+  PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+  PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
   PetscCall(PetscTime(&ct->t0));
-  if (ct->ssn) PetscCall(SgSSNSetHistory(ct->ssn, ct->hist, ct->t0));
+  if (ct->ssn) {
+    PetscCall(SgSSNSetHistory(ct->ssn, ct->hist, ct->t0));
+    PetscCall(SgSSNUpdateLoad(ct->ssn));
+  }
   PetscCall(SgContCheckpointRead(ct));
+  PetscCheck(!ct->restarted || PetscAbsReal(t - ct->rsload) <= 1e-12 * t, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint is inside load step %" PetscInt_FMT " at load factor %.17g, but this run solves that step at %.17g (give the same -load_steps and -load_factors)", ct->nsteps + 1, (double)ct->rsload, (double)t);
+  ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
+  if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));
   PetscCall(PetscTime(&ct->t1));
@@ -544,7 +691,39 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgContMeasure(ct));
     if (!strcmp(ct->problem, "P")) ct->residual = ct->kkt.residual;
   }
-  ct->solved = PETSC_TRUE;
+  ct->solved     = PETSC_TRUE;
+  ct->restarted  = PETSC_FALSE;
+  ct->warm       = PETSC_FALSE;
+  ct->have_state = PETSC_TRUE;
+  ct->V0unit     = ct->V0 / (t * t);
+  if (ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1])) ct->gamma_warm = ct->gammas[ct->ngammas - 1];
+  PetscCall(RecordStep(ct, t));
+  /* a load step's end: a restart from here starts the next step warm */
+  if (loadsteps && ct->converged) PetscCall(CheckpointWrite(ct, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetLoadSteps(SgCont ct, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContCheckpointRead(ct));
+  *n = ct->nsteps;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContGetLoadStepFactor(SgCont ct, PetscInt k, PetscReal *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContCheckpointRead(ct));
+  PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepFactor: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
+  *t = ct->steps[k].t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContSetStoreSteps(SgCont ct, PetscBool store)
+{
+  PetscFunctionBeginUser;
+  ct->store_steps = store;
   PetscFunctionReturn(0);
 }
 

@@ -13,10 +13,16 @@
      ops->finish    after the loop, optional
    A solver that is not a continuation (none, and the baselines pdas and vi, which solve (P) directly without the SSN)
    sets ops->solve instead, and needs_ssn = PETSC_FALSE if it does not use the SSN.
-   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]). */
+   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]).
+   Load steps: a second SgContSolve (after SgProblemSetLoadFactor) is warm (ct->warm): SgContStart keeps y and takes
+   V(0) = t^2 V0unit, ops->start and ops->started are skipped, ct->gamma = ct->gamma_warm (the last gamma solved at),
+   and lamhat and ct->state[] stay as the last step left them; a type with ops->solve reads ct->warm itself. */
 #pragma once
 
 #include "sg.h"
+
+/* the controller of a problem with a contact boundary when none is given (-cont_type) */
+#define SG_CONT_DEFAULT SGCONTIPF
 
 typedef struct {
   PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
@@ -36,8 +42,11 @@ typedef struct {
 
 struct _n_SgCont {
   MPI_Comm     comm;
-  char         type[64];
+  char         type[64];     /* empty until set: then the default for the problem (SgContSetFromOptions) */
   char        *prefix;
+  PetscBool    monitor;      /* -cont_monitor: a line per outer step */
+  PetscBool    type_default; /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
+  char         solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */
   SgProblem    problem_obj;
   SgElasticity prob;
   SgContact    c;
@@ -73,6 +82,18 @@ struct _n_SgCont {
   PetscLogDouble t0, t1;
   void        *data;
   SgContOps    ops;
+  /* load stepping: SgContSolve called again after SgProblemSetLoadFactor */
+  PetscBool    warm;         /* this solve starts from the last load step's solution and controller state */
+  PetscBool    have_state;   /* a load step was solved (or restored from a checkpoint taken between load steps) */
+  PetscBool    rsread;       /* -restart_file was read */
+  PetscReal    gamma_warm;   /* the last gamma solved at: the warm start's first */
+  PetscReal    V0unit;       /* V(0) / t^2 (the unconstrained solution is linear in the load factor t) */
+  PetscReal    rsload;       /* the load factor of -restart_file's state */
+  PetscInt     nsteps, capsteps;
+  SgLoadStep  *steps;
+  PetscBool    store_steps;  /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
+  Vec         *ysteps;
+  PetscReal  **lamsteps;
 };
 
 extern PetscFunctionList SgContList;

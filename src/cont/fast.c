@@ -173,6 +173,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   if (!ok) PetscFunctionReturn(0);
   PetscCall(SgContMeasure(ct));
   if (f->gamma > 0) ct->gamma = f->gamma;
+  else if (ct->warm) ct->gamma = ct->gamma_warm; /* a load step: the last step's gamma */
   else {
     /* the estimate is from above: where it passes -cont_gamma_max, the largest gamma allowed is tried (a gamma that
        proves too small is raised, and past -cont_gamma_max the run stops with GAMMA_OVERFLOW) */
@@ -187,6 +188,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscCall(KSPSetConvergenceTest(ksp, KSPConverged_Fast, f, NULL));
   PetscCall(SgSSNSetStopTest(s, SSNStop_Fast, f));
   PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_TRUE));
+  PetscCall(SgSSNSetProgress(s, ct->monitor)); /* its one outer step is the whole solve: show the Newton steps */
   f->on = PETSC_TRUE;
   while (!stop) {
     const PetscReal gamma = ct->gamma;
@@ -221,6 +223,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   f->on = PETSC_FALSE;
   PetscCall(SgSSNSetStopTest(s, NULL, NULL));
   PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_FALSE));
+  PetscCall(SgSSNSetProgress(s, PETSC_FALSE));
   PetscCall(KSPSetConvergenceTest(ksp, KSPConvergedDefault, f->defctx, KSPConvergedDefaultDestroy));
   f->defctx = NULL;
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_stopped_early", f->nearly));

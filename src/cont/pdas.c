@@ -95,8 +95,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(VecRestoreArrayRead(ct->y, &ya));
   }
   for (PetscInt i = 0; i < c->n; i++) {
+    /* a load step starts from the last step's active set test (its multiplier and the gap at the new load) */
+    act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
     ct->lam[i] = 0;
-    act[i]     = (char)(g[i] > 0);
   }
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));

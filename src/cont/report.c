@@ -3,6 +3,8 @@
 #include "cont/contimpl.h"
 #include <sys/resource.h>
 
+static PetscErrorCode SummaryLoadSteps(SgCont, SgSummary);
+
 /* Path data per outer step (the history's outer rows) as summary arrays path_<quantity>. */
 static PetscErrorCode SummaryPath(SgCont ct, SgSummary sum)
 {
@@ -37,6 +39,25 @@ static PetscErrorCode SummaryPath(SgCont ct, SgSummary sum)
   PetscFunctionReturn(0);
 }
 
+/* "KSP type + PC type (factorization package)" of the controller's linear solver */
+static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
+{
+  KSPType       kt;
+  PCType        pt;
+  PC            pc;
+  MatSolverType st = NULL;
+  PetscBool     factor;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetType(ct->ksp, &kt));
+  PetscCall(KSPGetPC(ct->ksp, &pc));
+  PetscCall(PCGetType(pc, &pt));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+  if (factor) PetscCall(PCFactorGetMatSolverType(pc, &st));
+  PetscCall(PetscSNPrintf(name, len, "%s + %s%s%s%s", kt ? kt : "(unset)", pt ? pt : "(unset)", st ? " (" : "", st ? st : "", st ? ")" : ""));
+  PetscFunctionReturn(0);
+}
+
 /* Every key of the summary: the run's result, the problem's data and sizes, times and memory. */
 static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 {
@@ -48,6 +69,13 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 
   PetscFunctionBeginUser;
   PetscCall(SgSummarySetString(sum, "cont_type", ct->type));
+  PetscCall(SgSummarySetBool(sum, "cont_type_default", ct->type_default));
+  if (ct->ksp) {
+    char name[128];
+    PetscCall(LinearSolverName(ct, name, sizeof(name)));
+    PetscCall(SgSummarySetString(sum, "linear_solver", name));
+    PetscCall(SgSummarySetString(sum, "linear_solver_choice", ct->solver_desc));
+  }
   PetscCall(SgSummarySetBool(sum, "converged", ct->converged));
   PetscCall(SgSummarySetString(sum, "reason", ct->reason));
   PetscCall(SgSummarySetString(sum, "problem", ct->problem));
@@ -97,6 +125,7 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     }
     PetscCall(SummaryPath(ct, sum));
   }
+  PetscCall(SummaryLoadSteps(ct, sum));
   PetscCallMPI(MPI_Comm_size(ct->comm, &size));
   PetscCall(SgElasticityGetInfo(ct->prob, &ndofs, &ncells, &mms, &t_assembly));
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, &nu));
@@ -170,11 +199,11 @@ PetscErrorCode SgContWriteHistory(SgCont ct, const char file[])
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
+/* The work vectors of the fields: vf displacement and (with contact) the contact fields, cf the cell fields */
+static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[6], Vec cf[2])
 {
   SgElasticity p = ct->prob;
-  Vec          vf[6], cf[2];
-  PetscInt     nv = 1, dim;
+  PetscInt     dim;
   DM           dmVec, dmCell, dmVert;
   const char  *cnames[2] = {"von_mises", "shear_energy_density"}, *vnames[4] = {"contact_pressure", "gap", "penetration", "active"};
 
@@ -184,12 +213,11 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   PetscCall(DMCreateGlobalVector(dmVec, &vf[0]));
   PetscCall(PetscObjectSetName((PetscObject)vf[0], "displacement"));
   PetscCall(VecSetBlockSize(vf[0], dim));
-  PetscCall(SgElasticityFullDisplacement(p, ct->y, vf[0]));
   for (PetscInt i = 0; i < 2; i++) {
     PetscCall(DMCreateGlobalVector(dmCell, &cf[i]));
     PetscCall(PetscObjectSetName((PetscObject)cf[i], cnames[i]));
   }
-  PetscCall(SgElasticityCellFields(p, ct->y, cf[0], cf[1]));
+  *nv = 1;
   if (ct->c) {
     for (PetscInt i = 0; i < 4; i++) {
       PetscCall(DMCreateGlobalVector(dmVert, &vf[1 + i]));
@@ -198,12 +226,139 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     PetscCall(DMCreateGlobalVector(dmVec, &vf[5]));
     PetscCall(PetscObjectSetName((PetscObject)vf[5], "obstacle_offset"));
     PetscCall(VecSetBlockSize(vf[5], dim));
-    PetscCall(SgContactFields(ct->c, ct->y, ct->lam, &vf[1], vf[5]));
-    nv = 6;
+    *nv = 6;
   }
-  PetscCall(SgOutputWrite(p, file, nv, vf, 2, cf, magnification));
+  PetscFunctionReturn(0);
+}
+
+/* the fields of the displacement y with the multiplier lam, at the problem's current load factor */
+static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], Vec vf[], Vec cf[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
+  PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
+  if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  SgCont          ct;
+  const PetscInt *idx; /* the kept load steps */
+} StepsCtx;
+
+static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], PetscInt nc, Vec cf[])
+{
+  StepsCtx *sc = (StepsCtx *)vctx;
+  SgCont    ct = sc->ct;
+  PetscInt  j  = sc->idx[k];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemSetLoadFactor(ct->problem_obj, ct->steps[j].t));
+  PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
+{
+  Vec       vf[6], cf[2];
+  PetscInt  nv, nkept = 0;
+  PetscBool loadsteps;
+
+  PetscFunctionBeginUser;
+  PetscCall(FieldsCreate(ct, &nv, vf, cf));
+  PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
+  for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
+  if (loadsteps && nkept) {
+    /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
+    PetscInt *idx, *num;
+    PetscReal *times, t;
+    StepsCtx   sc;
+    PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+    PetscCall(PetscMalloc3(nkept, &idx, nkept, &num, nkept, &times));
+    nkept = 0;
+    for (PetscInt k = 0; k < ct->nsteps; k++)
+      if (ct->ysteps[k]) {
+        idx[nkept]   = k;
+        num[nkept]   = k + 1;
+        times[nkept] = ct->steps[k].t;
+        nkept++;
+      }
+    sc.ct  = ct;
+    sc.idx = idx;
+    PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, 2, cf, magnification));
+    PetscCall(SgProblemSetLoadFactor(ct->problem_obj, t));
+    PetscCall(PetscFree3(idx, num, times));
+  } else {
+    PetscCall(FieldsFill(ct, ct->y, ct->lam, vf, cf));
+    PetscCall(SgOutputWrite(ct->prob, file, nv, vf, 2, cf, magnification));
+  }
   for (PetscInt i = 0; i < nv; i++) PetscCall(VecDestroy(&vf[i]));
   for (PetscInt i = 0; i < 2; i++) PetscCall(VecDestroy(&cf[i]));
+  PetscFunctionReturn(0);
+}
+
+/* The load-displacement curve: a CSV row per load step (file "": none). */
+PetscErrorCode SgContWriteLoadCurve(SgCont ct, const char file[])
+{
+  FILE          *fp;
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  if (!file || !file[0]) PetscFunctionReturn(0);
+  PetscCall(SgFileOpen(ct->comm, "-load_curve_file", file, &fp));
+  if (fp) {
+    fprintf(fp, "step,load_factor,obstacle_displacement,normal_displacement_max,contact_force,active,outer_iterations,ssn_iterations,ksp_iterations,kkt_residual,energy,converged,time\n");
+    for (PetscInt k = 0; k < ct->nsteps; k++) {
+      const SgLoadStep *r = &ct->steps[k];
+      fprintf(fp, "%" PetscInt_FMT ",%.17g,%.17g,%.17g,%.17g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.6e,%.17g,%d,%.6e\n", k + 1, (double)r->t, (double)r->obstacle_displacement, (double)r->normal_displacement_max, (double)r->force, r->nactive, r->outer, r->ssn_its, r->ksp_its, (double)r->kkt, (double)r->energy, (int)r->converged, (double)r->time);
+    }
+  }
+  ierr = SgFileClose(ct->comm, file, &fp);
+  PetscCall(NoteError(ct, "load_curve_error", ierr));
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
+/* Per load step arrays in the summary (only for a run with load steps: a run without keeps its summary). */
+static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
+{
+  PetscReal *a[7];
+  PetscInt  *b[5], tot[3] = {0, 0, 0};
+  PetscBool  loadsteps;
+  const char *rn[7] = {"load_factors", "load_step_obstacle_displacement", "load_step_normal_displacement_max", "load_step_contact_force", "load_step_kkt_residual", "load_step_energy", "load_step_time"};
+  const char *in[5] = {"load_step_outer_iterations", "load_step_ssn_iterations", "load_step_ksp_iterations", "load_step_active_set_size", "load_step_converged"};
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
+  if (!loadsteps) PetscFunctionReturn(0);
+  for (PetscInt j = 0; j < 7; j++) PetscCall(PetscMalloc1(ct->nsteps + 1, &a[j]));
+  for (PetscInt j = 0; j < 5; j++) PetscCall(PetscMalloc1(ct->nsteps + 1, &b[j]));
+  for (PetscInt k = 0; k < ct->nsteps; k++) {
+    const SgLoadStep *r = &ct->steps[k];
+    a[0][k] = r->t;
+    a[1][k] = r->obstacle_displacement;
+    a[2][k] = r->normal_displacement_max;
+    a[3][k] = r->force;
+    a[4][k] = r->kkt;
+    a[5][k] = r->energy;
+    a[6][k] = r->time;
+    b[0][k] = r->outer;
+    b[1][k] = r->ssn_its;
+    b[2][k] = r->ksp_its;
+    b[3][k] = r->nactive;
+    b[4][k] = r->converged;
+    tot[0] += r->outer;
+    tot[1] += r->ssn_its;
+    tot[2] += r->ksp_its;
+  }
+  PetscCall(SgSummarySetInt(sum, "load_steps", ct->nsteps));
+  for (PetscInt j = 0; j < 7; j++) PetscCall(SgSummarySetRealArray(sum, rn[j], ct->nsteps, a[j]));
+  for (PetscInt j = 0; j < 5; j++) PetscCall(SgSummarySetIntArray(sum, in[j], ct->nsteps, b[j]));
+  PetscCall(SgSummarySetInt(sum, "load_steps_outer_iterations", tot[0]));
+  PetscCall(SgSummarySetInt(sum, "load_steps_ssn_iterations", tot[1]));
+  PetscCall(SgSummarySetInt(sum, "load_steps_ksp_iterations", tot[2]));
+  for (PetscInt j = 0; j < 7; j++) PetscCall(PetscFree(a[j]));
+  for (PetscInt j = 0; j < 5; j++) PetscCall(PetscFree(b[j]));
   PetscFunctionReturn(0);
 }
 
@@ -232,8 +387,13 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   if (!ct->solved) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps\n", ct->type, ct->prefix ? " with prefix " : "", ct->prefix ? ct->prefix : "", (double)ct->kkt_tol, ct->max_outer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps\n", ct->type, ct->type_default ? " (the default; -cont_type changes it)" : "", ct->prefix ? " with prefix " : "", ct->prefix ? ct->prefix : "", (double)ct->kkt_tol, ct->max_outer));
     if (ct->ops.view) PetscCall(ct->ops.view(ct, viewer));
+    if (ct->ksp) {
+      char name[128];
+      PetscCall(LinearSolverName(ct, name, sizeof(name)));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  linear solver: %s, %s%s\n", name, ct->solver_desc, strcmp(ct->solver_desc, "from the options") ? "; -ksp_type, -pc_type or a file of options/solver/ change it" : ""));
+    }
     PetscFunctionReturn(0);
   }
   if (ct->c) {

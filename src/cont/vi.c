@@ -67,6 +67,8 @@ static PetscErrorCode Solve_VI(SgCont ct)
   }
   PetscCall(VecRestoreArray(xl, &la));
   PetscCall(VecRestoreArray(xu, &ua));
+  PetscCall(SNESDestroy(&vi->snes)); /* a load step's solve: a new SNESVI with the new bounds */
+  PetscCall(MatDestroy(&vi->J));
   PetscCall(SNESCreate(ct->comm, &vi->snes));
   PetscCall(SgCheckSolverTypes(ct->comm, prefix));
   PetscCall(SNESSetOptionsPrefix(vi->snes, prefix));

@@ -415,3 +415,58 @@ PetscErrorCode SgContactActiveSetHash(SgContact c, const char act[], PetscInt64 
   *h = (PetscInt64)loc;
   PetscFunctionReturn(0);
 }
+
+/* Load stepping: the obstacle at t times its translation (-obstacle_translation), the gaps d recomputed from it (for
+   every obstacle type: the translation is applied in SgObstacleGap), and the load scale of the KKT measures (the
+   elasticity object's loads must be scaled first). */
+PetscErrorCode SgContactSetLoadFactor(SgContact c, PetscReal t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleSetPlacement(c->obs, t));
+  for (PetscInt i = 0; i < c->n; i++) PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &c->d[i]));
+  PetscCall(SgElasticityGetScales(c->prob, NULL, NULL, &c->bnorm_inf));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetObstacleTranslation(SgContact c, PetscReal T[3])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleGetTranslation(c->obs, T));
+  PetscFunctionReturn(0);
+}
+
+/* sum_i w_i d_i with the obstacle placed at t (the placement is restored): a fingerprint of the obstacle for the
+   checkpoint, the same at every load step */
+PetscErrorCode SgContactGapSum(SgContact c, PetscReal t, PetscReal *sum)
+{
+  PetscReal s = 0, d, now = c->obs->placement;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleSetPlacement(c->obs, t));
+  for (PetscInt i = 0; i < c->n; i++) {
+    if (t == now) d = c->d[i];
+    else PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &d));
+    s += c->w[i] * d;
+  }
+  PetscCall(SgObstacleSetPlacement(c->obs, now));
+  PetscCallMPI(MPI_Allreduce(&s, sum, 1, MPIU_REAL, MPI_SUM, c->comm));
+  PetscFunctionReturn(0);
+}
+
+/* the largest normal displacement n_i . y_i over the contact vertices (towards the obstacle: positive) */
+PetscErrorCode SgContactNormalDisplacementMax(SgContact c, Vec y, PetscReal *mx)
+{
+  const PetscScalar *ya;
+  PetscReal          m = PETSC_MIN_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal un = 0;
+    for (PetscInt k = 0; k < c->dim; k++) un += c->normal[i * c->dim + k] * PetscRealPart(ya[c->off[i] + k]);
+    m = PetscMax(m, un);
+  }
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCallMPI(MPI_Allreduce(&m, mx, 1, MPIU_REAL, MPI_MAX, c->comm));
+  PetscFunctionReturn(0);
+}

@@ -9,6 +9,8 @@ struct _n_SgObstacle {
   char      type[64];
   PetscInt  dim;
   PetscReal p[16]; /* shape parameters */
+  PetscReal translation[3]; /* -obstacle_translation: a rigid translation of any obstacle at full load */
+  PetscReal placement;      /* the part of it applied (the load factor; 1 without load steps) */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
   PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
   PetscErrorCode (*destroy)(SgObstacle); /* NULL, or frees data */
@@ -34,7 +36,7 @@ struct _n_SgContact {
   PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
   PetscReal *normal;     /* outward unit normals, n*dim */
   PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
-  PetscReal *d;          /* gap to the obstacle along the normal */
+  PetscReal *d;          /* gap to the obstacle along the normal (at the obstacle's current placement) */
   PetscReal  area;
   char      *prefix;
 };
@@ -49,5 +51,6 @@ struct _n_SgProblem {
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
   PetscBool            setfromoptions, setup;
+  PetscBool            load_set;    /* SgProblemSetLoadFactor was called: a run with load steps */
   PetscLogDouble       t_create;
 };

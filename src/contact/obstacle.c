@@ -182,15 +182,38 @@ PetscErrorCode SgObstacleCreate(MPI_Comm comm, const char prefix[], PetscInt dim
   PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-obstacle_type: unknown obstacle '%s' (see -help for the list)", o->type);
   PetscCall(create(o));
   PetscCall(o->setfromoptions(o, PetscOptionsObject));
+  PetscCall(ReadVector(PetscOptionsObject, comm, "-obstacle_translation", "Rigid translation of the obstacle (any type); with -load_steps it is applied in proportion to the load factor", dim, o->translation));
   PetscOptionsEnd();
+  o->placement = 1;
   *obs = o;
   PetscFunctionReturn(0);
 }
 
+/* The gap of every type at its placement: the obstacle moved by s = placement * translation has at x the gap the
+   unmoved one has at x - s (the ray's direction n is unchanged by a translation). */
 PetscErrorCode SgObstacleGap(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
 {
+  PetscReal xs[3];
+
   PetscFunctionBeginUser;
-  PetscCall(o->gap(o, x, n, d));
+  for (PetscInt k = 0; k < o->dim; k++) xs[k] = x[k] - o->placement * o->translation[k];
+  PetscCall(o->gap(o, xs, n, d));
+  PetscFunctionReturn(0);
+}
+
+/* The obstacle moved by t times -obstacle_translation (load stepping). */
+PetscErrorCode SgObstacleSetPlacement(SgObstacle o, PetscReal t)
+{
+  PetscFunctionBeginUser;
+  o->placement = t;
+  PetscFunctionReturn(0);
+}
+
+/* The translation at full placement (zero if none was given). */
+PetscErrorCode SgObstacleGetTranslation(SgObstacle o, PetscReal T[3])
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < 3; k++) T[k] = k < o->dim ? o->translation[k] : 0;
   PetscFunctionReturn(0);
 }
 

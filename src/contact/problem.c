@@ -230,6 +230,36 @@ PetscErrorCode SgProblemComputeEnergy(SgProblem p, Vec y, PetscReal *V)
   PetscFunctionReturn(0);
 }
 
+/* Quasi-static load stepping: the loads (body force, Neumann tractions), the Dirichlet values and the obstacle's
+   translation (-obstacle_translation) times t; t = 1 is the problem as given. A solver that solved the problem before
+   continues from its last solution when SgContSolve is called again (a warm start). */
+PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemSetUp(p));
+  PetscCheck(PetscIsNormalReal(t) && t > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetLoadFactor: the factor must be positive and finite, got %g", (double)t);
+  PetscCall(SgElasticitySetLoadFactor(p->el, t));
+  if (p->c) PetscCall(SgContactSetLoadFactor(p->c, t));
+  p->load_set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgProblemGetLoadFactor(SgProblem p, PetscReal *t)
+{
+  PetscFunctionBeginUser;
+  *t = 1;
+  if (p->el) PetscCall(SgElasticityGetLoadFactor(p->el, t));
+  PetscFunctionReturn(0);
+}
+
+/* whether SgProblemSetLoadFactor was called (the run has load steps) */
+PetscErrorCode SgProblemHasLoadSteps(SgProblem p, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = p->load_set;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgProblemGetElasticity(SgProblem p, SgElasticity *el)
 {
   PetscFunctionBeginUser;

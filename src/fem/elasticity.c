@@ -475,6 +475,7 @@ PetscErrorCode SgElasticityCreate(MPI_Comm comm, const char prefix[], SgElastici
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&p));
   p->comm = comm;
+  p->load = 1;
   PetscCall(PetscStrallocpy(prefix, &p->prefix));
   *prob = p;
   PetscFunctionReturn(0);
@@ -634,6 +635,9 @@ PetscErrorCode SgElasticityDestroy(SgElasticity *prob)
   PetscCall(VecDestroy(&p->mass));
   PetscCall(VecDestroy(&p->ubc));
   PetscCall(VecDestroy(&p->fpart));
+  PetscCall(VecDestroy(&p->b1));
+  PetscCall(VecDestroy(&p->ubc1));
+  PetscCall(VecDestroy(&p->fpart1));
   PetscCall(MatNullSpaceDestroy(&p->nearnull));
   PetscCall(SgMeshDestroy(&p->mesh));
   PetscCall(DMDestroy(&p->dmCell));
@@ -642,6 +646,55 @@ PetscErrorCode SgElasticityDestroy(SgElasticity *prob)
   PetscCall(DMDestroy(&p->dm));
   PetscCall(PetscFree(p->prefix));
   PetscCall(PetscFree(*prob));
+  PetscFunctionReturn(0);
+}
+
+/* Quasi-static load stepping: the body force, the Neumann tractions and the Dirichlet values times t (t = 1: the
+   data as given). b, the Dirichlet values, the load part of the energy and its shift scale with t (the shift with
+   t^2); K does not change. The full data are copied on the first call, so a run without load steps is untouched. */
+PetscErrorCode SgElasticitySetLoadFactor(SgElasticity p, PetscReal t)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "SgElasticitySetLoadFactor: call SgElasticitySetUp first");
+  PetscCheck(PetscIsNormalReal(t) || t == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "load factor %g: must be finite", (double)t);
+  if (t == p->load) PetscFunctionReturn(0);
+  if (!p->b1) {
+    PetscCall(VecDuplicate(p->b, &p->b1));
+    PetscCall(VecDuplicate(p->ubc, &p->ubc1));
+    PetscCall(VecDuplicate(p->fpart, &p->fpart1));
+    PetscCall(VecCopy(p->b, p->b1));
+    PetscCall(VecCopy(p->ubc, p->ubc1));
+    PetscCall(VecCopy(p->fpart, p->fpart1));
+    p->energy_shift1 = p->energy_shift;
+    p->bnorm1        = p->bnorm;
+    p->bnorm_inf1    = p->bnorm_inf;
+  }
+  PetscCall(VecAXPBY(p->b, t, 0.0, p->b1));
+  PetscCall(VecAXPBY(p->ubc, t, 0.0, p->ubc1));
+  PetscCall(VecAXPBY(p->fpart, t, 0.0, p->fpart1));
+  p->energy_shift = t * t * p->energy_shift1;
+  PetscCall(VecNorm(p->b, NORM_2, &p->bnorm));
+  PetscCall(VecNorm(p->b, NORM_INFINITY, &p->bnorm_inf));
+  p->load = t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgElasticityGetLoadFactor(SgElasticity p, PetscReal *t)
+{
+  PetscFunctionBeginUser;
+  *t = p->load;
+  PetscFunctionReturn(0);
+}
+
+/* ||b||_2, ||b||_inf and the energy shift of the full load (factor 1), whatever the factor now */
+PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity p, PetscReal *bnorm, PetscReal *bnorm_inf, PetscReal *shift)
+{
+  const PetscBool full = (PetscBool)!p->b1;
+
+  PetscFunctionBeginUser;
+  if (bnorm) *bnorm = full ? p->bnorm : p->bnorm1;
+  if (bnorm_inf) *bnorm_inf = full ? p->bnorm_inf : p->bnorm_inf1;
+  if (shift) *shift = full ? p->energy_shift : p->energy_shift1;
   PetscFunctionReturn(0);
 }
 

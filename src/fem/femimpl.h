@@ -34,4 +34,9 @@ struct _n_SgElasticity {
   PetscBool    use_nearnull; /* attached to K and the Jacobians */
   PetscInt     ndofs;
   PetscLogDouble t_assembly;
+  /* load stepping (SgElasticitySetLoadFactor): the loads above are the full ones times load; the full ones are kept
+     here once a factor is set (NULL until then) */
+  PetscReal    load;
+  Vec          b1, ubc1, fpart1;
+  PetscReal    energy_shift1, bnorm1, bnorm_inf1;
 };

@@ -64,23 +64,17 @@ static const char *PrintOptions[NPRINT] = {"-E", "-nu", "the loads (-body_force,
 
 static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print[NPRINT])
 {
-  SgContactView cv = {0};
-  MPI_Comm      comm;
-  PetscReal     gs = 0;
+  PetscReal gs = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  if (c) PetscCall(SgContactGetView(c, &cv));
-  for (PetscInt i = 0; i < cv.n; i++) gs += cv.w[i] * cv.d[i];
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gs, 1, MPIU_REAL, MPI_SUM, comm));
+  /* the full load and the obstacle at its full placement: the same problem at every load step */
+  if (c) PetscCall(SgContactGapSum(c, 1.0, &gs));
   PetscCall(SgElasticityGetMaterial(el, &print[0], &print[1]));
-  PetscCall(SgElasticityGetScales(el, NULL, &print[2], &print[3]));
-  PetscCall(SgElasticityGetEnergyShift(el, &print[4]));
+  PetscCall(SgElasticityGetFullLoadScales(el, &print[2], &print[3], &print[4]));
   print[5] = gs;
   PetscFunctionReturn(0);
 }
 
-/* The controller's state names as stored: comma-separated. */
 static PetscErrorCode StateNames(const SgCheckpoint *ck, char names[], size_t len)
 {
   PetscFunctionBeginUser;
@@ -98,7 +92,32 @@ typedef struct {
   Vec       v[7];
   PetscInt  ints[6];
   PetscReal print[NPRINT];
+  Vec       steps; /* load steps (NULL without) */
+  PetscInt  nkept;
+  Vec      *kept;  /* 2 per kept step: displacement, multiplier */
 } CkCtx;
+
+static void StepToReals(const SgLoadStep *r, PetscReal a[])
+{
+  const PetscReal v[SG_LOADSTEP_NREAL] = {r->t, r->obstacle_displacement, r->normal_displacement_max, r->force, r->kkt, r->energy, r->time, r->outer, r->ssn_its, r->ksp_its, r->nactive, r->converged};
+  for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = v[k];
+}
+
+static void RealsToStep(const PetscReal a[], SgLoadStep *r)
+{
+  r->t                       = a[0];
+  r->obstacle_displacement   = a[1];
+  r->normal_displacement_max = a[2];
+  r->force                   = a[3];
+  r->kkt                     = a[4];
+  r->energy                  = a[5];
+  r->time                    = a[6];
+  r->outer                   = (PetscInt)a[7];
+  r->ssn_its                 = (PetscInt)a[8];
+  r->ksp_its                 = (PetscInt)a[9];
+  r->nactive                 = (PetscInt)a[10];
+  r->converged               = (PetscBool)(a[11] != 0);
+}
 
 static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
 {
@@ -116,7 +135,73 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
     PetscCall(StateNames(ctx->ck, names, sizeof(names)));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, names));
   }
+  if (ctx->steps) {
+    const PetscInt open = ctx->ck->step_open;
+    PetscCall(VecView(ctx->steps, viewer));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, &ctx->ck->load));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, &ctx->ck->nsteps));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, &open));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, &ctx->nkept));
+    for (PetscInt i = 0; i < 2 * ctx->nkept; i++) PetscCall(VecView(ctx->kept[i], viewer));
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* A displacement y and a per-contact-vertex array as vertex-ordered vectors (the owned vertices in local order, as the
+   coordinates are written), for a kept load step. */
+static PetscErrorCode StepVectors(SgElasticity el, SgContact c, Vec y, const PetscReal lam[], PetscInt step, Vec *U, Vec *L)
+{
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscInt           dim, nown = 0, k = 0;
+  MPI_Comm           comm;
+  DM                 dm, dmVert;
+  PetscSection       gs;
+  PetscReal         *vl;
+  Vec                yloc;
+  PetscScalar       *ua, *la;
+  const PetscScalar *ya;
+  char               name[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
+  if (c) PetscCall(SgContactGetView(c, &cv));
+  PetscCall(DMGetGlobalSection(dmVert, &gs));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off >= 0) nown++;
+  }
+  PetscCall(PetscCalloc1(m->nv, &vl));
+  for (PetscInt i = 0; i < cv.n; i++) vl[cv.vert[i]] = lam[i];
+  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, U));
+  PetscCall(VecCreateMPI(comm, nown, PETSC_DETERMINE, L));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, step));
+  PetscCall(PetscObjectSetName((PetscObject)*U, name));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, step));
+  PetscCall(PetscObjectSetName((PetscObject)*L, name));
+  PetscCall(DMGetLocalVector(dm, &yloc));
+  PetscCall(VecSet(yloc, 0));
+  PetscCall(DMGlobalToLocal(dm, y, INSERT_VALUES, yloc)); /* the free values: the Dirichlet ones are not read back */
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArray(*U, &ua));
+  PetscCall(VecGetArray(*L, &la));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) ua[k * dim + d] = ya[m->loff[v] + d];
+    la[k++] = vl[v];
+  }
+  PetscCall(VecRestoreArray(*U, &ua));
+  PetscCall(VecRestoreArray(*L, &la));
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(dm, &yloc));
+  PetscCall(PetscFree(vl));
   PetscFunctionReturn(0);
 }
 
@@ -201,10 +286,25 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
   ints[5] = ck->best_step;
 
   {
-    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}};
+    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL, 0, NULL};
     for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
     PetscCall(ProblemPrint(el, c, ctx.print));
+    if (ck->loadsteps) {
+      PetscReal *a;
+      PetscCall(PetscMalloc1(SG_LOADSTEP_NREAL * ck->nsteps + 1, &a));
+      for (PetscInt i = 0; i < ck->nsteps; i++) StepToReals(&ck->steps[i], &a[i * SG_LOADSTEP_NREAL]);
+      PetscCall(RootVec(comm, "load_steps", SG_LOADSTEP_NREAL * ck->nsteps, a, &ctx.steps));
+      PetscCall(PetscFree(a));
+      if (ck->kept) {
+        ctx.nkept = ck->nsteps;
+        PetscCall(PetscMalloc1(2 * ck->nsteps + 1, &ctx.kept));
+        for (PetscInt i = 0; i < ck->nsteps; i++) PetscCall(StepVectors(el, c, ck->ysteps[i], ck->lamsteps[i], i, &ctx.kept[2 * i], &ctx.kept[2 * i + 1]));
+      }
+    }
     PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
+    PetscCall(VecDestroy(&ctx.steps));
+    for (PetscInt i = 0; i < 2 * ctx.nkept; i++) PetscCall(VecDestroy(&ctx.kept[i]));
+    PetscCall(PetscFree(ctx.kept));
   }
   PetscCall(VecDestroy(&X));
   PetscCall(VecDestroy(&U));
@@ -272,6 +372,11 @@ typedef struct {
   PetscReal   print[NPRINT];
   char       *state_names;
   Vec         X, U, L, R, S, G, H;
+  PetscBool   hasload; /* written by a run with load steps */
+  PetscReal   load;
+  PetscInt    nsteps, open, nkept;
+  Vec         LS;
+  Vec        *kept; /* 2 per kept step */
 } CkRead;
 
 /* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
@@ -294,6 +399,14 @@ static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
   rd->what = "the problem data";
   PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", PrintNames[0], &rd->hasprint));
   for (PetscInt i = 0; rd->hasprint && i < NPRINT; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, NULL, &rd->print[i]));
+  rd->what = "the load steps";
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "load_factor", &rd->hasload));
+  if (rd->hasload) {
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, NULL, &rd->load));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, NULL, &rd->nsteps));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, NULL, &rd->open));
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, NULL, &rd->nkept));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -315,6 +428,20 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
   PetscCall(LoadSeq(viewer, "gammas", -1, &rd->G));
   rd->what = "history";
   PetscCall(LoadSeq(viewer, "history", -1, &rd->H));
+  if (rd->hasload) {
+    rd->what = "load_steps";
+    PetscCall(LoadSeq(viewer, "load_steps", -1, &rd->LS));
+    rd->what = "the kept load steps";
+    PetscCheck(rd->nkept == 0 || rd->nkept == rd->nsteps, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "kept steps");
+    PetscCall(PetscCalloc1(2 * rd->nkept + 1, &rd->kept));
+    for (PetscInt i = 0; i < rd->nkept; i++) {
+      char name[64];
+      PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, i));
+      PetscCall(LoadSeq(viewer, name, rd->nvert * rd->dim, &rd->kept[2 * i]));
+      PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, i));
+      PetscCall(LoadSeq(viewer, name, rd->nvert, &rd->kept[2 * i + 1]));
+    }
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
 }
@@ -487,8 +614,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     }
   }
   if (ierr) {
-    Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
-    for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
+    Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
+    for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
     SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
   }
 
@@ -513,7 +640,9 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     if (!what && bad >= 0) what = "a displacement", val = PetscRealPart(ua[bad]);
     if (!what) CheckReals(la, nvert, PETSC_TRUE, 0, &bad);
     if (!what && bad >= 0) what = "a multiplier shift lamhat (must be >= 0)", val = PetscRealPart(la[bad]);
-    if (!what && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
+    /* the end of a load step of a solver without gamma (pdas, vi) holds no gamma to check */
+    const PetscBool step_end = (PetscBool)(rd.hasload && !rd.open);
+    if (!what && !step_end && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
     if (!what && !PetscIsNormalReal(PetscRealPart(ra[1])) && PetscRealPart(ra[1]) != 0) what = "the unconstrained energy", val = PetscRealPart(ra[1]);
     if (!what) CheckReals(&ra[2], 1, PETSC_TRUE, 0, &bad);
     if (!what && bad >= 0) what = "the best KKT residual", val = PetscRealPart(ra[2]);
@@ -524,13 +653,13 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       what = statewhat, val = PetscRealPart(sa[bad]);
     }
     if (!what && ng != ints[2]) what = "the number of gammas (must be the number of outer steps)", val = ng;
-    for (PetscInt i = 0; !what && i < ng; i++)
+    for (PetscInt i = 0; !what && !step_end && i < ng; i++)
       if (!(PetscRealPart(ga[i]) > 0)) what = "a gamma of the path (must be positive)", val = PetscRealPart(ga[i]);
     if (!what && nh % NHIST) what = "the length of the history", val = nh;
     for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
       const PetscReal kind = PetscRealPart(ha[i * NHIST]), outer = PetscRealPart(ha[i * NHIST + 1]);
       if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
-      else if (!(outer >= 0 && outer <= ints[2] && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+      else if (!(outer >= 0 && (outer <= ints[2] || rd.hasload) && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer; /* with load steps the history holds every step's rows */
     }
     if (what) {
       PetscCall(VecRestoreArrayRead(rd.X, &xa));
@@ -541,8 +670,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       PetscCall(VecRestoreArrayRead(rd.G, &ga));
       PetscCall(VecRestoreArrayRead(rd.H, &ha));
       {
-        Vec *v[7] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H};
-        for (PetscInt i = 0; i < 7; i++) PetscCall(VecDestroy(v[i]));
+        Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
+        for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
       }
       SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
     }
@@ -571,6 +700,38 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     if (idx < 0) nmiss++;
     else ck->lamhat[i] = PetscRealPart(la[idx]);
   }
+  /* the kept load steps' displacements and multipliers, matched by the coordinates as y and lamhat */
+  ck->kept     = (PetscBool)(rd.nkept > 0);
+  ck->ysteps   = NULL;
+  ck->lamsteps = NULL;
+  if (ck->kept) {
+    PetscCall(PetscCalloc2(rd.nkept, &ck->ysteps, rd.nkept, &ck->lamsteps));
+    for (PetscInt j = 0; j < rd.nkept; j++) {
+      const PetscScalar *sua, *sla;
+      PetscCall(VecDuplicate(ck->y, &ck->ysteps[j]));
+      PetscCall(PetscMalloc1(cv.n + 1, &ck->lamsteps[j]));
+      PetscCall(VecGetArrayRead(rd.kept[2 * j], &sua));
+      PetscCall(VecGetArrayRead(rd.kept[2 * j + 1], &sla));
+      PetscCall(VecGetArray(ck->ysteps[j], &ya));
+      for (PetscInt v = 0; v < m->nv; v++) {
+        PetscInt idx;
+        if (m->goff[v] < 0) continue;
+        PetscCall(FindVertex(perm, nvert, &m->x[v * dim], &idx));
+        if (idx >= 0)
+          for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = sua[idx * dim + d];
+      }
+      PetscCall(VecRestoreArray(ck->ysteps[j], &ya));
+      for (PetscInt i = 0; i < cv.n; i++) {
+        PetscInt idx;
+        PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
+        ck->lamsteps[j][i] = idx >= 0 ? PetscRealPart(sla[idx]) : 0;
+      }
+      PetscCall(VecRestoreArrayRead(rd.kept[2 * j], &sua));
+      PetscCall(VecRestoreArrayRead(rd.kept[2 * j + 1], &sla));
+    }
+  }
+  for (PetscInt i = 0; i < 2 * rd.nkept && rd.kept; i++) PetscCall(VecDestroy(&rd.kept[i]));
+  PetscCall(PetscFree(rd.kept));
   PetscCall(PetscFree(perm));
   PetscCall(VecRestoreArrayRead(rd.X, &xa));
   PetscCall(VecRestoreArrayRead(rd.U, &ua));
@@ -607,6 +768,28 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     PetscCall(SgHistoryAdd(ck->hist, &r));
   }
   PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  /* the load steps: a file of a run without them is the full load, inside its only step */
+  ck->load      = rd.hasload ? rd.load : 1;
+  ck->nsteps    = 0;
+  ck->step_open = PETSC_TRUE;
+  ck->steps     = NULL;
+  if (rd.hasload) {
+    PetscInt           nls;
+    const PetscScalar *lsa;
+    PetscCall(VecGetSize(rd.LS, &nls));
+    PetscCheck(PetscIsNormalReal(rd.load) && rd.load > 0 && rd.nsteps >= 0 && nls == SG_LOADSTEP_NREAL * rd.nsteps && (rd.open == 0 || rd.open == 1), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: its load steps (factor %g, %" PetscInt_FMT " steps done, %" PetscInt_FMT " numbers) are impossible", f, (double)rd.load, rd.nsteps, nls);
+    ck->nsteps    = rd.nsteps;
+    ck->step_open = (PetscBool)rd.open;
+    PetscCall(PetscMalloc1(rd.nsteps + 1, &ck->steps));
+    PetscCall(VecGetArrayRead(rd.LS, &lsa));
+    for (PetscInt i = 0; i < rd.nsteps; i++) {
+      PetscReal a[SG_LOADSTEP_NREAL];
+      for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = PetscRealPart(lsa[i * SG_LOADSTEP_NREAL + k]);
+      RealsToStep(a, &ck->steps[i]);
+    }
+    PetscCall(VecRestoreArrayRead(rd.LS, &lsa));
+    PetscCall(VecDestroy(&rd.LS));
+  }
   PetscCall(VecDestroy(&rd.X));
   PetscCall(VecDestroy(&rd.U));
   PetscCall(VecDestroy(&rd.L));

@@ -514,6 +514,9 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   errno = 0;
   /* not PetscCall: the error is caught, reported with its cause and the .part removed below */
   ierr = PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer);
+  /* collective MPI-IO transfers (PETSc's default is independent): every rank writes its part of each dataset in one
+     collective call, which MPI-IO can aggregate on a parallel file system */
+  if (!ierr) ierr = PetscViewerHDF5SetCollective(viewer, PETSC_TRUE);
   if (!ierr) ierr = body(viewer, ctx);
   err[1] = errno;
   if (viewer) {
@@ -696,7 +699,7 @@ PetscErrorCode SgSummaryWrite(MPI_Comm comm, SgSummary s, const char option[], c
 
 /* ---------------------------------------------------------------- HDF5 + XDMF */
 /* PETSc stores a field of vector "v" whose section field is "f" as <group>/v_f */
-static PetscErrorCode DatasetName(Vec v, char name[], size_t len)
+static PetscErrorCode DatasetName(Vec v, const char suffix[], char name[], size_t len)
 {
   const char  *vname, *fname;
   DM           dm;
@@ -707,14 +710,62 @@ static PetscErrorCode DatasetName(Vec v, char name[], size_t len)
   PetscCall(VecGetDM(v, &dm));
   PetscCall(DMGetLocalSection(dm, &s));
   PetscCall(PetscSectionGetFieldName(s, 0, &fname));
-  PetscCall(PetscSNPrintf(name, len, "%s_%s", vname, fname));
+  PetscCall(PetscSNPrintf(name, len, "%s%s_%s", vname, suffix, fname));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char xname[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
+/* One <Grid> of the XDMF file: the mesh and the fields; step >= 0: the datasets of that load step (their names end in
+   _step<step>) at the time value time, inside a temporal collection. */
+static PetscErrorCode WriteXDMFGrid(FILE *fp, const char h5base[], PetscInt dim, PetscInt nvert, PetscInt ncell, PetscInt step, PetscReal time, PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
+{
+  const char *ctype = dim == 2 ? "Triangle" : "Tetrahedron", *ind = step >= 0 ? "  " : "";
+  char        suffix[32] = "";
+
+  PetscFunctionBeginUser;
+  if (step >= 0) {
+    PetscCall(PetscSNPrintf(suffix, sizeof(suffix), "_step%" PetscInt_FMT, step));
+    fprintf(fp, "   <Grid Name=\"step%" PetscInt_FMT "\" GridType=\"Uniform\">\n", step);
+    fprintf(fp, "     <Time Value=\"%.17g\"/>\n", (double)time);
+  } else fprintf(fp, "  <Grid Name=\"body\" GridType=\"Uniform\">\n");
+  fprintf(fp, "%s   <Information Name=\"magnification\" Value=\"%g\"/>\n", ind, (double)magnification);
+  fprintf(fp, "%s   <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", ind, ctype, ncell);
+  fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n%s   </Topology>\n", ind, ncell, dim + 1, h5base, ind);
+  fprintf(fp, "%s   <Geometry GeometryType=\"%s\">\n", ind, dim == 2 ? "XY" : "XYZ");
+  fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n%s   </Geometry>\n", ind, nvert, dim, h5base, ind);
+  for (PetscInt i = 0; i < nv; i++) {
+    const char *name;
+    char        dset[256];
+    PetscInt    bs;
+    PetscCall(PetscObjectGetName((PetscObject)vf[i], &name));
+    PetscCall(DatasetName(vf[i], suffix, dset, sizeof(dset)));
+    PetscCall(VecGetBlockSize(vf[i], &bs));
+    fprintf(fp, "%s   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", ind, name, bs > 1 ? "Vector" : "Scalar");
+    if (bs == 2) { /* ParaView wants 3-component vectors: pad the 2D displacement with a zero */
+      fprintf(fp, "%s    <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0*$0)\" Dimensions=\"%" PetscInt_FMT " 3\">\n", ind, nvert);
+      for (PetscInt d = 0; d < 2; d++)
+        fprintf(fp, "%s     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", ind, nvert, d, nvert, nvert, h5base, dset);
+      fprintf(fp, "%s    </DataItem>\n", ind);
+    } else fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", ind, nvert, bs, h5base, dset);
+    fprintf(fp, "%s   </Attribute>\n", ind);
+  }
+  for (PetscInt i = 0; i < nc; i++) {
+    const char *name;
+    char        dset[256];
+    PetscCall(PetscObjectGetName((PetscObject)cf[i], &name));
+    PetscCall(DatasetName(cf[i], suffix, dset, sizeof(dset)));
+    fprintf(fp, "%s   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n", ind, name);
+    fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n%s   </Attribute>\n", ind, ncell, h5base, dset, ind);
+  }
+  fprintf(fp, "%s  </Grid>\n", ind);
+  PetscFunctionReturn(0);
+}
+
+/* The XDMF file of the HDF5 file h5name: one grid, or (nsteps > 0) a temporal collection of the steps[] at times[]
+   that ParaView plays as an animation. */
+static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char xname[], PetscInt nsteps, const PetscInt steps[], const PetscReal times[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
   FILE       *fp;
-  const char *h5base, *ctype;
+  const char *h5base;
   PetscInt    nvert, ncell, dim;
   MPI_Comm    comm;
   DM          dmVert;
@@ -723,7 +774,6 @@ static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char 
   PetscCall(SgElasticityGetComm(p, &comm));
   PetscCall(SgElasticityGetDimension(p, &dim));
   PetscCall(SgElasticityGetDMs(p, NULL, &dmVert, NULL, NULL));
-  ctype = dim == 2 ? "Triangle" : "Tetrahedron";
   /* the XDMF file sits beside the HDF5 file and names it relative to itself */
   h5base = strrchr(h5name, '/') ? strrchr(h5name, '/') + 1 : h5name;
   PetscCall(VecGetSize(cf[0], &ncell));
@@ -735,48 +785,44 @@ static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char 
   }
   PetscCall(SgFileOpen(comm, "-output_file", xname, &fp));
   if (fp) {
-    fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"body\" GridType=\"Uniform\">\n");
-    fprintf(fp, "   <Information Name=\"magnification\" Value=\"%g\"/>\n", (double)magnification);
-    fprintf(fp, "   <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", ctype, ncell);
-    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Int\" Format=\"HDF\">%s:/viz/topology/cells</DataItem>\n   </Topology>\n", ncell, dim + 1, h5base);
-    fprintf(fp, "   <Geometry GeometryType=\"%s\">\n", dim == 2 ? "XY" : "XYZ");
-    fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/geometry/vertices</DataItem>\n   </Geometry>\n", nvert, dim, h5base);
-    for (PetscInt i = 0; i < nv; i++) {
-      const char *name;
-      char        dset[256];
-      PetscInt    bs;
-      PetscCall(PetscObjectGetName((PetscObject)vf[i], &name));
-      PetscCall(DatasetName(vf[i], dset, sizeof(dset)));
-      PetscCall(VecGetBlockSize(vf[i], &bs));
-      fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, bs > 1 ? "Vector" : "Scalar");
-      if (bs == 2) { /* ParaView wants 3-component vectors: pad the 2D displacement with a zero */
-        fprintf(fp, "    <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0*$0)\" Dimensions=\"%" PetscInt_FMT " 3\">\n", nvert);
-        for (PetscInt d = 0; d < 2; d++)
-          fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", nvert, d, nvert, nvert, h5base, dset);
-        fprintf(fp, "    </DataItem>\n");
-      } else fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", nvert, bs, h5base, dset);
-      fprintf(fp, "   </Attribute>\n");
-    }
-    for (PetscInt i = 0; i < nc; i++) {
-      const char *name;
-      char        dset[256];
-      PetscCall(PetscObjectGetName((PetscObject)cf[i], &name));
-      PetscCall(DatasetName(cf[i], dset, sizeof(dset)));
-      fprintf(fp, "   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n", name);
-      fprintf(fp, "    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n   </Attribute>\n", ncell, h5base, dset);
-    }
-    fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+    fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+    if (nsteps > 0) {
+      fprintf(fp, "  <Grid Name=\"body\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+      for (PetscInt k = 0; k < nsteps; k++) PetscCall(WriteXDMFGrid(fp, h5base, dim, nvert, ncell, steps[k], times[k], nv, vf, nc, cf, magnification));
+      fprintf(fp, "  </Grid>\n");
+    } else PetscCall(WriteXDMFGrid(fp, h5base, dim, nvert, ncell, -1, 0, nv, vf, nc, cf, magnification));
+    fprintf(fp, " </Domain>\n</Xdmf>\n");
   }
   PetscCall(FileFinish(comm, xname, &fp, FILE_KEEP)); /* committed with the .h5 file */
   PetscFunctionReturn(0);
 }
 
 typedef struct {
-  DM        dm;
-  PetscInt  nv, nc;
-  Vec      *vf, *cf;
-  PetscReal magnification;
+  DM            dm;
+  PetscInt      nv, nc;
+  Vec          *vf, *cf;
+  PetscReal     magnification;
+  PetscInt      nsteps; /* 0: one set of fields; else the load steps steps[] filled by fill */
+  const PetscInt *steps;
+  SgOutputFill  fill;
+  void         *fctx;
 } FieldsCtx;
+
+/* VecView of v under the name <its name>_step<step> (the name restored after) */
+static PetscErrorCode ViewStep(Vec v, PetscInt step, PetscViewer viewer)
+{
+  const char *name;
+  char        base[256], sname[300];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetName((PetscObject)v, &name));
+  PetscCall(PetscStrncpy(base, name, sizeof(base)));
+  PetscCall(PetscSNPrintf(sname, sizeof(sname), "%s_step%" PetscInt_FMT, base, step));
+  PetscCall(PetscObjectSetName((PetscObject)v, sname));
+  PetscCall(VecView(v, viewer));
+  PetscCall(PetscObjectSetName((PetscObject)v, base));
+  PetscFunctionReturn(0);
+}
 
 static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
 {
@@ -785,10 +831,40 @@ static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerPushFormat(viewer, PETSC_VIEWER_HDF5_VIZ));
   PetscCall(DMView(f->dm, viewer));
-  for (PetscInt i = 0; i < f->nv; i++) PetscCall(VecView(f->vf[i], viewer));
-  for (PetscInt i = 0; i < f->nc; i++) PetscCall(VecView(f->cf[i], viewer));
+  if (!f->nsteps) {
+    for (PetscInt i = 0; i < f->nv; i++) PetscCall(VecView(f->vf[i], viewer));
+    for (PetscInt i = 0; i < f->nc; i++) PetscCall(VecView(f->cf[i], viewer));
+  }
+  for (PetscInt k = 0; k < f->nsteps; k++) {
+    PetscCall(f->fill(f->fctx, k, f->nv, f->vf, f->nc, f->cf));
+    for (PetscInt i = 0; i < f->nv; i++) PetscCall(ViewStep(f->vf[i], f->steps[k], viewer));
+    for (PetscInt i = 0; i < f->nc; i++) PetscCall(ViewStep(f->cf[i], f->steps[k], viewer));
+  }
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "magnification", PETSC_REAL, &f->magnification));
   PetscCall(PetscViewerPopFormat(viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OutputWrite(SgElasticity p, const char h5name[], FieldsCtx *ctx, const PetscReal times[])
+{
+  char           xname[PETSC_MAX_PATH_LEN + 8], msg[PETSC_MAX_PATH_LEN + 256];
+  PetscBool      ok;
+  PetscErrorCode ierr;
+  MPI_Comm       comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(p, &comm));
+  PetscCall(SgElasticityGetDMs(p, &ctx->dm, NULL, NULL, NULL));
+  PetscCall(PetscLogEventBegin(SG_Output, 0, 0, 0, 0));
+  PetscCall(SgFileWriteHDF5(comm, "-output_file", h5name, WriteFieldsH5, ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
+  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "%s", msg);
+  PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname)));
+  ierr = WriteXDMF(p, h5name, xname, ctx->nsteps, ctx->steps, times, ctx->nv, ctx->vf, ctx->nc, ctx->cf, ctx->magnification);
+  if (ierr) PetscCall(SgFileAbandon(comm, h5name)); /* the .xmf.part is gone already */
+  PetscCall(ierr);
+  PetscCall(SgFileCommit(comm, h5name));
+  PetscCall(SgFileCommit(comm, xname));
+  PetscCall(PetscLogEventEnd(SG_Output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -797,24 +873,20 @@ static PetscErrorCode WriteFieldsH5(PetscViewer viewer, void *ctx)
    either leaves neither new file (and the previous pair intact). */
 PetscErrorCode SgOutputWrite(SgElasticity p, const char h5name[], PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
 {
-  char           xname[PETSC_MAX_PATH_LEN + 8], msg[PETSC_MAX_PATH_LEN + 256];
-  PetscBool      ok;
-  FieldsCtx      ctx = {NULL, nv, nc, vf, cf, magnification};
-  PetscErrorCode ierr;
-  MPI_Comm       comm;
+  FieldsCtx ctx = {NULL, nv, nc, vf, cf, magnification, 0, NULL, NULL, NULL};
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(p, &comm));
-  PetscCall(SgElasticityGetDMs(p, &ctx.dm, NULL, NULL, NULL));
-  PetscCall(PetscLogEventBegin(SG_Output, 0, 0, 0, 0));
-  PetscCall(SgFileWriteHDF5(comm, "-output_file", h5name, WriteFieldsH5, &ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
-  PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "%s", msg);
-  PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname)));
-  ierr = WriteXDMF(p, h5name, xname, nv, vf, nc, cf, magnification);
-  if (ierr) PetscCall(SgFileAbandon(comm, h5name)); /* the .xmf.part is gone already */
-  PetscCall(ierr);
-  PetscCall(SgFileCommit(comm, h5name));
-  PetscCall(SgFileCommit(comm, xname));
-  PetscCall(PetscLogEventEnd(SG_Output, 0, 0, 0, 0));
+  PetscCall(OutputWrite(p, h5name, &ctx, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The same for load steps: fill(fctx, k, ...) puts the fields of the k-th of the nsteps steps into vf and cf, stored
+   as <name>_step<steps[k]>; the .xmf is a temporal collection with the time values times[k] (the load factors). */
+PetscErrorCode SgOutputWriteSteps(SgElasticity p, const char h5name[], PetscInt nsteps, const PetscInt steps[], const PetscReal times[], SgOutputFill fill, void *fctx, PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
+{
+  FieldsCtx ctx = {NULL, nv, nc, vf, cf, magnification, nsteps, steps, fill, fctx};
+
+  PetscFunctionBeginUser;
+  PetscCall(OutputWrite(p, h5name, &ctx, times));
   PetscFunctionReturn(0);
 }

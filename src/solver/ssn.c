@@ -188,6 +188,8 @@ static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx
   PetscCall(PetscTime(&t));
   if (s->monitor)
     PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
+  else if (s->progress && it > 0)
+    PetscCall(PetscPrintf(s->comm, "    SSN %2" PetscInt_FMT ": active %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next), ||F|| %.3e, KSP %" PetscInt_FMT ", %.2f s\n", it, s->nact, s->nentered, s->nleft, (double)fnorm, kits, (double)(t - s->t0)));
   if (it > 0 && s->hist) {
     SgHistoryRow row;
     PetscCall(SgHistoryRowInit(&row));
@@ -471,6 +473,16 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscFunctionReturn(0);
 }
 
+/* The load scales and the energy shift read again after the problem's load factor changed (load stepping; b and the
+   gaps are shared, not copied). */
+PetscErrorCode SgSSNUpdateLoad(SgSSN s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetScales(s->prob, &s->Knorm, &s->bnorm, &s->bnorm_inf));
+  PetscCall(SgElasticityGetEnergyShift(s->prob, &s->energy_shift));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNGetSNES(SgSSN s, SNES *snes)
 {
   PetscFunctionBeginUser;
@@ -522,6 +534,14 @@ PetscErrorCode SgSSNSetHistory(SgSSN s, SgHistory hist, PetscLogDouble t0)
   PetscFunctionBeginUser;
   s->hist = hist;
   s->t0   = t0;
+  PetscFunctionReturn(0);
+}
+
+/* a short progress line per SSN iteration (for controllers whose outer steps are long); -ssn_monitor prints more */
+PetscErrorCode SgSSNSetProgress(SgSSN s, PetscBool progress)
+{
+  PetscFunctionBeginUser;
+  s->progress = progress;
   PetscFunctionReturn(0);
 }
 

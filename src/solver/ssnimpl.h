@@ -35,6 +35,7 @@ struct _n_SgSSN {
   PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason reason;
   PetscBool   monitor;
+  PetscBool   progress;       /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */
   PetscViewer reason_viewer;  /* -snes_converged_reason, taken over (ReasonView in ssn.c) */
   PetscViewerFormat reason_format;
   SgHistory   hist;
