@@ -268,19 +268,19 @@ static PetscErrorCode SolveLoadSteps(MPI_Comm comm, SgProblem prob, SgCont cont,
    values are taken as given (PetscOptionsString would cut them at PETSC_MAX_PATH_LEN - 1 characters). */
 static PetscErrorCode CheckFileOptions(MPI_Comm comm)
 {
-  const char *inputs[2] = {"-dm_plex_filename", "-restart_file"}, *results[5] = {"-output_file", "-summary_file", "-history_file", "-checkpoint_file", "-load_curve_file"};
+  const char *inputs[3] = {"-dm_plex_filename", "-restart_file", "-obstacle_cad_file"}, *results[5] = {"-output_file", "-summary_file", "-history_file", "-checkpoint_file", "-load_curve_file"};
 
   PetscFunctionBeginUser;
   for (int i = 0; i < NOptionsFiles; i++) PetscCall(SgFileCheckInput(comm, "-options_file", OptionsFiles[i]));
-  for (PetscInt k = 0; k < 7; k++) {
-    const char *opt = k < 2 ? inputs[k] : results[k - 2], *val = NULL;
+  for (PetscInt k = 0; k < 8; k++) {
+    const char *opt = k < 3 ? inputs[k] : results[k - 3], *val = NULL;
     PetscBool   set;
     size_t      len;
     PetscCall(PetscOptionsFindPair(NULL, NULL, opt, &val, &set));
     if (!set || !val || !val[0]) continue;
     PetscCall(PetscStrlen(val, &len));
     PetscCheck(len < PETSC_MAX_PATH_LEN - 6, comm, PETSC_ERR_USER_INPUT, "%s: the file name is %zu characters long, at most %d are supported", opt, len, PETSC_MAX_PATH_LEN - 7);
-    if (k < 2) PetscCall(SgFileCheckInput(comm, opt, val));
+    if (k < 3) PetscCall(SgFileCheckInput(comm, opt, val));
     else PetscCall(SgFileCheckWritable(comm, opt, val));
   }
   PetscFunctionReturn(0);

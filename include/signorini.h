@@ -61,7 +61,7 @@ PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], Pet
 #define SG_COMPONENT_Y 2
 #define SG_COMPONENT_Z 4
 PetscErrorCode SgProblemSetDirichletComponents(SgProblem, PetscInt, const PetscInt[]);
-PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola or ball (default of -obstacle_type) */
+PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola, ball or cad (default of -obstacle_type) */
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */
 PetscErrorCode SgProblemView(SgProblem, PetscViewer); /* ASCII description (NULL: stdout) */

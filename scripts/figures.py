@@ -8,8 +8,10 @@
   fig8.png  Example 2, deformed mesh coloured by von Mises stress; fig8_pressure.png the contact pressure on the bottom
   loadcurve.png  coarse Example 2 in 10 load steps, the ball moved 0.02 up: contact force against load factor and
             indentation (with --only loadsteps)
+  punch_pressure.png  the CAD punch with rounded edges (options/punch.opts): contact pressure on the block's top face
+            (with --only punch)
 
-usage: figures.py [--only ex1,ex2,loadsteps]
+usage: figures.py [--only ex1,ex2,loadsteps,punch]
 """
 import argparse
 import os
@@ -123,12 +125,20 @@ def loadsteps():
     print("wrote results/%s.png" % name)
 
 
+def punch():
+    base = "-options_file options/punch.opts -options_file options/solver/mumps.opts -options_file options/cont/pdas.opts"
+    sgrun.run(base, "punch", RUNS, fields=True)
+    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_pressure.py"), os.path.join(RUNS, "punch.h5"), os.path.join(RES, "punch_pressure.png"),
+                    "CAD punch: contact pressure on the top face"], check=True)
+    print("wrote results/punch_pressure.png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", default="ex1")
     opt = ap.parse_args()
     for part in opt.only.split(","):
-        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps}[part]()
+        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch}[part]()
 
 
 if __name__ == "__main__":

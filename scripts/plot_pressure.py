@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Map of the contact pressure on the contact face of a 3D result (HDF5 from bin/signorini), seen from below.
 
-usage: plot_pressure.py RESULT.h5 OUT.png
+usage: plot_pressure.py RESULT.h5 OUT.png [TITLE]
 """
 import os
 import sys
@@ -16,7 +16,7 @@ from plot_mesh import boundary_faces, load  # noqa: E402
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
     d = load(sys.argv[1])
     if d["x"].shape[1] != 3 or "pressure" not in d:
@@ -31,7 +31,7 @@ def main():
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
-    ax.set_title("contact pressure on the bottom face\n(cyan: edge of the active set)")
+    ax.set_title((sys.argv[3] if len(sys.argv) > 3 else "contact pressure on the bottom face") + "\n(cyan: edge of the active set)")
     fig.colorbar(t, ax=ax, label="contact pressure", shrink=0.7)
     tmp = sys.argv[2] + ".part.png"
     fig.savefig(tmp, dpi=150, bbox_inches="tight")

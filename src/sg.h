@@ -144,6 +144,7 @@ PetscErrorCode SgObstacleDestroy(SgObstacle *);
 PetscErrorCode SgObstacleCreate_Plane(SgObstacle);
 PetscErrorCode SgObstacleCreate_Parabola(SgObstacle);
 PetscErrorCode SgObstacleCreate_Ball(SgObstacle);
+PetscErrorCode SgObstacleCreate_CAD(SgObstacle); /* obstacle_cad.c */
 
 /* ------------------------------------------------------------------ contact.c */
 typedef struct _n_SgContact *SgContact;

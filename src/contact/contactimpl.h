@@ -13,6 +13,8 @@ struct _n_SgObstacle {
   PetscReal placement;      /* the part of it applied (the load factor; 1 without load steps) */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
   PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
+  PetscErrorCode (*destroy)(SgObstacle); /* NULL, or frees data */
+  void *data;                            /* a type's own state (cad) */
 };
 
 

@@ -242,12 +242,14 @@ PetscErrorCode SgObstacleRegisterAll(void)
   PetscCall(SgObstacleRegister("plane", SgObstacleCreate_Plane));
   PetscCall(SgObstacleRegister("parabola", SgObstacleCreate_Parabola));
   PetscCall(SgObstacleRegister("ball", SgObstacleCreate_Ball));
+  PetscCall(SgObstacleRegister("cad", SgObstacleCreate_CAD));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgObstacleDestroy(SgObstacle *o)
 {
   PetscFunctionBeginUser;
+  if (*o && (*o)->destroy) PetscCall((*o)->destroy(*o));
   PetscCall(PetscFree(*o));
   PetscFunctionReturn(0);
 }
