@@ -129,7 +129,7 @@ def punch():
     base = "-options_file options/punch.opts -options_file options/solver/mumps.opts -options_file options/cont/pdas.opts"
     sgrun.run(base, "punch", RUNS, fields=True)
     subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_pressure.py"), os.path.join(RUNS, "punch.h5"), os.path.join(RES, "punch_pressure.png"),
-                    "CAD punch: contact pressure on the top face"], check=True)
+                    "CAD punch: pressure on the top face"], check=True)
     print("wrote results/punch_pressure.png")
 
 

@@ -4,10 +4,11 @@
    (MUMPS) for problems up to -cont_direct_max_unknowns unknowns, and CG + BoomerAMG with the settings of
    options/solver/hypre_l1gs.opts (relative tolerance 1e-8) above. The default threshold is measured
    (bench/perf_notes.md, "Default controller and linear solver"; contact solves with the default controller):
-     one rank: the factorization condensed onto the contact dofs (-ssn_condense) wins in 2D at every size measured
-               (to 6.2e5 unknowns), and in 3D up to about 2e4 unknowns;
-     several ranks (no condensation there): plain MUMPS against CG + BoomerAMG crosses at about 2e4 unknowns in 2D,
-               1e4 in 3D.
+     2D, one rank: the factorization condensed onto the contact dofs (-ssn_condense) wins at every size measured (to
+               6.2e5 unknowns); several ranks (no condensation there): plain MUMPS against CG + BoomerAMG crosses at
+               about 2e4 unknowns;
+     3D: with the truncated multigrid in the SSN steps, CG + BoomerAMG ties condensed MUMPS at 2,733 unknowns and
+               takes 0.5-0.6x its time at 17,307 (3 interleaved rounds), so MUMPS is kept up to 5,000.
    Each default is entered into the options database only where the user gave no value, so every -ksp_* / -pc_*
    option or options file still wins. */
 #include "sg.h"
@@ -43,9 +44,9 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgElasticityGetInfo(el, &dofs, NULL, NULL, NULL));
-  maxdirect = size == 1 ? (dim == 2 ? PETSC_MAX_INT : 20000) : (dim == 2 ? 20000 : 10000);
+  maxdirect = dim == 2 ? (size == 1 ? PETSC_MAX_INT : 20000) : 5000;
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: one rank: 2D all, 3D 20000; several ranks: 2D 20000, 3D 10000)", &maxdirect, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: 2D: all on one rank, 20000 on several; 3D: 5000)", &maxdirect, NULL));
   PetscOptionsEnd();
   PetscCheck(maxdirect >= 0, comm, PETSC_ERR_USER_INPUT, "-%scont_direct_max_unknowns: must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", maxdirect);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sksp_type", prefix ? prefix : ""));
@@ -59,12 +60,23 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(PetscSNPrintf(desc, len, "from the options"));
     PetscFunctionReturn(0);
   }
+  /* the user's SSN solver options decide where they need one kind: -ssn_condense a factorization, and
+     -ssn_pc_truncated_mg an AMG */
+  {
+    PetscBool condense = PETSC_FALSE, tmg = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_condense", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &condense, NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pc_truncated_mg", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tmg, NULL));
+    if (condense || tmg) maxdirect = condense ? PETSC_MAX_INT - 1 : 0;
+  }
   *iterative = (PetscBool)(dofs > maxdirect);
   if (!*iterative) {
     PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
     PetscCall(SetDefault(prefix, "pc_type", "cholesky"));
     PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
     if (maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for %" PetscInt_FMT "D on one rank: sparse Cholesky (MUMPS)", dim));
+    else if (maxdirect == PETSC_MAX_INT - 1) PetscCall(PetscSNPrintf(desc, len, "default with -ssn_condense: sparse Cholesky (MUMPS)"));
     else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
   } else {
     PetscCall(SetDefault(prefix, "ksp_type", "cg"));
@@ -78,7 +90,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_agg_nl", "1"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_down", "l1-Gauss-Seidel"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
-    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): CG + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect));
+    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): CG + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg"));
   }
   PetscFunctionReturn(0);
 }
