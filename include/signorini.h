@@ -91,9 +91,9 @@ typedef struct {
   PetscInt  nactive;
 } SgKKT;
 
-PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem (type none until set) */
+PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem (unless a type is set, SgContSetFromOptions picks the default for the problem: fast in 3D and with iterative solves, ipf in 2D with exact ones, none without contact) */
 PetscErrorCode SgContSetType(SgCont, const char[]); /* SGCONTIPF, ... (default of -cont_type) */
-PetscErrorCode SgContGetType(SgCont, const char *[]);
+PetscErrorCode SgContGetType(SgCont, const char *[]); /* the type (empty before SgContSetFromOptions if none was set) */
 PetscErrorCode SgContSetOptionsPrefix(SgCont, const char[]); /* prefix of the solver's options (-<prefix>cont_type, -<prefix>ksp_type, ...) */
 PetscErrorCode SgContGetOptionsPrefix(SgCont, const char *[]);
 PetscErrorCode SgContSetTolerances(SgCont, PetscReal, PetscInt); /* KKT tolerance, outer-step limit (PETSC_DEFAULT keeps one) */
