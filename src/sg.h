@@ -185,6 +185,7 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
 PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
 PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
+PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
 PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */

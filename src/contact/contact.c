@@ -395,6 +395,17 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   PetscFunctionReturn(0);
 }
 
+/* the axis k with normal i = +-e_k (and its sign), or -1 */
+static PetscInt NormalAxis(SgContact c, PetscInt i, PetscReal *sign)
+{
+  for (PetscInt k = 0; k < c->dim; k++)
+    if (PetscAbsReal(PetscAbsReal(c->normal[i * c->dim + k]) - 1) < 1e-10) {
+      *sign = c->normal[i * c->dim + k] > 0 ? 1 : -1;
+      return k;
+    }
+  return -1;
+}
+
 /* Every contact normal must be +-e_k (for the bound-constrained baselines); returns k and the sign per vertex. */
 PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis[], PetscReal sign[])
 {
@@ -403,18 +414,27 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n && bad < 0; i++) {
-    axis[i] = -1;
-    for (PetscInt k = 0; k < dim; k++)
-      if (PetscAbsReal(PetscAbsReal(c->normal[i * dim + k]) - 1) < 1e-10) {
-        axis[i] = k;
-        sign[i] = c->normal[i * dim + k] > 0 ? 1 : -1;
-      }
+    axis[i] = NormalAxis(c, i, &sign[i]);
     if (axis[i] < 0) bad = i;
   }
   if (bad >= 0) {
     const PetscReal *x = &c->mesh->x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0));
   }
+  PetscFunctionReturn(0);
+}
+
+/* whether every contact normal, on every rank, is +-e_k (the question of SgContactAxisAligned, without the error) */
+PetscErrorCode SgContactNormalsAxisAligned(SgContact c, PetscBool *aligned)
+{
+  PetscInt  ok = 1;
+  PetscReal sign;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < c->n && ok; i++)
+    if (NormalAxis(c, i, &sign) < 0) ok = 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, c->comm));
+  *aligned = (PetscBool)ok;
   PetscFunctionReturn(0);
 }
 

@@ -95,28 +95,6 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   PetscFunctionReturn(0);
 }
 
-/* whether every contact normal is a coordinate axis (on every rank) */
-static PetscErrorCode NormalsAxisAligned(SgElasticity el, SgContact c, PetscBool *aligned)
-{
-  SgContactView cv;
-  PetscInt      dim, ok = 1;
-  MPI_Comm      comm;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgContactGetView(c, &cv));
-  for (PetscInt i = 0; i < cv.n && ok; i++) {
-    PetscInt k;
-    for (k = 0; k < dim; k++)
-      if (PetscAbsReal(PetscAbsReal(cv.normal[i * dim + k]) - 1) < 1e-12) break;
-    if (k == dim) ok = 0;
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, comm));
-  *aligned = (PetscBool)ok;
-  PetscFunctionReturn(0);
-}
-
 /* Enter a default SSN option unless given; PETSC_TRUE if it is on (the user may have said false). */
 static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], PetscBool *on)
 {
@@ -151,7 +129,7 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgContactGetView(c, &cv));
-  PetscCall(NormalsAxisAligned(el, c, &aligned));
+  PetscCall(SgContactNormalsAxisAligned(c, &aligned));
   PetscCall(PetscStrlen(desc, &n));
   if (iterative) {
     if (!aligned) PetscFunctionReturn(0);
