@@ -33,7 +33,11 @@ CONFIGS = [
     ("overhead", "overhead", "-ksp_type preonly -pc_type none"),  # reading, assembly, output: in every run's CPU time
     ("lin_hypre_l1gs", "linear", L1GS + " -ksp_rtol 1e-8"),
     ("lin_hmg", "linear", "-ksp_type cg -ksp_rtol 1e-8 -pc_type hmg -hmg_inner_pc_type hypre " + HMG_INNER + " -mg_levels_ksp_type richardson -mg_levels_ksp_max_it 1 -mg_levels_pc_type sor"),
+    ("lin_gamg", "linear", "-ksp_type cg -ksp_rtol 1e-8 -pc_type gamg"),
+    ("lin_gamg_nonns", "linear", "-ksp_type cg -ksp_rtol 1e-8 -pc_type gamg -elasticity_near_null_space false"),
     ("fast_l1gs", "contact", L1GS + " " + FAST),
+    ("fast_gamg_tmg", "contact", "-ksp_type cg -pc_type gamg " + FAST + " -ssn_pc_truncated_mg"),
+    ("fast_gamg_nonns_tmg", "contact", "-ksp_type cg -pc_type gamg -elasticity_near_null_space false " + FAST + " -ssn_pc_truncated_mg"),
     ("fast_l1gs_tmg", "contact", L1GS + " " + FAST + " -ssn_pc_truncated_mg"),
     ("ipf_l1gs", "contact", L1GS + " -options_file options/cont/ipf.opts -ipf_tau 1e8"),
     ("ipf_l1gs_tmg", "contact", L1GS + " -options_file options/cont/ipf.opts -ipf_tau 1e8 -ssn_pc_truncated_mg"),

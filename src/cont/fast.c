@@ -250,7 +250,7 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   PetscCall(PetscNew(&f));
   f->gamma           = 0;
   f->start_rtol      = 1e-2;
-  f->loose           = 1e-2;
+  f->loose           = 1e-1;
   f->early           = PETSC_TRUE;
   f->max_it          = 30;
   ct->data               = f;
