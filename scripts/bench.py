@@ -41,6 +41,13 @@ YARDSTICK_3D = [
     ("BoomerAMG, nodal coarsening 4 + l1-Gauss-Seidel", HYPRE + " -pc_hypre_boomeramg_nodal_coarsen 4 " + L1GS),
     ("BoomerAMG, l1-Gauss-Seidel", HYPRE + " " + L1GS),
     ("GAMG, near null space", "-ksp_type cg -pc_type gamg"),
+    ("GAMG, no near null space", "-ksp_type cg -pc_type gamg -elasticity_near_null_space false"),
+    ("GAMG, unsmoothed aggregation", "-ksp_type cg -pc_type gamg -pc_gamg_agg_nsmooths 0"),
+    # PETSc's PCHMG: BoomerAMG's interpolations of hypre.opts with Galerkin operators and SOR smoothers, the cycle of
+    # -ssn_pc_truncated_mg applied to K
+    ("PCHMG (BoomerAMG interpolations, SOR)", "-ksp_type cg -pc_type hmg -hmg_inner_pc_type hypre " + " ".join(
+        "-hmg_inner_pc_hypre_boomeramg_" + o for o in ("strong_threshold 0.5", "coarsen_type HMIS", "interp_type ext+i", "P_max 4", "agg_nl 1"))
+     + " -mg_levels_ksp_type richardson -mg_levels_ksp_max_it 1 -mg_levels_pc_type sor"),
     ("ML, near null space", "-ksp_type cg -pc_type ml -pc_ml_nullspace user"),
 ]
 
