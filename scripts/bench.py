@@ -304,7 +304,7 @@ def peers_dolfinx(b, quick):
     chk = sgrun.execute([py, "-c", "import dolfinx, petsc4py"], env=env)
     if chk.returncode != 0:
         why = (chk.stdout.strip().splitlines() or ["?"])[-1]
-        return head + ["Skipped: dolfinx is not importable by %s (%s); `apt-get install python3-dolfinx` installs it." % (py, why), ""], {"peer_dolfinx": {}}
+        return head + ["Skipped: dolfinx is not importable by %s (%s); `apt-get install python3-dolfinx` installs it." % (os.path.basename(py), why), ""], {"peer_dolfinx": {}}
     peer = os.path.join(BENCH, "peer_dolfinx.py")
     cases = [("2D 120x40", "ex1", "120,40"), ("2D 480x160", "ex1", "480,160")] + ([] if quick else [("2D 960x320", "ex1", "960,320")])
     cases += [("3D ex2", "ex2", "meshes/ex2.msh")] + ([] if quick else [("3D ex2_s2", "ex2", "meshes/ex2_s2.msh")])
