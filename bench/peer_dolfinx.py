@@ -192,7 +192,8 @@ snes.setFunction(residual, Fv)
 snes.setJacobian(jacobian, K, K)
 snes.setVariableBounds(lb, ub)
 # defaults (any PETSc option on the command line wins): full Newton steps (a quadratic program: the step is exact on
-# the reduced space, a line search only costs residuals), MUMPS Cholesky of the inactive block (SPD as K is; LU measured 2.3x slower at 120x40)
+# the reduced space, a line search only costs residuals); MUMPS Cholesky of the inactive block, SPD as K is (LU took
+# 2.3x its time on 2D 120x40 and 1.4x on ex2.msh; MUMPS's orderings METIS, AMF, PORD, SCOTCH were not faster than auto)
 opts = PETSc.Options()
 for k, val in (("snes_linesearch_type", "basic"), ("ksp_type", "preonly"), ("pc_type", "cholesky"),
                ("pc_factor_mat_solver_type", "mumps"), ("snes_rtol", "1e-10"), ("snes_atol", "1e-50"),
