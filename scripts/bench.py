@@ -3,11 +3,11 @@
 
 Sections: (A) linear elasticity from 1e4 to 1e6 unknowns in 2D and 3D (assembly, setup, solve, iterations, memory);
 (B) Example 2 from the paper's mesh to 1e6 unknowns on 1 and 2 ranks; (C) the contact solver: mesh independence,
-cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave.
+cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave; (P) the FEniCSx peer (bench/peer_dolfinx.py) against our default.
 Every ratio is of two numbers measured in the same run or in runs made one after the other here. Runs are kept in
 bench/runs/; --reuse skips runs whose summary exists. Not a test: timings depend on the machine's load.
 
-usage: bench.py [--reuse] [--only A,B,C,D] [--quick]
+usage: bench.py [--reuse] [--only A,B,C,D,P] [--quick]
 """
 import argparse
 import json
@@ -301,6 +301,89 @@ def contact(b, quick):
     return out, js
 
 
+def peers_dolfinx(b, quick):
+    """Issue 12, goal 7: our default configuration (the problem file alone) against the peer users would pick,
+    FEniCSx 0.5 with SNESVINEWTONRSLS + MUMPS (bench/peer_dolfinx.py) on the same discrete problem. Rounds: ours,
+    then the peer, 3 times; the minimum of each. One thread (OMP, OpenBLAS) for both."""
+    head = ["## P. The FEniCSx peer: SNESVINEWTONRSLS + MUMPS in dolfinx 0.5 (issue 12, goal 7)", ""]
+    py = sys.executable
+    env = dict(sgrun.ENV, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    chk = sgrun.execute([py, "-c", "import dolfinx, petsc4py"], env=env)
+    if chk.returncode != 0:
+        why = (chk.stdout.strip().splitlines() or ["?"])[-1]
+        return head + ["Skipped: dolfinx is not importable by %s (%s); `apt-get install python3-dolfinx` installs it." % (os.path.basename(py), why), ""], {"peer_dolfinx": {}}
+    peer = os.path.join(BENCH, "peer_dolfinx.py")
+    cases = [("2D 120x40", "ex1", "120,40"), ("2D 480x160", "ex1", "480,160")] + ([] if quick else [("2D 960x320", "ex1", "960,320")])
+    cases += [("3D ex2", "ex2", "meshes/ex2.msh")] + ([] if quick else [("3D ex2_s2", "ex2", "meshes/ex2_s2.msh")])
+    rounds = 3
+    rows, js = [], {}
+    for cname, prob, size in cases:
+        tag = "P_%s" % "".join(ch for ch in cname if ch.isalnum())
+        args = "%s -box_faces %s" % (EX1, size) if prob == "ex1" else "%s -dm_plex_filename %s" % (EX2P, size)
+        ours, theirs = [], []
+        for r in range(rounds):
+            name = "%s_ours_%d" % (tag, r)
+            base = os.path.join(RUNS, name)
+            h5 = os.path.join(RUNS, tag + "_ours.h5")
+            if not (b.reuse and os.path.exists(base + ".json")):
+                os.makedirs(RUNS, exist_ok=True)
+                t0 = time.time()
+                print("bench: %-40s ..." % name, end="", flush=True)
+                # round 0 also writes the fields the peer's solution is compared with (after the timed solve)
+                cmd = sgrun.command(args.split() + (["-output_file", h5] if r == 0 else []), 1, summary=base + ".json")
+                p = sgrun.execute(cmd, env=env)
+                with open(base + ".log", "w") as f:
+                    f.write(" ".join(cmd) + "\n" + p.stdout)
+                print(" %.0f s" % (time.time() - t0))
+            ours.append(sgrun.summary(base + ".json"))
+            pname = os.path.join(RUNS, "%s_peer_%d" % (tag, r))
+            if not (b.reuse and os.path.exists(pname + ".json")):
+                t0 = time.time()
+                print("bench: %-40s ..." % (tag + "_peer_%d" % r), end="", flush=True)
+                cmd = [py, peer, prob, "--faces" if prob == "ex1" else "--mesh", size, "--json", pname + ".json"] + (["--ours", h5] if r == 0 and os.path.exists(h5) else [])
+                p = sgrun.execute(cmd, env=env)
+                with open(pname + ".log", "w") as f:
+                    f.write(" ".join(cmd) + "\n" + p.stdout)
+                print(" %.0f s" % (time.time() - t0))
+            theirs.append(sgrun.summary(pname + ".json"))
+        ok = [s for s in ours if s.get("converged") and s.get("solve_time")]
+        pok = [s for s in theirs if s.get("converged") and s.get("snes_time")]
+        o = min(ok, key=lambda s: s["solve_time"]) if ok else {}
+        q = min(pok, key=lambda s: s["snes_time"]) if pok else {}
+        cmp = theirs[0] if theirs and "same_mesh" in theirs[0] else {}
+        ratio = q["snes_time"] / o["solve_time"] if o and q else None
+        ratio_asm = (q["snes_time"] + q["assembly_time"]) / (o["solve_time"] + o["assembly_time"]) if o and q else None
+        de = abs(q["energy"] - o["energy"]) / abs(o["energy"]) if o and q else None
+        dfc = abs(q["contact_force"] - o["contact_force"]) / abs(o["contact_force"]) if o and q else None
+        same = bool(o and q and cmp.get("same_mesh") and de <= 1e-6 and dfc <= 1e-6 and q["active_set_size"] == o["active_set_size"])
+        rows.append((cname, o.get("dofs", "-"), "%s, %s" % (o.get("cont_type", "-"), o.get("linear_solver", "-")), fmt(o.get("solve_time")), "%s / %s" % (o.get("ssn_iterations", "-"), o.get("ksp_iterations", "-")),
+                     fmt(q.get("snes_time")), "%s / %s" % (q.get("newton_iterations", "-"), q.get("ksp_iterations", "-")), fmt(ratio, "%.2f"), fmt(ratio_asm, "%.2f"),
+                     "%s / %s" % (o.get("active_set_size", "-"), q.get("active_set_size", "-")), fmt(de, "%.1e"), fmt(dfc, "%.1e"), fmt(cmp.get("displacement_diff_rel"), "%.1e"),
+                     "yes" if same else "NO"))
+        js[cname] = {"dofs": o.get("dofs"), "ours_s": o.get("solve_time"), "peer_s": q.get("snes_time"), "ratio": ratio,
+                     "ours_with_assembly_s": o["solve_time"] + o["assembly_time"] if o else None,
+                     "peer_with_assembly_s": q["snes_time"] + q["assembly_time"] if q else None, "ratio_with_assembly": ratio_asm,
+                     "ours_config": "%s, %s" % (o.get("cont_type"), o.get("linear_solver")) if o else None,
+                     "ours_ssn_iterations": o.get("ssn_iterations"), "ours_ksp_iterations": o.get("ksp_iterations"),
+                     "peer_newton_iterations": q.get("newton_iterations"), "peer_ksp_iterations": q.get("ksp_iterations"),
+                     "energy_rel_diff": de, "contact_force_rel_diff": dfc, "displacement_rel_diff": cmp.get("displacement_diff_rel"),
+                     "active_ours": o.get("active_set_size"), "active_peer": q.get("active_set_size"), "same_mesh": cmp.get("same_mesh"),
+                     "same_solution": same, "rounds": rounds}
+    out = head + ["Ours: the default configuration, the problem file alone (`%s -box_faces ...`, `%s -dm_plex_filename ...`); "
+                  "its contact solve (`solve_time`: the controller's solve, first factorization or AMG setup included, assembly not). "
+                  "Peer: bench/peer_dolfinx.py, SNESVINEWTONRSLS (full steps) with MUMPS Cholesky of the inactive block, our "
+                  "gaps as bounds on the normal component (exact: flat contact faces), K and b assembled once; its SNES setup + "
+                  "solve (assembly and mesh not). Minimum of %d rounds (ours, then the peer), one thread each. Same solution: "
+                  "the same mesh (checked cell by cell), energy and contact force to 1e-6 relative, the same active set size "
+                  "(ours / peer). Ratio = peer / ours (goal: at least 1.5 at every size)." % (EX1, EX2P, rounds), ""]
+    out += table(["case", "unknowns", "ours (default)", "ours [s]", "ours SSN / KSP", "peer [s]", "peer Newton / KSP", "peer / ours", "with assembly", "active", "energy diff", "force diff", "displ. diff", "same solution"], rows)
+    rs = [v["ratio"] for v in js.values() if v["ratio"]]
+    out += ["Goal 7 (at least 1.5x at every size, the same solution): %s; ratios %s." % (
+        "met" if rs and len(rs) == len(js) and min(rs) >= 1.5 and all(v["same_solution"] for v in js.values()) else "NOT met",
+        ", ".join("%s %s" % (c, fmt(v["ratio"], "%.2f")) for c, v in js.items())), ""]
+    return out, {"peer_dolfinx": js}
+
+
 def levers(b):
     out = ["## D. What each lever gave", ""]
     rows = []
@@ -330,13 +413,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--quick", action="store_true", help="small meshes only (a smoke test of this script)")
-    ap.add_argument("--only", default="A,B,C,D")
+    ap.add_argument("--only", default="A,B,C,D,P")
     opt = ap.parse_args()
     b = Bench(opt.reuse)
     t0 = time.time()
     lines = ["# Benchmarks", "", "Machine: %s. Generated by `make bench` (scripts/bench.py)%s. One BLAS thread per rank." % (sgrun.machine(), " with --quick" if opt.quick else ""), ""]
     js = {"machine": sgrun.machine()}
-    parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b)}
+    parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b), "P": lambda: peers_dolfinx(b, opt.quick)}
     for p in opt.only.split(","):
         o, j = parts[p]()
         lines += o
