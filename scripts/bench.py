@@ -187,7 +187,24 @@ def example2(b, quick):
     out += ["Cost ratio (one rank) against the yardstick: the fastest linear solve we configure on the same mesh (%s; minimum of "
             "3 runs, 1 on the largest mesh), each at %s." % (", ".join(n for n, _ in YARDSTICK_3D), YARD_RTOL), ""]
     out += table(["mesh scale", "unknowns", "yardstick", "setup", "setup + solve", "KSP its", "candidates: time (its)", "IPF / yardstick (before)", "default / yardstick (after)"], yrows)
-    return out, {"example2": {k: {f: v.get(f) for f in ("dofs", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time", "linear_solve_time", "solve_time", "peak_rss_mb", "converged")} for k, v in res.items()},
+    # goal 2 in 3D: SSN steps and CG iterations of the default configuration from 1.2e5 to 1.07e6 unknowns (at most 20 %)
+    mi3 = {res["default_s%s_np1" % sc].get("dofs"): (res["default_s%s_np1" % sc].get("ssn_iterations"), res["default_s%s_np1" % sc].get("ksp_iterations")) for sc, _ in meshes}
+    big = [d for d in sorted(k for k in mi3 if k) if d >= 100000]
+    if len(big) >= 2 and all(mi3[d][0] for d in big):
+        a, z = mi3[big[0]], mi3[big[-1]]
+        out += ["Mesh independence of the default configuration (one rank), %d to %d unknowns: SSN steps %d -> %d (%+.0f %%), CG "
+                "iterations %d -> %d (%+.0f %%); target at most 20 %%." % (big[0], big[-1], a[0], z[0], 100.0 * (z[0] - a[0]) / a[0], a[1], z[1], 100.0 * (z[1] - a[1]) / a[1]), ""]
+    # goal 5: the default configuration on 2 ranks against 1 on the largest mesh
+    top = meshes[-1][0]
+    d1, d2 = res.get("default_s%s_np1" % top, {}), res.get("default_s%s_np2" % top, {})
+    sp_default = d1["solve_time"] / d2["solve_time"] if d1.get("solve_time") and d2.get("solve_time") and d1.get("converged") and d2.get("converged") else None
+    if sp_default:
+        out += ["The default configuration on 2 ranks, %d unknowns: contact solve %.1f s against %.1f s on 1 (speedup %.2f; target at least 1.6); "
+                "SSN %s / %s, CG %s / %s (np 1 / np 2)." % (d1["dofs"], d2["solve_time"], d1["solve_time"], sp_default, d1.get("ssn_iterations"), d2.get("ssn_iterations"),
+                                                              d1.get("ksp_iterations"), d2.get("ksp_iterations")), ""]
+    return out, {"mesh_independence_3d_default": {d: {"ssn": v[0], "ksp": v[1]} for d, v in mi3.items() if d},
+                 "speedup_np2_3d_default": sp_default,
+                 "example2": {k: {f: v.get(f) for f in ("dofs", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time", "linear_solve_time", "solve_time", "peak_rss_mb", "converged")} for k, v in res.items()},
                  "cost_ratio_3d_iterative": ratios, "cost_ratio_3d_iterative_ipf": ratios_ipf, "linear_solver_3d": ysolvers}
 
 
