@@ -153,6 +153,9 @@ typedef struct _n_SgContact *SgContact;
 
 PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const char[], SgContact *);
 PetscErrorCode SgContactSetUp(SgContact);
+/* friction laws (-friction_type); SG_FRICTION_NONE leaves the frictionless code paths untouched */
+typedef enum { SG_FRICTION_NONE, SG_FRICTION_TRESCA, SG_FRICTION_COULOMB } SgFrictionType;
+extern const char *const SgFrictionTypes[];
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -162,6 +165,11 @@ typedef struct {
   const PetscReal *normal;     /* outward unit normals, n*dim */
   const PetscReal *d;          /* initial gap to the obstacle along the normal */
   PetscReal        area;       /* |Gamma_c| */
+  /* friction on Gamma_c (-friction_type): the bound of |lam_T| is s (Tresca) or F lam_N (Coulomb) */
+  SgFrictionType   friction;
+  PetscReal        fbound;     /* s: -friction_bound (Tresca) */
+  PetscReal        fcoef;      /* F: -friction_coefficient (Coulomb) */
+  PetscReal        fgfac;      /* gamma_T = fgfac * gamma: -friction_gamma_factor */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);

@@ -170,6 +170,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
+  PetscCheck(!ct->c || ct->cv.friction == SG_FRICTION_NONE, ct->comm, PETSC_ERR_SUP, "-friction_type %s: the frictional solver is not built yet", SgFrictionTypes[ct->cv.friction]);
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));

@@ -1,8 +1,40 @@
 /* contact.c: contact geometry on Gamma_c (vertex normals, lumped weights, gaps) and the discrete contact terms. */
 #include "contact/contactimpl.h"
 
-/* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
-   area-weighted normals are summed over the facets of every rank, then read by the owner. */
+const char *const SgFrictionTypes[] = {"none", "tresca", "coulomb"};
+
+/* The friction law and its parameters: -friction_type none|tresca|coulomb, -friction_bound s > 0 (Tresca: |lam_T| <= s),
+   -friction_coefficient F >= 0 (Coulomb: |lam_T| <= F lam_N), -friction_gamma_factor c > 0 (gamma_T = c gamma).
+   Each value is checked when it is given, whatever the law, so that a typo is never silently ignored; the law's own
+   parameter must be given. */
+static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
+{
+  char      type[64] = "none";
+  PetscBool set, bset, fset;
+  PetscInt  k;
+
+  PetscFunctionBeginUser;
+  c->friction = SG_FRICTION_NONE;
+  c->fbound   = 0;
+  c->fcoef    = 0;
+  c->fgfac    = 1;
+  PetscCall(PetscOptionsString("-friction_type", "Friction law on the contact boundary: none, tresca (|lam_T| <= -friction_bound), coulomb (|lam_T| <= -friction_coefficient lam_N)", NULL, type, type, sizeof(type), &set));
+  PetscCheck(!set || type[0], c->comm, PETSC_ERR_USER_INPUT, "-friction_type is given without a value (none, tresca, coulomb)");
+  for (k = 0; k < 3; k++)
+    if (!strcmp(type, SgFrictionTypes[k])) break;
+  PetscCheck(k < 3, c->comm, PETSC_ERR_USER_INPUT, "-friction_type: unknown friction law '%s' (none, tresca, coulomb)", type);
+  c->friction = (SgFrictionType)k;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", &c->fbound, &bset));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", &c->fcoef, &fset));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_gamma_factor", "gamma_T = c gamma: the tangential regularization parameter against the normal one (c > 0)", &c->fgfac, NULL));
+  PetscCheck(!bset || (PetscIsNormalReal(c->fbound) && c->fbound > 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_bound: the Tresca bound must be positive and finite, got %g", (double)c->fbound);
+  PetscCheck(!fset || ((PetscIsNormalReal(c->fcoef) || c->fcoef == 0) && c->fcoef >= 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", (double)c->fcoef);
+  PetscCheck(PetscIsNormalReal(c->fgfac) && c->fgfac > 0, c->comm, PETSC_ERR_USER_INPUT, "-friction_gamma_factor: must be positive and finite, got %g", (double)c->fgfac);
+  PetscCheck(c->friction != SG_FRICTION_TRESCA || bset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type tresca needs the bound: give -friction_bound s > 0");
+  PetscCheck(c->friction != SG_FRICTION_COULOMB || fset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0");
+  PetscFunctionReturn(0);
+}
+
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
 PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
@@ -22,7 +54,9 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   if (!c->bnd.label[0]) PetscCall(PetscStrcpy(c->bnd.label, "Face Sets"));
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
+  PetscCall(FrictionFromOptions(PetscOptionsObject, c));
   PetscOptionsEnd();
+  PetscCheck(c->bnd.active || c->friction == SG_FRICTION_NONE, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", SgFrictionTypes[c->friction]);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(PetscFree(c->prefix));
     PetscCall(PetscFree(c));
@@ -157,6 +191,10 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->normal  = c->normal;
   v->d       = c->d;
   v->area    = c->area;
+  v->friction = c->friction;
+  v->fbound   = c->fbound;
+  v->fcoef    = c->fcoef;
+  v->fgfac    = c->fgfac;
   PetscFunctionReturn(0);
 }
 
