@@ -115,6 +115,23 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetReal(sum, "contact_area", ct->cv.area));
     PetscCall(SgContactGetObstacleType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
+    PetscCall(SgSummarySetString(sum, "friction_type", SgFrictionTypes[ct->cv.friction]));
+    if (ct->cv.friction) {
+      /* of the last KKT measures (SgContactKKT): lam_T from the tangential residual */
+      SgFrictionSummary fs;
+      PetscCall(SgContactGetFrictionSummary(ct->c, &fs));
+      PetscCall(SgSummarySetReal(sum, "friction_bound", ct->cv.fbound));
+      PetscCall(SgSummarySetReal(sum, "friction_coefficient", ct->cv.fcoef));
+      PetscCall(SgSummarySetReal(sum, "friction_gamma_factor", ct->cv.fgfac));
+      PetscCall(SgSummarySetInt(sum, "stick_size", fs.nstick));
+      PetscCall(SgSummarySetInt(sum, "slip_size", fs.nslip));
+      PetscCall(SgSummarySetReal(sum, "friction_force", fs.force_norm));
+      PetscCall(SgSummarySetRealArray(sum, "friction_force_vector", dim, fs.force));
+      PetscCall(SgSummarySetReal(sum, "friction_traction_integral", fs.traction));
+      PetscCall(SgSummarySetReal(sum, "slip_max", fs.slip_max));
+      PetscCall(SgSummarySetReal(sum, "friction_bound_violation", fs.bound));
+      PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs.slip));
+    }
     {
       /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
       PetscReal F[3] = {0, 0, 0}, R[3];

@@ -267,6 +267,24 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
   PetscFunctionReturn(0);
 }
 
+/* J += B_i on the diagonal block of every contact vertex (blk: n blocks of dim x dim, row-major; J assembled by the
+   caller) */
+PetscErrorCode SgContactAddBlocks(SgContact c, const PetscReal blk[], Mat J)
+{
+  const PetscInt dim = c->dim;
+  PetscInt       rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscScalar    b[9];
+    const PetscInt row = (rstart + c->off[i]) / dim;
+    for (PetscInt k = 0; k < dim * dim; k++) b[k] = blk[i * dim * dim + k];
+    PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, b, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Multiplier balancing the normal part of the equilibrium residual: lam_i = -(K y - b)_i . n_i / w_i. */
 PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam[])
 {
@@ -286,6 +304,37 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   }
   PetscCall(VecRestoreArrayRead(R, &ra));
   PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* Friction at contact vertex i from the residual R_i = (K y - b)_i and the normal multiplier lamN: the tangential
+   multiplier lam_T = -T_i R_i / w_i, the slip u = T_i y_i, the bound g (s, or F max(0, lamN)), and the state: free
+   (g at the noise level: nothing to measure), slip (|lam_T| at the bound up to noise), stick. */
+static char FrictionFromResidual(SgContact c, PetscInt i, const PetscScalar ra[], const PetscScalar ya[], PetscReal lamN, PetscReal noise, PetscReal lt[], PetscReal u[], PetscReal *gb)
+{
+  const PetscInt   dim = c->dim;
+  const PetscReal *n   = &c->normal[i * dim];
+  PetscReal        rn = 0, yn = 0, nt = 0;
+
+  for (PetscInt k = 0; k < dim; k++) {
+    rn += n[k] * PetscRealPart(ra[c->off[i] + k]);
+    yn += n[k] * PetscRealPart(ya[c->off[i] + k]);
+  }
+  for (PetscInt k = 0; k < dim; k++) {
+    lt[k] = -(PetscRealPart(ra[c->off[i] + k]) - rn * n[k]) / c->w[i];
+    u[k]  = PetscRealPart(ya[c->off[i] + k]) - yn * n[k];
+    nt += lt[k] * lt[k];
+  }
+  nt  = PetscSqrtReal(nt);
+  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+  if (*gb <= noise) return SG_FRICTION_FREE;
+  return nt >= *gb - PetscMax(1e-10 * *gb, noise) ? SG_FRICTION_SLIP : SG_FRICTION_STICK;
+}
+
+PetscErrorCode SgContactGetFrictionSummary(SgContact c, SgFrictionSummary *fs)
+{
+  PetscFunctionBeginUser;
+  *fs = c->fsum;
   PetscFunctionReturn(0);
 }
 
@@ -335,11 +384,59 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     mx[1]  = PetscMax(mx[1], c->w[i] * PetscMax(0, -lam[i])); /* nodal force a pressure >= 0 cannot balance */
     mx[2]  = PetscMax(mx[2], -c->d[i]);                       /* initial penetration */
   }
-  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
-  PetscCall(VecRestoreArray(R, &ra));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   fscale = c->Knorm * nrm[1] + c->bnorm_inf;
+  if (c->friction) {
+    /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
+       part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
+       |lam_T| = g (the friction force -w lam_T on the body opposes the slip) */
+    PetscReal f[8] = {0}, fm[2] = {0, 0};
+    PetscCall(VecGetArrayRead(y, &ya));
+    for (PetscInt i = 0; i < c->n; i++) {
+      const PetscReal noise = 1e-12 * fscale / c->w[i];
+      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0;
+      const char      st = FrictionFromResidual(c, i, ra, ya, lam[i], noise, lt, u, &gb);
+      for (PetscInt k = 0; k < dim; k++) {
+        nt += lt[k] * lt[k];
+        un += u[k] * u[k];
+        f[2 + k] += c->w[i] * lt[k];
+        ra[c->off[i] + k] += c->w[i] * lt[k];
+      }
+      nt = PetscSqrtReal(nt);
+      un = PetscSqrtReal(un);
+      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, nt - gb));
+      fm[1] = PetscMax(fm[1], un);
+      f[5] += c->w[i] * nt;
+      if (st == SG_FRICTION_STICK) err = un;
+      else if (st == SG_FRICTION_SLIP) {
+        for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
+        a = PetscMax(0, a);
+        for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
+        err = PetscSqrtReal(err);
+      }
+      f[0] += (st == SG_FRICTION_STICK);
+      f[1] += (st == SG_FRICTION_SLIP);
+      f[6] += c->w[i] * err * err;
+    }
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
+    c->fsum.nstick     = (PetscInt)f[0];
+    c->fsum.nslip      = (PetscInt)f[1];
+    c->fsum.force_norm = 0;
+    for (PetscInt k = 0; k < 3; k++) {
+      c->fsum.force[k] = k < dim ? f[2 + k] : 0;
+      c->fsum.force_norm += PetscSqr(c->fsum.force[k]);
+    }
+    c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
+    c->fsum.traction   = f[5];
+    c->fsum.slip_max   = fm[1];
+    c->fsum.bound      = SafeRatio(fm[0], fscale);
+  }
+  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
+  PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
        (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
@@ -361,8 +458,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   kkt->penetration     = PetscSqrtReal(s[0]);
   kkt->equilibrium     = nrm[0] / PetscMax(fscale, PETSC_SMALL);
   kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
-  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1]), kkt->lscale);
-  kkt->dual            = SafeRatio(mx[1], fscale);
+  if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
+  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale);
+  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], fscale), c->fsum.bound) : SafeRatio(mx[1], fscale);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];

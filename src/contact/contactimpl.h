@@ -43,6 +43,7 @@ struct _n_SgContact {
   PetscReal      fbound;     /* -friction_bound s (Tresca) */
   PetscReal      fcoef;      /* -friction_coefficient F (Coulomb) */
   PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma */
+  SgFrictionSummary fsum;    /* of the last SgContactKKT */
 };
 
 struct _n_SgProblem {
