@@ -167,6 +167,7 @@ typedef struct {
   PetscReal bound, slip;          /* the two friction parts of the KKT measures (dual and complementarity) */
 } SgFrictionSummary;
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
+PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */

@@ -219,7 +219,7 @@ PetscErrorCode SgContWriteHistory(SgCont ct, const char file[])
 }
 
 /* The work vectors of the fields: vf displacement and (with contact) the contact fields, cf the cell fields */
-static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[6], Vec cf[2])
+static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[9], Vec cf[2])
 {
   SgElasticity p = ct->prob;
   PetscInt     dim;
@@ -246,6 +246,17 @@ static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[6], Vec cf[2]
     PetscCall(PetscObjectSetName((PetscObject)vf[5], "obstacle_offset"));
     PetscCall(VecSetBlockSize(vf[5], dim));
     *nv = 6;
+    if (ct->cv.friction) { /* tangential traction, slip, and the state 0 free, 1 stick, 2 slip */
+      PetscCall(DMCreateGlobalVector(dmVec, &vf[6]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[6], "tangential_traction"));
+      PetscCall(VecSetBlockSize(vf[6], dim));
+      PetscCall(DMCreateGlobalVector(dmVec, &vf[7]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[7], "slip"));
+      PetscCall(VecSetBlockSize(vf[7], dim));
+      PetscCall(DMCreateGlobalVector(dmVert, &vf[8]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[8], "friction_state"));
+      *nv = 9;
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -257,6 +268,7 @@ static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], Vec vf
   PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
   PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
   if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
+  if (ct->c && ct->cv.friction) PetscCall(SgContactFrictionFields(ct->c, y, vf[6], vf[7], vf[8]));
   PetscFunctionReturn(0);
 }
 
@@ -279,8 +291,8 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
 static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
 {
-  Vec       vf[6], cf[2];
-  PetscInt  nv, nkept = 0;
+  Vec       vf[9], cf[2];
+  PetscInt  nv = 0, nkept = 0;
   PetscBool loadsteps;
 
   PetscFunctionBeginUser;

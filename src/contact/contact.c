@@ -531,6 +531,71 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   PetscFunctionReturn(0);
 }
 
+/* Friction fields for output (with a friction law): per contact vertex the tangential traction lam_T (from the
+   tangential residual, as in SgContactKKT: the traction on the obstacle; the body feels -lam_T), the slip T_i y_i and
+   the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
+PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec slip, Vec state)
+{
+  const PetscInt     dim = c->dim;
+  Vec                R, lt, ls, lst;
+  const PetscScalar *ya, *ra;
+  PetscScalar       *ta, *sa, *qa;
+  PetscReal          nrm, fscale;
+  PetscSection       vs, ss;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(y, &R));
+  PetscCall(MatMult(c->K, y, R));
+  PetscCall(VecAXPY(R, -1.0, c->b));
+  PetscCall(VecNorm(y, NORM_INFINITY, &nrm));
+  fscale = c->Knorm * nrm + c->bnorm_inf;
+  PetscCall(DMGetLocalSection(c->dmVec, &vs));
+  PetscCall(DMGetLocalSection(c->dmVert, &ss));
+  PetscCall(DMGetLocalVector(c->dmVec, &lt));
+  PetscCall(DMGetLocalVector(c->dmVec, &ls));
+  PetscCall(DMGetLocalVector(c->dmVert, &lst));
+  PetscCall(VecZeroEntries(lt));
+  PetscCall(VecZeroEntries(ls));
+  PetscCall(VecZeroEntries(lst));
+  PetscCall(VecGetArray(lt, &ta));
+  PetscCall(VecGetArray(ls, &sa));
+  PetscCall(VecGetArray(lst, &qa));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(VecGetArrayRead(R, &ra));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal rn = 0, lam, l[3], u[3], gb;
+    PetscInt  off, soff;
+    char      st;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    lam = -rn / c->w[i];
+    st  = FrictionFromResidual(c, i, ra, ya, lam, 1e-12 * fscale / c->w[i], l, u, &gb);
+    PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
+    PetscCall(PetscSectionGetOffset(ss, c->mesh->vStart + c->vert[i], &soff));
+    for (PetscInt k = 0; k < dim; k++) {
+      ta[off + k] = l[k];
+      sa[off + k] = u[k];
+    }
+    qa[soff] = st;
+  }
+  PetscCall(VecRestoreArrayRead(R, &ra));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCall(VecRestoreArray(lt, &ta));
+  PetscCall(VecRestoreArray(ls, &sa));
+  PetscCall(VecRestoreArray(lst, &qa));
+  /* only owners hold contact vertices: adding the zeros of the other ranks keeps the owner's value */
+  PetscCall(VecZeroEntries(traction));
+  PetscCall(VecZeroEntries(slip));
+  PetscCall(VecZeroEntries(state));
+  PetscCall(DMLocalToGlobal(c->dmVec, lt, ADD_VALUES, traction));
+  PetscCall(DMLocalToGlobal(c->dmVec, ls, ADD_VALUES, slip));
+  PetscCall(DMLocalToGlobal(c->dmVert, lst, ADD_VALUES, state));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &lt));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &ls));
+  PetscCall(DMRestoreLocalVector(c->dmVert, &lst));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
 /* the axis k with normal i = +-e_k (and its sign), or -1 */
 static PetscInt NormalAxis(SgContact c, PetscInt i, PetscReal *sign)
 {
