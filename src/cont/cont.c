@@ -173,7 +173,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
   if (ct->c && ct->cv.friction) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
-    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTPDAS) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf or ipf", ct->type, SgFrictionTypes[ct->cv.friction]);
+    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
     PetscCheck(!ct->ckfile[0] && !ct->rsfile[0], ct->comm, PETSC_ERR_SUP, "-checkpoint_file and -restart_file do not keep the friction state (-friction_type %s) yet", SgFrictionTypes[ct->cv.friction]);
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
