@@ -695,8 +695,9 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(!ct->restarted || PetscAbsReal(t - ct->rsload) <= 1e-12 * t, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint is inside load step %" PetscInt_FMT " at load factor %.17g, but this run solves that step at %.17g (give the same -load_steps and -load_factors)", ct->nsteps + 1, (double)ct->rsload, (double)t);
   ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
-  /* a load step's friction acts on the slip increment since the last step, which is not built yet */
-  PetscCheck(!(ct->warm && ct->c && ct->cv.friction), ct->comm, PETSC_ERR_SUP, "load steps with friction (-friction_type %s) are not built yet", SgFrictionTypes[ct->cv.friction]);
+  /* a load step's friction acts on the slip increment since the last step, which is not built yet: refused before
+     the first step */
+  PetscCheck(!(loadsteps && ct->c && ct->cv.friction), ct->comm, PETSC_ERR_SUP, "load steps (-load_steps) with friction (-friction_type %s) are not built yet", SgFrictionTypes[ct->cv.friction]);
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));
