@@ -53,7 +53,7 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
    normal set act: lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T y; free (g = 0),
    stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
    or bound moved by more than 1e-12 (relative) since the last call. */
-static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], char st[], PetscInt *changed)
+static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
 {
   const SgContactView *c = &ct->cv;
   const PetscScalar   *ya, *ra = NULL;
@@ -84,6 +84,7 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
         tdir[i * dim + j] = z[j] / nz;
       }
     nch += (s != st[i] || (s == 2 && (dt > 1e-12 || PetscAbsReal(g - gb[i]) > 1e-12 * gmax)));
+    zn[i] = nz;
     st[i] = s;
     gb[i] = g;
   }
@@ -112,6 +113,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   const PetscBool    fr = (PetscBool)(c->friction != SG_FRICTION_NONE);
   char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
   PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
+  PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
   Vec                R = NULL;
 
   PetscFunctionBeginUser;
@@ -144,6 +146,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   if (fr) {
     PetscCall(PetscCalloc4(c->n, &fst, c->n, &fnext, c->n * dim, &tdir, c->n, &gb));
+    PetscCall(PetscCalloc2(c->n, &zn, c->n * dim * dim, &blk));
     PetscCall(VecDuplicate(b, &R));
   }
   {
@@ -157,7 +160,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
     ct->lam[i] = 0;
   }
-  if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, fst, NULL));
+  if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, zn, fst, NULL));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
@@ -171,6 +174,26 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(SgContactActiveSetHash(ct->c, act, &hash[nhash++]));
     /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
     PetscCall(MatCopy(K, A, SAME_NONZERO_PATTERN));
+    if (fr && dim == 3) {
+      /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
+         along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
+         without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
+      for (PetscInt i = 0; i < c->n; i++) {
+        PetscReal *B = &blk[i * dim * dim], a, beta;
+        for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
+        if (fst[i] != 2) continue;
+        a    = PetscMin(gb[i] / zn[i], 1 - 1e-8);
+        beta = pd->c * a / (1 - a);
+        for (PetscInt p = 0; p < dim; p++)
+          for (PetscInt q = 0; q < dim; q++) {
+            if (p == axis[i] || q == axis[i]) continue;
+            B[p * dim + q] = c->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
+          }
+      }
+      PetscCall(SgContactAddBlocks(ct->c, blk, A));
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
     PetscCall(VecCopy(b, rhs));
     PetscCall(VecGetArray(x, &xa));
     for (PetscInt i = 0; i < c->n; i++)
@@ -219,7 +242,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       PetscInt fchanged;
       PetscCall(MatMult(K, ct->y, R));
       PetscCall(VecAXPY(R, -1.0, b));
-      PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, next, gb, tdir, fnext, &fchanged));
+      PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, next, gb, tdir, zn, fnext, &fchanged));
       PetscCall(PetscArraycpy(fst, fnext, c->n));
       if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
       entered += fchanged; /* counted as changes of the sets */
@@ -261,6 +284,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&R));
   PetscCall(PetscFree4(fst, fnext, tdir, gb));
+  PetscCall(PetscFree2(zn, blk));
   PetscCall(PetscFree6(axis, sign, g, act, next, rows));
   PetscCall(PetscFree(hash));
   PetscFunctionReturn(0);
