@@ -153,6 +153,21 @@ typedef struct _n_SgContact *SgContact;
 
 PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const char[], SgContact *);
 PetscErrorCode SgContactSetUp(SgContact);
+/* friction laws (-friction_type); SG_FRICTION_NONE leaves the frictionless code paths untouched */
+typedef enum { SG_FRICTION_NONE, SG_FRICTION_TRESCA, SG_FRICTION_COULOMB } SgFrictionType;
+extern const char *const SgFrictionTypes[];
+enum { SG_FRICTION_FREE = 0, SG_FRICTION_STICK = 1, SG_FRICTION_SLIP = 2 }; /* the state of a contact vertex */
+/* friction at a displacement y (SgContactKKT): the tangential multiplier lam_T,i = -T_i (K y - b)_i / w_i balancing the
+   tangential residual, its states, and its resultant sum_i w_i lam_T,i (the friction force on the obstacle) */
+typedef struct {
+  PetscInt  nstick, nslip;
+  PetscReal force[3], force_norm; /* the resultant and its length */
+  PetscReal traction;             /* sum_i w_i |lam_T,i| */
+  PetscReal slip_max;             /* max_i |T_i y_i| */
+  PetscReal bound, slip;          /* the two friction parts of the KKT measures (dual and complementarity) */
+} SgFrictionSummary;
+PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
+PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -162,6 +177,11 @@ typedef struct {
   const PetscReal *normal;     /* outward unit normals, n*dim */
   const PetscReal *d;          /* initial gap to the obstacle along the normal */
   PetscReal        area;       /* |Gamma_c| */
+  /* friction on Gamma_c (-friction_type): the bound of |lam_T| is s (Tresca) or F lam_N (Coulomb) */
+  SgFrictionType   friction;
+  PetscReal        fbound;     /* s: -friction_bound (Tresca) */
+  PetscReal        fcoef;      /* F: -friction_coefficient (Coulomb) */
+  PetscReal        fgfac;      /* gamma_T = fgfac * gamma: -friction_gamma_factor */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
@@ -171,6 +191,7 @@ PetscErrorCode SgContactDestroy(SgContact *);
 PetscErrorCode SgContactGap(SgContact, const PetscScalar[], PetscReal[]);
 PetscErrorCode SgContactAddForce(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
+PetscErrorCode SgContactAddBlocks(SgContact, const PetscReal[], Mat); /* J += a dim x dim block per contact vertex */
 PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
 /* SgContactKKT: measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i, each
    dimensionless (the same for any load level, material scale and unit system), with the force scale
@@ -258,7 +279,7 @@ typedef struct _n_SgTMG      *SgTMG;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
-PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
@@ -283,6 +304,7 @@ PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
 PetscErrorCode SgSSNIsCondensed(SgSSN, PetscBool *);
+PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);

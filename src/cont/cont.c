@@ -142,10 +142,11 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
      fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
      can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
-  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
-  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : (dim == 3 || iterative ? SGCONTFAST : SGCONTIPF)));
+  /* fast is not built for friction: ipf there */
+  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
   PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
   {
     PetscBool set;
@@ -170,6 +171,11 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
+  if (ct->c && ct->cv.friction) {
+    /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
+    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
+    PetscCheck(!ct->ckfile[0] && !ct->rsfile[0], ct->comm, PETSC_ERR_SUP, "-checkpoint_file and -restart_file do not keep the friction state (-friction_type %s) yet", SgFrictionTypes[ct->cv.friction]);
+  }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
@@ -689,6 +695,9 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(!ct->restarted || PetscAbsReal(t - ct->rsload) <= 1e-12 * t, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint is inside load step %" PetscInt_FMT " at load factor %.17g, but this run solves that step at %.17g (give the same -load_steps and -load_factors)", ct->nsteps + 1, (double)ct->rsload, (double)t);
   ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
+  /* a load step's friction acts on the slip increment since the last step, which is not built yet: refused before
+     the first step */
+  PetscCheck(!(loadsteps && ct->c && ct->cv.friction), ct->comm, PETSC_ERR_SUP, "load steps (-load_steps) with friction (-friction_type %s) are not built yet", SgFrictionTypes[ct->cv.friction]);
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));

@@ -1,5 +1,10 @@
 /* cont_pdas.c: baseline: the unregularized primal-dual active set method (Hintermueller-Ito-Kunisch, Hueber-Wohlmuth,
-   deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals. */
+   deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals.
+   With friction (in the manner of Hueber-Stadler-Wohlmuth): stick vertices get T y = 0 exactly (their tangential
+   components eliminated like the active normal ones), slip vertices the force lam_T = g t of the last iterate's
+   direction t and bound g (Coulomb: g = F lam_N of the last iterate, a fixed point that keeps every system
+   symmetric), free ones none; the next states from z = lam_T + c T y: stick |z| <= g, slip t = z/|z|. Done when the
+   sets are settled and the slip directions and bounds have stopped moving (relative 1e-12). */
 #include "cont/contimpl.h"
 
 typedef struct {
@@ -44,6 +49,52 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
   PetscFunctionReturn(0);
 }
 
+/* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
+   normal set act: lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T y; free (g = 0),
+   stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
+   or bound moved by more than 1e-12 (relative) since the last call. */
+static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
+{
+  const SgContactView *c = &ct->cv;
+  const PetscScalar   *ya, *ra = NULL;
+  PetscInt             dim, nch = 0;
+  PetscReal            gmax = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(VecGetArrayRead(y, &ya));
+  if (R) PetscCall(VecGetArrayRead(R, &ra));
+  for (PetscInt i = 0; i < c->n; i++) gmax = PetscMax(gmax, gb[i]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * c->normal[i * dim + axis[i]] / c->w[i] : 0;
+    const PetscReal g    = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+    PetscReal       z[3] = {0, 0, 0}, nz = 0, dt = 0;
+    char            s;
+    for (PetscInt j = 0; j < dim; j++) {
+      if (j == axis[i]) continue;
+      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * PetscRealPart(ya[c->off[i] + j]);
+      nz += z[j] * z[j];
+    }
+    nz = PetscSqrtReal(nz);
+    s  = !(g > 0) ? 0 : (nz <= g ? 1 : 2);
+    if (s == 2)
+      for (PetscInt j = 0; j < dim; j++) {
+        dt = PetscMax(dt, PetscAbsReal(z[j] / nz - tdir[i * dim + j]));
+        tdir[i * dim + j] = z[j] / nz;
+      }
+    nch += (s != st[i] || (s == 2 && (dt > 1e-12 || PetscAbsReal(g - gb[i]) > 1e-12 * gmax)));
+    zn[i] = nz;
+    st[i] = s;
+    gb[i] = g;
+  }
+  if (R) PetscCall(VecRestoreArrayRead(R, &ra));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nch, 1, MPIU_INT, MPI_SUM, ct->comm));
+  if (changed) *changed = nch;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
   PDAS              *pd = (PDAS *)ct->data;
@@ -59,12 +110,17 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscInt64        *hash;
   char              *act, *next;
   PetscBool          done = PETSC_FALSE, ok;
+  const PetscBool    fr = (PetscBool)(c->friction != SG_FRICTION_NONE);
+  char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
+  PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
+  PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
+  Vec                R = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(SgElasticityGetOperators(ct->prob, &K, &b));
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n, &rows));
+  PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n * dim, &rows)); /* rows: the stick vertices' tangential ones too */
   PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
   PetscCall(SgContactAxisAligned(ct->c, "-cont_type pdas", axis, sign));
   for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
@@ -88,6 +144,11 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(VecDestroy(&diag));
   PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
   PetscCall(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  if (fr) {
+    PetscCall(PetscCalloc4(c->n, &fst, c->n, &fnext, c->n * dim, &tdir, c->n, &gb));
+    PetscCall(PetscCalloc2(c->n, &zn, c->n * dim * dim, &blk));
+    PetscCall(VecDuplicate(b, &R));
+  }
   {
     const PetscScalar *ya;
     PetscCall(VecGetArrayRead(ct->y, &ya));
@@ -99,6 +160,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
     ct->lam[i] = 0;
   }
+  if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, zn, fst, NULL));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
@@ -112,14 +174,47 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(SgContactActiveSetHash(ct->c, act, &hash[nhash++]));
     /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
     PetscCall(MatCopy(K, A, SAME_NONZERO_PATTERN));
+    if (fr && dim == 3) {
+      /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
+         along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
+         without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
+      for (PetscInt i = 0; i < c->n; i++) {
+        PetscReal *B = &blk[i * dim * dim], a, beta;
+        for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
+        if (fst[i] != 2) continue;
+        a    = PetscMin(gb[i] / zn[i], 1 - 1e-8);
+        beta = pd->c * a / (1 - a);
+        for (PetscInt p = 0; p < dim; p++)
+          for (PetscInt q = 0; q < dim; q++) {
+            if (p == axis[i] || q == axis[i]) continue;
+            B[p * dim + q] = c->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
+          }
+      }
+      PetscCall(SgContactAddBlocks(ct->c, blk, A));
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    PetscCall(VecCopy(b, rhs));
     PetscCall(VecGetArray(x, &xa));
     for (PetscInt i = 0; i < c->n; i++)
       if (act[i]) {
         rows[nrows++]             = rstart + c->off[i] + axis[i];
         xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
       }
+    if (fr) {
+      PetscScalar *ra;
+      PetscCall(VecGetArray(rhs, &ra));
+      for (PetscInt i = 0; i < c->n; i++)
+        for (PetscInt j = 0; j < dim; j++) {
+          if (j == axis[i]) continue;
+          if (fst[i] == 1) { /* stick: T y = 0 */
+            rows[nrows++]       = rstart + c->off[i] + j;
+            xa[c->off[i] + j] = 0;
+          } else if (fst[i] == 2) ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+        }
+      PetscCall(VecRestoreArray(rhs, &ra));
+    }
     PetscCall(VecRestoreArray(x, &xa));
-    PetscCall(VecCopy(b, rhs));
     PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
     PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
     PetscCall(KSPSetOperators(ksp, A, A));
@@ -143,6 +238,15 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
     }
     PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
+    if (fr) {
+      PetscInt fchanged;
+      PetscCall(MatMult(K, ct->y, R));
+      PetscCall(VecAXPY(R, -1.0, b));
+      PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, next, gb, tdir, zn, fnext, &fchanged));
+      PetscCall(PetscArraycpy(fst, fnext, c->n));
+      if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
+      entered += fchanged; /* counted as changes of the sets */
+    }
     PetscCall(PetscTime(&t));
     PetscCall(SgHistoryRowInit(&row));
     row.kind    = 's';
@@ -161,7 +265,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       done          = PETSC_TRUE;
       ct->converged = PETSC_TRUE;
       PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
-    } else {
+    } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
       PetscInt64 h;
       PetscCall(SgContactActiveSetHash(ct->c, next, &h));
       for (PetscInt j = 0; j < nhash - 1; j++)
@@ -170,7 +274,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
           done = PETSC_TRUE;
         }
       PetscCall(PetscArraycpy(act, next, c->n));
-    }
+    } else PetscCall(PetscArraycpy(act, next, c->n));
   }
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
   PetscCall(SgContMeasure(ct));
@@ -178,6 +282,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(SgContCheckBaseline(ct));
   PetscCall(VecDestroy(&rhs));
   PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&R));
+  PetscCall(PetscFree4(fst, fnext, tdir, gb));
+  PetscCall(PetscFree2(zn, blk));
   PetscCall(PetscFree6(axis, sign, g, act, next, rows));
   PetscCall(PetscFree(hash));
   PetscFunctionReturn(0);

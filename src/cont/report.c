@@ -115,6 +115,23 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetReal(sum, "contact_area", ct->cv.area));
     PetscCall(SgContactGetObstacleType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
+    PetscCall(SgSummarySetString(sum, "friction_type", SgFrictionTypes[ct->cv.friction]));
+    if (ct->cv.friction) {
+      /* of the last KKT measures (SgContactKKT): lam_T from the tangential residual */
+      SgFrictionSummary fs;
+      PetscCall(SgContactGetFrictionSummary(ct->c, &fs));
+      PetscCall(SgSummarySetReal(sum, "friction_bound", ct->cv.fbound));
+      PetscCall(SgSummarySetReal(sum, "friction_coefficient", ct->cv.fcoef));
+      PetscCall(SgSummarySetReal(sum, "friction_gamma_factor", ct->cv.fgfac));
+      PetscCall(SgSummarySetInt(sum, "stick_size", fs.nstick));
+      PetscCall(SgSummarySetInt(sum, "slip_size", fs.nslip));
+      PetscCall(SgSummarySetReal(sum, "friction_force", fs.force_norm));
+      PetscCall(SgSummarySetRealArray(sum, "friction_force_vector", dim, fs.force));
+      PetscCall(SgSummarySetReal(sum, "friction_traction_integral", fs.traction));
+      PetscCall(SgSummarySetReal(sum, "slip_max", fs.slip_max));
+      PetscCall(SgSummarySetReal(sum, "friction_bound_violation", fs.bound));
+      PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs.slip));
+    }
     {
       /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
       PetscReal F[3] = {0, 0, 0}, R[3];
@@ -202,7 +219,7 @@ PetscErrorCode SgContWriteHistory(SgCont ct, const char file[])
 }
 
 /* The work vectors of the fields: vf displacement and (with contact) the contact fields, cf the cell fields */
-static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[6], Vec cf[2])
+static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[9], Vec cf[2])
 {
   SgElasticity p = ct->prob;
   PetscInt     dim;
@@ -229,6 +246,17 @@ static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[6], Vec cf[2]
     PetscCall(PetscObjectSetName((PetscObject)vf[5], "obstacle_offset"));
     PetscCall(VecSetBlockSize(vf[5], dim));
     *nv = 6;
+    if (ct->cv.friction) { /* tangential traction, slip, and the state 0 free, 1 stick, 2 slip */
+      PetscCall(DMCreateGlobalVector(dmVec, &vf[6]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[6], "tangential_traction"));
+      PetscCall(VecSetBlockSize(vf[6], dim));
+      PetscCall(DMCreateGlobalVector(dmVec, &vf[7]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[7], "slip"));
+      PetscCall(VecSetBlockSize(vf[7], dim));
+      PetscCall(DMCreateGlobalVector(dmVert, &vf[8]));
+      PetscCall(PetscObjectSetName((PetscObject)vf[8], "friction_state"));
+      *nv = 9;
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -240,6 +268,7 @@ static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], Vec vf
   PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
   PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
   if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
+  if (ct->c && ct->cv.friction) PetscCall(SgContactFrictionFields(ct->c, y, vf[6], vf[7], vf[8]));
   PetscFunctionReturn(0);
 }
 
@@ -262,8 +291,8 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
 static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
 {
-  Vec       vf[6], cf[2];
-  PetscInt  nv, nkept = 0;
+  Vec       vf[9], cf[2];
+  PetscInt  nv = 0, nkept = 0;
   PetscBool loadsteps;
 
   PetscFunctionBeginUser;

@@ -1,8 +1,40 @@
 /* contact.c: contact geometry on Gamma_c (vertex normals, lumped weights, gaps) and the discrete contact terms. */
 #include "contact/contactimpl.h"
 
-/* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
-   area-weighted normals are summed over the facets of every rank, then read by the owner. */
+const char *const SgFrictionTypes[] = {"none", "tresca", "coulomb"};
+
+/* The friction law and its parameters: -friction_type none|tresca|coulomb, -friction_bound s > 0 (Tresca: |lam_T| <= s),
+   -friction_coefficient F >= 0 (Coulomb: |lam_T| <= F lam_N), -friction_gamma_factor c > 0 (gamma_T = c gamma).
+   Each value is checked when it is given, whatever the law, so that a typo is never silently ignored; the law's own
+   parameter must be given. */
+static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
+{
+  char      type[64] = "none";
+  PetscBool set, bset, fset;
+  PetscInt  k;
+
+  PetscFunctionBeginUser;
+  c->friction = SG_FRICTION_NONE;
+  c->fbound   = 0;
+  c->fcoef    = 0;
+  c->fgfac    = 1;
+  PetscCall(PetscOptionsString("-friction_type", "Friction law on the contact boundary: none, tresca (|lam_T| <= -friction_bound), coulomb (|lam_T| <= -friction_coefficient lam_N)", NULL, type, type, sizeof(type), &set));
+  PetscCheck(!set || type[0], c->comm, PETSC_ERR_USER_INPUT, "-friction_type is given without a value (none, tresca, coulomb)");
+  for (k = 0; k < 3; k++)
+    if (!strcmp(type, SgFrictionTypes[k])) break;
+  PetscCheck(k < 3, c->comm, PETSC_ERR_USER_INPUT, "-friction_type: unknown friction law '%s' (none, tresca, coulomb)", type);
+  c->friction = (SgFrictionType)k;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", &c->fbound, &bset));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", &c->fcoef, &fset));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_gamma_factor", "gamma_T = c gamma: the tangential regularization parameter against the normal one (c > 0)", &c->fgfac, NULL));
+  PetscCheck(!bset || (PetscIsNormalReal(c->fbound) && c->fbound > 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_bound: the Tresca bound must be positive and finite, got %g", (double)c->fbound);
+  PetscCheck(!fset || ((PetscIsNormalReal(c->fcoef) || c->fcoef == 0) && c->fcoef >= 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", (double)c->fcoef);
+  PetscCheck(PetscIsNormalReal(c->fgfac) && c->fgfac > 0, c->comm, PETSC_ERR_USER_INPUT, "-friction_gamma_factor: must be positive and finite, got %g", (double)c->fgfac);
+  PetscCheck(c->friction != SG_FRICTION_TRESCA || bset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type tresca needs the bound: give -friction_bound s > 0");
+  PetscCheck(c->friction != SG_FRICTION_COULOMB || fset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0");
+  PetscFunctionReturn(0);
+}
+
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
 PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
@@ -22,7 +54,9 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   if (!c->bnd.label[0]) PetscCall(PetscStrcpy(c->bnd.label, "Face Sets"));
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
+  PetscCall(FrictionFromOptions(PetscOptionsObject, c));
   PetscOptionsEnd();
+  PetscCheck(c->bnd.active || c->friction == SG_FRICTION_NONE, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", SgFrictionTypes[c->friction]);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(PetscFree(c->prefix));
     PetscCall(PetscFree(c));
@@ -157,6 +191,10 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->normal  = c->normal;
   v->d       = c->d;
   v->area    = c->area;
+  v->friction = c->friction;
+  v->fbound   = c->fbound;
+  v->fcoef    = c->fcoef;
+  v->fgfac    = c->fgfac;
   PetscFunctionReturn(0);
 }
 
@@ -229,6 +267,24 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
   PetscFunctionReturn(0);
 }
 
+/* J += B_i on the diagonal block of every contact vertex (blk: n blocks of dim x dim, row-major; J assembled by the
+   caller) */
+PetscErrorCode SgContactAddBlocks(SgContact c, const PetscReal blk[], Mat J)
+{
+  const PetscInt dim = c->dim;
+  PetscInt       rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscScalar    b[9];
+    const PetscInt row = (rstart + c->off[i]) / dim;
+    for (PetscInt k = 0; k < dim * dim; k++) b[k] = blk[i * dim * dim + k];
+    PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, b, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Multiplier balancing the normal part of the equilibrium residual: lam_i = -(K y - b)_i . n_i / w_i. */
 PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam[])
 {
@@ -248,6 +304,37 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   }
   PetscCall(VecRestoreArrayRead(R, &ra));
   PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* Friction at contact vertex i from the residual R_i = (K y - b)_i and the normal multiplier lamN: the tangential
+   multiplier lam_T = -T_i R_i / w_i, the slip u = T_i y_i, the bound g (s, or F max(0, lamN)), and the state: free
+   (g at the noise level: nothing to measure), slip (|lam_T| at the bound up to noise), stick. */
+static char FrictionFromResidual(SgContact c, PetscInt i, const PetscScalar ra[], const PetscScalar ya[], PetscReal lamN, PetscReal noise, PetscReal lt[], PetscReal u[], PetscReal *gb)
+{
+  const PetscInt   dim = c->dim;
+  const PetscReal *n   = &c->normal[i * dim];
+  PetscReal        rn = 0, yn = 0, nt = 0;
+
+  for (PetscInt k = 0; k < dim; k++) {
+    rn += n[k] * PetscRealPart(ra[c->off[i] + k]);
+    yn += n[k] * PetscRealPart(ya[c->off[i] + k]);
+  }
+  for (PetscInt k = 0; k < dim; k++) {
+    lt[k] = -(PetscRealPart(ra[c->off[i] + k]) - rn * n[k]) / c->w[i];
+    u[k]  = PetscRealPart(ya[c->off[i] + k]) - yn * n[k];
+    nt += lt[k] * lt[k];
+  }
+  nt  = PetscSqrtReal(nt);
+  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+  if (*gb <= noise) return SG_FRICTION_FREE;
+  return nt >= *gb - PetscMax(1e-10 * *gb, noise) ? SG_FRICTION_SLIP : SG_FRICTION_STICK;
+}
+
+PetscErrorCode SgContactGetFrictionSummary(SgContact c, SgFrictionSummary *fs)
+{
+  PetscFunctionBeginUser;
+  *fs = c->fsum;
   PetscFunctionReturn(0);
 }
 
@@ -297,11 +384,59 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     mx[1]  = PetscMax(mx[1], c->w[i] * PetscMax(0, -lam[i])); /* nodal force a pressure >= 0 cannot balance */
     mx[2]  = PetscMax(mx[2], -c->d[i]);                       /* initial penetration */
   }
-  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior and tangential residual */
-  PetscCall(VecRestoreArray(R, &ra));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   fscale = c->Knorm * nrm[1] + c->bnorm_inf;
+  if (c->friction) {
+    /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
+       part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
+       |lam_T| = g (the friction force -w lam_T on the body opposes the slip) */
+    PetscReal f[8] = {0}, fm[2] = {0, 0};
+    PetscCall(VecGetArrayRead(y, &ya));
+    for (PetscInt i = 0; i < c->n; i++) {
+      const PetscReal noise = 1e-12 * fscale / c->w[i];
+      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0;
+      const char      st = FrictionFromResidual(c, i, ra, ya, lam[i], noise, lt, u, &gb);
+      for (PetscInt k = 0; k < dim; k++) {
+        nt += lt[k] * lt[k];
+        un += u[k] * u[k];
+        f[2 + k] += c->w[i] * lt[k];
+        ra[c->off[i] + k] += c->w[i] * lt[k];
+      }
+      nt = PetscSqrtReal(nt);
+      un = PetscSqrtReal(un);
+      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, nt - gb));
+      fm[1] = PetscMax(fm[1], un);
+      f[5] += c->w[i] * nt;
+      if (st == SG_FRICTION_STICK) err = un;
+      else if (st == SG_FRICTION_SLIP) {
+        for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
+        a = PetscMax(0, a);
+        for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
+        err = PetscSqrtReal(err);
+      }
+      f[0] += (st == SG_FRICTION_STICK);
+      f[1] += (st == SG_FRICTION_SLIP);
+      f[6] += c->w[i] * err * err;
+    }
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
+    c->fsum.nstick     = (PetscInt)f[0];
+    c->fsum.nslip      = (PetscInt)f[1];
+    c->fsum.force_norm = 0;
+    for (PetscInt k = 0; k < 3; k++) {
+      c->fsum.force[k] = k < dim ? f[2 + k] : 0;
+      c->fsum.force_norm += PetscSqr(c->fsum.force[k]);
+    }
+    c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
+    c->fsum.traction   = f[5];
+    c->fsum.slip_max   = fm[1];
+    c->fsum.bound      = SafeRatio(fm[0], fscale);
+  }
+  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
+  PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
        (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
@@ -323,8 +458,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   kkt->penetration     = PetscSqrtReal(s[0]);
   kkt->equilibrium     = nrm[0] / PetscMax(fscale, PETSC_SMALL);
   kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
-  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1]), kkt->lscale);
-  kkt->dual            = SafeRatio(mx[1], fscale);
+  if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
+  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale);
+  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], fscale), c->fsum.bound) : SafeRatio(mx[1], fscale);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];
@@ -392,6 +528,71 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
     PetscCall(DMLocalToGlobal(c->dmVec, ol, ADD_VALUES, obst));
     PetscCall(DMRestoreLocalVector(c->dmVec, &ol));
   }
+  PetscFunctionReturn(0);
+}
+
+/* Friction fields for output (with a friction law): per contact vertex the tangential traction lam_T (from the
+   tangential residual, as in SgContactKKT: the traction on the obstacle; the body feels -lam_T), the slip T_i y_i and
+   the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
+PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec slip, Vec state)
+{
+  const PetscInt     dim = c->dim;
+  Vec                R, lt, ls, lst;
+  const PetscScalar *ya, *ra;
+  PetscScalar       *ta, *sa, *qa;
+  PetscReal          nrm, fscale;
+  PetscSection       vs, ss;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(y, &R));
+  PetscCall(MatMult(c->K, y, R));
+  PetscCall(VecAXPY(R, -1.0, c->b));
+  PetscCall(VecNorm(y, NORM_INFINITY, &nrm));
+  fscale = c->Knorm * nrm + c->bnorm_inf;
+  PetscCall(DMGetLocalSection(c->dmVec, &vs));
+  PetscCall(DMGetLocalSection(c->dmVert, &ss));
+  PetscCall(DMGetLocalVector(c->dmVec, &lt));
+  PetscCall(DMGetLocalVector(c->dmVec, &ls));
+  PetscCall(DMGetLocalVector(c->dmVert, &lst));
+  PetscCall(VecZeroEntries(lt));
+  PetscCall(VecZeroEntries(ls));
+  PetscCall(VecZeroEntries(lst));
+  PetscCall(VecGetArray(lt, &ta));
+  PetscCall(VecGetArray(ls, &sa));
+  PetscCall(VecGetArray(lst, &qa));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(VecGetArrayRead(R, &ra));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal rn = 0, lam, l[3], u[3], gb;
+    PetscInt  off, soff;
+    char      st;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    lam = -rn / c->w[i];
+    st  = FrictionFromResidual(c, i, ra, ya, lam, 1e-12 * fscale / c->w[i], l, u, &gb);
+    PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
+    PetscCall(PetscSectionGetOffset(ss, c->mesh->vStart + c->vert[i], &soff));
+    for (PetscInt k = 0; k < dim; k++) {
+      ta[off + k] = l[k];
+      sa[off + k] = u[k];
+    }
+    qa[soff] = st;
+  }
+  PetscCall(VecRestoreArrayRead(R, &ra));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCall(VecRestoreArray(lt, &ta));
+  PetscCall(VecRestoreArray(ls, &sa));
+  PetscCall(VecRestoreArray(lst, &qa));
+  /* only owners hold contact vertices: adding the zeros of the other ranks keeps the owner's value */
+  PetscCall(VecZeroEntries(traction));
+  PetscCall(VecZeroEntries(slip));
+  PetscCall(VecZeroEntries(state));
+  PetscCall(DMLocalToGlobal(c->dmVec, lt, ADD_VALUES, traction));
+  PetscCall(DMLocalToGlobal(c->dmVec, ls, ADD_VALUES, slip));
+  PetscCall(DMLocalToGlobal(c->dmVert, lst, ADD_VALUES, state));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &lt));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &ls));
+  PetscCall(DMRestoreLocalVector(c->dmVert, &lst));
+  PetscCall(VecDestroy(&R));
   PetscFunctionReturn(0);
 }
 

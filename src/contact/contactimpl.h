@@ -39,6 +39,11 @@ struct _n_SgContact {
   PetscReal *d;          /* gap to the obstacle along the normal (at the obstacle's current placement) */
   PetscReal  area;
   char      *prefix;
+  SgFrictionType friction;   /* -friction_type */
+  PetscReal      fbound;     /* -friction_bound s (Tresca) */
+  PetscReal      fcoef;      /* -friction_coefficient F (Coulomb) */
+  PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma */
+  SgFrictionSummary fsum;    /* of the last SgContactKKT */
 };
 
 struct _n_SgProblem {

@@ -31,7 +31,7 @@ static PetscErrorCode SetDefault(const char prefix[], const char name[], const c
 /* Enter the default solver's options unless -<prefix>ksp_type or -<prefix>pc_type is given. defaulted: the default
    was entered; iterative: the solver that will run is a Krylov method with a preconditioner (not preonly: the
    controller's default depends on it); desc says what was chosen and why (for the run's first lines). */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
+PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool nonsym, PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
 {
   char        opt[256], ktype[64] = "";
   PetscBool   kset, pset;
@@ -57,6 +57,13 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   *defaulted = (PetscBool)!(kset || pset);
   if (!*defaulted) {
     *iterative = (PetscBool)strcmp(ktype, KSPPREONLY); /* PETSc's default Krylov method is GMRES */
+    if (nonsym) { /* Coulomb friction: the SSN's matrices are nonsymmetric */
+      char ptype[64] = "";
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%spc_type", prefix ? prefix : ""));
+      if (pset) PetscCall(PetscOptionsGetString(NULL, NULL, opt, ptype, sizeof(ptype), NULL));
+      PetscCheck(strcmp(ktype, KSPCG) && strcmp(ptype, PCCHOLESKY) && strcmp(ptype, PCICC), comm, PETSC_ERR_USER_INPUT, "-%sksp_type %s -%spc_type %s: Coulomb friction (-friction_type coulomb) makes the Jacobians nonsymmetric: use e.g. -pc_type lu or -ksp_type gmres", prefix ? prefix : "", kset ? ktype : "(default)", prefix ? prefix : "", pset ? ptype : "(default)");
+    }
+    PetscCall(PetscSNPrintf(desc, len, "from the options"));
     PetscCall(PetscSNPrintf(desc, len, "from the options"));
     PetscFunctionReturn(0);
   }
@@ -71,7 +78,13 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     if (condense || tmg) maxdirect = condense ? PETSC_MAX_INT - 1 : 0;
   }
   *iterative = (PetscBool)(dofs > maxdirect);
-  if (!*iterative) {
+  if (!*iterative && nonsym) { /* Coulomb friction: nonsymmetric Jacobians */
+    PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
+    PetscCall(SetDefault(prefix, "pc_type", "lu"));
+    PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
+    if (maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for %" PetscInt_FMT "D on one rank with Coulomb friction (nonsymmetric Jacobians): sparse LU (MUMPS)", dim));
+    else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns) with Coulomb friction (nonsymmetric Jacobians): sparse LU (MUMPS)", maxdirect));
+  } else if (!*iterative) {
     PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
     PetscCall(SetDefault(prefix, "pc_type", "cholesky"));
     PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
@@ -79,7 +92,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     else if (maxdirect == PETSC_MAX_INT - 1) PetscCall(PetscSNPrintf(desc, len, "default with -ssn_condense: sparse Cholesky (MUMPS)"));
     else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
   } else {
-    PetscCall(SetDefault(prefix, "ksp_type", "cg"));
+    PetscCall(SetDefault(prefix, "ksp_type", nonsym ? "gmres" : "cg"));
     PetscCall(SetDefault(prefix, "ksp_rtol", "1e-8"));
     PetscCall(SetDefault(prefix, "pc_type", "hypre"));
     PetscCall(SetDefault(prefix, "pc_hypre_type", "boomeramg"));
@@ -90,7 +103,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_agg_nl", "1"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_down", "l1-Gauss-Seidel"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
-    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): CG + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg"));
+    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): %s + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg", nonsym ? "GMRES (Coulomb friction: nonsymmetric)" : "CG"));
   }
   PetscFunctionReturn(0);
 }
@@ -125,6 +138,8 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
 
   PetscFunctionBeginUser;
   if (!c) PetscFunctionReturn(0);
+  PetscCall(SgContactGetView(c, &cv));
+  if (cv.friction) PetscFunctionReturn(0); /* neither condensation nor the truncated multigrid is built for friction */
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));

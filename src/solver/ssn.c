@@ -5,6 +5,84 @@
 
 const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL"};
 
+/* Friction at contact vertex i (ya: the local part of y, mN: the regularized normal multiplier there):
+   z = T_i (lamhat_T,i + gamma_T T_i y_i), bound g = s (Tresca) or F mN (Coulomb), lam_T = P_g(z) the projection onto the
+   ball of radius g; u = T_i y_i, t = z/|z| (0 if z = 0). The state: free (g = 0), stick (|z| <= g), slip (|z| > g). */
+static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
+{
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscReal     *n   = &c->normal[i * dim], gT = c->fgfac * s->gamma;
+  PetscReal            un = 0, zdn = 0, z[3], nz = 0;
+
+  for (PetscInt k = 0; k < dim; k++) un += n[k] * PetscRealPart(ya[c->off[i] + k]);
+  for (PetscInt k = 0; k < dim; k++) {
+    u[k] = PetscRealPart(ya[c->off[i] + k]) - un * n[k];
+    z[k] = s->lamhatT[i * dim + k] + gT * u[k];
+    zdn += z[k] * n[k];
+  }
+  for (PetscInt k = 0; k < dim; k++) {
+    z[k] -= zdn * n[k];
+    nz += z[k] * z[k];
+  }
+  nz  = PetscSqrtReal(nz);
+  *zn = nz;
+  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * mN;
+  for (PetscInt k = 0; k < dim; k++) t[k] = nz > 0 ? z[k] / nz : 0;
+  if (!(*gb > 0)) {
+    for (PetscInt k = 0; k < dim; k++) lamT[k] = 0;
+    return SG_FRICTION_FREE;
+  }
+  if (nz <= *gb) {
+    for (PetscInt k = 0; k < dim; k++) lamT[k] = z[k];
+    return SG_FRICTION_STICK;
+  }
+  for (PetscInt k = 0; k < dim; k++) lamT[k] = *gb * t[k];
+  return SG_FRICTION_SLIP;
+}
+
+/* F += sum_i w_i lam_T,i at y, with the normal multipliers mN; the states, the counts and, for the path values, the
+   sums w_i (lam_T.u - |lam_T - lamhat_T|^2/(2 gamma_T)) (the regularized Tresca term of J(gamma, y): the value of
+   sup_{|mu| <= g} mu.u - |mu - lamhat_T|^2/(2 gamma_T), whose gradient in u is lam_T) and its derivative in gamma,
+   c w_i |lam_T - lamhat_T|^2 / (2 gamma_T^2) (for Coulomb the same terms with the bound frozen: no potential) */
+static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[5])
+{
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscReal      gT  = c->fgfac * s->gamma;
+
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal *lt = &s->mT[i * dim], u[3], t[3], zn, gb, lu = 0, ll = 0;
+    const char st = FrictionAt(s, i, ya, mN[i], lt, u, t, &zn, &gb);
+    s->fst[i]     = st;
+    for (PetscInt k = 0; k < dim; k++) {
+      fa[c->off[i] + k] += c->w[i] * lt[k];
+      lu += lt[k] * u[k];
+      ll += lt[k] * lt[k];
+    }
+    {
+      PetscReal dd = 0; /* |lam_T - lamhat_T|^2 */
+      for (PetscInt k = 0; k < dim; k++) dd += PetscSqr(lt[k] - s->lamhatT[i * dim + k]);
+      (void)ll;
+      loc[0] += c->w[i] * (lu - dd / (2 * gT));
+      loc[1] += c->w[i] * c->fgfac * dd / (2 * gT * gT);
+    }
+    loc[2] += (st == SG_FRICTION_STICK);
+    loc[3] += (st == SG_FRICTION_SLIP);
+    /* a slip whose direction turned by more than 90 degrees since the Jacobian is a change of state too: in 2D the
+       slip derivative is 0, and a vertex flipping between +g and -g would look settled */
+    if (s->havejac) {
+      PetscBool changed = (PetscBool)(st != s->fstjac[i]);
+      if (!changed && st == SG_FRICTION_SLIP) {
+        PetscReal tt = 0;
+        for (PetscInt k = 0; k < dim; k++) tt += t[k] * s->tjac[i * dim + k];
+        changed = (PetscBool)(tt <= 0);
+      }
+      loc[4] += changed;
+    }
+  }
+}
+
 static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
 {
   SgSSN              s = (SgSSN)ctx;
@@ -12,7 +90,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   const PetscInt     dim = s->dim;
   const PetscScalar *ya;
   PetscScalar       *fa, dots[2];
-  PetscReal          loc[7] = {0}, glob[7], r1corr2;
+  PetscReal          loc[7] = {0}, glob[7], r1corr2, floc[5] = {0};
   Vec                vecs[2];
 
   PetscFunctionBeginUser;
@@ -44,6 +122,11 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   PetscCall(PetscLogEventEnd(SG_ActiveSet, 0, 0, 0, 0));
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, s->m, fa));
+  if (c->friction) {
+    PetscCall(VecGetArrayRead(y, &ya));
+    FrictionResidual(s, ya, s->m, fa, floc);
+    PetscCall(VecRestoreArrayRead(y, &ya));
+  }
   /* r1 is the dual norm of K y - b + B^T W lam_jac = F - B^T W (m - lam_jac): only contact dofs differ from F */
   r1corr2 = 0;
   {
@@ -70,7 +153,64 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   s->nleft    = (PetscInt)glob[4];
   s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->energy_shift + glob[0] / (2 * s->gamma);
   s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
+  if (c->friction) {
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 5, MPIU_REAL, MPI_SUM, s->comm));
+    s->V += floc[0];
+    s->dVdg += floc[1];
+    s->nstick    = (PetscInt)floc[2];
+    s->nslip     = (PetscInt)floc[3];
+    s->nfchanged = (PetscInt)floc[4];
+  }
   PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The generalized derivative of sum_i w_i lam_T,i at y (s->actjac: the normal active set of this Jacobian):
+     stick: w gamma_T T_i;   slip: w (g/|z|) gamma_T (T_i - t t^T), and for Coulomb with an active normal also
+     w F gamma t n_i^T (the bound F (lamhat + gamma (tau_N y - d)) moves with y: a nonsymmetric block);   free: 0. */
+static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
+{
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscReal      gT  = c->fgfac * s->gamma;
+  const PetscScalar   *ya;
+  PetscReal           *blk;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
+  s->nforce = 0;
+  PetscCall(VecGetArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal *n  = &c->normal[i * dim];
+    const PetscReal  mN = s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0;
+    PetscReal        lt[3], u[3], t[3], zn, gb, *B = &blk[i * dim * dim];
+    char             st = FrictionAt(s, i, ya, mN, lt, u, t, &zn, &gb);
+    /* a slip that reversed its direction since the last Jacobian of this solve is linearized as stick: with the slip
+       derivative (0 in 2D) Newton can flip such a vertex between +g and -g forever when its solution sticks */
+    if (s->nhash > 1 && st == SG_FRICTION_SLIP && s->fstjac[i] == SG_FRICTION_SLIP) { /* not the first Jacobian of the solve */
+      PetscReal tt = 0;
+      for (PetscInt k = 0; k < dim; k++) tt += t[k] * s->tjac[i * dim + k];
+      if (tt <= 0) st = SG_FRICTION_STICK;
+    }
+    s->fforce[i] = (char)(st == SG_FRICTION_STICK && zn > gb);
+    s->nforce += s->fforce[i];
+    s->fstjac[i] = st;
+    for (PetscInt k = 0; k < dim; k++) s->tjac[i * dim + k] = t[k];
+    if (st == SG_FRICTION_FREE) continue;
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt b = 0; b < dim; b++) {
+        const PetscReal T = (a == b ? 1 : 0) - n[a] * n[b];
+        if (st == SG_FRICTION_STICK) B[a * dim + b] = c->w[i] * gT * T;
+        else {
+          B[a * dim + b] = c->w[i] * (gb / zn) * gT * (T - t[a] * t[b]);
+          if (c->friction == SG_FRICTION_COULOMB && s->actjac[i]) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * t[a] * n[b];
+        }
+      }
+  }
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->nforce, 1, MPIU_INT, MPI_SUM, s->comm));
+  PetscCall(SgContactAddBlocks(s->c, blk, P));
+  PetscCall(PetscFree(blk));
   PetscFunctionReturn(0);
 }
 
@@ -106,16 +246,51 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     if (s->nhash > 1) PetscCall(KSPGetIterationNumber(ksp, &kits));
     /* SNES decides the reuse after this callback from its lag: -1 reuses, -2 rebuilds once */
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && kits <= s->pc_reuse_its ? -1 : -2));
-  } else if (s->pc_same_set) {
+  } else if (s->pc_same_set && !c->friction) { /* with slip the matrix changes on the same set */
     /* the same active set at the same gamma is the same matrix: keep its preconditioner */
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && s->hash[s->nhash - 1] == s->hash[s->nhash - 2] ? -1 : -2));
   }
   /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
   PetscCall(MatCopy(s->K, P, SAME_NONZERO_PATTERN));
   PetscCall(SgContactAddJacobian(s->c, s->actjac, s->gamma, P));
+  if (c->friction) PetscCall(FrictionJacobian(s, y, P));
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(SG_Jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The Newton step with the slips linearized as stick (FrictionJacobian) made consistent: their linear model is
+   lam_T = z(y) + gamma_T T d, not P_g(z(y)) + gamma_T T d, so the residual of the step takes z there: the direction
+   J^{-1} F grows by J^{-1} sum w_i (z_i - P_g(z_i)) (one more solve with the same operator). SNES steps to y - Y. */
+static PetscErrorCode PreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool *changed, void *ctx)
+{
+  SgSSN                s   = (SgSSN)ctx;
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscScalar   *xa;
+  PetscScalar         *ra;
+  KSP                  ksp;
+
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (!s->nforce) PetscFunctionReturn(0);
+  if (!s->wpre) PetscCall(VecDuplicateVecs(X, 2, &s->wpre));
+  PetscCall(VecZeroEntries(s->wpre[0]));
+  PetscCall(VecGetArrayRead(X, &xa));
+  PetscCall(VecGetArray(s->wpre[0], &ra));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal lt[3], u[3], t[3], zn, gb;
+    if (!s->fforce[i]) continue;
+    (void)FrictionAt(s, i, xa, s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0, lt, u, t, &zn, &gb);
+    for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
+  }
+  PetscCall(VecRestoreArray(s->wpre[0], &ra));
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(KSPSolve(ksp, s->wpre[0], s->wpre[1]));
+  PetscCall(VecAXPY(Y, 1.0, s->wpre[1]));
+  *changed = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -143,7 +318,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     }
     PetscFunctionReturn(0);
   }
-  settled = (PetscBool)(s->nentered + s->nleft == 0);
+  settled = (PetscBool)(s->nentered + s->nleft == 0 && (!s->cv.friction || s->nfchanged == 0));
   if (s->stop_test) { /* a controller's own test replaces the one below */
     PetscCall(s->stop_test(s, it, fnorm, settled, reason, s->stop_ctx));
     PetscFunctionReturn(0);
@@ -151,7 +326,11 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
      lie below sqrt(rtol) max(||F_0||, ||b||) */
-  small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
+  if (s->cv.friction) {
+    /* friction: ||F_0|| grows with gamma (the penetration of the start) and says nothing about the slip set, where
+       the Newton steps converge instead of landing: measured against the load ||b|| alone */
+    small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
+  } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
@@ -161,7 +340,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     /* r1 measures the equilibrium residual, inexact linear solves included */
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_NEIGHBOURHOOD;
-  } else if (!settled) {
+  } else if (!settled && !s->cv.friction) { /* with slip the iterate is no function of the sets: no cycle test */
     PetscInt64 h;
     PetscCall(SgContactActiveSetHash(s->c, s->act, &h));
     for (PetscInt j = 0; j < s->nhash - 1; j++)
@@ -187,7 +366,9 @@ static PetscErrorCode Monitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx
   PetscCall(SNESGetKSP(snes, &ksp));
   if (it > 0) PetscCall(KSPGetIterationNumber(ksp, &kits));
   PetscCall(PetscTime(&t));
-  if (s->monitor)
+  if (s->monitor && s->cv.friction)
+    PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) stick %" PetscInt_FMT " slip %" PetscInt_FMT " (%" PetscInt_FMT " changed) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, s->nstick, s->nslip, s->nfchanged, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
+  else if (s->monitor)
     PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
   else if (s->progress && it > 0)
     PetscCall(PetscPrintf(s->comm, "    SSN %2" PetscInt_FMT ": active %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next), ||F|| %.3e, KSP %" PetscInt_FMT ", %.2f s\n", it, s->nact, s->nentered, s->nleft, (double)fnorm, kits, (double)(t - s->t0)));
@@ -406,9 +587,17 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(PetscTime(&s->t0));
   PetscCall(PetscObjectReference((PetscObject)J));
   s->J = J;
+  if (s->cv.friction == SG_FRICTION_COULOMB) { /* the coupling t n^T of the slip set */
+    PetscCall(MatSetOption(J, MAT_SPD, PETSC_FALSE));
+    PetscCall(MatSetOption(J, MAT_SYMMETRIC, PETSC_FALSE));
+  }
   PetscCall(VecDuplicate(s->b, &s->r));
   PetscCall(PetscMalloc5(s->cv.n, &s->g, s->cv.n, &s->m, s->cv.n, &s->act, s->cv.n, &s->actjac, s->cv.n, &s->lamhat));
   for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
+  if (s->cv.friction) {
+    PetscCall(PetscCalloc2(s->cv.n * s->dim, &s->lamhatT, s->cv.n * s->dim, &s->mT));
+    PetscCall(PetscCalloc4(s->cv.n, &s->fst, s->cv.n, &s->fstjac, s->cv.n * s->dim, &s->tjac, s->cv.n, &s->fforce));
+  }
   PetscCall(SNESCreate(s->comm, &s->snes));
   PetscCall(SNESSetOptionsPrefix(s->snes, prefix));
   PetscCall(SNESSetKSP(s->snes, ksp));
@@ -418,6 +607,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SNESSetFunction(s->snes, s->r, Residual, s));
   PetscCall(SNESSetJacobian(s->snes, s->J, s->J, Jacobian, s));
   PetscCall(SNESSetConvergenceTest(s->snes, Converged, s, NULL));
+  if (s->cv.friction) PetscCall(SNESLineSearchSetPreCheck(ls, PreCheck, s));
   PetscCall(SNESMonitorSet(s->snes, Monitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
   PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
@@ -434,6 +624,8 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(PetscPopErrorHandler());
     PetscCall(SgSolverConfigured(s->comm, ierr));
   }
+  PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
+  PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
   if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
@@ -451,7 +643,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
-    s->residual_test = (PetscBool)!preonly;
+    s->residual_test = (PetscBool)(!preonly || s->cv.friction); /* slip: Newton steps converge, they do not land */
     PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
     PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
@@ -473,6 +665,9 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
+  PetscCall(PetscFree2(s->lamhatT, s->mT));
+  PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  if (s->wpre) PetscCall(VecDestroyVecs(2, &s->wpre));
   PetscCall(PetscFree(s->hash));
   PetscCall(PetscFree(*ssn));
   PetscFunctionReturn(0);
@@ -670,6 +865,22 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->comm));
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, m, fa));
+  if (c->friction) {
+    PetscReal floc[5] = {0}, fl = 0;
+    PetscCall(VecGetArrayRead(y, &ya));
+    FrictionResidual(s, ya, m, fa, floc);
+    /* the round-off of gamma_T T y on the stick set */
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal yn = 0;
+      if (s->fst[i] != SG_FRICTION_STICK) continue;
+      for (PetscInt k = 0; k < s->dim; k++) yn = PetscMax(yn, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
+      fl = PetscMax(fl, c->fgfac * s->gamma * c->w[i] * 2 * yn);
+    }
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    fl *= 4 * PETSC_MACHINE_EPSILON;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl, 1, MPIU_REAL, MPI_MAX, s->comm));
+    floor += fl;
+  }
   PetscCall(VecRestoreArray(F, &fa));
   PetscCall(VecNorm(F, NORM_INFINITY, &nrm[0]));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
@@ -680,5 +891,16 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   }
   PetscCall(VecDestroy(&F));
   PetscCall(PetscFree2(g, m));
+  PetscFunctionReturn(0);
+}
+
+/* friction: the tangential shift lamhat_T (n*dim, for the controller to set), the multiplier lam_T and the states at
+   the last residual evaluation; NULLs without friction */
+PetscErrorCode SgSSNGetFriction(SgSSN s, PetscReal **lamhatT, const PetscReal **mT, const char **fst)
+{
+  PetscFunctionBeginUser;
+  if (lamhatT) *lamhatT = s->lamhatT;
+  if (mT) *mT = s->mT;
+  if (fst) *fst = s->fst;
   PetscFunctionReturn(0);
 }
