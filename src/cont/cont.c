@@ -155,7 +155,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   }
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this", &ct->gamma_max, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this (default: 1e14 x the largest normal stiffness per contact area, n^T K_ii n / w_i)", &ct->gamma_max, &ct->gamma_max_set));
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
@@ -260,6 +260,48 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
   PetscFunctionReturn(0);
 }
 
+/* kn[i] = n_i^T K_ii n_i, the normal diagonal stiffness of each contact vertex: kn / w has the units of gamma */
+PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
+{
+  const SgContactView *c = &ct->cv;
+  PetscInt            dim;
+  Mat                 K;
+  Vec                 diag;
+  const PetscScalar  *da;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
+  PetscCall(MatCreateVecs(K, &diag, NULL));
+  PetscCall(MatGetDiagonal(K, diag));
+  PetscCall(VecGetArrayRead(diag, &da));
+  for (PetscInt i = 0; i < c->n; i++) {
+    kn[i] = 0;
+    for (PetscInt k = 0; k < dim; k++) kn[i] += PetscSqr(c->normal[i * dim + k]) * PetscRealPart(da[c->off[i] + k]);
+  }
+  PetscCall(VecRestoreArrayRead(diag, &da));
+  PetscCall(VecDestroy(&diag));
+  PetscFunctionReturn(0);
+}
+
+/* The default -cont_gamma_max: 1e14 times the largest n^T K_ii n / w_i, the problem's own scale of gamma. Past it,
+   gamma w_i leaves K's part of a contact row below round-off. It scales with the units: the absolute 1e20 used
+   before made a valid problem with E = 1e12 stop with GAMMA_OVERFLOW (the gamma it needs scales with E). */
+static PetscErrorCode DefaultGammaMax(SgCont ct)
+{
+  PetscReal *kn, s = 0;
+
+  PetscFunctionBeginUser;
+  if (ct->gamma_max_set || !ct->c) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(ct->cv.n, &kn));
+  PetscCall(SgContNormalStiffness(ct, kn));
+  for (PetscInt i = 0; i < ct->cv.n; i++) s = PetscMax(s, kn[i] / ct->cv.w[i]);
+  PetscCall(PetscFree(kn));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_MAX, ct->comm));
+  if (PetscIsNormalReal(s) && s > 0 && PetscIsNormalReal(1e14 * s)) ct->gamma_max = 1e14 * s;
+  PetscFunctionReturn(0);
+}
+
 /* The start of every controller: y = the solution without contact (the paper's start) and V0 its energy, unless the
    state was read from -restart_file. ok = PETSC_FALSE (and the run failed) if that linear solve fails. */
 PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
@@ -269,6 +311,7 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
 
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
+  PetscCall(DefaultGammaMax(ct));
   if (ct->c && !(ct->gamma <= ct->gamma_max)) { /* later steps are checked by SgContCheck */
     *ok = PETSC_FALSE;
     PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the first gamma %g exceeds -cont_gamma_max %g: no step taken", (double)ct->gamma, (double)ct->gamma_max));

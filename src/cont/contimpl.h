@@ -61,6 +61,7 @@ struct _n_SgCont {
   char         ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
   PetscInt     max_outer, stall_its;
   PetscReal    gamma_max;
+  PetscBool    gamma_max_set; /* -cont_gamma_max given; else 1e14 x the normal stiffness per contact area (SgContStart) */
   PetscReal    best_kkt;     /* progress watch */
   PetscInt     best_step;
   PetscInt     outer, ssn_its, ksp_its;
@@ -95,6 +96,7 @@ struct _n_SgCont {
 
 extern PetscFunctionList SgContList;
 PetscErrorCode SgContStart(SgCont, PetscBool *);
+PetscErrorCode SgContNormalStiffness(SgCont, PetscReal[]);
 PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
 PetscErrorCode SgContMeasure(SgCont);
 PetscErrorCode SgContAddGamma(SgCont, PetscReal);

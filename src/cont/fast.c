@@ -121,33 +121,22 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
 static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
 {
   const SgContactView *c = &ct->cv;
-  PetscInt            dim;
-  Mat                 K;
-  Vec                 diag;
-  const PetscScalar  *da, *ya;
-  PetscReal           s = 0, *g, E;
+  const PetscScalar   *ya;
+  PetscReal            s = 0, *g, *kn, E;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc1(c->n, &g));
-  PetscCall(VecDuplicate(ct->y, &diag));
-  PetscCall(MatGetDiagonal(K, diag));
+  PetscCall(PetscMalloc2(c->n, &g, c->n, &kn));
+  PetscCall(SgContNormalStiffness(ct, kn));
   PetscCall(VecGetArrayRead(ct->y, &ya));
   PetscCall(SgContactGap(ct->c, ya, g));
   PetscCall(VecRestoreArrayRead(ct->y, &ya));
-  PetscCall(VecGetArrayRead(diag, &da));
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscReal kn = 0, l;
-    for (PetscInt k = 0; k < dim; k++) kn += PetscSqr(c->normal[i * dim + k]) * PetscRealPart(da[c->off[i] + k]);
-    l = kn * PetscMax(0, g[i]) / c->w[i];
+    const PetscReal l = kn[i] * PetscMax(0, g[i]) / c->w[i];
     s += c->w[i] * l * l;
   }
-  PetscCall(VecRestoreArrayRead(diag, &da));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
-  PetscCall(VecDestroy(&diag));
-  PetscCall(PetscFree(g));
+  PetscCall(PetscFree2(g, kn));
   if (!(s > 0 && SgContGammaCap(ct, PetscSqrtReal(s), gamma))) *gamma = E;
   PetscFunctionReturn(0);
 }

@@ -100,6 +100,7 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetInt(sum, "ssn_iterations", ct->ssn_its));
     PetscCall(SgSummarySetInt(sum, "outer_iterations", ct->outer));
     PetscCall(SgSummarySetRealArray(sum, "gammas", ct->ngammas, ct->gammas));
+    PetscCall(SgSummarySetReal(sum, "gamma_max", ct->gamma_max));
     PetscCall(SgSummarySetReal(sum, "kkt_residual", ct->kkt.residual));
     PetscCall(SgSummarySetReal(sum, "infeasibility", ct->kkt.infeasibility));
     PetscCall(SgSummarySetReal(sum, "complementarity", ct->kkt.complementarity));
