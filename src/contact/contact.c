@@ -248,6 +248,16 @@ PetscErrorCode SgContactAddForce(SgContact c, const PetscReal lam[], PetscScalar
   PetscFunctionReturn(0);
 }
 
+/* J += the dim x dim block b on the diagonal of contact vertex i (rstart: J's first owned row) */
+static PetscErrorCode AddVertexBlock(SgContact c, Mat J, PetscInt rstart, PetscInt i, const PetscScalar b[])
+{
+  const PetscInt row = (rstart + c->off[i]) / c->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, b, ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
 /* J += gamma w_i n_i n_i^T on the active vertices (J assembled afterwards by the caller). */
 PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
 {
@@ -257,12 +267,11 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscScalar    blk[9];
-    const PetscInt row = (rstart + c->off[i]) / dim;
+    PetscScalar blk[9];
     if (!active[i]) continue;
     for (PetscInt a = 0; a < dim; a++)
       for (PetscInt b = 0; b < dim; b++) blk[a * dim + b] = gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
-    PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, blk, ADD_VALUES));
+    PetscCall(AddVertexBlock(c, J, rstart, i, blk));
   }
   PetscFunctionReturn(0);
 }
@@ -277,10 +286,9 @@ PetscErrorCode SgContactAddBlocks(SgContact c, const PetscReal blk[], Mat J)
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscScalar    b[9];
-    const PetscInt row = (rstart + c->off[i]) / dim;
+    PetscScalar b[9];
     for (PetscInt k = 0; k < dim * dim; k++) b[k] = blk[i * dim * dim + k];
-    PetscCall(MatSetValuesBlocked(J, 1, &row, 1, &row, b, ADD_VALUES));
+    PetscCall(AddVertexBlock(c, J, rstart, i, b));
   }
   PetscFunctionReturn(0);
 }

@@ -64,7 +64,6 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
       PetscCheck(strcmp(ktype, KSPCG) && strcmp(ptype, PCCHOLESKY) && strcmp(ptype, PCICC), comm, PETSC_ERR_USER_INPUT, "-%sksp_type %s -%spc_type %s: Coulomb friction (-friction_type coulomb) makes the Jacobians nonsymmetric: use e.g. -pc_type lu or -ksp_type gmres", prefix ? prefix : "", kset ? ktype : "(default)", prefix ? prefix : "", pset ? ptype : "(default)");
     }
     PetscCall(PetscSNPrintf(desc, len, "from the options"));
-    PetscCall(PetscSNPrintf(desc, len, "from the options"));
     PetscFunctionReturn(0);
   }
   /* the user's SSN solver options decide where they need one kind: -ssn_condense a factorization, and
@@ -143,7 +142,6 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgContactGetView(c, &cv));
   PetscCall(SgContactNormalsAxisAligned(c, &aligned));
   PetscCall(PetscStrlen(desc, &n));
   if (iterative) {

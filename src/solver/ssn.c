@@ -52,18 +52,16 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
   const PetscReal      gT  = c->fgfac * s->gamma;
 
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscReal *lt = &s->mT[i * dim], u[3], t[3], zn, gb, lu = 0, ll = 0;
+    PetscReal *lt = &s->mT[i * dim], u[3], t[3], zn, gb, lu = 0;
     const char st = FrictionAt(s, i, ya, mN[i], lt, u, t, &zn, &gb);
     s->fst[i]     = st;
     for (PetscInt k = 0; k < dim; k++) {
       fa[c->off[i] + k] += c->w[i] * lt[k];
       lu += lt[k] * u[k];
-      ll += lt[k] * lt[k];
     }
     {
       PetscReal dd = 0; /* |lam_T - lamhat_T|^2 */
       for (PetscInt k = 0; k < dim; k++) dd += PetscSqr(lt[k] - s->lamhatT[i * dim + k]);
-      (void)ll;
       loc[0] += c->w[i] * (lu - dd / (2 * gT));
       loc[1] += c->w[i] * c->fgfac * dd / (2 * gT * gT);
     }
