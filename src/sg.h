@@ -93,6 +93,9 @@ PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBo
 PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticitySetLoadFactor(SgElasticity, PetscReal); /* loads and Dirichlet values times the factor */
 PetscErrorCode SgElasticityGetLoadFactor(SgElasticity, PetscReal *);
+PetscErrorCode SgElasticitySetDirichletValues(SgElasticity, const PetscReal[]); /* dim per Dirichlet id, unscaled from now on */
+PetscErrorCode SgElasticityGetDirichletSize(SgElasticity, PetscInt *);
+PetscErrorCode SgElasticityGetDirichletValues(SgElasticity, PetscBool *, PetscReal[]); /* those set, if any */
 PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||b||_2, ||b||_inf, energy shift at factor 1 */
 PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);

@@ -226,6 +226,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
     PetscCall(VecDestroy(&ct->ysteps[k]));
     PetscCall(PetscFree(ct->lamsteps[k]));
   }
+  for (PetscInt k = 0; k < ct->nsteps && ct->dvsteps; k++) PetscCall(PetscFree(ct->dvsteps[k]));
+  PetscCall(PetscFree(ct->dvsteps));
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
   PetscCall(PetscFree(*cont));
@@ -690,6 +692,13 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
     ct->ysteps   = ys;
     ct->lamsteps = ls;
+    if (ct->dvsteps) {
+      PetscReal **dv;
+      PetscCall(PetscCalloc1(ct->capsteps, &dv));
+      PetscCall(PetscArraycpy(dv, ct->dvsteps, ct->nsteps));
+      PetscCall(PetscFree(ct->dvsteps));
+      ct->dvsteps = dv;
+    }
   }
   r = &ct->steps[ct->nsteps];
   PetscCall(PetscMemzero(r, sizeof(*r)));
@@ -713,6 +722,17 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
     PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
     PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
+    {
+      PetscBool set;
+      PetscInt  m;
+      PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, NULL));
+      if (set) { /* non-proportional loading: the step's Dirichlet values, for its fields */
+        PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
+        if (!ct->dvsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->dvsteps));
+        PetscCall(PetscMalloc1(m, &ct->dvsteps[ct->nsteps]));
+        PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, ct->dvsteps[ct->nsteps]));
+      }
+    }
   }
   ct->nsteps++;
   PetscFunctionReturn(0);

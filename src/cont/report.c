@@ -286,6 +286,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemSetLoadFactor(ct->problem_obj, ct->steps[j].t));
+  if (ct->dvsteps && ct->dvsteps[j]) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, ct->dvsteps[j]));
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
   PetscFunctionReturn(0);
 }
@@ -302,10 +303,14 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
   if (loadsteps && nkept) {
     /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
-    PetscInt *idx, *num;
-    PetscReal *times, t;
+    PetscInt *idx, *num, m;
+    PetscReal *times, t, *dv = NULL;
+    PetscBool  dset;
     StepsCtx   sc;
     PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+    PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
+    PetscCall(PetscMalloc1(m + 1, &dv));
+    PetscCall(SgElasticityGetDirichletValues(ct->prob, &dset, dv));
     PetscCall(PetscMalloc3(nkept, &idx, nkept, &num, nkept, &times));
     nkept = 0;
     for (PetscInt k = 0; k < ct->nsteps; k++)
@@ -319,6 +324,8 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     sc.idx = idx;
     PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, 2, cf, magnification));
     PetscCall(SgProblemSetLoadFactor(ct->problem_obj, t));
+    if (dset) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dv)); /* the problem's values restored too */
+    PetscCall(PetscFree(dv));
     PetscCall(PetscFree3(idx, num, times));
   } else {
     PetscCall(FieldsFill(ct, ct->y, ct->lam, vf, cf));

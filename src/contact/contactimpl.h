@@ -56,6 +56,6 @@ struct _n_SgProblem {
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
   PetscBool            setfromoptions, setup;
-  PetscBool            load_set;    /* SgProblemSetLoadFactor was called: a run with load steps */
+  PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble       t_create;
 };
