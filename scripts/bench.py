@@ -523,7 +523,7 @@ def friction(b, quick):
     for dim, meshes in (("2d", meshes2), ("3d", meshes3)):
         for m in meshes:
             c, f, d = res[dim, m, "coulomb"], res[dim, m, "same"], res[dim, m, "default"]
-            name = m if dim == "2d" else os.path.basename(m)
+            name = m if dim == "2d" else os.path.splitext(os.path.basename(m))[0]
             mi[dim][name] = c.get("ssn_iterations") if c.get("converged") else None
             tr, sr, dr = ratio(c, f, "solve_time"), ratio(c, f, "ssn_iterations"), ratio(c, d, "solve_time")
             cost["%s %s" % (dim.upper(), name)] = {"dofs": c.get("dofs"), "time_ratio": tr, "ssn_ratio": sr, "time_ratio_default": dr,
