@@ -99,13 +99,13 @@ FUZZ_TIME  ?= 1800
 fuzz: all
 	$(PYTHON) tests/fuzz.py --count $(FUZZ_COUNT) --seed $(FUZZ_SEED) --time-limit $(FUZZ_TIME)
 
-# The paper's tables side by side with ours (results/*.md) and its figures (results/fig*.png)
+# The paper's tables side by side with ours (results/*.md), its figures (results/fig*.png) and the friction pictures
 table1: all
 	$(PYTHON) scripts/reproduce.py --only table1 --out results/table1.md
 reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
-	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch
+	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction
 # Benchmarks (not tests): bench/results.md and bench/results.json; about an hour on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)

@@ -3,11 +3,12 @@
 
 Sections: (A) linear elasticity from 1e4 to 1e6 unknowns in 2D and 3D (assembly, setup, solve, iterations, memory);
 (B) Example 2 from the paper's mesh to 1e6 unknowns on 1 and 2 ranks; (C) the contact solver: mesh independence,
-cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave; (P) the FEniCSx peer (bench/peer_dolfinx.py) against our default.
+cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave; (P) the FEniCSx peer (bench/peer_dolfinx.py) against our default; (F) friction: the
+frictional SSN per controller, its mesh independence and its cost against a frictionless solve on the same mesh.
 Every ratio is of two numbers measured in the same run or in runs made one after the other here. Runs are kept in
 bench/runs/; --reuse skips runs whose summary exists. Not a test: timings depend on the machine's load.
 
-usage: bench.py [--reuse] [--only A,B,C,D,P] [--quick]
+usage: bench.py [--reuse] [--only A,B,C,D,P,F] [--quick]
 """
 import argparse
 import json
@@ -426,17 +427,142 @@ def levers(b):
     return out, {}
 
 
+EX1F = "-options_file options/ex1_friction.opts"
+EX2F = "-options_file options/ex2_friction.opts"
+TRESCA = "-friction_type tresca -friction_bound 0.1"
+# (column, key, the options of Example 1, the options added to Example 2's friction file)
+LAWS = [("frictionless", "frictionless", EX1, "-friction_type none"), ("Coulomb F = 0.3", "coulomb", EX1F, ""),
+        ("Tresca s = 0.1", "tresca", EX1 + " " + TRESCA, None)]
+
+
+def failed(s):
+    """A cell's note for a run that did not converge (its reason's first word), empty for a converged one."""
+    if s.get("converged"):
+        return ""
+    return "NOT CONVERGED (%s)" % ((s.get("reason") or "no summary").split(":")[0].split()[0])
+
+
+def its_cell(s):
+    """outer / SSN / Krylov, KKT residual, contact solve time; a run that did not converge says so first."""
+    c = "%s / %s / %s, %s, %s s" % (s.get("outer_iterations", "-"), s.get("ssn_iterations", "-"), s.get("ksp_iterations", "-"),
+                                     fmt(s.get("kkt_residual"), "%.1e"), fmt(s.get("solve_time"), "%.2f"))
+    return (failed(s) + " " + c).strip()
+
+
+def ratio(a, b, key):
+    """a[key] / b[key] if both runs converged and have the value, else None (a failed run gives no ratio)."""
+    if a.get("converged") and b.get("converged") and a.get(key) and b.get(key):
+        return a[key] / b[key]
+    return None
+
+
+def friction(b, quick):
+    """Issue 14, phase 2: the frictional SSN per controller, its mesh independence and its cost against frictionless."""
+    out = ["## F. Friction (issue 14)", "",
+           "Example 1 (2D, `%s`: Coulomb F = 0.3) and Example 2 (3D, `%s`: Coulomb F = 0.3, ipf tau 1e8, GMRES + "
+           "BoomerAMG); Tresca with bound s = 0.1 (`%s %s`); frictionless: `%s` and in 3D the friction file with "
+           "`-friction_type none`. "
+           "Cells: outer / SSN / Krylov iterations, KKT residual at the end, contact solve time in seconds (one rank); a run "
+           "that did not converge is marked NOT CONVERGED with its reason." % (EX1F, EX2F, EX1, TRESCA, EX1), ""]
+    js = {}
+    # (a) iterations per controller: one (P_gamma) at several gamma, and the controllers; exact solves by MUMPS LU
+    # for every law in 2D (Coulomb's Jacobians are nonsymmetric), so that the columns compare
+    ctl2 = [("none, gamma %s" % g, "none_%s" % g, "-options_file options/cont/none.opts -contact_gamma %s" % g) for g in ("1e4", "1e6", "1e8", "1e10")]
+    ctl2 += [("alm, gamma 1e5", "alm", "-options_file options/cont/alm.opts -alm_gamma 1e5"), ("pf", "pf", "-options_file options/cont/pf.opts"),
+             ("ipf", "ipf", IPF2)]
+    rows, jc = [], {"ex1": {}, "ex2": {}}
+    for cname, key, copt in ctl2:
+        row, jc["ex1"][key] = [cname], {}
+        for _, law, lopt, _ in LAWS:
+            s = b.run("F_ex1_%s_%s" % (key, law), "%s %s -pc_type lu %s -box_faces 120,40" % (lopt, MUMPS, copt))
+            row.append(its_cell(s))
+            jc["ex1"][key][law] = {f: s.get(f) for f in ("outer_iterations", "ssn_iterations", "ksp_iterations", "kkt_residual", "solve_time", "stick_size", "slip_size", "converged")}
+        rows.append(row)
+    out += ["### 1. Iterations per controller", "",
+            "Example 1, 120 x 40 (%d unknowns), MUMPS LU (`%s -pc_type lu`) for every column, KKT tolerance 1e-8 (options/ex1.opts); "
+            "alm: options/cont/alm.opts with gamma 1e5; pf, ipf: options/cont/pf.opts, ipf.opts." % (b.data["F_ex1_ipf_coulomb"].get("dofs", 0), MUMPS), ""]
+    out += table(["Example 1: controller"] + [c[0] for c in LAWS], rows)
+    s = b.data["F_ex1_ipf_coulomb"], b.data["F_ex1_ipf_tresca"]
+    out += ["States at the end of ipf: Coulomb %s stick, %s slip; Tresca %s stick, %s slip (of %s contact vertices)." % (
+        s[0].get("stick_size"), s[0].get("slip_size"), s[1].get("stick_size"), s[1].get("slip_size"), s[0].get("contact_vertices")), ""]
+    mesh3 = "meshes/ex2_coarse.msh" if quick else "meshes/ex2.msh"
+    tag3 = os.path.splitext(os.path.basename(mesh3))[0]
+    ctl3 = [("alm, gamma 1e9", "alm", "-options_file options/cont/alm.opts -alm_gamma 1e9"), ("pf", "pf", "-options_file options/cont/pf.opts"),
+            ("ipf, tau 1e8", "ipf", "")]
+    rows = []
+    for cname, key, copt in ctl3:
+        row, jc["ex2"][key] = [cname], {}
+        for _, law, _, lopt in LAWS[:2]:
+            s = b.run("F_%s_%s_%s" % (tag3, key, law), "%s -dm_plex_filename %s %s %s" % (EX2F, mesh3, copt, lopt))
+            row.append(its_cell(s))
+            jc["ex2"][key][law] = {f: s.get(f) for f in ("outer_iterations", "ssn_iterations", "ksp_iterations", "kkt_residual", "solve_time", "stick_size", "slip_size", "converged")}
+        rows.append(row)
+    s = b.data["F_%s_ipf_coulomb" % tag3]
+    out += ["Example 2, %s (%s unknowns), GMRES + BoomerAMG, KKT tolerance 1e-10; alm: options/cont/alm.opts with gamma 1e9, pf: "
+            "options/cont/pf.opts (the controller's file after %s)." % (mesh3, s.get("dofs"), EX2F), ""]
+    out += table(["Example 2: controller"] + [c[0] for c in LAWS[:2]], rows)
+    out += ["States at the end of ipf (Coulomb): %s stick, %s slip of %s contact vertices." % (s.get("stick_size"), s.get("slip_size"), s.get("contact_vertices")), ""]
+    js["controllers"] = jc
+
+    # (b) mesh independence of the default frictional solve, and (c) its cost against frictionless on the same mesh.
+    # Frictionless twice: with the same controller and linear solver (friction's own cost) and the default
+    # configuration, the problem file alone (what a frictionless user runs: in 2D MUMPS condensed onto the contact
+    # dofs, which friction cannot use; in 3D fast with the truncated multigrid, the direct threshold lowered as in B).
+    meshes2 = ["120,40", "240,80"] + ([] if quick else ["480,160", "960,320"])
+    meshes3 = ["meshes/ex2_coarse.msh", "meshes/ex2.msh"] + ([] if quick else ["meshes/ex2_s2.msh"])
+    cfg2 = [("coulomb", EX1F), ("same", "%s %s -pc_type lu" % (EX1, MUMPS)), ("default", EX1)]
+    cfg3 = [("coulomb", EX2F), ("same", EX2F + " -friction_type none"), ("default", EX2P + " -cont_direct_max_unknowns 0")]
+    res = {}
+    for dim, meshes, cfg in (("2d", meshes2, cfg2), ("3d", meshes3, cfg3)):
+        for m in meshes:
+            tag = m.replace(",", "x") if dim == "2d" else os.path.splitext(os.path.basename(m))[0]
+            for key, opts in cfg:
+                mopt = "-box_faces %s" % m if dim == "2d" else "-dm_plex_filename %s" % m
+                res[dim, m, key] = b.run("F_mi%s_%s_%s" % (dim, key, tag), "%s %s" % (opts, mopt))
+    rows, mi, cost = [], {"2d": {}, "3d": {}}, {}
+    for dim, meshes in (("2d", meshes2), ("3d", meshes3)):
+        for m in meshes:
+            c, f, d = res[dim, m, "coulomb"], res[dim, m, "same"], res[dim, m, "default"]
+            name = m if dim == "2d" else os.path.splitext(os.path.basename(m))[0]
+            mi[dim][name] = c.get("ssn_iterations") if c.get("converged") else None
+            tr, sr, dr = ratio(c, f, "solve_time"), ratio(c, f, "ssn_iterations"), ratio(c, d, "solve_time")
+            cost["%s %s" % (dim.upper(), name)] = {"dofs": c.get("dofs"), "time_ratio": tr, "ssn_ratio": sr, "time_ratio_default": dr,
+                                                   "coulomb": {k: c.get(k) for k in ("outer_iterations", "ssn_iterations", "ksp_iterations", "solve_time", "stick_size", "slip_size", "converged")},
+                                                   "frictionless_same": {k: f.get(k) for k in ("outer_iterations", "ssn_iterations", "ksp_iterations", "solve_time", "converged")},
+                                                   "frictionless_default": {k: d.get(k) for k in ("cont_type", "linear_solver", "outer_iterations", "ssn_iterations", "ksp_iterations", "solve_time", "converged")}}
+            rows.append((dim.upper(), name, c.get("dofs"), its_cell(c), "%s / %s" % (c.get("stick_size", "-"), c.get("slip_size", "-")), its_cell(f),
+                         ("%s %s, %s / %s, %s s" % (failed(d), d.get("cont_type", "-"), d.get("outer_iterations", "-"), d.get("ssn_iterations", "-"), fmt(d.get("solve_time"), "%.2f"))).strip(),
+                         fmt(sr, "%.2f"), fmt(tr, "%.2f"), fmt(dr, "%.2f")))
+    out += ["### 2. Mesh independence and cost against frictionless", "",
+            "Coulomb F = 0.3 with the default controller (ipf) and linear solver of the friction files (2D: `%s` alone, "
+            "MUMPS LU; 3D: `%s`). Frictionless (same): the same controller and linear solver with `-friction_type none`; "
+            "frictionless (default): the problem file alone (2D `%s`: ipf, MUMPS condensed onto the contact dofs, which "
+            "friction cannot use; 3D `%s -cont_direct_max_unknowns 0`: fast, CG + BoomerAMG l1-GS, truncated multigrid), "
+            "cells: controller, outer / SSN, time. Ratios Coulomb / frictionless; none where a run did not converge." % (EX1F, EX2F, EX1, EX2P), ""]
+    out += table(["dim", "mesh", "unknowns", "Coulomb F = 0.3", "stick / slip", "frictionless (same)", "frictionless (default)",
+                  "SSN ratio (same)", "time ratio (same)", "time ratio (default)"], rows)
+    for dim in ("2d", "3d"):
+        v = [x for x in mi[dim].values() if x is not None]
+        if v:
+            out += ["%s: SSN iterations of the Coulomb solve %s (%d of %d meshes converged; range %d to %d)." % (
+                dim.upper(), ", ".join("%s %s" % (k, "NOT CONVERGED" if x is None else x) for k, x in mi[dim].items()), len(v), len(mi[dim]), min(v), max(v))]
+    out += [""]
+    js["mesh_independence_2d"], js["mesh_independence_3d"], js["cost_vs_frictionless"] = mi["2d"], mi["3d"], cost
+    return out, {"friction": js}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--quick", action="store_true", help="small meshes only (a smoke test of this script)")
-    ap.add_argument("--only", default="A,B,C,D,P")
+    ap.add_argument("--only", default="A,B,C,D,P,F")
     opt = ap.parse_args()
     b = Bench(opt.reuse)
     t0 = time.time()
     lines = ["# Benchmarks", "", "Machine: %s. Generated by `make bench` (scripts/bench.py)%s. One BLAS thread per rank." % (sgrun.machine(), " with --quick" if opt.quick else ""), ""]
     js = {"machine": sgrun.machine()}
-    parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b), "P": lambda: peers_dolfinx(b, opt.quick)}
+    parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b), "P": lambda: peers_dolfinx(b, opt.quick),
+             "F": lambda: friction(b, opt.quick)}
     for p in opt.only.split(","):
         o, j = parts[p]()
         lines += o

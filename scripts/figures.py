@@ -11,7 +11,12 @@
   punch_pressure.png  the CAD punch with rounded edges (options/punch.opts): contact pressure on the block's top face
             (with --only punch)
 
-usage: figures.py [--only ex1,ex2,loadsteps,punch]
+  friction_ex1.png  Example 1 (240 x 80) with Coulomb F = 0.3 (options/ex1_friction.opts): along the contact boundary the
+            normal pressure, the tangential traction in the band |lam_T| <= F lam_N, the stick/slip/free states
+  friction_ex2.png  Example 2 with Coulomb F = 0.3 (options/ex2_friction.opts): the contact face, vertices coloured by
+            state, tangential traction arrows (both with --only friction; scripts/plot_friction.py draws them)
+
+usage: figures.py [--only ex1,ex2,loadsteps,punch,friction]
 """
 import argparse
 import os
@@ -133,12 +138,23 @@ def punch():
     print("wrote results/punch_pressure.png")
 
 
+def friction():
+    for name, args, title in (("friction_ex1", "-options_file options/ex1_friction.opts -box_faces 240,80", "Example 1 (240 x 80), Coulomb F = 0.3"),
+                              ("friction_ex2", "-options_file options/ex2_friction.opts", "Example 2, Coulomb F = 0.3")):
+        s, _ = sgrun.run(args, name, RUNS, fields=True)
+        if not s.get("converged"):
+            raise sgrun.RunError("%s did not converge (%s), see results/runs/%s.log" % (name, s.get("reason"), name))
+        subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_friction.py"), os.path.join(RUNS, name + ".h5"), os.path.join(RES, name + ".png"),
+                        "--coefficient", "%g" % s["friction_coefficient"], "--title", title], check=True)
+        print("wrote results/%s.png" % name)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", default="ex1")
     opt = ap.parse_args()
     for part in opt.only.split(","):
-        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch}[part]()
+        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch, "friction": friction}[part]()
 
 
 if __name__ == "__main__":
