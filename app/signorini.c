@@ -22,6 +22,9 @@ typedef struct {
 typedef struct {
   PetscInt  n, stop;
   PetscReal t[SG_LOAD_STEPS_MAX];
+  char      dvstr[65536]; /* -load_dirichlet_values as given ("": none) */
+  PetscInt  ndv;          /* Dirichlet values per step (dim per Dirichlet id), 0 without -load_dirichlet_values */
+  PetscReal *dv;          /* n * ndv: the Dirichlet values of every step */
 } LoadSteps;
 
 /* ---- options files that include themselves
@@ -201,6 +204,8 @@ static PetscErrorCode LoadStepOptions(MPI_Comm comm, LoadSteps *ls)
   PetscOptionsBegin(comm, NULL, "Quasi-static load stepping", NULL);
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-load_steps", "Number of load steps: loads, Dirichlet values and -obstacle_translation scaled from 0 to their full value, each step warm-started from the last", &n, &nset));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-load_factors", "Load factors of the steps, increasing, the last 1 (default: k/N; at most 96 factors)", 96, ls->t, &nf, &fset));
+  ls->dvstr[0] = 0;
+  PetscCall(PetscOptionsString("-load_dirichlet_values", "Non-proportional loading: the Dirichlet values of every load step, one full -dirichlet_values list (dim numbers per Dirichlet id) per step, the steps in order (N x ids x dim numbers with -load_steps N); the load factor then scales the loads and -obstacle_translation only", NULL, ls->dvstr, ls->dvstr, sizeof(ls->dvstr), NULL));
   ls->stop = 0;
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-load_step_stop", "Stop after this load step (a run split over several jobs: the next one continues with -restart_file from -checkpoint_file); 0: run all", &ls->stop, NULL));
   PetscOptionsEnd();
@@ -218,6 +223,40 @@ static PetscErrorCode LoadStepOptions(MPI_Comm comm, LoadSteps *ls)
   } else
     for (PetscInt k = 0; k < n; k++) ls->t[k] = (PetscReal)(k + 1) / n;
   ls->n = n;
+  PetscFunctionReturn(0);
+}
+
+/* -load_dirichlet_values v1,v2,...: the Dirichlet values of every load step (SgProblemGetDirichletSize numbers per
+   step, the steps in order), read once the problem knows its dimension and Dirichlet ids. */
+static PetscErrorCode LoadDirichletValues(MPI_Comm comm, SgProblem prob, LoadSteps *ls)
+{
+  const char *opt = "-load_dirichlet_values";
+  PetscInt    m, dim, nv = 1, k = 0;
+  char       *s, *tok, *save = NULL;
+  PetscBool   restart;
+
+  PetscFunctionBeginUser;
+  ls->ndv = 0;
+  if (!ls->dvstr[0]) PetscFunctionReturn(0);
+  PetscCall(SgProblemGetDirichletSize(prob, &m));
+  PetscCall(SgProblemGetDimension(prob, &dim));
+  PetscCheck(m > 0, comm, PETSC_ERR_USER_INPUT, "%s: the problem has no Dirichlet part (-dirichlet_label, -dirichlet_ids)", opt);
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-restart_file", &restart));
+  PetscCheck(!restart, comm, PETSC_ERR_SUP, "%s with -restart_file is not built: the checkpoint does not keep the load steps' Dirichlet values (run the load path in one job)", opt);
+  for (const char *c = ls->dvstr; *c; c++) nv += (*c == ',');
+  PetscCall(PetscMalloc1(nv, &ls->dv));
+  s = ls->dvstr;
+  for (tok = strtok_r(s, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char *end;
+    while (*tok == ' ') tok++;
+    ls->dv[k] = (PetscReal)strtod(tok, &end);
+    while (*end == ' ') end++;
+    PetscCheck(!*end && end != tok, comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " '%s' is not a number", opt, k, tok);
+    PetscCheck(PetscIsNormalReal(ls->dv[k]) || ls->dv[k] == 0, comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " is %g, must be finite", opt, k, (double)ls->dv[k]);
+    k++;
+  }
+  PetscCheck(k == ls->n * m, comm, PETSC_ERR_USER_INPUT, "%s: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT " (-load_steps %" PetscInt_FMT " x %" PetscInt_FMT " Dirichlet ids x %" PetscInt_FMT " components)", opt, k, ls->n * m, ls->n, m / dim, dim);
+  ls->ndv = m;
   PetscFunctionReturn(0);
 }
 
@@ -247,6 +286,7 @@ static PetscErrorCode SolveLoadSteps(MPI_Comm comm, SgProblem prob, SgCont cont,
 
     PetscCall(PetscTime(&t0));
     PetscCall(SgProblemSetLoadFactor(prob, ls->t[k]));
+    if (ls->ndv) PetscCall(SgProblemSetDirichletValues(prob, &ls->dv[k * ls->ndv]));
     PetscCall(SgContSolve(cont));
     PetscCall(PetscTime(&t1));
     PetscCall(SgContGetConvergedReason(cont, &converged, NULL));
@@ -306,6 +346,7 @@ int main(int argc, char **argv)
   PetscCall(SgProblemCreate(comm, &prob));
   PetscCall(SgProblemSetFromOptions(prob));
   PetscCall(SgProblemSetUp(prob));
+  PetscCall(LoadDirichletValues(comm, prob, &ls));
   PetscCall(SgContCreate(prob, &cont));
   PetscCall(SgContSetFromOptions(cont));
   PetscCall(SgContSetUp(cont));
@@ -314,7 +355,10 @@ int main(int argc, char **argv)
     PetscCall(SgContView(cont, NULL));
   }
   if (ls.n > 1) PetscCall(SolveLoadSteps(comm, prob, cont, &ls, (PetscBool)(out.outfile[0] != 0)));
-  else PetscCall(SgContSolve(cont));
+  else {
+    if (ls.ndv) PetscCall(SgProblemSetDirichletValues(prob, ls.dv));
+    PetscCall(SgContSolve(cont));
+  }
   PetscCall(SgContGetConvergedReason(cont, &converged, NULL));
   /* the history is kept whatever happened, the fields only for a converged solve; a failed write (a full disk, say)
      is recorded in the summary, which is still written, and the run then exits with that error */
@@ -327,6 +371,7 @@ int main(int argc, char **argv)
   PetscCall(SgContView(cont, PETSC_VIEWER_STDOUT_(comm)));
   PetscCall(SgContDestroy(&cont));
   PetscCall(SgProblemDestroy(&prob));
+  PetscCall(PetscFree(ls.dv));
   PetscCall(PetscFinalize());
   return converged ? 0 : 3;
 }

@@ -74,6 +74,8 @@ PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector
 PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
 PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t in (0, 1] (after SetUp) */
 PetscErrorCode SgProblemGetLoadFactor(SgProblem, PetscReal *); /* 1 unless set */
+PetscErrorCode SgProblemSetDirichletValues(SgProblem, const PetscReal[]); /* non-proportional loading: the Dirichlet values of every id (dim per id) for the next solves, not scaled by the load factor (after SetUp) */
+PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many values SgProblemSetDirichletValues takes: dim per Dirichlet id */
 
 /* ---- SgCont */
 #define SGCONTNONE "none" /* one regularized problem (P_gamma), gamma from -contact_gamma */

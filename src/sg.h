@@ -93,6 +93,9 @@ PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBo
 PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticitySetLoadFactor(SgElasticity, PetscReal); /* loads and Dirichlet values times the factor */
 PetscErrorCode SgElasticityGetLoadFactor(SgElasticity, PetscReal *);
+PetscErrorCode SgElasticitySetDirichletValues(SgElasticity, const PetscReal[]); /* dim per Dirichlet id, unscaled from now on */
+PetscErrorCode SgElasticityGetDirichletSize(SgElasticity, PetscInt *);
+PetscErrorCode SgElasticityGetDirichletValues(SgElasticity, PetscBool *, PetscReal[]); /* those set, if any */
 PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||b||_2, ||b||_inf, energy shift at factor 1 */
 PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);
@@ -168,6 +171,7 @@ typedef struct {
 } SgFrictionSummary;
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
 PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
+PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -182,6 +186,8 @@ typedef struct {
   PetscReal        fbound;     /* s: -friction_bound (Tresca) */
   PetscReal        fcoef;      /* F: -friction_coefficient (Coulomb) */
   PetscReal        fgfac;      /* gamma_T = fgfac * gamma: -friction_gamma_factor */
+  const PetscReal *yref;       /* friction: the displacement at the start of the load step, n*dim (zeros at the
+                                  first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference) */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
@@ -243,6 +249,9 @@ typedef struct {
   PetscReal t, obstacle_displacement, normal_displacement_max, force, kkt, energy, time;
   PetscInt  outer, ssn_its, ksp_its, nactive;
   PetscBool converged;
+  /* friction (not in checkpoints, which friction does not write): stick and slip sets, |sum w lam_T|, sum w |lam_T| */
+  PetscInt  nstick, nslip;
+  PetscReal friction_force, friction_traction;
 } SgLoadStep;
 #define SG_LOADSTEP_NREAL 12
 typedef struct {

@@ -174,7 +174,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   if (ct->c && ct->cv.friction) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
     PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
-    PetscCheck(!ct->ckfile[0] && !ct->rsfile[0], ct->comm, PETSC_ERR_SUP, "-checkpoint_file and -restart_file do not keep the friction state (-friction_type %s) yet", SgFrictionTypes[ct->cv.friction]);
+    PetscCheck(!ct->ckfile[0] && !ct->rsfile[0], ct->comm, PETSC_ERR_SUP, "-checkpoint_file and -restart_file do not keep the friction state (-friction_type %s: lamhat_T and the load step's slip reference) yet", SgFrictionTypes[ct->cv.friction]);
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
@@ -226,6 +226,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
     PetscCall(VecDestroy(&ct->ysteps[k]));
     PetscCall(PetscFree(ct->lamsteps[k]));
   }
+  for (PetscInt k = 0; k < ct->nsteps && ct->dvsteps; k++) PetscCall(PetscFree(ct->dvsteps[k]));
+  PetscCall(PetscFree(ct->dvsteps));
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
   PetscCall(PetscFree(*cont));
@@ -690,6 +692,13 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
     ct->ysteps   = ys;
     ct->lamsteps = ls;
+    if (ct->dvsteps) {
+      PetscReal **dv;
+      PetscCall(PetscCalloc1(ct->capsteps, &dv));
+      PetscCall(PetscArraycpy(dv, ct->dvsteps, ct->nsteps));
+      PetscCall(PetscFree(ct->dvsteps));
+      ct->dvsteps = dv;
+    }
   }
   r = &ct->steps[ct->nsteps];
   PetscCall(PetscMemzero(r, sizeof(*r)));
@@ -707,12 +716,31 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(SgContactNormalDisplacementMax(ct->c, ct->y, &r->normal_displacement_max));
     r->force   = ct->kkt.force;
     r->nactive = ct->kkt.nactive;
+    if (ct->cv.friction) {
+      SgFrictionSummary fs;
+      PetscCall(SgContactGetFrictionSummary(ct->c, &fs));
+      r->nstick            = fs.nstick;
+      r->nslip             = fs.nslip;
+      r->friction_force    = fs.force_norm;
+      r->friction_traction = fs.traction;
+    }
   }
   if (ct->store_steps) {
     PetscCall(VecDuplicate(ct->y, &ct->ysteps[ct->nsteps]));
     PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
     PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
     PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
+    {
+      PetscBool set;
+      PetscInt  m;
+      PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, NULL));
+      if (set) { /* non-proportional loading: the step's Dirichlet values, for its fields */
+        PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
+        if (!ct->dvsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->dvsteps));
+        PetscCall(PetscMalloc1(m, &ct->dvsteps[ct->nsteps]));
+        PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, ct->dvsteps[ct->nsteps]));
+      }
+    }
   }
   ct->nsteps++;
   PetscFunctionReturn(0);
@@ -738,9 +766,9 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(!ct->restarted || PetscAbsReal(t - ct->rsload) <= 1e-12 * t, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint is inside load step %" PetscInt_FMT " at load factor %.17g, but this run solves that step at %.17g (give the same -load_steps and -load_factors)", ct->nsteps + 1, (double)ct->rsload, (double)t);
   ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
-  /* a load step's friction acts on the slip increment since the last step, which is not built yet: refused before
-     the first step */
-  PetscCheck(!(loadsteps && ct->c && ct->cv.friction), ct->comm, PETSC_ERR_SUP, "load steps (-load_steps) with friction (-friction_type %s) are not built yet", SgFrictionTypes[ct->cv.friction]);
+  /* quasi-static friction: a load step's tangential law acts on the slip since the last converged step (the warm
+     start y); the first step's slip is from y = 0 */
+  if (ct->warm && ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, ct->y));
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));

@@ -92,6 +92,7 @@ struct _n_SgCont {
   PetscBool    store_steps;  /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
   Vec         *ysteps;
   PetscReal  **lamsteps;
+  PetscReal  **dvsteps;      /* capsteps: each kept step's Dirichlet values when they were set (SgProblemSetDirichletValues) */
 };
 
 extern PetscFunctionList SgContList;

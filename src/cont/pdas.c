@@ -1,9 +1,10 @@
 /* cont_pdas.c: baseline: the unregularized primal-dual active set method (Hintermueller-Ito-Kunisch, Hueber-Wohlmuth,
    deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals.
-   With friction (in the manner of Hueber-Stadler-Wohlmuth): stick vertices get T y = 0 exactly (their tangential
-   components eliminated like the active normal ones), slip vertices the force lam_T = g t of the last iterate's
-   direction t and bound g (Coulomb: g = F lam_N of the last iterate, a fixed point that keeps every system
-   symmetric), free ones none; the next states from z = lam_T + c T y: stick |z| <= g, slip t = z/|z|. Done when the
+   With friction (in the manner of Hueber-Stadler-Wohlmuth): stick vertices get T y = T yref exactly (no slip in the
+   load step; yref = 0 at the first), their tangential components eliminated like the active normal ones; slip
+   vertices the force lam_T = g t of the last iterate's direction t and bound g (Coulomb: g = F lam_N of the last
+   iterate, a fixed point that keeps every system symmetric), free ones none; the next states from
+   z = lam_T + c T (y - yref): stick |z| <= g, slip t = z/|z|. Done when the
    sets are settled and the slip directions and bounds have stopped moving (relative 1e-12). */
 #include "cont/contimpl.h"
 
@@ -50,7 +51,8 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 }
 
 /* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
-   normal set act: lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T y; free (g = 0),
+   normal set act: lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T (y - yref) (the
+   load step's slip; yref = 0 at the first step); free (g = 0),
    stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
    or bound moved by more than 1e-12 (relative) since the last call. */
 static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
@@ -73,7 +75,7 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
     char            s;
     for (PetscInt j = 0; j < dim; j++) {
       if (j == axis[i]) continue;
-      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * PetscRealPart(ya[c->off[i] + j]);
+      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * (PetscRealPart(ya[c->off[i] + j]) - c->yref[i * dim + j]);
       nz += z[j] * z[j];
     }
     nz = PetscSqrtReal(nz);
@@ -160,7 +162,11 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
     ct->lam[i] = 0;
   }
-  if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, zn, fst, NULL));
+  if (fr && ct->warm) { /* a load step: the states from the last step's solution under the new load */
+    PetscCall(MatMult(K, ct->y, R));
+    PetscCall(VecAXPY(R, -1.0, b));
+    PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, act, gb, tdir, zn, fst, NULL));
+  } else if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, zn, fst, NULL));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
@@ -207,9 +213,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       for (PetscInt i = 0; i < c->n; i++)
         for (PetscInt j = 0; j < dim; j++) {
           if (j == axis[i]) continue;
-          if (fst[i] == 1) { /* stick: T y = 0 */
+          if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
             rows[nrows++]       = rstart + c->off[i] + j;
-            xa[c->off[i] + j] = 0;
+            xa[c->off[i] + j] = c->yref[i * dim + j];
           } else if (fst[i] == 2) ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
         }
       PetscCall(VecRestoreArray(rhs, &ra));

@@ -286,6 +286,9 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemSetLoadFactor(ct->problem_obj, ct->steps[j].t));
+  if (ct->dvsteps && ct->dvsteps[j]) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, ct->dvsteps[j]));
+  /* friction: the step's slip is the increment from the step before */
+  if (ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
   PetscFunctionReturn(0);
 }
@@ -302,10 +305,14 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
   if (loadsteps && nkept) {
     /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
-    PetscInt *idx, *num;
-    PetscReal *times, t;
+    PetscInt *idx, *num, m;
+    PetscReal *times, t, *dv = NULL;
+    PetscBool  dset;
     StepsCtx   sc;
     PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+    PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
+    PetscCall(PetscMalloc1(m + 1, &dv));
+    PetscCall(SgElasticityGetDirichletValues(ct->prob, &dset, dv));
     PetscCall(PetscMalloc3(nkept, &idx, nkept, &num, nkept, &times));
     nkept = 0;
     for (PetscInt k = 0; k < ct->nsteps; k++)
@@ -319,6 +326,9 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     sc.idx = idx;
     PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, 2, cf, magnification));
     PetscCall(SgProblemSetLoadFactor(ct->problem_obj, t));
+    if (dset) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dv)); /* the problem's values restored too */
+    if (ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, ct->nsteps > 1 ? ct->ysteps[ct->nsteps - 2] : NULL));
+    PetscCall(PetscFree(dv));
     PetscCall(PetscFree3(idx, num, times));
   } else {
     PetscCall(FieldsFill(ct, ct->y, ct->lam, vf, cf));
@@ -386,6 +396,18 @@ static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
   PetscCall(SgSummarySetInt(sum, "load_steps", ct->nsteps));
   for (PetscInt j = 0; j < 7; j++) PetscCall(SgSummarySetRealArray(sum, rn[j], ct->nsteps, a[j]));
   for (PetscInt j = 0; j < 5; j++) PetscCall(SgSummarySetIntArray(sum, in[j], ct->nsteps, b[j]));
+  if (ct->c && ct->cv.friction) { /* per step: the stick and slip sets, the friction resultant and traction integral */
+    for (PetscInt k = 0; k < ct->nsteps; k++) {
+      b[0][k] = ct->steps[k].nstick;
+      b[1][k] = ct->steps[k].nslip;
+      a[0][k] = ct->steps[k].friction_force;
+      a[1][k] = ct->steps[k].friction_traction;
+    }
+    PetscCall(SgSummarySetIntArray(sum, "load_step_stick_size", ct->nsteps, b[0]));
+    PetscCall(SgSummarySetIntArray(sum, "load_step_slip_size", ct->nsteps, b[1]));
+    PetscCall(SgSummarySetRealArray(sum, "load_step_friction_force", ct->nsteps, a[0]));
+    PetscCall(SgSummarySetRealArray(sum, "load_step_friction_traction_integral", ct->nsteps, a[1]));
+  }
   PetscCall(SgSummarySetInt(sum, "load_steps_outer_iterations", tot[0]));
   PetscCall(SgSummarySetInt(sum, "load_steps_ssn_iterations", tot[1]));
   PetscCall(SgSummarySetInt(sum, "load_steps_ksp_iterations", tot[2]));

@@ -152,6 +152,7 @@ PetscErrorCode SgContactSetUp(SgContact c)
   }
   c->n = nloc;
   PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
+  if (c->friction) PetscCall(PetscCalloc1(nloc * dim + 1, &c->yref)); /* the first load step's slip: from y = 0 */
   nloc = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  off, noff;
@@ -195,6 +196,7 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->fbound   = c->fbound;
   v->fcoef    = c->fcoef;
   v->fgfac    = c->fgfac;
+  v->yref     = c->yref;
   PetscFunctionReturn(0);
 }
 
@@ -217,6 +219,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscFunctionBeginUser;
   if (!*c) PetscFunctionReturn(0);
   PetscCall(PetscFree5((*c)->vert, (*c)->off, (*c)->normal, (*c)->w, (*c)->d));
+  PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->prefix));
   PetscCall(SgObstacleDestroy(&(*c)->obs));
   PetscCall(PetscFree(*c));
@@ -316,7 +319,7 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
 }
 
 /* Friction at contact vertex i from the residual R_i = (K y - b)_i and the normal multiplier lamN: the tangential
-   multiplier lam_T = -T_i R_i / w_i, the slip u = T_i y_i, the bound g (s, or F max(0, lamN)), and the state: free
+   multiplier lam_T = -T_i R_i / w_i, the slip u = T_i (y_i - yref_i) (the load step's increment), the bound g (s, or F max(0, lamN)), and the state: free
    (g at the noise level: nothing to measure), slip (|lam_T| at the bound up to noise), stick. */
 static char FrictionFromResidual(SgContact c, PetscInt i, const PetscScalar ra[], const PetscScalar ya[], PetscReal lamN, PetscReal noise, PetscReal lt[], PetscReal u[], PetscReal *gb)
 {
@@ -324,13 +327,16 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscScalar ra[]
   const PetscReal *n   = &c->normal[i * dim];
   PetscReal        rn = 0, yn = 0, nt = 0;
 
+  PetscReal        dy[3];
+
   for (PetscInt k = 0; k < dim; k++) {
+    dy[k] = PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
     rn += n[k] * PetscRealPart(ra[c->off[i] + k]);
-    yn += n[k] * PetscRealPart(ya[c->off[i] + k]);
+    yn += n[k] * dy[k];
   }
   for (PetscInt k = 0; k < dim; k++) {
     lt[k] = -(PetscRealPart(ra[c->off[i] + k]) - rn * n[k]) / c->w[i];
-    u[k]  = PetscRealPart(ya[c->off[i] + k]) - yn * n[k];
+    u[k]  = dy[k] - yn * n[k];
     nt += lt[k] * lt[k];
   }
   nt  = PetscSqrtReal(nt);
@@ -540,8 +546,8 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
 }
 
 /* Friction fields for output (with a friction law): per contact vertex the tangential traction lam_T (from the
-   tangential residual, as in SgContactKKT: the traction on the obstacle; the body feels -lam_T), the slip T_i y_i and
-   the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
+   tangential residual, as in SgContactKKT: the traction on the obstacle; the body feels -lam_T), the slip of the
+   load step T_i (y_i - yref_i) (with load steps the last step's increment; the total T_i y_i without) and the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
 PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec slip, Vec state)
 {
   const PetscInt     dim = c->dim;
@@ -601,6 +607,25 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
   PetscCall(DMRestoreLocalVector(c->dmVec, &ls));
   PetscCall(DMRestoreLocalVector(c->dmVert, &lst));
   PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* The start of a load step's slip: yref = y at the contact vertices (NULL: zero, the first step's start). The
+   tangential law of the step acts on the increment T_i (y_i - yref_i): quasi-static incremental friction. */
+PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
+{
+  const PetscScalar *ya;
+
+  PetscFunctionBeginUser;
+  if (!c->yref) PetscFunctionReturn(0);
+  if (!y) {
+    PetscCall(PetscArrayzero(c->yref, c->n * c->dim));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArrayRead(y, &ya));
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) c->yref[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
+  PetscCall(VecRestoreArrayRead(y, &ya));
   PetscFunctionReturn(0);
 }
 

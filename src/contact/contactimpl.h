@@ -44,6 +44,8 @@ struct _n_SgContact {
   PetscReal      fcoef;      /* -friction_coefficient F (Coulomb) */
   PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma */
   SgFrictionSummary fsum;    /* of the last SgContactKKT */
+  PetscReal     *yref;       /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
+                                tangential law acts on the slip increment T_i (y_i - yref_i) */
 };
 
 struct _n_SgProblem {
@@ -56,6 +58,6 @@ struct _n_SgProblem {
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
   PetscBool            setfromoptions, setup;
-  PetscBool            load_set;    /* SgProblemSetLoadFactor was called: a run with load steps */
+  PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble       t_create;
 };

@@ -262,6 +262,33 @@ PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* Non-proportional loading: the Dirichlet values of every id (dim numbers per Dirichlet id, in the order of the ids;
+   SgProblemGetDirichletSize numbers in all) for the next solve and the later ones until set again; the load factor
+   then scales the loads and the obstacle's translation only. With SgContSolve after each call a program drives any
+   load path (a normal load first, a tangential one after it). */
+PetscErrorCode SgProblemSetDirichletValues(SgProblem p, const PetscReal values[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemSetUp(p));
+  PetscCall(SgElasticitySetDirichletValues(p->el, values));
+  if (p->c) { /* the load scale of the contact's KKT measures */
+    PetscReal t;
+    PetscCall(SgElasticityGetLoadFactor(p->el, &t));
+    PetscCall(SgContactSetLoadFactor(p->c, t));
+  }
+  p->load_set = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* the number of values SgProblemSetDirichletValues takes (0 without a Dirichlet part) */
+PetscErrorCode SgProblemGetDirichletSize(SgProblem p, PetscInt *n)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckSetUp(p, "SgProblemGetDirichletSize"));
+  PetscCall(SgElasticityGetDirichletSize(p->el, n));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgProblemGetLoadFactor(SgProblem p, PetscReal *t)
 {
   PetscFunctionBeginUser;
@@ -270,7 +297,7 @@ PetscErrorCode SgProblemGetLoadFactor(SgProblem p, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
-/* whether SgProblemSetLoadFactor was called (the run has load steps) */
+/* whether SgProblemSetLoadFactor or SgProblemSetDirichletValues was called (the run has load steps) */
 PetscErrorCode SgProblemHasLoadSteps(SgProblem p, PetscBool *has)
 {
   PetscFunctionBeginUser;

@@ -40,4 +40,9 @@ struct _n_SgElasticity {
   PetscReal    load;
   Vec          b1, ubc1, fpart1;
   PetscReal    energy_shift1, bnorm1, bnorm_inf1;
+  /* non-proportional loading (SgElasticitySetDirichletValues): the Dirichlet values of every id, not scaled by load,
+     and the load of factor 1 without the lifting of the given Dirichlet values (NULL until then) */
+  PetscBool    dvals_set;
+  PetscReal    dvals[3 * SG_MAX_IDS];
+  Vec          bload1;
 };

@@ -6,18 +6,22 @@
 const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL"};
 
 /* Friction at contact vertex i (ya: the local part of y, mN: the regularized normal multiplier there):
-   z = T_i (lamhat_T,i + gamma_T T_i y_i), bound g = s (Tresca) or F mN (Coulomb), lam_T = P_g(z) the projection onto the
-   ball of radius g; u = T_i y_i, t = z/|z| (0 if z = 0). The state: free (g = 0), stick (|z| <= g), slip (|z| > g). */
+   z = T_i (lamhat_T,i + gamma_T u), u = T_i (y_i - yref_i) the slip since the start of the load step (yref = 0 at the
+   first: quasi-static incremental friction), bound g = s (Tresca) or F mN (Coulomb), lam_T = P_g(z) the projection
+   onto the ball of radius g; t = z/|z| (0 if z = 0). The state: free (g = 0), stick (|z| <= g), slip (|z| > g). */
 static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscReal     *n   = &c->normal[i * dim], gT = c->fgfac * s->gamma;
-  PetscReal            un = 0, zdn = 0, z[3], nz = 0;
+  PetscReal            un = 0, zdn = 0, z[3], nz = 0, dy[3];
 
-  for (PetscInt k = 0; k < dim; k++) un += n[k] * PetscRealPart(ya[c->off[i] + k]);
   for (PetscInt k = 0; k < dim; k++) {
-    u[k] = PetscRealPart(ya[c->off[i] + k]) - un * n[k];
+    dy[k] = PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k]; /* the load step's increment */
+    un += n[k] * dy[k];
+  }
+  for (PetscInt k = 0; k < dim; k++) {
+    u[k] = dy[k] - un * n[k];
     z[k] = s->lamhatT[i * dim + k] + gT * u[k];
     zdn += z[k] * n[k];
   }
