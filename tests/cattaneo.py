@@ -83,8 +83,11 @@ def roots_fit(x, y2):
 
 def theory_q(x, a, c):
     """Cattaneo-Mindlin shear traction q(x) / (F p0)."""
-    s = np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))
-    return s - np.where(np.abs(x) < c, (c / a) * np.sqrt(np.clip(1 - (x / max(c, 1e-300)) ** 2, 0, None)), 0)
+    x = np.asarray(x, dtype=float)
+    q = np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))
+    stick = np.abs(x) < c
+    q[stick] -= (c / a) * np.sqrt(1 - (x[stick] / c) ** 2)
+    return q
 
 
 def measure(path, E, nu, R, F=None, step=None):
