@@ -233,7 +233,6 @@ static PetscErrorCode LoadDirichletValues(MPI_Comm comm, SgProblem prob, LoadSte
   const char *opt = "-load_dirichlet_values";
   PetscInt    m, dim, nv = 1, k = 0;
   char       *s, *tok, *save = NULL;
-  PetscBool   restart;
 
   PetscFunctionBeginUser;
   ls->ndv = 0;
@@ -241,8 +240,6 @@ static PetscErrorCode LoadDirichletValues(MPI_Comm comm, SgProblem prob, LoadSte
   PetscCall(SgProblemGetDirichletSize(prob, &m));
   PetscCall(SgProblemGetDimension(prob, &dim));
   PetscCheck(m > 0, comm, PETSC_ERR_USER_INPUT, "%s: the problem has no Dirichlet part (-dirichlet_label, -dirichlet_ids)", opt);
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-restart_file", &restart));
-  PetscCheck(!restart, comm, PETSC_ERR_SUP, "%s with -restart_file is not built: the checkpoint does not keep the load steps' Dirichlet values (run the load path in one job)", opt);
   for (const char *c = ls->dvstr; *c; c++) nv += (*c == ',');
   PetscCall(PetscMalloc1(nv, &ls->dv));
   s = ls->dvstr;
@@ -276,6 +273,20 @@ static PetscErrorCode SolveLoadSteps(MPI_Comm comm, SgProblem prob, SgCont cont,
     PetscReal t;
     PetscCall(SgContGetLoadStepFactor(cont, k, &t));
     PetscCheck(PetscAbsReal(t - ls->t[k]) <= 1e-12 * ls->t[k], comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint's load step %" PetscInt_FMT " was solved at load factor %.15g, this run's step %" PetscInt_FMT " is at %.15g (give the same -load_steps and -load_factors)", k + 1, (double)t, k + 1, (double)ls->t[k]);
+  }
+  for (PetscInt k = 0; k < k0; k++) { /* and with the same Dirichlet values (-load_dirichlet_values) */
+    PetscReal *dv;
+    PetscInt   m;
+    PetscBool  set;
+    PetscCall(SgProblemGetDirichletSize(prob, &m));
+    PetscCall(PetscMalloc1(m + 1, &dv));
+    PetscCall(SgContGetLoadStepDirichletValues(cont, k, &set, dv));
+    PetscCheck(set == (ls->ndv > 0), comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint's load steps were solved %s -load_dirichlet_values, this run has %s", set ? "with" : "without", ls->ndv ? "them" : "none");
+    for (PetscInt i = 0; set && i < ls->ndv; i++) {
+      const PetscReal a = dv[i], b = ls->dv[k * ls->ndv + i];
+      PetscCheck(PetscAbsReal(a - b) <= 1e-12 * PetscMax(PetscAbsReal(a), PetscAbsReal(b)), comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint's load step %" PetscInt_FMT " had the Dirichlet value %.15g where this run's -load_dirichlet_values has %.15g (entry %" PetscInt_FMT ")", k + 1, (double)a, (double)b, k * ls->ndv + i);
+    }
+    PetscCall(PetscFree(dv));
   }
   if (k0) PetscCall(PetscPrintf(comm, "load steps: resuming after step %" PetscInt_FMT " of %" PetscInt_FMT " (-restart_file)\n", k0, ls->n));
   for (PetscInt k = k0; k < ls->n; k++) {

@@ -74,7 +74,7 @@ PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector
 PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
 PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t in (0, 1] (after SetUp) */
 PetscErrorCode SgProblemGetLoadFactor(SgProblem, PetscReal *); /* 1 unless set */
-PetscErrorCode SgProblemSetDirichletValues(SgProblem, const PetscReal[]); /* non-proportional loading: the Dirichlet values of every id (dim per id) for the next solves, not scaled by the load factor (after SetUp) */
+PetscErrorCode SgProblemSetDirichletValues(SgProblem, const PetscReal[]); /* non-proportional loading: the Dirichlet values of every id (dim per id) for the next solves, not scaled by the load factor (after SetUp); NULL: back to proportional */
 PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many values SgProblemSetDirichletValues takes: dim per Dirichlet id */
 
 /* ---- SgCont */
@@ -103,6 +103,7 @@ PetscErrorCode SgContSetFromOptions(SgCont); /* read the options (sets the probl
 PetscErrorCode SgContSetUp(SgCont); /* linear solver, SSN solver */
 PetscErrorCode SgContSolve(SgCont); /* solve from the unconstrained start or -restart_file; called again (after SgProblemSetLoadFactor): a load step warm-started from the last solution and controller state */
 PetscErrorCode SgContGetLoadSteps(SgCont, PetscInt *); /* load steps solved so far (with those of a -restart_file checkpoint taken between load steps) */
+PetscErrorCode SgContGetLoadStepDirichletValues(SgCont, PetscInt, PetscBool *, PetscReal[]); /* the Dirichlet values of a solved load step, if set for it (SgProblemSetDirichletValues) */
 PetscErrorCode SgContGetLoadStepFactor(SgCont, PetscInt, PetscReal *); /* the load factor of solved load step k (0-based) */
 PetscErrorCode SgContSetStoreSteps(SgCont, PetscBool); /* keep every load step's solution, so that SgContWriteFields writes them all (an XDMF temporal collection) */
 PetscErrorCode SgContWriteLoadCurve(SgCont, const char[]); /* CSV: one row per load step (factor, obstacle displacement, contact force, ...) */

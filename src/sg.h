@@ -172,6 +172,7 @@ typedef struct {
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
 PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
+PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -275,6 +276,14 @@ typedef struct {
   PetscBool   kept;       /* every finished step's displacement and multiplier (for the fields of all steps) */
   Vec        *ysteps;     /* nsteps of each (allocated on reading) */
   PetscReal **lamsteps;
+  /* friction (written with a friction law only; the law and its parameters are compared on reading): the tangential
+     shift lamhat_T and the load step's slip reference y_prev, dim per contact vertex (the caller's arrays; lamhatT
+     NULL: zeros) */
+  PetscReal  *lamhatT, *yref;
+  /* non-proportional loading (SgProblemSetDirichletValues): ndv Dirichlet values per finished step (0: none);
+     written from / read into dvsteps (nsteps * ndv, allocated on reading; PetscFree) */
+  PetscInt    ndv;
+  PetscReal  *dvsteps;
 } SgCheckpoint;
 PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckpoint *, PetscBool *, char[], size_t);
 PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);

@@ -174,7 +174,6 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   if (ct->c && ct->cv.friction) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
     PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
-    PetscCheck(!ct->ckfile[0] && !ct->rsfile[0], ct->comm, PETSC_ERR_SUP, "-checkpoint_file and -restart_file do not keep the friction state (-friction_type %s: lamhat_T and the load step's slip reference) yet", SgFrictionTypes[ct->cv.friction]);
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
@@ -226,7 +225,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
     PetscCall(VecDestroy(&ct->ysteps[k]));
     PetscCall(PetscFree(ct->lamsteps[k]));
   }
-  for (PetscInt k = 0; k < ct->nsteps && ct->dvsteps; k++) PetscCall(PetscFree(ct->dvsteps[k]));
+  for (PetscInt k = 0; k < ct->nsteps && ct->yrsteps; k++) PetscCall(PetscFree(ct->yrsteps[k]));
+  PetscCall(PetscFree(ct->yrsteps));
   PetscCall(PetscFree(ct->dvsteps));
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
@@ -543,6 +543,14 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
     if (!ct->ysteps[k]) ck->kept = PETSC_FALSE;
   ck->ysteps   = ct->ysteps;
   ck->lamsteps = ct->lamsteps;
+  ck->ndv      = ct->dvsteps ? ct->ndv : 0;
+  ck->dvsteps  = ct->dvsteps;
+  ck->lamhatT  = NULL;
+  ck->yref     = NULL;
+  if (ct->c && ct->cv.friction) { /* lamhat_T (none without an SSN: pdas) and the slip reference */
+    if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &ck->lamhatT, NULL, NULL));
+    PetscCall(SgContactGetSlipReference(ct->c, &ck->yref));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -585,9 +593,11 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   ct->rsread = PETSC_TRUE;
   PetscCall(SgContSetUp(ct));
   PetscCall(CheckpointFill(ct, &ck));
-  ck.gammas = NULL;
-  ck.steps  = NULL;
+  ck.gammas  = NULL;
+  ck.steps   = NULL;
+  ck.dvsteps = NULL;
   PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
+  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.dvsteps));
   if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.gammas));
   if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.steps));
   /* any type resumes after a load step; inside one, only a continuation has outer steps to resume */
@@ -609,6 +619,14 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   if (ck.kept) { /* the fields of the steps before the restart */
     ct->ysteps   = ck.ysteps;
     ct->lamsteps = ck.lamsteps;
+  }
+  if (ck.dvsteps) { /* the finished steps' Dirichlet values */
+    PetscInt m;
+    PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
+    PetscCheck(ck.ndv == m, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint holds %" PetscInt_FMT " Dirichlet values per load step, this problem has %" PetscInt_FMT, ck.ndv, m);
+    PetscCall(PetscFree(ct->dvsteps));
+    ct->ndv     = ck.ndv;
+    ct->dvsteps = ck.dvsteps;
   }
   ct->rsload   = ck.load;
   ct->V0unit   = ck.V0 / (ck.load * ck.load);
@@ -692,10 +710,17 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
     ct->ysteps   = ys;
     ct->lamsteps = ls;
+    {
+      PetscReal **yr;
+      PetscCall(PetscCalloc1(ct->capsteps, &yr));
+      if (ct->yrsteps) PetscCall(PetscArraycpy(yr, ct->yrsteps, ct->nsteps));
+      PetscCall(PetscFree(ct->yrsteps));
+      ct->yrsteps = yr;
+    }
     if (ct->dvsteps) {
-      PetscReal **dv;
-      PetscCall(PetscCalloc1(ct->capsteps, &dv));
-      PetscCall(PetscArraycpy(dv, ct->dvsteps, ct->nsteps));
+      PetscReal *dv;
+      PetscCall(PetscMalloc1(ct->capsteps * ct->ndv + 1, &dv));
+      for (PetscInt i = 0; i < ct->capsteps * ct->ndv; i++) dv[i] = i < ct->nsteps * ct->ndv ? ct->dvsteps[i] : SG_NAN;
       PetscCall(PetscFree(ct->dvsteps));
       ct->dvsteps = dv;
     }
@@ -730,17 +755,25 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
     PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
     PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
-    {
-      PetscBool set;
-      PetscInt  m;
-      PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, NULL));
-      if (set) { /* non-proportional loading: the step's Dirichlet values, for its fields */
-        PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
-        if (!ct->dvsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->dvsteps));
-        PetscCall(PetscMalloc1(m, &ct->dvsteps[ct->nsteps]));
-        PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, ct->dvsteps[ct->nsteps]));
-      }
+    if (ct->c && ct->cv.friction) { /* the step's slip reference, for its slip field */
+      PetscReal *yref;
+      PetscInt   dim;
+      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+      PetscCall(SgContactGetSlipReference(ct->c, &yref));
+      if (!ct->yrsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->yrsteps));
+      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps]));
+      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], yref, ct->cv.n * dim));
     }
+  }
+  {
+    PetscBool set;
+    PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, NULL));
+    if (set && !ct->dvsteps) { /* non-proportional loading: the steps' Dirichlet values (fields, checkpoints) */
+      PetscCall(SgElasticityGetDirichletSize(ct->prob, &ct->ndv));
+      PetscCall(PetscMalloc1(ct->capsteps * ct->ndv + 1, &ct->dvsteps));
+      for (PetscInt i = 0; i < ct->capsteps * ct->ndv; i++) ct->dvsteps[i] = SG_NAN;
+    }
+    if (set) PetscCall(SgElasticityGetDirichletValues(ct->prob, &set, &ct->dvsteps[ct->nsteps * ct->ndv]));
   }
   ct->nsteps++;
   PetscFunctionReturn(0);
@@ -804,6 +837,18 @@ PetscErrorCode SgContGetLoadStepFactor(SgCont ct, PetscInt k, PetscReal *t)
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepFactor: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
   *t = ct->steps[k].t;
+  PetscFunctionReturn(0);
+}
+
+/* the Dirichlet values of a solved load step (SgProblemGetDirichletSize numbers), if they were set for it
+   (SgProblemSetDirichletValues; set = PETSC_FALSE: the given values times the step's factor) */
+PetscErrorCode SgContGetLoadStepDirichletValues(SgCont ct, PetscInt k, PetscBool *set, PetscReal values[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContCheckpointRead(ct));
+  PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepDirichletValues: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
+  *set = (PetscBool)(ct->dvsteps && !PetscIsNanReal(ct->dvsteps[k * ct->ndv]));
+  for (PetscInt i = 0; *set && values && i < ct->ndv; i++) values[i] = ct->dvsteps[k * ct->ndv + i];
   PetscFunctionReturn(0);
 }
 

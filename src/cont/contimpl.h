@@ -92,7 +92,10 @@ struct _n_SgCont {
   PetscBool    store_steps;  /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
   Vec         *ysteps;
   PetscReal  **lamsteps;
-  PetscReal  **dvsteps;      /* capsteps: each kept step's Dirichlet values when they were set (SgProblemSetDirichletValues) */
+  PetscReal  **yrsteps;      /* capsteps: with friction, each kept step's slip reference (dim per contact vertex) */
+  PetscInt     ndv;          /* Dirichlet values per step (dim per Dirichlet id) */
+  PetscReal   *dvsteps;      /* capsteps x ndv: each step's Dirichlet values when they were set (SgProblemSetDirichletValues),
+                                NaN rows for steps without; NULL while none was set */
 };
 
 extern PetscFunctionList SgContList;

@@ -216,7 +216,11 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
           if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
             rows[nrows++]       = rstart + c->off[i] + j;
             xa[c->off[i] + j] = c->yref[i * dim + j];
-          } else if (fst[i] == 2) ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+          } else if (fst[i] == 2) {
+            ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+            if (dim == 3) /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
+              for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * c->yref[i * dim + q];
+          }
         }
       PetscCall(VecRestoreArray(rhs, &ra));
     }

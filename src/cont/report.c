@@ -286,9 +286,17 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemSetLoadFactor(ct->problem_obj, ct->steps[j].t));
-  if (ct->dvsteps && ct->dvsteps[j]) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, ct->dvsteps[j]));
-  /* friction: the step's slip is the increment from the step before */
-  if (ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
+  if (ct->dvsteps) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, PetscIsNanReal(ct->dvsteps[j * ct->ndv]) ? NULL : &ct->dvsteps[j * ct->ndv]));
+  /* friction: the step's slip is the increment from its reference (kept with it, or the step before's solution) */
+  if (ct->c && ct->cv.friction) {
+    if (ct->yrsteps && ct->yrsteps[j]) {
+      PetscReal *yref;
+      PetscInt   dim;
+      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+      PetscCall(SgContactGetSlipReference(ct->c, &yref));
+      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], ct->cv.n * dim));
+    } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
+  }
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
   PetscFunctionReturn(0);
 }
@@ -306,10 +314,18 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   if (loadsteps && nkept) {
     /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
     PetscInt *idx, *num, m;
-    PetscReal *times, t, *dv = NULL;
+    PetscReal *times, t, *dv = NULL, *yr = NULL;
     PetscBool  dset;
     StepsCtx   sc;
     PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
+    if (ct->c && ct->cv.friction) { /* the slip reference of the last step, restored after */
+      PetscReal *yref;
+      PetscInt   dim;
+      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+      PetscCall(SgContactGetSlipReference(ct->c, &yref));
+      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &yr));
+      PetscCall(PetscArraycpy(yr, yref, ct->cv.n * dim));
+    }
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     PetscCall(PetscMalloc1(m + 1, &dv));
     PetscCall(SgElasticityGetDirichletValues(ct->prob, &dset, dv));
@@ -326,8 +342,15 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     sc.idx = idx;
     PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, 2, cf, magnification));
     PetscCall(SgProblemSetLoadFactor(ct->problem_obj, t));
-    if (dset) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dv)); /* the problem's values restored too */
-    if (ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, ct->nsteps > 1 ? ct->ysteps[ct->nsteps - 2] : NULL));
+    if (ct->dvsteps) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dset ? dv : NULL)); /* the problem's values restored too */
+    if (yr) {
+      PetscReal *yref;
+      PetscInt   dim;
+      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+      PetscCall(SgContactGetSlipReference(ct->c, &yref));
+      PetscCall(PetscArraycpy(yref, yr, ct->cv.n * dim));
+      PetscCall(PetscFree(yr));
+    }
     PetscCall(PetscFree(dv));
     PetscCall(PetscFree3(idx, num, times));
   } else {

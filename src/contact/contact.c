@@ -629,6 +629,14 @@ PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
   PetscFunctionReturn(0);
 }
 
+/* the slip reference itself (dim per contact vertex; NULL without friction), for the checkpoint */
+PetscErrorCode SgContactGetSlipReference(SgContact c, PetscReal **yref)
+{
+  PetscFunctionBeginUser;
+  *yref = c->yref;
+  PetscFunctionReturn(0);
+}
+
 /* the axis k with normal i = +-e_k (and its sign), or -1 */
 static PetscInt NormalAxis(SgContact c, PetscInt i, PetscReal *sign)
 {

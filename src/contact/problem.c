@@ -264,8 +264,9 @@ PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
 
 /* Non-proportional loading: the Dirichlet values of every id (dim numbers per Dirichlet id, in the order of the ids;
    SgProblemGetDirichletSize numbers in all) for the next solve and the later ones until set again; the load factor
-   then scales the loads and the obstacle's translation only. With SgContSolve after each call a program drives any
-   load path (a normal load first, a tangential one after it). */
+   then scales the loads and the obstacle's translation only (values NULL: back to the given values times the
+   factor). With SgContSolve after each call a program drives any load path (a normal load first, a tangential one
+   after it). */
 PetscErrorCode SgProblemSetDirichletValues(SgProblem p, const PetscReal values[])
 {
   PetscFunctionBeginUser;

@@ -868,18 +868,13 @@ static PetscErrorCode ApplyDirichletValues(SgElasticity p)
   PetscFunctionReturn(0);
 }
 
-/* Quasi-static load stepping: the body force, the Neumann tractions and the Dirichlet values times t (t = 1: the
-   data as given). b, the Dirichlet values, the load part of the energy and its shift scale with t (the shift with
-   t^2); K does not change. The full data are copied on the first call, so a run without load steps is untouched.
-   Once Dirichlet values were set (SgElasticitySetDirichletValues), t scales the loads only. */
-PetscErrorCode SgElasticitySetLoadFactor(SgElasticity p, PetscReal t)
+/* The data at the load factor: the full data times it, or, with Dirichlet values set, those values and the loads
+   times it. */
+static PetscErrorCode ApplyLoad(SgElasticity p)
 {
+  const PetscReal t = p->load;
+
   PetscFunctionBeginUser;
-  PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "SgElasticitySetLoadFactor: call SgElasticitySetUp first");
-  PetscCheck(PetscIsNormalReal(t) || t == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "load factor %g: must be finite", (double)t);
-  if (t == p->load) PetscFunctionReturn(0);
-  PetscCall(KeepFullLoad(p));
-  p->load = t;
   if (p->dvals_set) {
     PetscCall(ApplyDirichletValues(p));
     PetscFunctionReturn(0);
@@ -893,21 +888,39 @@ PetscErrorCode SgElasticitySetLoadFactor(SgElasticity p, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* Quasi-static load stepping: the body force, the Neumann tractions and the Dirichlet values times t (t = 1: the
+   data as given). b, the Dirichlet values, the load part of the energy and its shift scale with t (the shift with
+   t^2); K does not change. The full data are copied on the first call, so a run without load steps is untouched.
+   Once Dirichlet values were set (SgElasticitySetDirichletValues), t scales the loads only. */
+PetscErrorCode SgElasticitySetLoadFactor(SgElasticity p, PetscReal t)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "SgElasticitySetLoadFactor: call SgElasticitySetUp first");
+  PetscCheck(PetscIsNormalReal(t) || t == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "load factor %g: must be finite", (double)t);
+  if (t == p->load) PetscFunctionReturn(0);
+  PetscCall(KeepFullLoad(p));
+  p->load = t;
+  PetscCall(ApplyLoad(p));
+  PetscFunctionReturn(0);
+}
+
 /* Non-proportional loading: the Dirichlet values of every id (dim per id, in the order of the ids) from now on,
-   whatever the load factor (which then scales the loads only). */
+   whatever the load factor (which then scales the loads only); NULL: back to the given values times the factor. */
 PetscErrorCode SgElasticitySetDirichletValues(SgElasticity p, const PetscReal vals[])
 {
   const PetscInt nv = p->dim * PetscMax(p->dirichlet.nids, 1);
 
   PetscFunctionBeginUser;
   PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "SgElasticitySetDirichletValues: call SgElasticitySetUp first");
-  PetscCheck(!p->mms, p->comm, PETSC_ERR_SUP, "Dirichlet values per load step: not with -mms (its Dirichlet data come from the manufactured field)");
-  PetscCheck(p->dirichlet.active, p->comm, PETSC_ERR_ARG_WRONGSTATE, "Dirichlet values per load step: the problem has no Dirichlet part (-dirichlet_label, -dirichlet_ids)");
-  for (PetscInt i = 0; i < nv; i++) PetscCheck(PetscIsNormalReal(vals[i]) || vals[i] == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "Dirichlet value %" PetscInt_FMT " is %g, must be finite", i, (double)vals[i]);
+  if (vals) {
+    PetscCheck(!p->mms, p->comm, PETSC_ERR_SUP, "Dirichlet values per load step: not with -mms (its Dirichlet data come from the manufactured field)");
+    PetscCheck(p->dirichlet.active, p->comm, PETSC_ERR_ARG_WRONGSTATE, "Dirichlet values per load step: the problem has no Dirichlet part (-dirichlet_label, -dirichlet_ids)");
+    for (PetscInt i = 0; i < nv; i++) PetscCheck(PetscIsNormalReal(vals[i]) || vals[i] == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "Dirichlet value %" PetscInt_FMT " is %g, must be finite", i, (double)vals[i]);
+  } else if (!p->dvals_set) PetscFunctionReturn(0);
   PetscCall(KeepFullLoad(p));
-  for (PetscInt i = 0; i < nv; i++) p->dvals[i] = vals[i];
-  p->dvals_set = PETSC_TRUE;
-  PetscCall(ApplyDirichletValues(p));
+  for (PetscInt i = 0; vals && i < nv; i++) p->dvals[i] = vals[i];
+  p->dvals_set = (PetscBool)(vals != NULL);
+  PetscCall(ApplyLoad(p));
   PetscFunctionReturn(0);
 }
 

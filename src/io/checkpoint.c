@@ -95,7 +95,14 @@ typedef struct {
   Vec       steps; /* load steps (NULL without) */
   PetscInt  nkept;
   Vec      *kept;  /* 2 per kept step: displacement, multiplier */
+  Vec       fr[2]; /* friction: lamhat_T and the slip reference (NULL without) */
+  PetscInt  friction;
+  PetscReal fparams[3]; /* -friction_bound, -friction_coefficient, -friction_gamma_factor */
+  Vec       dv;    /* the finished steps' Dirichlet values (NULL without) */
+  Vec       fsteps; /* friction: each finished step's stick and slip sets, friction force and traction integral */
 } CkCtx;
+
+static const char *FrictionParamNames[3] = {"friction_bound", "friction_coefficient", "friction_gamma_factor"};
 
 static void StepToReals(const SgLoadStep *r, PetscReal a[])
 {
@@ -117,6 +124,8 @@ static void RealsToStep(const PetscReal a[], SgLoadStep *r)
   r->ksp_its                 = (PetscInt)a[9];
   r->nactive                 = (PetscInt)a[10];
   r->converged               = (PetscBool)(a[11] != 0);
+  r->nstick = r->nslip = 0; /* friction: from the dataset load_steps_friction */
+  r->friction_force = r->friction_traction = SG_NAN;
 }
 
 static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
@@ -143,6 +152,17 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, &open));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, &ctx->nkept));
     for (PetscInt i = 0; i < 2 * ctx->nkept; i++) PetscCall(VecView(ctx->kept[i], viewer));
+    if (ctx->dv) {
+      PetscCall(VecView(ctx->dv, viewer));
+      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_dirichlet_count", PETSC_INT, &ctx->ck->ndv));
+    }
+  }
+  if (ctx->fsteps) PetscCall(VecView(ctx->fsteps, viewer));
+  if (ctx->fr[0]) {
+    PetscCall(VecView(ctx->fr[0], viewer));
+    PetscCall(VecView(ctx->fr[1], viewer));
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "friction_type", PETSC_INT, &ctx->friction));
+    for (PetscInt i = 0; i < 3; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", FrictionParamNames[i], PETSC_REAL, &ctx->fparams[i]));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
@@ -202,6 +222,46 @@ static PetscErrorCode StepVectors(SgElasticity el, SgContact c, Vec y, const Pet
   PetscCall(VecRestoreArrayRead(yloc, &ya));
   PetscCall(DMRestoreLocalVector(dm, &yloc));
   PetscCall(PetscFree(vl));
+  PetscFunctionReturn(0);
+}
+
+/* dim numbers per contact vertex (a, NULL: zeros) as a vertex-ordered vector (the owned vertices in local order, as the
+   coordinates are written; zeros off the contact boundary) */
+static PetscErrorCode ContactVector(SgElasticity el, const SgContactView *cv, const PetscReal a[], const char name[], Vec *V)
+{
+  const SgMesh *m;
+  PetscInt      dim, nown = 0, k = 0, *ci;
+  MPI_Comm      comm;
+  DM            dmVert;
+  PetscSection  gs;
+  PetscScalar  *va;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
+  PetscCall(DMGetGlobalSection(dmVert, &gs));
+  PetscCall(PetscMalloc1(m->nv + 1, &ci));
+  for (PetscInt v = 0; v < m->nv; v++) ci[v] = -1;
+  for (PetscInt i = 0; i < cv->n; i++) ci[cv->vert[i]] = i;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off >= 0) nown++;
+  }
+  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, V));
+  PetscCall(PetscObjectSetName((PetscObject)*V, name));
+  PetscCall(VecGetArray(*V, &va));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) va[k * dim + d] = ci[v] >= 0 && a ? a[ci[v] * dim + d] : 0;
+    k++;
+  }
+  PetscCall(VecRestoreArray(*V, &va));
+  PetscCall(PetscFree(ci));
   PetscFunctionReturn(0);
 }
 
@@ -286,15 +346,35 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
   ints[5] = ck->best_step;
 
   {
-    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL, 0, NULL};
+    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL, 0, NULL, {NULL, NULL}, 0, {0, 0, 0}, NULL, NULL};
     for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
     PetscCall(ProblemPrint(el, c, ctx.print));
+    if (c && cv.friction) {
+      ctx.friction   = cv.friction;
+      ctx.fparams[0] = cv.fbound;
+      ctx.fparams[1] = cv.fcoef;
+      ctx.fparams[2] = cv.fgfac;
+      PetscCall(ContactVector(el, &cv, ck->lamhatT, "lamhat_t", &ctx.fr[0]));
+      PetscCall(ContactVector(el, &cv, ck->yref, "slip_reference", &ctx.fr[1]));
+    }
     if (ck->loadsteps) {
       PetscReal *a;
       PetscCall(PetscMalloc1(SG_LOADSTEP_NREAL * ck->nsteps + 1, &a));
       for (PetscInt i = 0; i < ck->nsteps; i++) StepToReals(&ck->steps[i], &a[i * SG_LOADSTEP_NREAL]);
       PetscCall(RootVec(comm, "load_steps", SG_LOADSTEP_NREAL * ck->nsteps, a, &ctx.steps));
       PetscCall(PetscFree(a));
+      if (ck->ndv > 0) PetscCall(RootVec(comm, "load_dirichlet_values", ck->ndv * ck->nsteps, ck->dvsteps, &ctx.dv));
+      if (ctx.friction) {
+        PetscCall(PetscMalloc1(4 * ck->nsteps + 1, &a));
+        for (PetscInt i = 0; i < ck->nsteps; i++) {
+          a[4 * i]     = ck->steps[i].nstick;
+          a[4 * i + 1] = ck->steps[i].nslip;
+          a[4 * i + 2] = ck->steps[i].friction_force;
+          a[4 * i + 3] = ck->steps[i].friction_traction;
+        }
+        PetscCall(RootVec(comm, "load_steps_friction", 4 * ck->nsteps, a, &ctx.fsteps));
+        PetscCall(PetscFree(a));
+      }
       if (ck->kept) {
         ctx.nkept = ck->nsteps;
         PetscCall(PetscMalloc1(2 * ck->nsteps + 1, &ctx.kept));
@@ -303,6 +383,10 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
     }
     PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
     PetscCall(VecDestroy(&ctx.steps));
+    PetscCall(VecDestroy(&ctx.dv));
+    PetscCall(VecDestroy(&ctx.fsteps));
+    PetscCall(VecDestroy(&ctx.fr[0]));
+    PetscCall(VecDestroy(&ctx.fr[1]));
     for (PetscInt i = 0; i < 2 * ctx.nkept; i++) PetscCall(VecDestroy(&ctx.kept[i]));
     PetscCall(PetscFree(ctx.kept));
   }
@@ -377,6 +461,12 @@ typedef struct {
   PetscInt    nsteps, open, nkept;
   Vec         LS;
   Vec        *kept; /* 2 per kept step */
+  PetscInt    ndv;  /* Dirichlet values per finished step (0: none) */
+  Vec         DV;
+  PetscInt    friction; /* the friction law (0 in a file of a run without friction) and its parameters */
+  PetscReal   fparams[3];
+  Vec         FT, FY;   /* lamhat_T and the slip reference */
+  Vec         FS;       /* the finished steps' friction numbers */
 } CkRead;
 
 /* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
@@ -406,6 +496,14 @@ static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, NULL, &rd->nsteps));
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, NULL, &rd->open));
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, NULL, &rd->nkept));
+    PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "load_dirichlet_count", &exists));
+    if (exists) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_dirichlet_count", PETSC_INT, NULL, &rd->ndv));
+  }
+  rd->what = "the friction law";
+  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "friction_type", &exists));
+  if (exists) {
+    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "friction_type", PETSC_INT, NULL, &rd->friction));
+    for (PetscInt i = 0; i < 3; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", FrictionParamNames[i], PETSC_REAL, NULL, &rd->fparams[i]));
   }
   PetscFunctionReturn(0);
 }
@@ -441,6 +539,19 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
       PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, i));
       PetscCall(LoadSeq(viewer, name, rd->nvert, &rd->kept[2 * i + 1]));
     }
+    rd->what = "load_dirichlet_values";
+    PetscCheck(rd->ndv >= 0 && rd->ndv <= 3 * SG_MAX_IDS, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Dirichlet values");
+    if (rd->ndv > 0) PetscCall(LoadSeq(viewer, "load_dirichlet_values", rd->ndv * rd->nsteps, &rd->DV));
+  }
+  if (rd->friction && rd->hasload) {
+    rd->what = "load_steps_friction";
+    PetscCall(LoadSeq(viewer, "load_steps_friction", 4 * rd->nsteps, &rd->FS));
+  }
+  if (rd->friction) {
+    rd->what = "lamhat_t";
+    PetscCall(LoadSeq(viewer, "lamhat_t", rd->nvert * rd->dim, &rd->FT));
+    rd->what = "slip_reference";
+    PetscCall(LoadSeq(viewer, "slip_reference", rd->nvert * rd->dim, &rd->FY));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
@@ -518,7 +629,7 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
   MPI_Comm           comm;
   DM                 dmVert;
   PetscViewer        viewer = NULL;
-  PetscInt           nvert = 0, *perm, nmiss = 0, nh, ng, ns, bad, *ints;
+  PetscInt           nvert = 0, *perm, nmiss = 0, nbadf = 0, nh, ng, ns, bad, *ints;
   CkRead             rd;
   const PetscScalar *xa, *ua, *la, *ra, *sa, *ga, *ha;
   PetscScalar       *ya;
@@ -602,6 +713,19 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
     }
   }
+  /* the friction law and its parameters: the state of another law is no state of this problem */
+  {
+    const PetscInt  now_fr = c ? (PetscInt)cv.friction : 0;
+    const PetscReal now[3] = {cv.fbound, cv.fcoef, cv.fgfac};
+    PetscBool       ok     = (PetscBool)(now_fr == rd.friction);
+    if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, rd.friction >= 0 && rd.friction <= 2 ? SgFrictionTypes[rd.friction] : "(damaged)", SgFrictionTypes[now_fr]);
+    for (PetscInt i = 0; now_fr && i < 3; i++) {
+      ok = (PetscBool)(PetscAbsReal(now[i] - rd.fparams[i]) <= 1e-12 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.fparams[i])));
+      if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
+      PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, FrictionParamNames[i], (double)rd.fparams[i], (double)now[i]);
+    }
+  }
   rd.nvert = nvert;
   rd.dim   = dim;
   PetscCall(Quietly(comm, ReadVectors, viewer, &rd, &ierr));
@@ -614,8 +738,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     }
   }
   if (ierr) {
-    Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
-    for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
+    Vec *v[12] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS};
+    for (PetscInt i = 0; i < 12; i++) PetscCall(VecDestroy(v[i]));
     SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
   }
 
@@ -670,8 +794,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       PetscCall(VecRestoreArrayRead(rd.G, &ga));
       PetscCall(VecRestoreArrayRead(rd.H, &ha));
       {
-        Vec *v[8] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS};
-        for (PetscInt i = 0; i < 8; i++) PetscCall(VecDestroy(v[i]));
+        Vec *v[12] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS};
+        for (PetscInt i = 0; i < 12; i++) PetscCall(VecDestroy(v[i]));
       }
       SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
     }
@@ -700,6 +824,25 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
     if (idx < 0) nmiss++;
     else ck->lamhat[i] = PetscRealPart(la[idx]);
+  }
+  if (rd.friction) { /* lamhat_T and the slip reference, matched by the coordinates as lamhat */
+    const PetscScalar *fta, *fya;
+    PetscCall(VecGetArrayRead(rd.FT, &fta));
+    PetscCall(VecGetArrayRead(rd.FY, &fya));
+    for (PetscInt i = 0; i < cv.n; i++) {
+      PetscInt idx;
+      PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
+      for (PetscInt d = 0; idx >= 0 && d < dim; d++) {
+        const PetscReal a = PetscRealPart(fta[idx * dim + d]), b = PetscRealPart(fya[idx * dim + d]);
+        if (!((PetscIsNormalReal(a) || a == 0) && (PetscIsNormalReal(b) || b == 0))) nbadf++;
+        if (ck->lamhatT) ck->lamhatT[i * dim + d] = a;
+        if (ck->yref) ck->yref[i * dim + d] = b;
+      }
+    }
+    PetscCall(VecRestoreArrayRead(rd.FT, &fta));
+    PetscCall(VecRestoreArrayRead(rd.FY, &fya));
+    PetscCall(VecDestroy(&rd.FT));
+    PetscCall(VecDestroy(&rd.FY));
   }
   /* the kept load steps' displacements and multipliers, matched by the coordinates as y and lamhat */
   ck->kept     = (PetscBool)(rd.nkept > 0);
@@ -745,6 +888,14 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     PetscCall(VecRestoreArrayRead(rd.H, &ha));
   }
   PetscCheck(!nmiss, comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nbadf, 1, MPIU_INT, MPI_SUM, comm));
+  if (nbadf) {
+    PetscCall(VecRestoreArrayRead(rd.R, &ra));
+    PetscCall(VecRestoreArrayRead(rd.S, &sa));
+    PetscCall(VecRestoreArrayRead(rd.G, &ga));
+    PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  }
+  PetscCheck(!nbadf, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %" PetscInt_FMT " values of lamhat_t or slip_reference are not finite", f, nbadf);
 
   ck->gamma    = PetscRealPart(ra[0]);
   ck->V0       = PetscRealPart(ra[1]);
@@ -790,6 +941,29 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     }
     PetscCall(VecRestoreArrayRead(rd.LS, &lsa));
     PetscCall(VecDestroy(&rd.LS));
+    if (rd.FS) {
+      const PetscScalar *fsa;
+      PetscCall(VecGetArrayRead(rd.FS, &fsa));
+      for (PetscInt i = 0; i < rd.nsteps; i++) {
+        ck->steps[i].nstick            = (PetscInt)PetscRealPart(fsa[4 * i]);
+        ck->steps[i].nslip             = (PetscInt)PetscRealPart(fsa[4 * i + 1]);
+        ck->steps[i].friction_force    = PetscRealPart(fsa[4 * i + 2]);
+        ck->steps[i].friction_traction = PetscRealPart(fsa[4 * i + 3]);
+      }
+      PetscCall(VecRestoreArrayRead(rd.FS, &fsa));
+    }
+  }
+  PetscCall(VecDestroy(&rd.FS));
+  ck->ndv     = 0;
+  ck->dvsteps = NULL;
+  if (rd.DV) { /* the finished steps' Dirichlet values (non-proportional loading) */
+    const PetscScalar *dva;
+    ck->ndv = rd.ndv;
+    PetscCall(PetscMalloc1(rd.ndv * rd.nsteps + 1, &ck->dvsteps));
+    PetscCall(VecGetArrayRead(rd.DV, &dva));
+    for (PetscInt i = 0; i < rd.ndv * rd.nsteps; i++) ck->dvsteps[i] = PetscRealPart(dva[i]);
+    PetscCall(VecRestoreArrayRead(rd.DV, &dva));
+    PetscCall(VecDestroy(&rd.DV));
   }
   PetscCall(VecDestroy(&rd.X));
   PetscCall(VecDestroy(&rd.U));
