@@ -323,8 +323,25 @@ PetscErrorCode SgContStart(SgCont ct, PetscBool *ok)
   }
   if (ct->warm) { /* a load step: y is the last step's solution; the unconstrained one is linear in the factor */
     PetscReal t;
+    PetscBool dset;
     PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
-    ct->V0 = t * t * ct->V0unit;
+    PetscCall(SgElasticityGetDirichletValues(ct->prob, &dset, NULL));
+    if (!dset) {
+      ct->V0 = t * t * ct->V0unit;
+      PetscFunctionReturn(0);
+    }
+    { /* non-proportional loading (Dirichlet values of the step's own): V(0) of this step solved for */
+      Vec y0;
+      PetscCall(VecDuplicate(ct->y, &y0));
+      PetscCall(SgLinearSolveUnconstrained(ct->prob, ct->ksp, ct->J, y0, &its, &kr, &ct->t_linear_setup, &ct->t_linear_solve));
+      ct->ksp_its += its;
+      if (kr >= 0) PetscCall(SgElasticityEnergy(ct->prob, y0, &ct->V0));
+      PetscCall(VecDestroy(&y0));
+      if (kr < 0) {
+        *ok = PETSC_FALSE;
+        PetscCall(SgContFail(ct, "LINEAR_SOLVE_FAILED: the elasticity solve without contact stopped with KSP %s after %" PetscInt_FMT " iterations (check -ksp_type, -pc_type)", KSPConvergedReasons[kr], its));
+      }
+    }
     PetscFunctionReturn(0);
   }
   if (ct->restarted && ct->outer >= ct->max_outer) { /* the checkpoint is at or beyond the limit: no step to take */
