@@ -12,7 +12,7 @@
             (with --only punch)
   cattaneo.png, cattaneo.md  2D Cattaneo-Mindlin partial slip (options/cattaneo.opts): q(x)/(F p0) ours against
             Johnson's, the stick zones marked; the table of P, Q/(F P), a, c/a, the stick zone's offset and the
-            profile error on four meshes, and the Hertz half width against nu (with --only cattaneo)
+            profile error on the meshes CATTANEO_MESHES, and the Hertz half width against nu (with --only cattaneo)
 
 usage: figures.py [--only ex1,ex2,loadsteps,punch,cattaneo]
 """
@@ -149,7 +149,8 @@ def cattaneo_mesh(k):
 
 
 def cattaneo():
-    """2D Cattaneo-Mindlin: options/cattaneo.opts on four meshes (tests/cattaneo.py measures), the Hertz part against nu."""
+    """2D Cattaneo-Mindlin: options/cattaneo.opts on the meshes CATTANEO_MESHES (tests/cattaneo.py measures), the Hertz
+    part against nu."""
     E, R, F = 1.0, 1.0, 0.5
     rows, hertz = [], []
     for k in CATTANEO_MESHES:
