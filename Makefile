@@ -43,7 +43,7 @@ PETSC_MINOR := $(shell sed -n 's/^.define PETSC_VERSION_MINOR *//p' $(PETSC_VERS
 PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
-MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/punch_block.msh
+MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -105,7 +105,7 @@ table1: all
 reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
-	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction
+	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo
 # Benchmarks (not tests): bench/results.md and bench/results.json; about an hour on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
@@ -144,6 +144,8 @@ meshes/ex2_coarse.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale 0.5 $< -o $@ > /dev/null
 meshes/hertz_s%.msh: meshes/hertz.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
+meshes/cattaneo_s%.msh: meshes/cattaneo.geo
+	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
 meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 meshes/punch_block.msh: meshes/punch_block.geo
