@@ -459,7 +459,7 @@ def ratio(a, b, key):
 def friction(b, quick):
     """Issue 14, phase 2: the frictional SSN per controller, its mesh independence and its cost against frictionless."""
     out = ["## F. Friction (issue 14)", "",
-           "Example 1 (2D, `%s`: Coulomb F = 0.3) and Example 2 (3D, `%s`: Coulomb F = 0.3, ipf tau 1e8, GMRES + "
+           "Example 1 (2D, `%s`: Coulomb F = 0.3) and Example 2 (3D, `%s`: Coulomb F = 0.3, ipf tau 1e8, BiCGStab + "
            "BoomerAMG); Tresca with bound s = 0.1 (`%s %s`); frictionless: `%s` and in 3D the friction file with "
            "`-friction_type none`. "
            "Cells: outer / SSN / Krylov iterations, KKT residual at the end, contact solve time in seconds (one rank); a run "
@@ -498,7 +498,7 @@ def friction(b, quick):
             jc["ex2"][key][law] = {f: s.get(f) for f in ("outer_iterations", "ssn_iterations", "ksp_iterations", "kkt_residual", "solve_time", "stick_size", "slip_size", "converged")}
         rows.append(row)
     s = b.data["F_%s_ipf_coulomb" % tag3]
-    out += ["Example 2, %s (%s unknowns), GMRES + BoomerAMG, KKT tolerance 1e-10; alm: options/cont/alm.opts with gamma 1e9, pf: "
+    out += ["Example 2, %s (%s unknowns), BiCGStab + BoomerAMG, KKT tolerance 1e-10; alm: options/cont/alm.opts with gamma 1e9, pf: "
             "options/cont/pf.opts (the controller's file after %s)." % (mesh3, s.get("dofs"), EX2F), ""]
     out += table(["Example 2: controller"] + [c[0] for c in LAWS[:2]], rows)
     out += ["States at the end of ipf (Coulomb): %s stick, %s slip of %s contact vertices." % (s.get("stick_size"), s.get("slip_size"), s.get("contact_vertices")), ""]

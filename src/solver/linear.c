@@ -91,7 +91,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     else if (maxdirect == PETSC_MAX_INT - 1) PetscCall(PetscSNPrintf(desc, len, "default with -ssn_condense: sparse Cholesky (MUMPS)"));
     else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
   } else {
-    PetscCall(SetDefault(prefix, "ksp_type", nonsym ? "gmres" : "cg"));
+    PetscCall(SetDefault(prefix, "ksp_type", nonsym ? "bcgs" : "cg"));
     PetscCall(SetDefault(prefix, "ksp_rtol", "1e-8"));
     PetscCall(SetDefault(prefix, "pc_type", "hypre"));
     PetscCall(SetDefault(prefix, "pc_hypre_type", "boomeramg"));
@@ -102,7 +102,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_agg_nl", "1"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_down", "l1-Gauss-Seidel"));
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
-    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): %s + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg", nonsym ? "GMRES (Coulomb friction: nonsymmetric)" : "CG"));
+    PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): %s + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg", nonsym ? "BiCGStab (Coulomb friction: nonsymmetric)" : "CG"));
   }
   PetscFunctionReturn(0);
 }
