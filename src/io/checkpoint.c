@@ -881,20 +881,14 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
   PetscCall(VecRestoreArrayRead(rd.U, &ua));
   PetscCall(VecRestoreArrayRead(rd.L, &la));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, comm));
-  if (nmiss) {
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nbadf, 1, MPIU_INT, MPI_SUM, comm));
+  if (nmiss || nbadf) { /* released before either error below */
     PetscCall(VecRestoreArrayRead(rd.R, &ra));
     PetscCall(VecRestoreArrayRead(rd.S, &sa));
     PetscCall(VecRestoreArrayRead(rd.G, &ga));
     PetscCall(VecRestoreArrayRead(rd.H, &ha));
   }
   PetscCheck(!nmiss, comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nbadf, 1, MPIU_INT, MPI_SUM, comm));
-  if (nbadf) {
-    PetscCall(VecRestoreArrayRead(rd.R, &ra));
-    PetscCall(VecRestoreArrayRead(rd.S, &sa));
-    PetscCall(VecRestoreArrayRead(rd.G, &ga));
-    PetscCall(VecRestoreArrayRead(rd.H, &ha));
-  }
   PetscCheck(!nbadf, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %" PetscInt_FMT " values of lamhat_t or slip_reference are not finite", f, nbadf);
 
   ck->gamma    = PetscRealPart(ra[0]);
