@@ -292,6 +292,15 @@ static PetscErrorCode CreateStiffness(SgElasticity p)
   PetscFunctionReturn(0);
 }
 
+/* no load on the fixed components of partly fixed vertices: their unknowns stay 0 (fa: a local vector's array) */
+static void ZeroFixedComponents(const SgMesh *m, PetscInt dim, PetscScalar fa[])
+{
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (SgMeshPartial(m, v))
+      for (PetscInt d = 0; d < dim; d++)
+        if (SgMeshFixed(m, v, d)) fa[m->loff[v] + d] = 0;
+}
+
 static PetscErrorCode Assemble(SgElasticity p)
 {
   const SgMesh   *m = &p->mesh;
@@ -405,11 +414,7 @@ static PetscErrorCode Assemble(SgElasticity p)
     }
     PetscCall(PetscFree2(facets, part));
   }
-  /* no load on the fixed components of partly fixed vertices: their unknowns stay 0 */
-  for (PetscInt v = 0; v < m->nv; v++)
-    if (SgMeshPartial(m, v))
-      for (PetscInt d = 0; d < dim; d++)
-        if (SgMeshFixed(m, v, d)) fa[m->loff[v] + d] = 0;
+  ZeroFixedComponents(m, dim, fa);
   PetscCall(VecRestoreArray(floc, &fa));
   PetscCall(VecRestoreArray(mloc, &ma));
   PetscCall(VecRestoreArray(p->fpart, &pa));
@@ -816,10 +821,7 @@ static PetscErrorCode Lifting(SgElasticity p, Vec ubc, Vec bl, PetscReal *uKu)
       fa[m->loff[cv[i / dim]] + i % dim] -= Ku;
     }
   }
-  for (PetscInt v = 0; v < m->nv; v++)
-    if (SgMeshPartial(m, v))
-      for (PetscInt d = 0; d < dim; d++)
-        if (SgMeshFixed(m, v, d)) fa[m->loff[v] + d] = 0;
+  ZeroFixedComponents(m, dim, fa);
   PetscCall(VecRestoreArray(floc, &fa));
   PetscCall(VecRestoreArrayRead(ubc, &ua));
   PetscCall(VecZeroEntries(bl));
