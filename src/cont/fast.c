@@ -2,7 +2,8 @@
    at a gamma large enough for the KKT tolerance of (P), solved by SSN with
    - an inexact start: the unconstrained solve at a loose tolerance (-fast_start_rtol);
    - CG that stops as soon as its prospective Newton iterate y - dy changes the active set of the step (checked once
-     the residual fell by -fast_ksp_loose); otherwise it runs to -ksp_rtol, so the last step is accurate;
+     the residual fell by -fast_ksp_loose), or keeps it and meets the KKT tolerance of (P) (-fast_ksp_kkt); otherwise
+     it runs to -ksp_rtol, so the last step is accurate;
    - a preconditioner kept while gamma and the active set are unchanged (the Jacobian is then the same matrix);
    - a stop on the KKT residual of (P) itself (no ||F|| <= rtol ||F_0|| test: with loose solves and ||F_0|| ~ gamma
      times the initial penetration, that test accepts wrong answers).
@@ -19,15 +20,18 @@ typedef struct {
   PetscReal start_rtol; /* tolerance of the unconstrained start */
   PetscReal loose;      /* the early CG stop is tested once ||r|| <= loose ||r_0|| */
   PetscBool early;      /* CG stops when the prospective active set changes */
+  PetscBool kkt_stop;   /* CG stops when the prospective iterate meets the KKT tolerance of (P) */
   PetscInt  max_it;     /* SSN steps per (P_gamma) */
   /* run time */
   SgCont    ct;
   Vec       w;         /* the prospective Newton iterate */
   void     *defctx;     /* KSPConvergedDefault's context */
   PetscReal rnorm0;
+  PetscReal kkt_next;   /* the KKT test waits until ||r|| / ||r_0|| falls below this */
   PetscBool on, last_full, stopped;
   PetscBool retry;         /* a failed SSN may be continued once at the same gamma */
-  PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol */
+  PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol or the KKT tolerance */
+  PetscInt  nkkt;          /* linear solves stopped on the KKT tolerance */
 } Fast;
 
 static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -39,6 +43,7 @@ static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOpti
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_start_rtol", "Relative tolerance of the unconstrained start solve", &f->start_rtol, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-fast_early", "Stop CG when its prospective iterate changes the active set", &f->early, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-fast_ksp_kkt", "Stop CG when its prospective iterate keeps the active set and meets the KKT tolerance of (P)", &f->kkt_stop, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-fast_max_it", "Maximum number of SSN steps per (P_gamma)", &f->max_it, NULL));
   PetscCheck(f->gamma >= 0 && !PetscIsInfOrNanReal(f->gamma), ct->comm, PETSC_ERR_USER_INPUT, "-fast_gamma: must be >= 0 and finite, got %g", (double)f->gamma);
   PetscCheck(f->start_rtol > 0 && f->start_rtol < 1, ct->comm, PETSC_ERR_USER_INPUT, "-fast_start_rtol: must be in (0, 1), got %g", (double)f->start_rtol);
@@ -47,9 +52,12 @@ static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOpti
   PetscFunctionReturn(0);
 }
 
-/* CG's test: the default one, and, in an SSN step, a stop as soon as the Newton iterate y - dy that CG would give now
-   has another active set than the Jacobian's (an accurate step on a set about to change is wasted), tested once
-   ||r|| <= loose ||r_0|| (preconditioned norms: the unpreconditioned one is dominated by the gamma rows). */
+/* CG's test: the default one, and, in an SSN step, once ||r|| <= loose ||r_0|| (preconditioned norms: the
+   unpreconditioned one is dominated by the gamma rows), a look at the Newton iterate y - dy that CG would give now:
+   - it has another active set than the Jacobian's: stop (an accurate step on a set about to change is wasted);
+   - it keeps the set and meets the KKT tolerance of (P) with a margin of 2: stop, the SSN stops there too (the KKT
+     residual is what the SSN's own test measures; -ksp_rtol would solve the last step to round-off, 3-4 orders of
+     magnitude below the tolerance on Example 2). */
 static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
 {
   Fast *f = (Fast *)ctx;
@@ -59,14 +67,15 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
   PetscCall(KSPConvergedDefault(ksp, it, rnorm, reason, f->defctx));
   if (!f->on) PetscFunctionReturn(0);
   if (it == 0) {
-    f->rnorm0  = rnorm;
-    f->stopped = PETSC_FALSE;
+    f->rnorm0   = rnorm;
+    f->stopped  = PETSC_FALSE;
+    f->kkt_next = f->loose;
   }
   if (*reason) {
     if (*reason > 0) f->last_full = PETSC_TRUE;
     PetscFunctionReturn(0);
   }
-  if (f->early && it > 0 && rnorm <= f->loose * f->rnorm0) {
+  if ((f->early || f->kkt_stop) && it > 0 && rnorm <= f->loose * f->rnorm0) {
     Vec      x, y;
     PetscInt changed;
     SNES     snes;
@@ -75,11 +84,24 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
     PetscCall(SNESGetSolution(snes, &y));
     PetscCall(VecWAXPY(f->w, -1.0, x, y));
     PetscCall(SgSSNCountSetChanges(s, f->w, &changed));
-    if (changed) {
+    if (changed && f->early) {
       *reason      = KSP_CONVERGED_RTOL;
       f->last_full = PETSC_FALSE;
       f->stopped   = PETSC_TRUE;
       PetscCall(PetscInfo(ksp, "CG stopped at iteration %" PetscInt_FMT " (||r||/||r0|| %g): the prospective iterate changes %" PetscInt_FMT " vertices of the active set\n", it, (double)(rnorm / f->rnorm0), changed));
+    } else if (!changed && f->kkt_stop && rnorm <= f->kkt_next * f->rnorm0) {
+      const PetscReal tol = 0.5 * f->ct->kkt_tol;
+      SgKKT           kkt;
+      PetscCall(SgContactKKT(f->ct->c, f->w, &kkt));
+      /* the equilibrium part falls with ||r||: the next test waits until it should be below the tolerance (each test
+         costs a product with K); the complementarity part drops to 0 only then, at most a few iterations later */
+      if (kkt.equilibrium > tol) f->kkt_next = rnorm / f->rnorm0 * tol / kkt.equilibrium;
+      if (kkt.residual <= tol) {
+        *reason      = KSP_CONVERGED_RTOL;
+        f->last_full = PETSC_TRUE;
+        f->nkkt++;
+        PetscCall(PetscInfo(ksp, "CG stopped at iteration %" PetscInt_FMT " (||r||/||r0|| %g): the prospective iterate keeps the active set and has KKT residual %g\n", it, (double)(rnorm / f->rnorm0), (double)kkt.residual));
+      }
     }
   }
   PetscFunctionReturn(0);
@@ -227,6 +249,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   f->defctx = NULL;
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_stopped_early", f->nearly));
   PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_full", f->nfull));
+  PetscCall(SgSummarySetInt(ct->sum, "fast_linear_solves_kkt", f->nkkt));
   PetscCall(VecDestroy(&f->w));
   PetscFunctionReturn(0);
 }
@@ -241,6 +264,7 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   f->start_rtol      = 1e-2;
   f->loose           = 1e-1;
   f->early           = PETSC_TRUE;
+  f->kkt_stop        = PETSC_TRUE;
   f->max_it          = 30;
   ct->data               = f;
   ct->ops.setfromoptions = SetFromOptions_Fast;
