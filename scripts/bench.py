@@ -3,12 +3,14 @@
 
 Sections: (A) linear elasticity from 1e4 to 1e6 unknowns in 2D and 3D (assembly, setup, solve, iterations, memory);
 (B) Example 2 from the paper's mesh to 1e6 unknowns on 1 and 2 ranks; (C) the contact solver: mesh independence,
-cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave; (P) the FEniCSx peer (bench/peer_dolfinx.py) against our default; (F) friction: the
-frictional SSN per controller, its mesh independence and its cost against a frictionless solve on the same mesh.
+cost against one linear solve, the peers on the same problem, parallel speedup, memory; (D) what each lever gave;
+(G) the default controller against IPF (issue 12, goal 3); (P) the FEniCSx peer (bench/peer_dolfinx.py) against our
+default; (F) friction: the frictional SSN per controller, its mesh independence and its cost against a frictionless
+solve on the same mesh. At the end: issue 12's goals, before and after, from the parts of this run.
 Every ratio is of two numbers measured in the same run or in runs made one after the other here. Runs are kept in
 bench/runs/; --reuse skips runs whose summary exists. Not a test: timings depend on the machine's load.
 
-usage: bench.py [--reuse] [--only A,B,C,D,P,F] [--quick]
+usage: bench.py [--reuse] [--only A,B,C,D,G,P,F] [--quick]
 """
 import argparse
 import json
@@ -147,7 +149,7 @@ def yardstick_3d(b, mesh, tag, repeat):
     name = min(best, key=lambda n: best[n]["linear_solve_time"]) if best else None
     y = {"name": name, "options": dict(YARDSTICK_3D).get(name, "") + " " + YARD_RTOL, "dofs": best[name]["dofs"] if name else None,
          "time": best[name]["linear_solve_time"] if name else None, "setup_time": best[name]["linear_setup_time"] if name else None,
-         "ksp_iterations": best[name]["ksp_iterations"] if name else None, "runs": repeat,
+         "ksp_iterations": best[name]["ksp_iterations"] if name else None, "peak_rss_mb": best[name].get("peak_rss_mb") if name else None, "runs": repeat,
          "candidates": {n: {"time": v["linear_solve_time"], "ksp_iterations": v["ksp_iterations"]} for n, v in best.items()}}
     b.yard[tag] = y
     return y
@@ -203,7 +205,13 @@ def example2(b, quick):
         out += ["The default configuration on 2 ranks, %d unknowns: contact solve %.1f s against %.1f s on 1 (speedup %.2f; target at least 1.6); "
                 "SSN %s / %s, CG %s / %s (np 1 / np 2)." % (d1["dofs"], d2["solve_time"], d1["solve_time"], sp_default, d1.get("ssn_iterations"), d2.get("ssn_iterations"),
                                                               d1.get("ksp_iterations"), d2.get("ksp_iterations")), ""]
-    return out, {"mesh_independence_3d_default": {d: {"ssn": v[0], "ksp": v[1]} for d, v in mi3.items() if d},
+    # goal 5: peak memory of the default configuration against the yardstick's linear solve, largest mesh
+    ytop = b.yard.get("s" + top) or {}
+    mem = {"dofs": d1.get("dofs"), "ratio": d1["peak_rss_mb"] / ytop["peak_rss_mb"]} if d1.get("peak_rss_mb") and ytop.get("peak_rss_mb") else None
+    if mem:
+        out += ["Peak memory of the default configuration, %d unknowns, one rank: %.0f MB against %.0f MB for the yardstick's "
+                "linear solve (ratio %.2f; target at most 1.2)." % (d1["dofs"], d1["peak_rss_mb"], ytop["peak_rss_mb"], mem["ratio"]), ""]
+    return out, {"memory_ratio_3d_default": mem, "mesh_independence_3d_default": {d: {"ssn": v[0], "ksp": v[1]} for d, v in mi3.items() if d},
                  "speedup_np2_3d_default": sp_default,
                  "example2": {k: {f: v.get(f) for f in ("dofs", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time", "linear_solve_time", "solve_time", "peak_rss_mb", "converged")} for k, v in res.items()},
                  "cost_ratio_3d_iterative": ratios, "cost_ratio_3d_iterative_ipf": ratios_ipf, "linear_solver_3d": ysolvers}
@@ -422,9 +430,116 @@ def levers(b):
     p1 = b.run("D_ex1_mumps_reuse", "%s -options_file options/solver/mumps_reuse.opts %s -box_faces 480,160" % (EX1, IPF2))
     p00 = b.run("D_ex1_mumps_plain", "%s %s %s -box_faces 480,160" % (EX1, MUMPS, IPF2))
     rows.append(("factorization kept as CG preconditioner within a (P_gamma) (2D IPF 480x160)", "%.2f s -> %.2f s (%s)" % (p00["solve_time"], p1.get("solve_time", float("nan")), "converged" if p1.get("converged") else "FAILED: " + p1.get("reason", "")[:80])))
+    # issue 12, goal 4: the truncated multigrid against a BoomerAMG setup per active set, the default otherwise
+    t1 = b.run("D_ex2_s2_default", EX2P + " -dm_plex_filename meshes/ex2_s2.msh -cont_direct_max_unknowns 0")
+    t0 = b.run("D_ex2_s2_no_tmg", EX2P + " -dm_plex_filename meshes/ex2_s2.msh -cont_direct_max_unknowns 0 -ssn_pc_truncated_mg false")
+    tmg = {"without": {k: t0.get(k) for k in ("solve_time", "ssn_iterations", "ksp_iterations", "linear_setup_time", "converged")},
+           "with": {k: t1.get(k) for k in ("solve_time", "ssn_iterations", "ksp_iterations", "linear_setup_time", "converged")}}
+    rows.append(("truncated multigrid (-ssn_pc_truncated_mg: one AMG setup, the finest level follows the active set) against a "
+                 "BoomerAMG setup per active set (Example 2, 124,128 unknowns, the default otherwise)",
+                 "%s s -> %s s, SSN %s -> %s, KSP its %s -> %s, setup %s s -> %s s" % (
+                     fmt(t0.get("solve_time")), fmt(t1.get("solve_time")), t0.get("ssn_iterations"), t1.get("ssn_iterations"), t0.get("ksp_iterations"),
+                     t1.get("ksp_iterations"), fmt(t0.get("linear_setup_time")), fmt(t1.get("linear_setup_time")))))
     rows.append(("K assembled once, only the contact block added per step; symbolic factorization reused", "see -log_view: one MatCholFctrSym per run, one MatCholFctrNum per SSN step"))
     out += table(["lever", "effect"], rows)
-    return out, {}
+    return out, {"truncated_mg": tmg}
+
+
+def controllers(b, quick):
+    """Issue 12, goal 3: the default controller against IPF at equal accuracy (the same KKT tolerance, the same linear
+    solver: the default one of each problem), on Example 2 and nearly incompressible (nu = 0.4999)."""
+    rounds = 1 if quick else 2
+    ex2 = "meshes/ex2.msh" if quick else "meshes/ex2_s2.msh"
+    faces = "120,40" if quick else "480,160"
+    ipf3 = "-options_file options/cont/ipf.opts -ipf_tau 1e8"
+    cases = [("3D Example 2, nu 0.45, CG + AMG", "%s -dm_plex_filename %s -cont_direct_max_unknowns 0" % (EX2P, ex2), ipf3),
+             ("3D Example 2, nu 0.4999, CG + AMG", "%s -dm_plex_filename meshes/ex2.msh -nu 0.4999 -cont_direct_max_unknowns 0" % EX2P, ipf3),
+             ("2D Example 1, nu 0.4, %s" % faces, "%s -box_faces %s" % (EX1, faces), IPF2),
+             ("2D Example 1, nu 0.4999, %s" % faces, "%s -box_faces %s -nu 0.4999" % (EX1, faces), IPF2)]
+    out = ["## G. The default controller against IPF (issue 12, goal 3)", "",
+           "The problem file alone (the default controller and linear solver: 3D iterative `fast` with the truncated "
+           "multigrid, 2D direct `ipf` with MUMPS condensed) against the same with `-cont_type ipf` (Example 2: tau = 1e8 "
+           "as in options/ex2.opts), and, in 2D, `-cont_type fast`; the same KKT tolerance. Contact solve times, the minimum "
+           "of %d rounds; SSN / KSP iterations; KKT residual at the end." % rounds, ""]
+    rows, js = [], {}
+    for cname, base, ipf in cases:
+        runs = [("default", ""), ("ipf", ipf)] + ([("fast", "-cont_type fast")] if cname.startswith("2D") else [])
+        best = {}
+        for r in range(rounds):
+            for key, extra in runs:
+                s = b.run("G_%s_%s_%d" % ("".join(ch for ch in cname if ch.isalnum())[:32], key, r), "%s %s" % (base, extra))
+                if key not in best or (s.get("converged") and s.get("solve_time", 1e30) < best[key].get("solve_time", 1e30)):
+                    best[key] = s
+        d, i = best["default"], best["ipf"]
+        # where the default is ipf itself (2D) the two runs are the same computation: their time ratio is the machine's noise
+        same = d.get("cont_type") == "ipf" and all(d.get(k) == i.get(k) for k in ("outer_iterations", "ssn_iterations", "ksp_iterations", "kkt_residual"))
+        rt = 1.0 if same and d.get("converged") else ratio(d, i, "solve_time")
+        js[cname] = {"default_controller": d.get("cont_type"), "same_computation": same, "default_time": d.get("solve_time"), "ipf_time": i.get("solve_time"),
+                     "fast_time": best["fast"].get("solve_time") if "fast" in best else None, "ratio": rt,
+                     "default_converged": bool(d.get("converged")), "ipf_converged": bool(i.get("converged"))}
+        cell = lambda s: "%s%s / %s, %s" % (failed(s) + " " if failed(s) else "", s.get("ssn_iterations"), s.get("ksp_iterations"), fmt(s.get("kkt_residual"), "%.1e"))
+        rows.append((cname, d.get("dofs"), d.get("cont_type"), cell(d), fmt(d.get("solve_time")), cell(i), fmt(i.get("solve_time")),
+                     "%s, %s s" % (cell(best["fast"]), fmt(best["fast"].get("solve_time"))) if "fast" in best else "-",
+                     "1 (the same computation)" if same and rt else fmt(rt, "%.2f")))
+    out += table(["case", "unknowns", "default controller", "default: SSN / KSP, KKT", "default [s]", "ipf: SSN / KSP, KKT", "ipf [s]",
+                  "fast (2D): SSN / KSP, KKT, time", "default / ipf"], rows)
+    rs = [v["ratio"] for v in js.values()]
+    ok = all(r is not None and r <= 1.1 for r in rs) and all(v["default_converged"] for v in js.values())
+    out += ["Goal 3 (the default never slower than IPF by more than 10 %%): %s; largest ratio %s." % ("met" if ok else "NOT met", fmt(max((r for r in rs if r), default=None), "%.2f")), ""]
+    return out, {"default_against_ipf": js}
+
+
+def goals(js):
+    """Issue 12: each goal's measure from this run's results (before = the paper's IPF configuration, after = the
+    default), with the target; a measure this run did not make is said so."""
+    def pct(a, z):
+        return 100.0 * (z - a) / a if a and z is not None else None
+
+    rows = []
+    cr, cri = js.get("cost_ratio_3d_iterative") or {}, js.get("cost_ratio_3d_iterative_ipf") or {}
+    for d in sorted(cr, key=int):
+        rows.append(("1. contact solve / fastest linear solve, Example 2, %s unknowns" % d, fmt(cri.get(d), "%.2f"), fmt(cr.get(d), "%.2f"),
+                     "<= 2.5 (must), <= 1.5" if int(d) > 500000 else "-"))
+    mi3 = js.get("mesh_independence_3d_default") or {}
+    ex2 = js.get("example2") or {}
+    big = sorted((int(d) for d in mi3 if int(d) >= 100000))
+    if len(big) >= 2:
+        a, z = mi3[big[0]] if big[0] in mi3 else mi3[str(big[0])], mi3[big[-1]] if big[-1] in mi3 else mi3[str(big[-1])]
+        ia = next((v for k, v in ex2.items() if not k.startswith("default_") and k.endswith("_np1") and v.get("dofs") == big[0]), {})
+        iz = next((v for k, v in ex2.items() if not k.startswith("default_") and k.endswith("_np1") and v.get("dofs") == big[-1]), {})
+        rows.append(("2. SSN steps, %d -> %d unknowns (3D)" % (big[0], big[-1]), "%s -> %s (%s %%)" % (ia.get("ssn_iterations"), iz.get("ssn_iterations"), fmt(pct(ia.get("ssn_iterations"), iz.get("ssn_iterations")), "%+.0f")),
+                     "%s -> %s (%s %%)" % (a["ssn"], z["ssn"], fmt(pct(a["ssn"], z["ssn"]), "%+.0f")), "at most 20 %"))
+        rows.append(("2. CG iterations, %d -> %d unknowns (3D)" % (big[0], big[-1]), "%s -> %s (%s %%)" % (ia.get("ksp_iterations"), iz.get("ksp_iterations"), fmt(pct(ia.get("ksp_iterations"), iz.get("ksp_iterations")), "%+.0f")),
+                     "%s -> %s (%s %%)" % (a["ksp"], z["ksp"], fmt(pct(a["ksp"], z["ksp"]), "%+.0f")), "at most 20 %"))
+    mi, mip = js.get("mesh_independence_default") or {}, js.get("mesh_independence_ipf") or {}
+    if mi and all(v is not None for v in mi.values()) and mip and all(v is not None for v in mip.values()):
+        rows.append(("2. total SSN iterations, 2D, %s" % ", ".join(mi), "%s (spread %d)" % (", ".join(str(v) for v in mip.values()), max(mip.values()) - min(mip.values())),
+                     "%s (spread %d)" % (", ".join(str(v) for v in mi.values()), max(mi.values()) - min(mi.values())), "spread at most 2"))
+    g3 = js.get("default_against_ipf") or {}
+    for c, v in g3.items():
+        rows.append(("3. default / IPF time, %s" % c, "1", "1 (the default is ipf)" if v.get("same_computation") else "%s (%s)" % (fmt(v["ratio"], "%.2f"), v["default_controller"]), "at most 1.1"))
+    t = js.get("truncated_mg")
+    if t:
+        rows.append(("4. contact solve with the truncated multigrid, Example 2, 124,128 unknowns [s]", fmt(t["without"]["solve_time"]), fmt(t["with"]["solve_time"]), "keep it if it wins"))
+    sp, spd = js.get("speedup_np2_3d") or {}, js.get("speedup_np2_3d_default")
+    rows.append(("5. speedup np 2 / np 1, Example 2, largest mesh", fmt(sp.get("contact_solve"), "%.2f"), fmt(spd, "%.2f"), "at least 1.6"))
+    def counts(k):
+        a, z = ex2.get(k + "_np1") or {}, ex2.get(k + "_np2") or {}
+        return "%s / %s and %s / %s" % (a.get("ssn_iterations"), a.get("ksp_iterations"), z.get("ssn_iterations"), z.get("ksp_iterations")) if a and z else "-"
+    for k in sorted((k[:-4] for k in ex2 if k.endswith("_np1") and not k.startswith("default_")), key=lambda k: ex2[k + "_np1"].get("dofs") or 0):
+        rows.append(("5. SSN / CG on np 1 and np 2, Example 2, %s unknowns" % ex2[k + "_np1"].get("dofs"), counts(k), counts("default_" + k), "the same"))
+    mem = js.get("memory_ratio_3d_default")
+    if mem:
+        rows.append(("5. peak memory / one linear solve, Example 2, %s unknowns" % mem["dofs"], "-", fmt(mem["ratio"], "%.2f"), "at most 1.2"))
+    c2 = (js.get("cost_ratio") or {}).get("2D IPF, MUMPS condensed")
+    rows.append(("6. 2D direct cost ratio (IPF, MUMPS condensed, largest mesh)", "1.41 (issue 12's start)", fmt(c2, "%.2f"), "1.41 or less"))
+    peers = js.get("peer_dolfinx") or {}
+    if peers:
+        rows.append(("7. peer (dolfinx SNESVI + MUMPS) / ours, smallest over the sizes", "-", fmt(min((v["ratio"] for v in peers.values() if v.get("ratio")), default=None), "%.2f"), "at least 1.5"))
+    return ["## Issue 12: the goals in this run", "",
+            "Before: the paper's IPF configuration (options/ex2.opts in 3D, options/cont/ipf.opts in 2D); after: the default "
+            "(the problem file alone). From the parts above of this same run; a goal whose parts did not run is missing.", ""] + table(
+        ["goal, measure", "before", "after", "target"], rows)
 
 
 EX1F = "-options_file options/ex1_friction.opts"
@@ -555,18 +670,20 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--reuse", action="store_true")
     ap.add_argument("--quick", action="store_true", help="small meshes only (a smoke test of this script)")
-    ap.add_argument("--only", default="A,B,C,D,P,F")
+    ap.add_argument("--only", default="A,B,C,D,G,P,F")
     opt = ap.parse_args()
     b = Bench(opt.reuse)
     t0 = time.time()
     lines = ["# Benchmarks", "", "Machine: %s. Generated by `make bench` (scripts/bench.py)%s. One BLAS thread per rank." % (sgrun.machine(), " with --quick" if opt.quick else ""), ""]
     js = {"machine": sgrun.machine()}
     parts = {"A": lambda: elasticity(b, opt.quick), "B": lambda: example2(b, opt.quick), "C": lambda: contact(b, opt.quick), "D": lambda: levers(b), "P": lambda: peers_dolfinx(b, opt.quick),
-             "F": lambda: friction(b, opt.quick)}
+             "G": lambda: controllers(b, opt.quick), "F": lambda: friction(b, opt.quick)}
     for p in opt.only.split(","):
         o, j = parts[p]()
         lines += o
         js.update(j)
+    if set(opt.only.split(",")) & {"B", "C", "D", "G", "P"}:
+        lines += goals(js)
     lines += ["Total benchmark time %.0f s." % (time.time() - t0)]
     os.makedirs(BENCH, exist_ok=True)
     sgrun.write_atomic(os.path.join(BENCH, "results.md"), "\n".join(lines) + "\n")
