@@ -321,7 +321,6 @@ PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
-PetscErrorCode SgSSNIsCondensed(SgSSN, PetscBool *);
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);

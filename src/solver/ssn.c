@@ -793,13 +793,6 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN s, Vec y, PetscInt *changed)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgSSNIsCondensed(SgSSN s, PetscBool *flg)
-{
-  PetscFunctionBeginUser;
-  *flg = s->cond ? PETSC_TRUE : PETSC_FALSE;
-  PetscFunctionReturn(0);
-}
-
 /* rho_F = int max(0, g), rho_C = int_I max(0, g) + int_A -min(0, g) with A, I the active and inactive sets of the
    iterate (the sets of the last Newton step): the measures of the inexact path-following rule (15). */
 PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
