@@ -468,7 +468,8 @@ def controllers(b, quick):
         for r in range(rounds):
             for key, extra in runs:
                 s = b.run("G_%s_%s_%d" % ("".join(ch for ch in cname if ch.isalnum())[:32], key, r), "%s %s" % (base, extra))
-                if key not in best or (s.get("converged") and s.get("solve_time", 1e30) < best[key].get("solve_time", 1e30)):
+                # a converged run beats a failed one; among converged runs the faster
+                if key not in best or (s.get("converged") and (not best[key].get("converged") or s.get("solve_time", 1e30) < best[key].get("solve_time", 1e30))):
                     best[key] = s
         d, i = best["default"], best["ipf"]
         # where the default is ipf itself (2D) the two runs are the same computation: their time ratio is the machine's noise
