@@ -60,6 +60,7 @@ class Bench:
         self.reuse = reuse
         self.data = {}
         self.yard = {}  # yardstick_3d per mesh
+        self.made = {}  # summary path -> (the time it was written, the run's wall time), every run the tables use
 
     def run(self, name, args, np=1, check=True):
         path = os.path.join(RUNS, name + ".json")
@@ -73,7 +74,13 @@ class Bench:
                 print(" (did not converge: %s)" % s.get("reason", "no summary")[:100], end="")
             print(" %.0f s" % (time.time() - t0))
         self.data[name] = s
+        self.note(path, s.get("wall_time"))
         return s
+
+    def note(self, path, wall):
+        """Remember when a run the tables use was made (its summary's time) and its wall time."""
+        if os.path.exists(path):
+            self.made[path] = (os.path.getmtime(path), wall or 0.0)
 
 
 def fmt(x, f="%.3g"):
@@ -362,6 +369,7 @@ def peers_dolfinx(b, quick):
                     f.write(" ".join(cmd) + "\n" + p.stdout)
                 print(" %.0f s" % (time.time() - t0))
             ours.append(sgrun.summary(base + ".json"))
+            b.note(base + ".json", ours[-1].get("wall_time"))
             pname = os.path.join(RUNS, "%s_peer_%d" % (tag, r))
             if not (b.reuse and os.path.exists(pname + ".json")):
                 t0 = time.time()
@@ -372,6 +380,7 @@ def peers_dolfinx(b, quick):
                     f.write(" ".join(cmd) + "\n" + p.stdout)
                 print(" %.0f s" % (time.time() - t0))
             theirs.append(sgrun.summary(pname + ".json"))
+            b.note(pname + ".json", theirs[-1].get("wall_time") or (theirs[-1].get("snes_time") or 0.0) + (theirs[-1].get("assembly_time") or 0.0))
         ok = [s for s in ours if s.get("converged") and s.get("solve_time")]
         pok = [s for s in theirs if s.get("converged") and s.get("snes_time")]
         o = min(ok, key=lambda s: s["solve_time"]) if ok else {}
@@ -685,7 +694,13 @@ def main():
         js.update(j)
     if set(opt.only.split(",")) & {"B", "C", "D", "G", "P"}:
         lines += goals(js)
-    lines += ["Total benchmark time %.0f s." % (time.time() - t0)]
+    # with --reuse the tables may join runs of several invocations: say when the runs were made and what they cost
+    span = ""
+    if b.made:
+        first, last = min(m for m, _ in b.made.values()), max(m for m, _ in b.made.values())
+        span = " The %d runs behind these tables took %.0f s together (wall time of each run) and were made between %s and %s UTC." % (
+            len(b.made), sum(w for _, w in b.made.values()), time.strftime("%Y-%m-%d %H:%M", time.gmtime(first)), time.strftime("%Y-%m-%d %H:%M", time.gmtime(last)))
+    lines += ["This invocation took %.0f s%s." % (time.time() - t0, " (--reuse: runs with a summary in bench/runs were kept)" if opt.reuse else "") + span]
     os.makedirs(BENCH, exist_ok=True)
     sgrun.write_atomic(os.path.join(BENCH, "results.md"), "\n".join(lines) + "\n")
     sgrun.write_atomic(os.path.join(BENCH, "results.json"), json.dumps(js, indent=1, default=str) + "\n")
