@@ -7,12 +7,14 @@ cost against one linear solve, the peers on the same problem, parallel speedup, 
 (G) the default controller against IPF (issue 12, goal 3); (P) the FEniCSx peer (bench/peer_dolfinx.py) against our
 default; (F) friction: the frictional SSN per controller, its mesh independence and its cost against a frictionless
 solve on the same mesh. At the end: issue 12's goals, before and after, from the parts of this run.
-Every ratio is of two numbers measured in the same run or in runs made one after the other here. Runs are kept in
-bench/runs/; --reuse skips runs whose summary exists. Not a test: timings depend on the machine's load.
+Every ratio is of two numbers measured in the same run or in runs of one part made one after the other. Runs are kept in
+bench/runs/ (the summaries are committed, with bench/runs/made.json saying when and where each was made); --reuse
+skips runs whose summary exists. Not a test: timings depend on the machine's load.
 
 usage: bench.py [--reuse] [--only A,B,C,D,G,P,F] [--quick]
 """
 import argparse
+import calendar
 import json
 import os
 import sys
@@ -23,6 +25,7 @@ import sgrun  # noqa: E402
 
 BENCH = os.path.join(sgrun.ROOT, "bench")
 RUNS = os.path.join(BENCH, "runs")
+MADE = os.path.join(RUNS, "made.json")
 MUMPS = "-options_file options/solver/mumps.opts"
 COND = "-options_file options/solver/mumps_condensed.opts"
 HYPRE = "-options_file options/solver/hypre.opts"
@@ -60,7 +63,10 @@ class Bench:
         self.reuse = reuse
         self.data = {}
         self.yard = {}  # yardstick_3d per mesh
-        self.made = {}  # summary path -> (the time it was written, the run's wall time), every run the tables use
+        self.made = {}  # summary path -> (the time it was made, the run's wall time), every run the tables use
+        # when and on which machine each kept run was made: a file's time does not survive a clone, and the summaries
+        # are committed (bench/runs/*.json) so that a later --reuse can complete a bench on another day
+        self.index = sgrun.summary(MADE)
 
     def run(self, name, args, np=1, check=True):
         path = os.path.join(RUNS, name + ".json")
@@ -70,6 +76,7 @@ class Bench:
             t0 = time.time()
             print("bench: %-40s np %d ..." % (name, np), end="", flush=True)
             s, _ = sgrun.run(args, name, RUNS, np=np, check=False)  # failed runs still write their summary
+            self.index.pop(name + ".json", None)  # made now
             if not s.get("converged"):
                 print(" (did not converge: %s)" % s.get("reason", "no summary")[:100], end="")
             print(" %.0f s" % (time.time() - t0))
@@ -78,9 +85,18 @@ class Bench:
         return s
 
     def note(self, path, wall):
-        """Remember when a run the tables use was made (its summary's time) and its wall time."""
+        """Remember when a run the tables use was made and its wall time. A run not yet in the index was made here
+        (or before the index existed, on this machine): its summary file's time and this machine."""
         if os.path.exists(path):
-            self.made[path] = (os.path.getmtime(path), wall or 0.0)
+            name = os.path.basename(path)
+            if name not in self.index:
+                self.index[name] = {"utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(os.path.getmtime(path))), "machine": sgrun.machine()}
+            t = self.index[name]["utc"]
+            self.made[path] = (calendar.timegm(time.strptime(t, "%Y-%m-%dT%H:%M:%SZ")), wall or 0.0, self.index[name]["machine"])
+
+    def save_index(self):
+        os.makedirs(RUNS, exist_ok=True)
+        sgrun.write_atomic(MADE, json.dumps(dict(sorted(self.index.items())), indent=0) + "\n")
 
 
 def fmt(x, f="%.3g"):
@@ -276,7 +292,9 @@ def contact(b, quick):
         s = b.run("C2_" + "".join(ch for ch in cname if ch.isalnum()), args)
         res[cname] = s
     ipf2, ipf3 = res["2D IPF, MUMPS condensed"], res["3D IPF, BoomerAMG"]
-    y3 = yardstick_3d(b, big3, "s2", 3)
+    # its own yardstick runs (not section B's): each part's ratios are of runs made together, also when --reuse joins
+    # parts made on different days
+    y3 = yardstick_3d(b, big3, "C_s2", 3)
     rows = []
     for cname, s in res.items():
         ref = ipf2 if cname.startswith("2D") else ipf3
@@ -290,8 +308,8 @@ def contact(b, quick):
                      fmt(s.get("peak_rss_mb"), "%.0f"), "yes" if s.get("converged") else "NO"))
     out += ["### 2-3. Cost against one linear solve, and the peers (largest meshes)", "",
             "contact solve: the controller's whole solve; linear solve: for direct solvers the first (unconstrained) "
-            "elasticity solve of the same run (factorization included), for the 3D iterative runs the yardstick of section B "
-            "(the fastest configured linear solve on that mesh at %s, setup included). KKT: the KKT residual of (P) at the end "
+            "elasticity solve of the same run (factorization included), for the 3D iterative runs a yardstick as in section B, "
+            "measured again in this part (the fastest configured linear solve on that mesh at %s, setup included). KKT: the KKT residual of (P) at the end "
             "(the same tolerance 1e-10 for our controllers; SNESVI stops on its own residual). Time ratios against IPF of "
             "the same dimension." % YARD_RTOL, ""]
     out += table(["case", "unknowns", "outer", "SSN/Newton its", "KSP its", "KKT", "contact solve [s]", "linear solve [s]", "cost ratio", "time / IPF", "peak MB", "converged"], rows)
@@ -365,6 +383,7 @@ def peers_dolfinx(b, quick):
                 # round 0 also writes the fields the peer's solution is compared with (after the timed solve)
                 cmd = sgrun.command(args.split() + (["-output_file", h5] if r == 0 else []), 1, summary=base + ".json")
                 p = sgrun.execute(cmd, env=env)
+                b.index.pop(name + ".json", None)
                 with open(base + ".log", "w") as f:
                     f.write(" ".join(cmd) + "\n" + p.stdout)
                 print(" %.0f s" % (time.time() - t0))
@@ -376,6 +395,7 @@ def peers_dolfinx(b, quick):
                 print("bench: %-40s ..." % (tag + "_peer_%d" % r), end="", flush=True)
                 cmd = [py, peer, prob, "--faces" if prob == "ex1" else "--mesh", size, "--json", pname + ".json"] + (["--ours", h5] if r == 0 and os.path.exists(h5) else [])
                 p = sgrun.execute(cmd, env=env)
+                b.index.pop(os.path.basename(pname) + ".json", None)
                 with open(pname + ".log", "w") as f:
                     f.write(" ".join(cmd) + "\n" + p.stdout)
                 print(" %.0f s" % (time.time() - t0))
@@ -697,9 +717,12 @@ def main():
     # with --reuse the tables may join runs of several invocations: say when the runs were made and what they cost
     span = ""
     if b.made:
-        first, last = min(m for m, _ in b.made.values()), max(m for m, _ in b.made.values())
-        span = " The %d runs behind these tables took %.0f s together (wall time of each run) and were made between %s and %s UTC." % (
-            len(b.made), sum(w for _, w in b.made.values()), time.strftime("%Y-%m-%d %H:%M", time.gmtime(first)), time.strftime("%Y-%m-%d %H:%M", time.gmtime(last)))
+        first, last = min(m for m, _, _ in b.made.values()), max(m for m, _, _ in b.made.values())
+        span = " The %d runs behind these tables took %.0f s together (wall time of each run) and were made between %s and %s UTC" % (
+            len(b.made), sum(w for _, w, _ in b.made.values()), time.strftime("%Y-%m-%d %H:%M", time.gmtime(first)), time.strftime("%Y-%m-%d %H:%M", time.gmtime(last)))
+        machines = sorted(set(m for _, _, m in b.made.values()))
+        span += (" on %s." % machines[0]) if len(machines) == 1 else (" on %d kinds of machine: %s." % (len(machines), "; ".join(machines)))
+        b.save_index()
     lines += ["This invocation took %.0f s%s." % (time.time() - t0, " (--reuse: runs with a summary in bench/runs were kept)" if opt.reuse else "") + span]
     os.makedirs(BENCH, exist_ok=True)
     sgrun.write_atomic(os.path.join(BENCH, "results.md"), "\n".join(lines) + "\n")
