@@ -96,7 +96,8 @@ class Bench:
 
     def save_index(self):
         os.makedirs(RUNS, exist_ok=True)
-        sgrun.write_atomic(MADE, json.dumps(dict(sorted(self.index.items())), indent=0) + "\n")
+        # one line a run, for readable diffs
+        sgrun.write_atomic(MADE, "{\n" + ",\n".join("%s: %s" % (json.dumps(k), json.dumps(v)) for k, v in sorted(self.index.items())) + "\n}\n")
 
 
 def fmt(x, f="%.3g"):
