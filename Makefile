@@ -106,7 +106,7 @@ reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
 	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo
-# Benchmarks (not tests): bench/results.md and bench/results.json; about three and a half hours on 2 cores
+# Benchmarks (not tests): bench/results.md and bench/results.json; two to three and a half hours on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
 
