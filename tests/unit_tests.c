@@ -268,19 +268,34 @@ static PetscReal CtlRel(PetscReal a, PetscReal b)
   return PetscAbsReal(a - b) / PetscMax(PetscMax(PetscAbsReal(a), PetscAbsReal(b)), 1e-300);
 }
 
-/* the largest relative difference of two results (energy, contact force, friction force, displacement) */
+/* the largest relative difference of two results (energy, contact force, friction force, displacement: entry by entry
+   on one rank; on more, where two problems may be partitioned differently, its 1-, 2- and max norms) */
 static PetscErrorCode CtlDiff(const CtlResult *a, const CtlResult *b, PetscReal *d)
 {
-  PetscReal nb, nd;
-  Vec       w;
+  PetscReal   nb, nd;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(a->y, &w));
-  PetscCall(VecWAXPY(w, -1.0, b->y, a->y));
-  PetscCall(VecNorm(w, NORM_INFINITY, &nd));
-  PetscCall(VecNorm(b->y, NORM_INFINITY, &nb));
-  PetscCall(VecDestroy(&w));
-  *d = PetscMax(PetscMax(CtlRel(a->V, b->V), CtlRel(a->force, b->force)), nd / PetscMax(nb, 1e-300));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)a->y), &size));
+  if (size == 1) {
+    Vec w;
+    PetscCall(VecDuplicate(a->y, &w));
+    PetscCall(VecWAXPY(w, -1.0, b->y, a->y));
+    PetscCall(VecNorm(w, NORM_INFINITY, &nd));
+    PetscCall(VecNorm(b->y, NORM_INFINITY, &nb));
+    PetscCall(VecDestroy(&w));
+    nd /= PetscMax(nb, 1e-300);
+  } else {
+    const NormType types[3] = {NORM_1, NORM_2, NORM_INFINITY};
+    nd = 0;
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscReal na;
+      PetscCall(VecNorm(a->y, types[k], &na));
+      PetscCall(VecNorm(b->y, types[k], &nb));
+      nd = PetscMax(nd, CtlRel(na, nb));
+    }
+  }
+  *d = PetscMax(PetscMax(CtlRel(a->V, b->V), CtlRel(a->force, b->force)), nd);
   if (a->friction != 0 || b->friction != 0) *d = PetscMax(*d, CtlRel(a->friction, b->friction));
   PetscFunctionReturn(0);
 }
