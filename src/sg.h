@@ -97,6 +97,7 @@ PetscErrorCode SgElasticitySetDirichletValues(SgElasticity, const PetscReal[]); 
 PetscErrorCode SgElasticityGetDirichletSize(SgElasticity, PetscInt *);
 PetscErrorCode SgElasticityGetDirichletValues(SgElasticity, PetscBool *, PetscReal[]); /* those set, if any */
 PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||b||_2, ||b||_inf, energy shift at factor 1 */
+PetscErrorCode SgElasticityGetFullData(SgElasticity, Vec *, Vec *); /* at factor 1, local: the load before the lifting (this rank's cells' part), the Dirichlet values */
 PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
@@ -217,6 +218,7 @@ PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
 PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */
+PetscErrorCode SgContactGapsAt(SgContact, PetscReal, PetscReal[]); /* d_i per owned contact vertex with the obstacle at a placement t */
 PetscErrorCode SgContactNormalDisplacementMax(SgContact, Vec, PetscReal *); /* max_i n_i . y_i */
 
 PetscErrorCode SgProblemGetElasticity(SgProblem, SgElasticity *);

@@ -4,7 +4,7 @@
 #include "fem/femimpl.h"
 #include "cont/contimpl.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -203,6 +203,198 @@ static PetscErrorCode TestRollerAPI(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* Controllers on one problem (issue 25): each SgCont owns the history of its solves (the friction slip reference,
+   its last load step), so a new controller on a problem another one solved solves as on a fresh problem, and two
+   controllers taking turns on one problem do not disturb each other. The problem comes from the options (-cont_type
+   too); every solve's energy, contact force, friction force and displacement are compared with those of the same
+   sequence of solves on a fresh problem. -report_file: A's summary, written after B solved, read back. */
+typedef struct {
+  PetscReal V, force, friction;
+  Vec       y;
+} CtlResult;
+
+static PetscErrorCode CtlProblem(SgProblem *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, p));
+  PetscCall(SgProblemSetFromOptions(*p));
+  PetscCall(SgProblemSetUp(*p));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CtlCont(SgProblem p, SgCont *ct)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContCreate(p, ct));
+  PetscCall(SgContSetFromOptions(*ct));
+  PetscFunctionReturn(0);
+}
+
+/* solve at load factor t; r: the result (r->y allocated here); *nfail counts the solves that did not converge */
+static PetscErrorCode CtlSolve(SgProblem p, SgCont ct, PetscReal t, CtlResult *r, PetscInt *nfail)
+{
+  SgContact         c;
+  SgKKT             kkt;
+  PetscBool         conv;
+  Vec               y;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemSetLoadFactor(p, t));
+  PetscCall(SgContSolve(ct));
+  PetscCall(SgContGetConvergedReason(ct, &conv, NULL));
+  if (!conv) (*nfail)++;
+  PetscCall(SgContGetEnergy(ct, &r->V));
+  PetscCall(SgContGetKKT(ct, &kkt));
+  r->force    = kkt.force;
+  r->friction = 0;
+  PetscCall(SgProblemGetContact(p, &c));
+  if (c) {
+    SgContactView cv;
+    PetscCall(SgContactGetView(c, &cv));
+    if (cv.friction) {
+      SgFrictionSummary fs;
+      PetscCall(SgContactGetFrictionSummary(c, &fs)); /* of the KKT measures of this solve's result */
+      r->friction = fs.force_norm;
+    }
+  }
+  PetscCall(SgContGetSolution(ct, &y));
+  PetscCall(VecDuplicate(y, &r->y));
+  PetscCall(VecCopy(y, r->y));
+  PetscFunctionReturn(0);
+}
+
+static PetscReal CtlRel(PetscReal a, PetscReal b)
+{
+  return PetscAbsReal(a - b) / PetscMax(PetscMax(PetscAbsReal(a), PetscAbsReal(b)), 1e-300);
+}
+
+/* the largest relative difference of two results (energy, contact force, friction force, displacement: entry by entry
+   on one rank; on more, where two problems may be partitioned differently, its 1-, 2- and max norms) */
+static PetscErrorCode CtlDiff(const CtlResult *a, const CtlResult *b, PetscReal *d)
+{
+  PetscReal   nb, nd;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)a->y), &size));
+  if (size == 1) {
+    Vec w;
+    PetscCall(VecDuplicate(a->y, &w));
+    PetscCall(VecWAXPY(w, -1.0, b->y, a->y));
+    PetscCall(VecNorm(w, NORM_INFINITY, &nd));
+    PetscCall(VecNorm(b->y, NORM_INFINITY, &nb));
+    PetscCall(VecDestroy(&w));
+    nd /= PetscMax(nb, 1e-300);
+  } else {
+    const NormType types[3] = {NORM_1, NORM_2, NORM_INFINITY};
+    nd = 0;
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscReal na;
+      PetscCall(VecNorm(a->y, types[k], &na));
+      PetscCall(VecNorm(b->y, types[k], &nb));
+      nd = PetscMax(nd, CtlRel(na, nb));
+    }
+  }
+  *d = PetscMax(PetscMax(CtlRel(a->V, b->V), CtlRel(a->force, b->force)), nd);
+  if (a->friction != 0 || b->friction != 0) *d = PetscMax(*d, CtlRel(a->friction, b->friction));
+  PetscFunctionReturn(0);
+}
+
+/* the number after "key": in a JSON summary (NaN if missing) */
+static PetscReal CtlJson(const char *buf, const char key[])
+{
+  char        pat[128];
+  const char *q;
+
+  (void)PetscSNPrintf(pat, sizeof(pat), "\"%s\": ", key);
+  q = strstr(buf, pat);
+  return q ? (PetscReal)strtod(q + strlen(pat), NULL) : (PetscReal)NAN;
+}
+
+static PetscErrorCode TestControllers(SgSummary s)
+{
+  SgProblem   p1, p2, p3;
+  SgCont      A, B, C, D;
+  CtlResult   rA[3], rB[3], rC[3], rD[3];
+  PetscInt    nfail = 0;
+  PetscReal   d;
+  char        file[PETSC_MAX_PATH_LEN] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-report_file", file, sizeof(file), NULL));
+  PetscCall(CtlProblem(&p1));
+  PetscCall(CtlProblem(&p2));
+  PetscCall(CtlProblem(&p3));
+  PetscCall(CtlCont(p1, &A));
+  PetscCall(CtlCont(p1, &B));
+  PetscCall(CtlCont(p2, &C));
+  PetscCall(CtlCont(p3, &D));
+  /* A loads to 1 and unloads to 0.5; then B, new, solves the same problem at 0.5 */
+  PetscCall(CtlSolve(p1, A, 1.0, &rA[0], &nfail));
+  PetscCall(CtlSolve(p1, A, 0.5, &rA[1], &nfail));
+  PetscCall(CtlSolve(p1, B, 0.5, &rB[0], &nfail));
+  /* references: a fresh problem solved at 0.5 (C), and the path 1, 0.5 on another (D) */
+  PetscCall(CtlSolve(p2, C, 0.5, &rC[0], &nfail));
+  PetscCall(CtlSolve(p3, D, 1.0, &rD[0], &nfail));
+  PetscCall(CtlSolve(p3, D, 0.5, &rD[1], &nfail));
+  PetscCall(CtlDiff(&rB[0], &rC[0], &d));
+  PetscCall(SgSummarySetReal(s, "fresh_diff", d)); /* B as a new controller on a fresh problem */
+  PetscCall(CtlDiff(&rA[1], &rC[0], &d));
+  PetscCall(SgSummarySetReal(s, "path_diff", d)); /* unloading from 1 against loading to 0.5: the path matters with friction */
+  PetscCall(CtlDiff(&rA[1], &rD[1], &d));
+  PetscCall(SgSummarySetReal(s, "a_diff", d));
+  /* taking turns on p1: B continues to 0.25 from its 0.5, A to 0.25 from its 0.5, B to 0.125 */
+  PetscCall(CtlSolve(p1, B, 0.25, &rB[1], &nfail));
+  PetscCall(CtlSolve(p2, C, 0.25, &rC[1], &nfail));
+  PetscCall(CtlSolve(p1, A, 0.25, &rA[2], &nfail));
+  PetscCall(CtlSolve(p3, D, 0.25, &rD[2], &nfail));
+  PetscCall(CtlSolve(p1, B, 0.125, &rB[2], &nfail));
+  PetscCall(CtlSolve(p2, C, 0.125, &rC[2], &nfail));
+  PetscCall(CtlDiff(&rB[1], &rC[1], &d));
+  PetscCall(SgSummarySetReal(s, "turns_b_diff", d));
+  PetscCall(CtlDiff(&rA[2], &rD[2], &d));
+  PetscCall(SgSummarySetReal(s, "turns_a_diff", d));
+  PetscCall(CtlDiff(&rB[2], &rC[2], &d));
+  PetscCall(SgSummarySetReal(s, "turns_b2_diff", d));
+  /* A's summary, written after B's last solve, is A's result */
+  if (file[0]) {
+    FILE  *fp;
+    char  *buf;
+    size_t n;
+    PetscCall(SgContWriteSummary(A, file));
+    PetscCall(PetscFOpen(PETSC_COMM_SELF, file, "r", &fp));
+    PetscCall(PetscMalloc1(1 << 16, &buf));
+    n      = fread(buf, 1, (1 << 16) - 1, fp);
+    buf[n] = 0;
+    PetscCall(PetscFClose(PETSC_COMM_SELF, fp));
+    {
+      const PetscReal V = CtlJson(buf, "energy"), F = CtlJson(buf, "contact_force"), Ff = CtlJson(buf, "friction_force");
+      PetscReal       e = PetscMax(CtlRel(V, rA[2].V), CtlRel(F, rA[2].force));
+      if (rA[2].friction != 0) e = PetscMax(e, CtlRel(Ff, rA[2].friction));
+      PetscCall(SgSummarySetReal(s, "report_a_diff", e));
+    }
+    PetscCall(PetscFree(buf));
+  }
+  PetscCall(SgSummarySetInt(s, "not_converged", nfail));
+  PetscCall(SgSummarySetReal(s, "energy_half", rC[0].V));
+  PetscCall(SgSummarySetReal(s, "force_half", rC[0].force));
+  PetscCall(SgSummarySetReal(s, "friction_half", rC[0].friction));
+  for (PetscInt k = 0; k < 3; k++) {
+    PetscCall(VecDestroy(&rA[k].y));
+    PetscCall(VecDestroy(&rB[k].y));
+    PetscCall(VecDestroy(&rC[k].y));
+  }
+  for (PetscInt k = 0; k < 3; k++) PetscCall(VecDestroy(&rD[k].y));
+  PetscCall(SgContDestroy(&A));
+  PetscCall(SgContDestroy(&B));
+  PetscCall(SgContDestroy(&C));
+  PetscCall(SgContDestroy(&D));
+  PetscCall(SgProblemDestroy(&p1));
+  PetscCall(SgProblemDestroy(&p2));
+  PetscCall(SgProblemDestroy(&p3));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -223,6 +415,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));
+  else if (PetscStrcmp(test, "controllers", &eq) == 0 && eq) PetscCall(TestControllers(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

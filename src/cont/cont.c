@@ -195,6 +195,11 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
+  if (ct->c && ct->cv.friction) { /* this controller's slip reference: zero, the first load step's start */
+    PetscInt dim;
+    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+    PetscCall(PetscCalloc1(ct->cv.n * dim + 1, &ct->yref));
+  }
   PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
@@ -217,6 +222,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(MatDestroy(&ct->J));
   PetscCall(VecDestroy(&ct->y));
   PetscCall(PetscFree(ct->lam));
+  PetscCall(PetscFree(ct->yref));
   PetscCall(PetscFree(ct->gammas));
   PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
@@ -418,10 +424,26 @@ PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
 }
 
 /* KKT measures of the iterate for the original problem. */
+/* The contact object's slip reference is a working array of the problem, shared by every controller on it: each
+   controller copies its own reference into it before it solves or evaluates anything with friction. */
+PetscErrorCode SgContUseSlipReference(SgCont ct)
+{
+  PetscReal *yref;
+  PetscInt   dim;
+
+  PetscFunctionBeginUser;
+  if (!ct->yref) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgContactGetSlipReference(ct->c, &yref));
+  PetscCall(PetscArraycpy(yref, ct->yref, ct->cv.n * dim));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContMeasure(SgCont ct)
 {
   PetscFunctionBeginUser;
   PetscCall(SgContactKKT(ct->c, ct->y, &ct->kkt));
+  if (ct->cv.friction) PetscCall(SgContactGetFrictionSummary(ct->c, &ct->fsum));
   PetscFunctionReturn(0);
 }
 
@@ -566,7 +588,7 @@ static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
   ck->yref     = NULL;
   if (ct->c && ct->cv.friction) { /* lamhat_T (none without an SSN: pdas) and the slip reference */
     if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &ck->lamhatT, NULL, NULL));
-    PetscCall(SgContactGetSlipReference(ct->c, &ck->yref));
+    ck->yref = ct->yref; /* this controller's (a restart reads into it) */
   }
   PetscFunctionReturn(0);
 }
@@ -759,12 +781,10 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     r->force   = ct->kkt.force;
     r->nactive = ct->kkt.nactive;
     if (ct->cv.friction) {
-      SgFrictionSummary fs;
-      PetscCall(SgContactGetFrictionSummary(ct->c, &fs));
-      r->nstick            = fs.nstick;
-      r->nslip             = fs.nslip;
-      r->friction_force    = fs.force_norm;
-      r->friction_traction = fs.traction;
+      r->nstick            = ct->fsum.nstick;
+      r->nslip             = ct->fsum.nslip;
+      r->friction_force    = ct->fsum.force_norm;
+      r->friction_traction = ct->fsum.traction;
     }
   }
   if (ct->store_steps) {
@@ -772,14 +792,12 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
     PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
     PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
-    if (ct->c && ct->cv.friction) { /* the step's slip reference, for its slip field */
-      PetscReal *yref;
-      PetscInt   dim;
+    if (ct->yref) { /* the step's slip reference, for its slip field */
+      PetscInt dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-      PetscCall(SgContactGetSlipReference(ct->c, &yref));
       if (!ct->yrsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->yrsteps));
       PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps]));
-      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], yref, ct->cv.n * dim));
+      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], ct->yref, ct->cv.n * dim));
     }
   }
   {
@@ -818,7 +836,16 @@ PetscErrorCode SgContSolve(SgCont ct)
   ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
   /* quasi-static friction: a load step's tangential law acts on the slip since the last converged step (the warm
      start y); the first step's slip is from y = 0 */
-  if (ct->warm && ct->c && ct->cv.friction) PetscCall(SgContactSetSlipReference(ct->c, ct->y));
+  if (ct->warm && ct->yref) {
+    const PetscScalar *ya;
+    PetscInt           dim;
+    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+    PetscCall(VecGetArrayRead(ct->y, &ya));
+    for (PetscInt i = 0; i < ct->cv.n; i++)
+      for (PetscInt k = 0; k < dim; k++) ct->yref[i * dim + k] = PetscRealPart(ya[ct->cv.off[i] + k]);
+    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  }
+  PetscCall(SgContUseSlipReference(ct)); /* this controller's, not the last one's that solved the problem */
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));

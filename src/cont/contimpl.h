@@ -96,6 +96,12 @@ struct _n_SgCont {
   PetscInt     ndv;          /* Dirichlet values per step (dim per Dirichlet id) */
   PetscReal   *dvsteps;      /* capsteps x ndv: each step's Dirichlet values when they were set (SgProblemSetDirichletValues),
                                 NaN rows for steps without; NULL while none was set */
+  /* friction: the state of this controller's solves, not the problem's (another controller on the same problem has its
+     own): the slip reference of its load step (dim per contact vertex; 0 until its first load step ends), copied into
+     the contact object's working array before each use (SgContUseSlipReference), and the friction summary of its last
+     KKT measures */
+  PetscReal   *yref;
+  SgFrictionSummary fsum;
 };
 
 extern PetscFunctionList SgContList;
@@ -103,6 +109,7 @@ PetscErrorCode SgContStart(SgCont, PetscBool *);
 PetscErrorCode SgContNormalStiffness(SgCont, PetscReal[]);
 PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
 PetscErrorCode SgContMeasure(SgCont);
+PetscErrorCode SgContUseSlipReference(SgCont);
 PetscErrorCode SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);

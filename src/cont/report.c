@@ -118,9 +118,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
     PetscCall(SgSummarySetString(sum, "friction_type", SgFrictionTypes[ct->cv.friction]));
     if (ct->cv.friction) {
-      /* of the last KKT measures (SgContactKKT): lam_T from the tangential residual */
-      SgFrictionSummary fs;
-      PetscCall(SgContactGetFrictionSummary(ct->c, &fs));
+      /* of this controller's last KKT measures (SgContMeasure): lam_T from the tangential residual */
+      const SgFrictionSummary fs = ct->fsum;
       PetscCall(SgSummarySetReal(sum, "friction_bound", ct->cv.fbound));
       PetscCall(SgSummarySetReal(sum, "friction_coefficient", ct->cv.fcoef));
       PetscCall(SgSummarySetReal(sum, "friction_gamma_factor", ct->cv.fgfac));
@@ -308,6 +307,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   PetscBool loadsteps;
 
   PetscFunctionBeginUser;
+  PetscCall(SgContUseSlipReference(ct)); /* the slip of this controller's step, whoever solved the problem last */
   PetscCall(FieldsCreate(ct, &nv, vf, cf));
   PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;

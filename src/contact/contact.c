@@ -746,6 +746,22 @@ PetscErrorCode SgContactGapSum(SgContact c, PetscReal t, PetscReal *sum)
   PetscFunctionReturn(0);
 }
 
+/* the gaps d_i of this rank's contact vertices with the obstacle at a placement t (PETSC_MAX_REAL where a ray misses
+   it); the obstacle stays where it is */
+PetscErrorCode SgContactGapsAt(SgContact c, PetscReal t, PetscReal d[])
+{
+  const PetscReal now = c->obs->placement;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleSetPlacement(c->obs, t));
+  for (PetscInt i = 0; i < c->n; i++) {
+    if (t == now) d[i] = c->d[i];
+    else PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &d[i]));
+  }
+  PetscCall(SgObstacleSetPlacement(c->obs, now));
+  PetscFunctionReturn(0);
+}
+
 /* the largest normal displacement n_i . y_i over the contact vertices (towards the obstacle: positive) */
 PetscErrorCode SgContactNormalDisplacementMax(SgContact c, Vec y, PetscReal *mx)
 {

@@ -951,6 +951,17 @@ PetscErrorCode SgElasticityGetLoadFactor(SgElasticity p, PetscReal *t)
   PetscFunctionReturn(0);
 }
 
+/* The data of the problem as given (factor 1), whatever the factor and the Dirichlet values set now: the load before
+   the Dirichlet lifting (a local vector holding this rank's cells' and facets' part: summed over the ranks it is the
+   whole load) and the Dirichlet values (local: at the constrained components, 0 elsewhere). Borrowed. */
+PetscErrorCode SgElasticityGetFullData(SgElasticity p, Vec *f, Vec *ubc)
+{
+  PetscFunctionBeginUser;
+  if (f) *f = p->fpart1 ? p->fpart1 : p->fpart;
+  if (ubc) *ubc = p->ubc1 ? p->ubc1 : p->ubc;
+  PetscFunctionReturn(0);
+}
+
 /* ||b||_2, ||b||_inf and the energy shift of the full load (factor 1), whatever the factor now */
 PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity p, PetscReal *bnorm, PetscReal *bnorm_inf, PetscReal *shift)
 {
