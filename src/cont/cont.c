@@ -170,6 +170,8 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   ValidCont(ct, 1);
   p = ct->problem_obj;
   PetscCheck(!ct->setfromoptions_called, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: called twice");
+  PetscCheck(!ct->setup_failed, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: an earlier call (or SgContSetUp) stopped with an error; destroy the controller and make a new one");
+  ct->setup_failed = PETSC_TRUE; /* until the end is reached */
   PetscCall(SgProblemSetUp(p));
   PetscCall(SgProblemGetElasticity(p, &ct->prob));
   PetscCall(SgProblemGetContact(p, &ct->c));
@@ -216,6 +218,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
+  ct->setup_failed          = PETSC_FALSE;
   ct->setfromoptions_called = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -229,7 +232,9 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscFunctionBeginUser;
   ValidCont(ct, 1);
   if (ct->setup) PetscFunctionReturn(0);
+  PetscCheck(!ct->setup_failed, ct->comm, PETSC_ERR_ORDER, "SgContSetUp: an earlier call (or SgContSetFromOptions) stopped with an error; destroy the controller and make a new one");
   if (!ct->setfromoptions_called) PetscCall(SgContSetFromOptions(ct));
+  ct->setup_failed = PETSC_TRUE;
   PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
@@ -239,7 +244,8 @@ PetscErrorCode SgContSetUp(SgCont ct)
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
     PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
   }
-  ct->setup = PETSC_TRUE;
+  ct->setup_failed = PETSC_FALSE;
+  ct->setup        = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 

@@ -71,6 +71,7 @@ struct _n_SgCont {
   PetscInt     ngammas, capgammas;
   PetscReal   *gammas;       /* gamma of every outer step */
   PetscBool    setfromoptions_called, setup, solved;
+  PetscBool    setup_failed; /* SgContSetFromOptions or SgContSetUp stopped with an error: not used again */
   PetscBool    converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
   char         reason[512];
   const char  *problem;      /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */

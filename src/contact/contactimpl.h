@@ -62,6 +62,7 @@ struct _n_SgProblem {
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
   PetscBool            setfromoptions, setup;
+  PetscBool            setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
   PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble       t_create;
   PetscInt             values_dim[3]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */

@@ -51,12 +51,18 @@ static PetscErrorCode CheckDM(DM dm, const char fn[], int arg)
    without overlap; its labels name the boundary parts (SgProblemSetBoundary or -dirichlet_label, ...). */
 PetscErrorCode SgProblemCreateFromDM(DM dm, SgProblem *prob)
 {
+  SgProblem      p;
+  PetscErrorCode ierr;
+
   PetscFunctionBeginUser;
   SgValidPointer(prob, 2);
   *prob = NULL;
   PetscCall(CheckDM(dm, PETSC_FUNCTION_NAME, 1));
-  PetscCall(SgProblemCreate(PetscObjectComm((PetscObject)dm), prob));
-  PetscCall(SgProblemSetDM(*prob, dm));
+  PetscCall(SgProblemCreate(PetscObjectComm((PetscObject)dm), &p));
+  ierr = SgProblemSetDM(p, dm);
+  if (ierr) PetscCall(SgProblemDestroy(&p)); /* nothing half-made is handed out */
+  PetscCall(ierr);
+  *prob = p;
   PetscFunctionReturn(0);
 }
 
@@ -269,10 +275,13 @@ PetscErrorCode SgProblemSetUp(SgProblem p)
   PetscFunctionBeginUser;
   ValidProblem(p, 1);
   if (p->setup) PetscFunctionReturn(0);
+  PetscCheck(!p->setup_failed, p->comm, PETSC_ERR_ORDER, "SgProblemSetUp: an earlier call stopped with an error; destroy the problem and make a new one");
   if (!p->setfromoptions) PetscCall(SgProblemSetFromOptions(p));
+  p->setup_failed = PETSC_TRUE; /* until the end is reached */
   PetscCall(SgElasticitySetUp(p->el));
   if (p->c) PetscCall(SgContactSetUp(p->c));
-  p->setup = PETSC_TRUE;
+  p->setup_failed = PETSC_FALSE;
+  p->setup        = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
