@@ -277,6 +277,18 @@ static PetscErrorCode CasesProblem(void)
   WRONG(SgProblemSetFromOptions(p), PETSC_ERR_USER_INPUT, "triangles");
   PetscCall(SgProblemDestroy(&p));
 
+  /* an empty DMPlex (no mesh in it): refused when the options are read */
+  {
+    DM empty;
+    PetscCall(DMCreate(PETSC_COMM_WORLD, &empty));
+    PetscCall(DMSetType(empty, DMPLEX));
+    RIGHT(SgProblemCreateFromDM(empty, &p));
+    PetscCall(DMDestroy(&empty));
+    WRONG(SgProblemSetFromOptions(p), PETSC_ERR_USER_INPUT, "dimension");
+    WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "dimension");
+    PetscCall(SgProblemDestroy(&p));
+  }
+
   /* values given before the mesh exists are read with -box_dim's dimension (2 here): a 3D box is then refused */
   PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &p));
   PetscCall(SgProblemSetOptionsPrefix(p, "d3_"));
@@ -645,6 +657,14 @@ static PetscErrorCode CasesDMCopy(PetscReal res[6])
         PetscCall(DMLabelSetValue(sides, f, 3));
       }
     }
+  }
+  { /* a DM on more ranks than the problem's communicator */
+    PetscMPIInt size;
+    SgProblem   pS;
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    PetscCall(SgProblemCreate(PETSC_COMM_SELF, &pS));
+    if (size > 1) WRONG(SgProblemSetDM(pS, dmB), PETSC_ERR_ARG_NOTSAMECOMM, "communicator");
+    PetscCall(SgProblemDestroy(&pS));
   }
   PetscCall(SgProblemCreateFromDM(dmB, &pB)); /* the untouched mesh */
   PetscCall(SgProblemCreateFromDM(dmA, &pC)); /* the changed one */

@@ -107,6 +107,11 @@ PetscErrorCode SgProblemSetDM(SgProblem p, DM dm)
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetDM"));
   PetscCall(CheckDM(dm, "SgProblemSetDM", 2));
+  {
+    PetscMPIInt cmp;
+    PetscCallMPI(MPI_Comm_compare(p->comm, PetscObjectComm((PetscObject)dm), &cmp));
+    PetscCheck(cmp == MPI_IDENT || cmp == MPI_CONGRUENT, PETSC_COMM_SELF, PETSC_ERR_ARG_NOTSAMECOMM, "SgProblemSetDM: the DM lives on another communicator than the problem (SgProblemCreate's)");
+  }
   PetscCall(CopyDM(dm, &copy));
   PetscCall(DMDestroy(&p->dm));
   p->dm = copy;
