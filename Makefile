@@ -59,7 +59,7 @@ $(TARGETS):
 	@scripts/install-deps.sh
 	@$(MAKE) --no-print-directory $@
 else
-all: $(LIBA) $(LIBSO) bin/signorini bin/unit_tests $(MESHES)
+all: $(LIBA) $(LIBSO) bin/signorini bin/unit_tests bin/misuse_tests $(MESHES)
 
 run: all
 	@scripts/install-deps.sh
@@ -162,6 +162,8 @@ build/app/%.o: app/%.c
 	$(CC) $(CFLAGS) -c $< -o $@
 build/unit_tests.o: tests/unit_tests.c | build
 	$(CC) $(CFLAGS) -c $< -o $@
+build/misuse.o: tests/misuse.c | build
+	$(CC) $(CFLAGS) -c $< -o $@
 $(LIBA): $(LIBOBJ) | lib
 	rm -f $@
 	$(AR) rcs $@ $^
@@ -177,6 +179,9 @@ $(LIBSO): $(LIBSOV)
 bin/signorini: build/app/signorini.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
 bin/unit_tests: build/unit_tests.o $(LIBA) | bin
+	$(CC) -o $@ $^ $(LDLIBS)
+# the public functions called wrongly (tests/reliability3_library.ini)
+bin/misuse_tests: build/misuse.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
 build bin lib:
 	mkdir -p $@

@@ -49,11 +49,11 @@ typedef enum {
 
 PetscErrorCode SgProblemCreate(MPI_Comm, SgProblem *); /* an empty problem on the communicator */
 PetscErrorCode SgProblemCreateFromDM(DM, SgProblem *); /* a problem on the caller's DMPlex (SgProblemCreate + SgProblemSetDM) */
-PetscErrorCode SgProblemSetDM(SgProblem, DM); /* use the caller's mesh (triangles/tetrahedra, no overlap; it is cloned, not changed) */
+PetscErrorCode SgProblemSetDM(SgProblem, DM); /* use the caller's mesh (a DMPLEX of triangles/tetrahedra, no overlap; it is copied, coordinates and labels, so later changes to the caller's DM do not reach the problem, and it is not changed) */
 PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]); /* prefix of the problem's options (-<prefix>E, -<prefix>contact_ids, ...) */
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem, const char *[]);
 PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal); /* Young's modulus E and Poisson's ratio nu (defaults of -E, -nu) */
-PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL) */
+PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL; before SgProblemSetDM the dimension is -box_dim's, 2 with a mesh file: call SgProblemSetDM first for a 3D file) */
 /* Components fixed by the Dirichlet part (rollers, symmetry planes): one bit mask per id of SgProblemSetBoundary (one
    if it gave no ids), SG_COMPONENT_X | SG_COMPONENT_Y ...; the values of the free components are ignored. Without this
    call (or -dirichlet_components) every component is fixed. Call after SgProblemSetBoundary(SG_BOUNDARY_DIRICHLET). */
@@ -65,7 +65,8 @@ PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, para
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */
 PetscErrorCode SgProblemView(SgProblem, PetscViewer); /* ASCII description (NULL: stdout) */
-PetscErrorCode SgProblemDestroy(SgProblem *);
+PetscErrorCode SgProblemReference(SgProblem); /* one more holder (SgContCreate takes one): SgProblemDestroy frees the problem when the last one lets it go */
+PetscErrorCode SgProblemDestroy(SgProblem *); /* lets the handle go (sets it to NULL; NULL: nothing to do); a controller of the problem keeps it alive */
 PetscErrorCode SgProblemGetDM(SgProblem, DM *); /* the displacement DM (global vectors: the free dofs) */
 PetscErrorCode SgProblemGetDimension(SgProblem, PetscInt *); /* 2 or 3 */
 PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *); /* unknowns, cells, contact vertices (global) */
@@ -93,7 +94,7 @@ typedef struct {
   PetscInt  nactive;
 } SgKKT;
 
-PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem (unless a type is set, SgContSetFromOptions picks the default for the problem: fast in 3D and with iterative solves, ipf in 2D with exact ones, none without contact) */
+PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem, which it holds (SgProblemReference) until SgContDestroy (unless a type is set, SgContSetFromOptions picks the default for the problem: fast in 3D and with iterative solves, ipf in 2D with exact ones, none without contact) */
 PetscErrorCode SgContSetType(SgCont, const char[]); /* SGCONTIPF, ... (default of -cont_type) */
 PetscErrorCode SgContGetType(SgCont, const char *[]); /* the type (empty before SgContSetFromOptions if none was set) */
 PetscErrorCode SgContSetOptionsPrefix(SgCont, const char[]); /* prefix of the solver's options (-<prefix>cont_type, -<prefix>ksp_type, ...) */

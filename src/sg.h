@@ -13,6 +13,14 @@
 /* ------------------------------------------------------------------ core: init.c, options.c */
 extern PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
 PetscErrorCode SgLogEventsRegister(void);
+/* Argument checks of the public functions. PETSc's PetscValid* macros compile to nothing in an optimized PETSc (as
+   Debian's is), so these do the same checks always: a NULL or wrong argument is an error naming the function and the
+   argument, never a segmentation fault. */
+#define SgValidPointer(ptr, arg) PetscCheck((ptr) != NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (" #ptr ") is NULL", PETSC_FUNCTION_NAME, (int)(arg))
+PetscErrorCode SgValidObject(PetscObject, PetscClassId, const char[], const char[], int);
+#define SgValidHeaderSpecific(obj, classid, cname, arg) PetscCall(SgValidObject((PetscObject)(obj), classid, cname, PETSC_FUNCTION_NAME, (int)(arg)))
+PetscErrorCode SgValidProblem(SgProblem, const char[], int);
+PetscErrorCode SgValidCont(SgCont, const char[], int);
 
 /* ------------------------------------------------------------------ fem: mesh.c, gmshcheck.c, elasticity.c */
 /* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty

@@ -43,19 +43,41 @@ PetscErrorCode SgInitializePackage(void)
 PetscErrorCode SgContRegister(const char name[], PetscErrorCode (*create)(SgCont))
 {
   PetscFunctionBeginUser;
+  PetscCheck(name && name[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgContRegister: a type name is needed");
+  SgValidPointer(create, 2);
+  {
+    size_t len;
+    PetscCall(PetscStrlen(name, &len));
+    PetscCheck(len < sizeof(((SgCont)0)->type), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgContRegister: the type name has %zu characters, at most %zu", len, sizeof(((SgCont)0)->type) - 1);
+  }
   PetscCall(SgContRegisterAll());
   PetscCall(PetscFunctionListAdd(&SgContList, name, create));
   PetscFunctionReturn(0);
 }
 
+/* arg-th argument of fn must be a live SgCont (not NULL, not destroyed) */
+PetscErrorCode SgValidCont(SgCont ct, const char fn[], int arg)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(ct, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (the SgCont) is NULL", fn, arg);
+  PetscCheck(ct->cookie == SG_CONT_COOKIE, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d is not an SgCont (destroyed, or never created by SgContCreate)", fn, arg);
+  PetscFunctionReturn(0);
+}
+
+/* The controller holds the problem (SgProblemReference) until SgContDestroy: the caller may destroy its handle. */
 PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 {
   SgCont ct;
 
   PetscFunctionBeginUser;
+  SgValidPointer(cont, 2);
+  *cont = NULL;
+  PetscCall(SgValidProblem(prob, "SgContCreate", 1));
   PetscCall(SgInitializePackage());
   PetscCall(PetscNew(&ct));
+  ct->cookie = SG_CONT_COOKIE;
   PetscCall(SgProblemGetComm(prob, &ct->comm));
+  PetscCall(SgProblemReference(prob));
   ct->problem_obj = prob;
   ct->kkt_tol     = 1e-10;
   ct->max_outer   = 50;
@@ -74,6 +96,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 static PetscErrorCode CheckNotSetUp(SgCont ct, const char fn[])
 {
   PetscFunctionBeginUser;
+  PetscCall(SgValidCont(ct, fn, 1));
   PetscCheck(!ct->setfromoptions_called && !ct->setup, ct->comm, PETSC_ERR_ORDER, "%s: call it before SgContSetFromOptions/SgContSetUp", fn);
   PetscFunctionReturn(0);
 }
@@ -82,6 +105,13 @@ PetscErrorCode SgContSetType(SgCont ct, const char type[])
 {
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(ct, "SgContSetType"));
+  PetscCheck(type && type[0], ct->comm, PETSC_ERR_ARG_NULL, "SgContSetType: a type name is needed");
+  PetscCall(SgContRegisterAll());
+  {
+    PetscErrorCode (*create)(SgCont) = NULL;
+    PetscCall(PetscFunctionListFind(SgContList, type, &create));
+    PetscCheck(create, ct->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "SgContSetType: unknown controller '%s' (none, alm, pf, ipf, fast, pdas, vi, or one of SgContRegister)", type);
+  }
   PetscCall(PetscStrncpy(ct->type, type, sizeof(ct->type)));
   PetscFunctionReturn(0);
 }
@@ -89,6 +119,8 @@ PetscErrorCode SgContSetType(SgCont ct, const char type[])
 PetscErrorCode SgContGetType(SgCont ct, const char *type[])
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(type, 2);
   *type = ct->type;
   PetscFunctionReturn(0);
 }
@@ -106,6 +138,8 @@ PetscErrorCode SgContSetOptionsPrefix(SgCont ct, const char prefix[])
 PetscErrorCode SgContGetOptionsPrefix(SgCont ct, const char *prefix[])
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(prefix, 2);
   *prefix = ct->prefix;
   PetscFunctionReturn(0);
 }
@@ -116,6 +150,8 @@ PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it
 {
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(ct, "SgContSetTolerances"));
+  PetscCheck(kkt_tol == (PetscReal)PETSC_DEFAULT || (PetscIsNormalReal(kkt_tol) && kkt_tol > 0), ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetTolerances: the KKT tolerance must be positive and finite (or PETSC_DEFAULT), got %g", (double)kkt_tol);
+  PetscCheck(max_it == PETSC_DEFAULT || max_it > 0, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetTolerances: the outer-step limit must be positive (or PETSC_DEFAULT), got %" PetscInt_FMT, max_it);
   if (kkt_tol != (PetscReal)PETSC_DEFAULT) ct->kkt_tol = kkt_tol;
   if (max_it != PETSC_DEFAULT) ct->max_outer = max_it;
   PetscFunctionReturn(0);
@@ -126,12 +162,16 @@ PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it
 PetscErrorCode SgContSetFromOptions(SgCont ct)
 {
   PetscErrorCode (*create)(SgCont) = NULL;
-  SgProblem p = ct->problem_obj;
+  SgProblem p;
   PetscBool solver_default, iterative;
   PetscInt  dim;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  p = ct->problem_obj;
   PetscCheck(!ct->setfromoptions_called, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: called twice");
+  PetscCheck(!ct->setup_failed, ct->comm, PETSC_ERR_ORDER, "SgContSetFromOptions: an earlier call (or SgContSetUp) stopped with an error; destroy the controller and make a new one");
+  ct->setup_failed = PETSC_TRUE; /* until the end is reached */
   PetscCall(SgProblemSetUp(p));
   PetscCall(SgProblemGetElasticity(p, &ct->prob));
   PetscCall(SgProblemGetContact(p, &ct->c));
@@ -178,6 +218,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
+  ct->setup_failed          = PETSC_FALSE;
   ct->setfromoptions_called = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -189,8 +230,11 @@ PetscErrorCode SgContSetUp(SgCont ct)
   DM dm;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   if (ct->setup) PetscFunctionReturn(0);
+  PetscCheck(!ct->setup_failed, ct->comm, PETSC_ERR_ORDER, "SgContSetUp: an earlier call (or SgContSetFromOptions) stopped with an error; destroy the controller and make a new one");
   if (!ct->setfromoptions_called) PetscCall(SgContSetFromOptions(ct));
+  ct->setup_failed = PETSC_TRUE;
   PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
@@ -205,16 +249,22 @@ PetscErrorCode SgContSetUp(SgCont ct)
     PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
     PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
   }
-  ct->setup = PETSC_TRUE;
+  ct->setup_failed = PETSC_FALSE;
+  ct->setup        = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgContDestroy(SgCont *cont)
 {
-  SgCont ct = *cont;
+  SgCont ct;
 
   PetscFunctionBeginUser;
+  SgValidPointer(cont, 1);
+  ct = *cont;
   if (!ct) PetscFunctionReturn(0);
+  ValidCont(ct, 1);
+  *cont = NULL;
+  ct->cookie = 0;
   if (ct->ops.destroy) PetscCall(ct->ops.destroy(ct)); /* what the controller's data holds */
   PetscCall(PetscFree(ct->data));
   PetscCall(SgSSNDestroy(&ct->ssn));
@@ -236,7 +286,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree(ct->dvsteps));
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
-  PetscCall(PetscFree(*cont));
+  PetscCall(SgProblemDestroy(&ct->problem_obj)); /* the controller's hold on it: freed if the caller let it go */
+  PetscCall(PetscFree(ct));
   PetscFunctionReturn(0);
 }
 
@@ -823,6 +874,7 @@ PetscErrorCode SgContSolve(SgCont ct)
   PetscBool loadsteps;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   PetscCall(SgContSetUp(ct));
   PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
   PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
@@ -870,6 +922,8 @@ PetscErrorCode SgContSolve(SgCont ct)
 PetscErrorCode SgContGetLoadSteps(SgCont ct, PetscInt *n)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(n, 2);
   PetscCall(SgContCheckpointRead(ct));
   *n = ct->nsteps;
   PetscFunctionReturn(0);
@@ -878,6 +932,8 @@ PetscErrorCode SgContGetLoadSteps(SgCont ct, PetscInt *n)
 PetscErrorCode SgContGetLoadStepFactor(SgCont ct, PetscInt k, PetscReal *t)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(t, 3);
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepFactor: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
   *t = ct->steps[k].t;
@@ -889,6 +945,8 @@ PetscErrorCode SgContGetLoadStepFactor(SgCont ct, PetscInt k, PetscReal *t)
 PetscErrorCode SgContGetLoadStepDirichletValues(SgCont ct, PetscInt k, PetscBool *set, PetscReal values[])
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(set, 3);
   PetscCall(SgContCheckpointRead(ct));
   PetscCheck(k >= 0 && k < ct->nsteps, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContGetLoadStepDirichletValues: load step %" PetscInt_FMT " of %" PetscInt_FMT " solved", k, ct->nsteps);
   *set = (PetscBool)(ct->dvsteps && !PetscIsNanReal(ct->dvsteps[k * ct->ndv]));
@@ -899,6 +957,10 @@ PetscErrorCode SgContGetLoadStepDirichletValues(SgCont ct, PetscInt k, PetscBool
 PetscErrorCode SgContSetStoreSteps(SgCont ct, PetscBool store)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  PetscCheck(store == PETSC_TRUE || store == PETSC_FALSE, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetStoreSteps: %d is neither PETSC_TRUE nor PETSC_FALSE", (int)store);
+  /* the fields of every step need every step's solution: steps solved before would have none */
+  PetscCheck(!ct->nsteps || store == ct->store_steps, ct->comm, PETSC_ERR_ORDER, "SgContSetStoreSteps: call it before the first SgContSolve (%" PetscInt_FMT " load steps are solved)", ct->nsteps);
   ct->store_steps = store;
   PetscFunctionReturn(0);
 }
@@ -913,6 +975,8 @@ const char *SgContVerdict(SgCont ct)
 PetscErrorCode SgContGetSolution(SgCont ct, Vec *y)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(y, 2);
   PetscCheck(ct->setup, ct->comm, PETSC_ERR_ORDER, "SgContGetSolution: call SgContSetUp or SgContSolve first");
   *y = ct->y;
   PetscFunctionReturn(0);
@@ -923,6 +987,7 @@ PetscErrorCode SgContGetSolution(SgCont ct, Vec *y)
 PetscErrorCode SgContGetConvergedReason(SgCont ct, PetscBool *converged, const char *reason[])
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   if (converged) *converged = ct->converged;
   if (reason) *reason = ct->reason;
   PetscFunctionReturn(0);
@@ -931,6 +996,7 @@ PetscErrorCode SgContGetConvergedReason(SgCont ct, PetscBool *converged, const c
 PetscErrorCode SgContGetIterationNumbers(SgCont ct, PetscInt *outer, PetscInt *ssn, PetscInt *ksp)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   if (outer) *outer = ct->outer;
   if (ssn) *ssn = ct->ssn_its;
   if (ksp) *ksp = ct->ksp_its;
@@ -941,6 +1007,9 @@ PetscErrorCode SgContGetIterationNumbers(SgCont ct, PetscInt *outer, PetscInt *s
 PetscErrorCode SgContGetKKT(SgCont ct, SgKKT *kkt)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(kkt, 2);
+  PetscCheck(ct->solved, ct->comm, PETSC_ERR_ORDER, "SgContGetKKT: call SgContSolve first");
   PetscCheck(ct->c, ct->comm, PETSC_ERR_ARG_WRONGSTATE, "SgContGetKKT: the problem has no contact boundary");
   *kkt = ct->kkt;
   PetscFunctionReturn(0);
@@ -949,6 +1018,8 @@ PetscErrorCode SgContGetKKT(SgCont ct, SgKKT *kkt)
 PetscErrorCode SgContGetEnergy(SgCont ct, PetscReal *V)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(V, 2);
   *V = ct->V;
   PetscFunctionReturn(0);
 }
@@ -957,6 +1028,8 @@ PetscErrorCode SgContGetEnergy(SgCont ct, PetscReal *V)
 PetscErrorCode SgContGetSNES(SgCont ct, SNES *snes)
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  SgValidPointer(snes, 2);
   PetscCall(SgContSetUp(ct));
   *snes = NULL;
   if (ct->ssn) PetscCall(SgSSNGetSNES(ct->ssn, snes));

@@ -37,7 +37,10 @@ typedef struct {
   const char *state_names[SG_STATE_MAX];
 } SgContOps;
 
+#define SG_CONT_COOKIE 0x53434f4eL /* marks a live SgCont (cleared when it is freed) */
+
 struct _n_SgCont {
+  long         cookie;       /* SG_CONT_COOKIE */
   MPI_Comm     comm;
   char         type[64];     /* empty until set: then the default for the problem (SgContSetFromOptions) */
   char        *prefix;
@@ -68,6 +71,7 @@ struct _n_SgCont {
   PetscInt     ngammas, capgammas;
   PetscReal   *gammas;       /* gamma of every outer step */
   PetscBool    setfromoptions_called, setup, solved;
+  PetscBool    setup_failed; /* SgContSetFromOptions or SgContSetUp stopped with an error: not used again */
   PetscBool    converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
   char         reason[512];
   const char  *problem;      /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */
@@ -120,6 +124,7 @@ PetscErrorCode SgContCheckpointRead(SgCont);
 const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);
+#define ValidCont(ct, arg) PetscCall(SgValidCont(ct, PETSC_FUNCTION_NAME, arg))
 PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);

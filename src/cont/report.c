@@ -186,6 +186,7 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 PetscErrorCode SgContWriteSummary(SgCont ct, const char file[])
 {
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   PetscCheck(ct->solved, ct->comm, PETSC_ERR_ORDER, "SgContWriteSummary: call SgContSolve first");
   PetscCall(SummaryFill(ct, ct->sum));
   PetscCall(SgSummaryWrite(ct->comm, ct->sum, "-summary_file", file ? file : ""));
@@ -212,6 +213,7 @@ PetscErrorCode SgContWriteHistory(SgCont ct, const char file[])
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   ierr = SgHistoryWrite(ct->comm, ct->hist, "-history_file", file ? file : "");
   PetscCall(NoteError(ct, "history_error", ierr));
   PetscCall(ierr);
@@ -369,6 +371,7 @@ PetscErrorCode SgContWriteLoadCurve(SgCont ct, const char file[])
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
   if (!file || !file[0]) PetscFunctionReturn(0);
   PetscCall(SgFileOpen(ct->comm, "-load_curve_file", file, &fp));
   if (fp) {
@@ -446,6 +449,8 @@ PetscErrorCode SgContWriteFields(SgCont ct, const char file[], PetscReal magnifi
   PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  PetscCheck(PetscIsNormalReal(magnification) || magnification == 0, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContWriteFields: the magnification must be finite, got %g", (double)magnification);
   PetscCheck(ct->solved, ct->comm, PETSC_ERR_ORDER, "SgContWriteFields: call SgContSolve first");
   if (!ct->converged || !file || !file[0]) PetscFunctionReturn(0);
   ierr = WriteFields(ct, file, magnification);
@@ -460,6 +465,8 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
   PetscBool isascii;
 
   PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  if (viewer) SgValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, "PetscViewer", 2);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(ct->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);

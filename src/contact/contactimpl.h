@@ -48,7 +48,11 @@ struct _n_SgContact {
                                 tangential law acts on the slip increment T_i (y_i - yref_i) */
 };
 
+#define SG_PROBLEM_COOKIE 0x5350524fL /* marks a live SgProblem (cleared when it is freed) */
+
 struct _n_SgProblem {
+  long                 cookie;      /* SG_PROBLEM_COOKIE */
+  PetscInt             refct;       /* the caller's handle and each controller's (SgProblemReference) */
   MPI_Comm             comm;
   char                *prefix;
   DM                   dm;          /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
@@ -58,6 +62,8 @@ struct _n_SgProblem {
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
   PetscBool            setfromoptions, setup;
+  PetscBool            setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
   PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble       t_create;
+  PetscInt             values_dim[3]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
 };

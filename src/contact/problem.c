@@ -3,17 +3,47 @@
    may be given through the interface, and the options (under the problem's prefix) override them. */
 #include "contact/contactimpl.h"
 
+/* arg-th argument of fn must be a live SgProblem (not NULL, not destroyed) */
+PetscErrorCode SgValidProblem(SgProblem p, const char fn[], int arg)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(p, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (the SgProblem) is NULL", fn, arg);
+  PetscCheck(p->cookie == SG_PROBLEM_COOKIE, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d is not an SgProblem (destroyed, or never created by SgProblemCreate)", fn, arg);
+  PetscFunctionReturn(0);
+}
+
+#define ValidProblem(p, arg) PetscCall(SgValidProblem(p, PETSC_FUNCTION_NAME, arg))
+
 PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
 {
   SgProblem p;
 
   PetscFunctionBeginUser;
+  SgValidPointer(prob, 2);
+  *prob = NULL;
+  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgProblemCreate: the communicator is MPI_COMM_NULL");
   PetscCall(SgLogEventsRegister());
   PetscCall(SgObstacleRegisterAll());
   PetscCall(PetscNew(&p));
-  p->comm = comm;
+  p->cookie = SG_PROBLEM_COOKIE;
+  p->refct  = 1;
+  p->comm   = comm;
   PetscCall(PetscTime(&p->t_create));
   *prob = p;
+  PetscFunctionReturn(0);
+}
+
+/* the caller's mesh must be a DMPlex (DMPlex functions on another DM type read the wrong struct) */
+static PetscErrorCode CheckDM(DM dm, const char fn[], int arg)
+{
+  PetscBool isplex;
+  DMType    type;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgValidObject((PetscObject)dm, DM_CLASSID, "DM", fn, arg));
+  PetscCall(PetscObjectTypeCompare((PetscObject)dm, DMPLEX, &isplex));
+  PetscCall(DMGetType(dm, &type));
+  PetscCheck(isplex, PetscObjectComm((PetscObject)dm), PETSC_ERR_ARG_WRONG, "%s: the DM is of type %s; the library needs a DMPLEX of triangles or tetrahedra", fn, type ? type : "(not set)");
   PetscFunctionReturn(0);
 }
 
@@ -21,26 +51,70 @@ PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
    without overlap; its labels name the boundary parts (SgProblemSetBoundary or -dirichlet_label, ...). */
 PetscErrorCode SgProblemCreateFromDM(DM dm, SgProblem *prob)
 {
+  SgProblem      p;
+  PetscErrorCode ierr;
+
   PetscFunctionBeginUser;
-  PetscCall(SgProblemCreate(PetscObjectComm((PetscObject)dm), prob));
-  PetscCall(SgProblemSetDM(*prob, dm));
+  SgValidPointer(prob, 2);
+  *prob = NULL;
+  PetscCall(CheckDM(dm, PETSC_FUNCTION_NAME, 1));
+  PetscCall(SgProblemCreate(PetscObjectComm((PetscObject)dm), &p));
+  ierr = SgProblemSetDM(p, dm);
+  if (ierr) PetscCall(SgProblemDestroy(&p)); /* nothing half-made is handed out */
+  PetscCall(ierr);
+  *prob = p;
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode CheckNotSetUp(SgProblem p, const char fn[])
 {
   PetscFunctionBeginUser;
+  PetscCall(SgValidProblem(p, fn, 1));
   PetscCheck(!p->setfromoptions && !p->setup, p->comm, PETSC_ERR_ORDER, "%s: call it before SgProblemSetFromOptions/SgProblemSetUp", fn);
+  PetscFunctionReturn(0);
+}
+
+/* Our own copy of the caller's mesh, so that the caller's later changes to its DM do not reach the problem. DMClone
+   shares the topology (which PETSc never changes after setup) and copies the labels' values, but (PETSc 3.18) it
+   shares the local coordinate vector: a caller moving its vertices would move ours. The coordinates are copied. */
+static PetscErrorCode CopyDM(DM dm, DM *copy)
+{
+  Vec x, xc;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMClone(dm, copy));
+  PetscCall(DMGetCoordinatesLocal(dm, &x));
+  if (x) {
+    PetscCall(VecDuplicate(x, &xc));
+    PetscCall(VecCopy(x, xc));
+    PetscCall(DMSetCoordinatesLocal(*copy, xc));
+    PetscCall(VecDestroy(&xc));
+  }
+  PetscCall(DMGetCellCoordinatesLocal(dm, &x)); /* periodic meshes' cell coordinates: shared the same way */
+  if (x) {
+    PetscCall(VecDuplicate(x, &xc));
+    PetscCall(VecCopy(x, xc));
+    PetscCall(DMSetCellCoordinatesLocal(*copy, xc));
+    PetscCall(VecDestroy(&xc));
+  }
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgProblemSetDM(SgProblem p, DM dm)
 {
+  DM copy;
+
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetDM"));
-  PetscCall(PetscObjectReference((PetscObject)dm));
+  PetscCall(CheckDM(dm, "SgProblemSetDM", 2));
+  {
+    PetscMPIInt cmp;
+    PetscCallMPI(MPI_Comm_compare(p->comm, PetscObjectComm((PetscObject)dm), &cmp));
+    PetscCheck(cmp == MPI_IDENT || cmp == MPI_CONGRUENT, PETSC_COMM_SELF, PETSC_ERR_ARG_NOTSAMECOMM, "SgProblemSetDM: the DM lives on another communicator than the problem (SgProblemCreate's)");
+  }
+  PetscCall(CopyDM(dm, &copy));
   PetscCall(DMDestroy(&p->dm));
-  p->dm = dm;
+  p->dm = copy;
   PetscFunctionReturn(0);
 }
 
@@ -57,6 +131,8 @@ PetscErrorCode SgProblemSetOptionsPrefix(SgProblem p, const char prefix[])
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem p, const char *prefix[])
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  SgValidPointer(prefix, 2);
   *prefix = p->prefix;
   PetscFunctionReturn(0);
 }
@@ -66,6 +142,9 @@ PetscErrorCode SgProblemSetMaterial(SgProblem p, PetscReal E, PetscReal nu)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetMaterial"));
+  /* the ranges of -E and -nu */
+  PetscCheck(PetscIsNormalReal(E) && E > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterial: Young's modulus must be positive and finite, got %g", (double)E);
+  PetscCheck(!PetscIsInfOrNanReal(nu) && nu >= 0 && nu < 0.5, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterial: Poisson's ratio must lie in [0, 0.5), got %g", (double)nu);
   p->settings.material_set = PETSC_TRUE;
   p->settings.E            = E;
   p->settings.nu           = nu;
@@ -74,17 +153,62 @@ PetscErrorCode SgProblemSetMaterial(SgProblem p, PetscReal E, PetscReal nu)
 
 /* A boundary part: the points of the label `label` with the values ids[0..n-1] (n = 0: every value); values holds dim
    numbers per id (per part if n = 0) for Dirichlet and Neumann parts, NULL for zero data and for the contact part. */
+/* The dimension of the values SgProblemSetBoundary reads (dim per id) before the mesh is made: the caller's DM's, else
+   the options' box's (-box_dim, 2 unless given). A mesh file's is not known before the file is read: 2, the smallest,
+   so that no value past the caller's array is read; a 3D mesh then makes SgProblemSetFromOptions fail, saying so. */
+static PetscErrorCode ValuesDimension(SgProblem p, PetscInt *dim)
+{
+  PetscBool file, set;
+  PetscInt  d = 2;
+
+  PetscFunctionBeginUser;
+  *dim = 2;
+  if (p->dm) {
+    PetscCall(DMGetDimension(p->dm, dim));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscOptionsHasName(NULL, p->prefix, "-dm_plex_filename", &file));
+  if (file) PetscFunctionReturn(0);
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* a malformed -box_dim is reported when the mesh is made */
+  if (PetscOptionsGetInt(NULL, p->prefix, "-box_dim", &d, &set)) set = PETSC_FALSE;
+  PetscCall(PetscPopErrorHandler());
+  if (set && d == 3) *dim = 3;
+  PetscFunctionReturn(0);
+}
+
+/* After the mesh is made: values read with another dimension than the mesh's (and not replaced by the options) */
+static PetscErrorCode CheckValuesDimension(SgProblem p)
+{
+  const char *opt[2] = {"-dirichlet_values", "-neumann_traction"}, *name[2] = {"Dirichlet", "Neumann"};
+  PetscInt    dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(p->el, &dim));
+  for (PetscInt t = 0; t < 2; t++) {
+    PetscBool set;
+    if (!p->values_dim[t] || p->values_dim[t] == dim) continue;
+    PetscCall(PetscOptionsHasName(NULL, p->prefix, opt[t], &set));
+    PetscCheck(set, p->comm, PETSC_ERR_ARG_INCOMP, "SgProblemSetBoundary: the %s values were read as %" PetscInt_FMT " per id (the mesh did not exist yet), but the mesh is %" PetscInt_FMT "D: call SgProblemSetDM (or give -%sbox_dim %" PetscInt_FMT ") before SgProblemSetBoundary", name[t], p->values_dim[t], dim, p->prefix ? p->prefix : "", dim);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char label[], PetscInt n, const PetscInt ids[], const PetscReal values[])
 {
-  SgBoundary *b = type == SG_BOUNDARY_DIRICHLET ? &p->settings.dirichlet : (type == SG_BOUNDARY_NEUMANN ? &p->settings.neumann : &p->contact);
-  PetscInt    dim = 3, nv;
+  SgBoundary *b;
+  PetscInt    dim, nv;
+  size_t      len;
 
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetBoundary"));
   PetscCheck(type >= SG_BOUNDARY_DIRICHLET && type <= SG_BOUNDARY_CONTACT, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: unknown boundary type %d", (int)type);
+  b = type == SG_BOUNDARY_DIRICHLET ? &p->settings.dirichlet : (type == SG_BOUNDARY_NEUMANN ? &p->settings.neumann : &p->contact);
   PetscCheck(label && label[0], p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetBoundary: a label name is needed");
+  PetscCall(PetscStrlen(label, &len));
+  PetscCheck(len < sizeof(b->label), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetBoundary: the label name has %zu characters, at most %zu are supported", len, sizeof(b->label) - 1);
   PetscCheck(n >= 0 && n <= SG_MAX_IDS, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: %" PetscInt_FMT " ids, at most %d are supported", n, SG_MAX_IDS);
-  if (p->dm) PetscCall(DMGetDimension(p->dm, &dim));
+  PetscCheck(!n || ids, p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetBoundary: %" PetscInt_FMT " ids, but the array of ids is NULL", n);
+  PetscCall(ValuesDimension(p, &dim));
   PetscCheck(type != SG_BOUNDARY_CONTACT || !values, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the contact part takes no values");
   PetscCall(PetscMemzero(b, sizeof(*b)));
   PetscCall(PetscStrncpy(b->label, label, sizeof(b->label)));
@@ -97,6 +221,7 @@ PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char
     b->values[i] = values[i];
   }
   b->nvalues = nv;
+  p->values_dim[type] = nv ? dim : 0;
   PetscFunctionReturn(0);
 }
 
@@ -108,6 +233,7 @@ PetscErrorCode SgProblemSetDirichletComponents(SgProblem p, PetscInt n, const Pe
 
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetDirichletComponents"));
+  PetscCheck(!n || masks, p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetDirichletComponents: %" PetscInt_FMT " masks, but the array is NULL", n);
   PetscCheck(b->active, p->comm, PETSC_ERR_ORDER, "SgProblemSetDirichletComponents: set the Dirichlet part first (SgProblemSetBoundary)");
   PetscCheck(n == PetscMax(b->nids, 1), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetDirichletComponents: %" PetscInt_FMT " masks, need %" PetscInt_FMT " (one per id of the Dirichlet part)", n, PetscMax(b->nids, 1));
   for (PetscInt i = 0; i < n; i++) {
@@ -122,6 +248,11 @@ PetscErrorCode SgProblemSetObstacleType(SgProblem p, const char type[])
 {
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetObstacleType"));
+  if (type) {
+    size_t len;
+    PetscCall(PetscStrlen(type, &len));
+    PetscCheck(len < sizeof(p->obstacle), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetObstacleType: the type name has %zu characters, at most %zu", len, sizeof(p->obstacle) - 1);
+  }
   PetscCall(PetscStrncpy(p->obstacle, type ? type : "", sizeof(p->obstacle)));
   PetscFunctionReturn(0);
 }
@@ -130,9 +261,13 @@ PetscErrorCode SgProblemSetObstacleType(SgProblem p, const char type[])
 PetscErrorCode SgProblemSetFromOptions(SgProblem p)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
   PetscCheck(!p->setfromoptions, p->comm, PETSC_ERR_ORDER, "SgProblemSetFromOptions: called twice");
+  PetscCall(SgContactDestroy(&p->c)); /* of an earlier call that failed */
+  PetscCall(SgElasticityDestroy(&p->el));
   PetscCall(SgElasticityCreate(p->comm, p->prefix, &p->el));
   PetscCall(SgElasticitySetFromOptions(p->el, p->dm, &p->settings));
+  PetscCall(CheckValuesDimension(p));
   PetscCall(SgContactCreate(p->el, p->prefix, p->contact.active ? &p->contact : NULL, p->obstacle, &p->c));
   p->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -143,11 +278,15 @@ PetscErrorCode SgProblemSetFromOptions(SgProblem p)
 PetscErrorCode SgProblemSetUp(SgProblem p)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
   if (p->setup) PetscFunctionReturn(0);
+  PetscCheck(!p->setup_failed, p->comm, PETSC_ERR_ORDER, "SgProblemSetUp: an earlier call stopped with an error; destroy the problem and make a new one");
   if (!p->setfromoptions) PetscCall(SgProblemSetFromOptions(p));
+  p->setup_failed = PETSC_TRUE; /* until the end is reached */
   PetscCall(SgElasticitySetUp(p->el));
   if (p->c) PetscCall(SgContactSetUp(p->c));
-  p->setup = PETSC_TRUE;
+  p->setup_failed = PETSC_FALSE;
+  p->setup        = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -156,6 +295,8 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   PetscBool isascii;
 
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  if (viewer) SgValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, "PetscViewer", 2);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(p->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii || !p->setup) PetscFunctionReturn(0);
@@ -173,23 +314,40 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* One more holder of the problem (a controller): SgProblemDestroy frees it when the last one lets it go. */
+PetscErrorCode SgProblemReference(SgProblem p)
+{
+  PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  p->refct++;
+  PetscFunctionReturn(0);
+}
+
+/* Lets the caller's handle go (*prob = NULL); the problem is freed when no controller holds it any more. */
 PetscErrorCode SgProblemDestroy(SgProblem *prob)
 {
-  SgProblem p = *prob;
+  SgProblem p;
 
   PetscFunctionBeginUser;
+  SgValidPointer(prob, 1);
+  p = *prob;
   if (!p) PetscFunctionReturn(0);
+  ValidProblem(p, 1);
+  *prob = NULL;
+  if (--p->refct > 0) PetscFunctionReturn(0);
+  p->cookie = 0;
   PetscCall(SgContactDestroy(&p->c));
   PetscCall(SgElasticityDestroy(&p->el));
   PetscCall(DMDestroy(&p->dm));
   PetscCall(PetscFree(p->prefix));
-  PetscCall(PetscFree(*prob));
+  PetscCall(PetscFree(p));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode CheckSetUp(SgProblem p, const char fn[])
 {
   PetscFunctionBeginUser;
+  PetscCall(SgValidProblem(p, fn, 1));
   PetscCheck(p->setup, p->comm, PETSC_ERR_ORDER, "%s: call SgProblemSetUp first", fn);
   PetscFunctionReturn(0);
 }
@@ -199,6 +357,7 @@ PetscErrorCode SgProblemGetDM(SgProblem p, DM *dm)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckSetUp(p, "SgProblemGetDM"));
+  SgValidPointer(dm, 2);
   PetscCall(SgElasticityGetDMs(p->el, dm, NULL, NULL, NULL));
   PetscFunctionReturn(0);
 }
@@ -206,6 +365,8 @@ PetscErrorCode SgProblemGetDM(SgProblem p, DM *dm)
 PetscErrorCode SgProblemGetDimension(SgProblem p, PetscInt *dim)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  SgValidPointer(dim, 2);
   PetscCheck(p->el, p->comm, PETSC_ERR_ORDER, "SgProblemGetDimension: call SgProblemSetFromOptions first");
   PetscCall(SgElasticityGetDimension(p->el, dim));
   PetscFunctionReturn(0);
@@ -224,6 +385,8 @@ PetscErrorCode SgProblemGetSizes(SgProblem p, PetscInt *ndofs, PetscInt *ncells,
 PetscErrorCode SgProblemHasContact(SgProblem p, PetscBool *has)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  SgValidPointer(has, 2);
   PetscCheck(p->setfromoptions, p->comm, PETSC_ERR_ORDER, "SgProblemHasContact: call SgProblemSetFromOptions first");
   *has = p->c ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
@@ -235,6 +398,7 @@ PetscErrorCode SgProblemCreateVector(SgProblem p, Vec *y)
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemGetDM(p, &dm));
+  SgValidPointer(y, 2);
   PetscCall(DMCreateGlobalVector(dm, y));
   PetscFunctionReturn(0);
 }
@@ -244,6 +408,21 @@ PetscErrorCode SgProblemComputeEnergy(SgProblem p, Vec y, PetscReal *V)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckSetUp(p, "SgProblemComputeEnergy"));
+  SgValidHeaderSpecific(y, VEC_CLASSID, "Vec", 2);
+  SgValidPointer(V, 3);
+  { /* a displacement of this problem (SgProblemCreateVector): its layout is read as one */
+    DM       dm;
+    PetscInt n, N, ny, Ny;
+    Vec      g;
+    PetscCall(SgProblemGetDM(p, &dm));
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(VecGetSize(g, &N));
+    PetscCall(VecGetLocalSize(g, &n));
+    PetscCall(DMRestoreGlobalVector(dm, &g));
+    PetscCall(VecGetSize(y, &Ny));
+    PetscCall(VecGetLocalSize(y, &ny));
+    PetscCheck(Ny == N && ny == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgProblemComputeEnergy: the vector has %" PetscInt_FMT " entries (%" PetscInt_FMT " here), a displacement of this problem %" PetscInt_FMT " (%" PetscInt_FMT "): use SgProblemCreateVector", Ny, ny, N, n);
+  }
   PetscCall(SgElasticityEnergy(p->el, y, V));
   PetscFunctionReturn(0);
 }
@@ -254,6 +433,7 @@ PetscErrorCode SgProblemComputeEnergy(SgProblem p, Vec y, PetscReal *V)
 PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
   PetscCall(SgProblemSetUp(p));
   PetscCheck(PetscIsNormalReal(t) && t > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetLoadFactor: the factor must be positive and finite, got %g", (double)t);
   PetscCall(SgElasticitySetLoadFactor(p->el, t));
@@ -270,6 +450,7 @@ PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
 PetscErrorCode SgProblemSetDirichletValues(SgProblem p, const PetscReal values[])
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
   PetscCall(SgProblemSetUp(p));
   PetscCall(SgElasticitySetDirichletValues(p->el, values));
   if (p->c) { /* the load scale of the contact's KKT measures */
@@ -286,6 +467,7 @@ PetscErrorCode SgProblemGetDirichletSize(SgProblem p, PetscInt *n)
 {
   PetscFunctionBeginUser;
   PetscCall(CheckSetUp(p, "SgProblemGetDirichletSize"));
+  SgValidPointer(n, 2);
   PetscCall(SgElasticityGetDirichletSize(p->el, n));
   PetscFunctionReturn(0);
 }
@@ -293,6 +475,8 @@ PetscErrorCode SgProblemGetDirichletSize(SgProblem p, PetscInt *n)
 PetscErrorCode SgProblemGetLoadFactor(SgProblem p, PetscReal *t)
 {
   PetscFunctionBeginUser;
+  ValidProblem(p, 1);
+  SgValidPointer(t, 2);
   *t = 1;
   if (p->el) PetscCall(SgElasticityGetLoadFactor(p->el, t));
   PetscFunctionReturn(0);

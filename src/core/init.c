@@ -24,3 +24,16 @@ PetscErrorCode SgLogEventsRegister(void)
   PetscCall(PetscLogEventRegister("SgOutput", cid, &SG_Output));
   PetscFunctionReturn(0);
 }
+
+/* arg-th argument of fn must be a PETSc object of class classid (cname in the message): not NULL, not destroyed */
+PetscErrorCode SgValidObject(PetscObject obj, PetscClassId classid, const char cname[], const char fn[], int arg)
+{
+  PetscClassId id;
+
+  PetscFunctionBeginUser;
+  PetscCheck(obj, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (a %s) is NULL", fn, arg, cname);
+  PetscCall(PetscObjectGetClassId(obj, &id)); /* -1: PETSc's mark of a freed header (PETSCFREEDHEADER) */
+  PetscCheck(id != (PetscClassId)-1, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d (a %s) was already destroyed", fn, arg, cname);
+  PetscCheck(id == classid, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "%s: argument %d is not a %s", fn, arg, cname);
+  PetscFunctionReturn(0);
+}

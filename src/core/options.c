@@ -8,7 +8,24 @@
 PetscErrorCode SgOptionsName(const char prefix[], const char opt[], char name[], size_t len)
 {
   PetscFunctionBeginUser;
+  SgValidPointer(opt, 2);
+  SgValidPointer(name, 3);
+  PetscCheck(len > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgOptionsName: the buffer for the name has length 0");
   PetscCall(PetscSNPrintf(name, len, "-%s%s", prefix ? prefix : "", opt[0] == '-' ? opt + 1 : opt));
+  PetscFunctionReturn(0);
+}
+
+/* The arguments of the readers: between PetscOptionsBegin and PetscOptionsEnd, an option name, n in [0, max] and
+   room for max values */
+static PetscErrorCode CheckReaderArgs(PetscOptionItems *obj, const char opt[], PetscInt max, const void *vals, const PetscInt *n, const char fn[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(obj, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument 1 (PetscOptionsObject) is NULL: call it between PetscOptionsBegin and PetscOptionsEnd", fn);
+  PetscCheck(opt && opt[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument 2 (the option's name) is NULL or empty", fn);
+  PetscCheck(max >= 1 && max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s: %" PetscInt_FMT " entries; lists hold 1 to %d", fn, max, SG_OPT_MAX);
+  PetscCheck(vals, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: the array of values is NULL", fn);
+  PetscCheck(n, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: the count (number of default values in, of values read out) is NULL", fn);
+  PetscCheck(*n >= 0 && *n <= max, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s: %" PetscInt_FMT " default values, must lie in [0, %" PetscInt_FMT "]", fn, *n, max);
   PetscFunctionReturn(0);
 }
 
@@ -51,12 +68,13 @@ PetscErrorCode SgOptionsIntList(PetscOptionItems *PetscOptionsObject, const char
   PetscInt  nt;
   PetscBool flg;
 
-  MPI_Comm  comm = PetscOptionsObject->comm;
+  MPI_Comm  comm;
   char      name[256];
 
   PetscFunctionBeginUser;
+  PetscCall(CheckReaderArgs(PetscOptionsObject, opt, max, vals, n, "SgOptionsIntList"));
+  comm = PetscOptionsObject->comm;
   PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
-  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
   for (PetscInt i = 0; i < *n; i++) {
     size_t l;
     PetscCall(PetscStrlen(def, &l));
@@ -86,12 +104,13 @@ PetscErrorCode SgOptionsRealList(PetscOptionItems *PetscOptionsObject, const cha
   PetscInt  nt;
   PetscBool flg;
 
-  MPI_Comm  comm = PetscOptionsObject->comm;
+  MPI_Comm  comm;
   char      name[256];
 
   PetscFunctionBeginUser;
+  PetscCall(CheckReaderArgs(PetscOptionsObject, opt, max, vals, n, "SgOptionsRealList"));
+  comm = PetscOptionsObject->comm;
   PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
-  PetscCheck(max <= SG_OPT_MAX, PETSC_COMM_SELF, PETSC_ERR_PLIB, "lists hold at most %d entries", SG_OPT_MAX);
   for (PetscInt i = 0; i < *n; i++) {
     size_t l;
     PetscCall(PetscStrlen(def, &l));
@@ -116,6 +135,7 @@ PetscErrorCode SgOptionsRealValue(PetscOptionItems *PetscOptionsObject, const ch
   PetscInt n = 1;
 
   PetscFunctionBeginUser;
+  SgValidPointer(val, 4);
   PetscCall(SgOptionsRealList(PetscOptionsObject, opt, text, 1, val, &n, set));
   PetscFunctionReturn(0);
 }
@@ -129,6 +149,9 @@ PetscErrorCode SgOptionsBoolValue(PetscOptionItems *PetscOptionsObject, const ch
   PetscBool flg, match;
 
   PetscFunctionBeginUser;
+  PetscCheck(PetscOptionsObject, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsBoolValue: argument 1 (PetscOptionsObject) is NULL: call it between PetscOptionsBegin and PetscOptionsEnd");
+  PetscCheck(opt && opt[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsBoolValue: argument 2 (the option's name) is NULL or empty");
+  SgValidPointer(val, 4);
   PetscCall(SgOptionsName(PetscOptionsObject->prefix, opt, name, sizeof(name)));
   PetscCall(PetscOptionsString(opt, text, NULL, *val ? "true" : "false", str, sizeof(str), &flg));
   if (set) *set = flg;
@@ -162,6 +185,7 @@ PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const cha
   PetscInt n = 1;
 
   PetscFunctionBeginUser;
+  SgValidPointer(val, 4);
   PetscCall(SgOptionsIntList(PetscOptionsObject, opt, text, 1, val, &n, set));
   PetscFunctionReturn(0);
 }

@@ -96,7 +96,11 @@ static void SignalCleanup(int sig)
 
 PetscErrorCode SgFileInstallCleanup(void)
 {
+  static PetscBool done = PETSC_FALSE;
+
   PetscFunctionBeginUser;
+  if (done) PetscFunctionReturn(0); /* a second call would chain our handler to itself */
+  done = PETSC_TRUE;
   for (int i = 0; i < 2; i++) {
     struct sigaction sa;
     memset(&sa, 0, sizeof(sa));
@@ -443,6 +447,9 @@ PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const cha
   const char *path;
 
   PetscFunctionBeginUser;
+  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckWritable: the communicator is MPI_COMM_NULL");
+  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckWritable: argument 2 (the option naming the file) is NULL or empty");
+  if (!name) name = ""; /* no file */
   PetscCall(FileRegister(comm, option, name, PETSC_FALSE, OptionIsHDF5(option)));
   if (!strcmp(option, "-output_file")) {
     char xname[PETSC_MAX_PATH_LEN + 8];
@@ -461,6 +468,8 @@ PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const cha
 PetscErrorCode SgFileCheckInput(MPI_Comm comm, const char option[], const char name[])
 {
   PetscFunctionBeginUser;
+  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckInput: the communicator is MPI_COMM_NULL");
+  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckInput: argument 2 (the option naming the file) is NULL or empty");
   PetscCall(FileRegister(comm, option, name, PETSC_TRUE, OptionIsHDF5(option)));
   PetscFunctionReturn(0);
 }
