@@ -14,8 +14,8 @@ a gmsh mesh and a checkpoint, run through bin/signorini. For every run it assert
 The generators of issue 25 add their own judgements of a run's physics, which do not trust the program's measures:
   unload    load paths back to zero (-load_dirichlet_values): back at zero y = 0 and no contact force, lifted off a
             rigid translation, frictionless the answer of a fresh solve at the path's end, the forces balance
-            (reaction = contact + friction - load) and friction stays within its bound; a frictionless path to or
-            from zero must be solved (item 9);
+            (reaction = contact + friction - load) and friction stays within its bound; a step at zero must be solved
+            where y = 0 solves it (frictionless, Coulomb: item 9);
   nu        nu from 0.49 to 0.4999999999999999 with every controller: V <= 0 where y = 0 is admissible, the force
             balance, no contact force without an active set, and a second controller that converges agrees (item 1);
   restart   -restart_file with the problem changed (a sign, a direction of the same norm, E and nu with the same
@@ -742,7 +742,7 @@ def force_checks(s, applied, dim, E, nu, friction="none", fparam=0.0, fscale=0.0
             v.append(("b: exit 0 with a negative contact force", "contact_force %.6g" % cf))
         if C and norm(C) > abs(cf) * (1 + 1e-6) + 1e-6 * scale:
             v.append(("b: contact force vector longer than the contact force", "|contact_force_vector| %.8g > |contact_force| %.8g" % (norm(C), abs(cf))))
-        if s.get("active_set_size") == 0 and abs(cf) > 1e-6 * scale:
+        if s.get("active_set_size") == 0 and abs(cf) > rtol * scale:
             v.append(("b: contact force without an active set", "active_set_size 0, contact_force %.6g" % cf))
         bound = fparam * cf if friction == "coulomb" else fparam * (s.get("contact_area") or 0) if friction == "tresca" else None
         if bound is not None and norm(Ff) > bound * (1 + 1e-6) + 1e-6 * scale:
@@ -823,9 +823,18 @@ def gen_unload(rng, T, base):
     peak = max(norm(v) for v in path) or p
     run = Run(args, 2 if rng.random() < 0.06 else 1, tol, False)
     run.contact = True
-    # frictionless, a path to zero or from zero is a well-posed problem at every step (issue 25, item 9: exit 3 on the
-    # right answer); with friction or other paths an honest failure is allowed
-    run.must_converge = fr == "none" and kind in ("zero", "zero_first")
+
+    def judge_failure(run, s):
+        """A step at zero (frictionless or Coulomb: y = 0 solves it) that failed (issue 25, item 9: the displacement
+        scale 0, exit 3 on the right answer, DIVERGED_NAN with Coulomb); other failures may be honest."""
+        conv = s.get("load_step_converged") if s else None
+        if run.result["rc"] == 0 or fr == "tresca" or not isinstance(conv, list) or 0 not in conv or len(conv) > len(path):
+            return []
+        k = conv.index(0)
+        if norm(path[k]) > 0:
+            return []
+        return [("b: a load step back at zero not solved", "step %d of %d (Dirichlet values 0, friction %s): %s"
+                 % (k + 1, len(path), fr, str(s.get("reason"))[:120]))]
 
     def judge(run, s):
         v = force_checks(s, [0.0] * dim, dim, E, nu, fr, g if fr == "tresca" else F, E * peak)
@@ -844,7 +853,7 @@ def gen_unload(rng, T, base):
             if finite(e) and abs(e) > 1e-8 * fscale * peak:
                 v.append(("b: lifted off with strain energy", "energy %.4g (scale %.4g)" % (e, fscale * peak)))
         return v
-    run.judge = of_exit0(judge)
+    run.judge = lambda run, s: of_exit0(judge)(run, s) + judge_failure(run, s)
     desc = "unload %s %dD friction %s %s: %s" % (ct, dim, fr, kind, " -> ".join("(%s)" % ",".join("%.3g" % x for x in v) for v in path))
     twin = False
     if fr == "none" and norm(last) > 0 and kind != "factors_back" and rng.random() < 0.5:
@@ -1534,6 +1543,10 @@ def judge_self_test():
               ("unload to zero: y left over", judged(runs[0], 0, dict(zero, displacement_max=1e-3)), "b: back at zero but the displacement"),
               ("unload to zero: a force left over", judged(runs[0], 0, dict(zero, contact_force=1.0, active_set_size=3, contact_force_vector=[0, -1.0], reaction_force=[0, -1.0])), "b: back at zero with a contact force"),
               ("unload to zero: failure judged by check_run only", judged(runs[0], 3, dict(zero, displacement_max=1.0)), None)]
+    n = int(runs[0].args[runs[0].args.index("-load_steps") + 1])
+    tests += [("unload: the step at zero failed", judged(runs[0], 3, {"load_step_converged": [1] * (n - 1) + [0], "reason": "GAMMA_OVERFLOW"}),
+               "b: a load step back at zero not solved"),
+              ("unload: the first (loaded) step failed", judged(runs[0], 3, {"load_step_converged": [0], "reason": "GAMMA_OVERFLOW"}), None)]
     runs, twin = find(gen_unload, lambda d, r: " friction none lift:" in d)
     tests += [("lift off: rigid translation", judged(runs[0], 0, dict(zero, displacement_max=0.01)), None),
               ("lift off with strain energy", judged(runs[0], 0, dict(zero, energy=0.05)), "b: lifted off with strain energy")]
