@@ -11,11 +11,26 @@ a gmsh mesh and a checkpoint, run through bin/signorini. For every run it assert
   (d) no .part file after any run, no result file (-output_file .h5/.xmf) after a failure, a file that was at a result
       path before is either untouched or replaced by a complete result, no other file written.
 
+The generators of issue 25 add their own judgements of a run's physics, which do not trust the program's measures:
+  unload    load paths back to zero (-load_dirichlet_values): back at zero y = 0 and no contact force, lifted off a
+            rigid translation, frictionless the answer of a fresh solve at the path's end, the forces balance
+            (reaction = contact + friction - load) and friction stays within its bound; a step at zero must be solved
+            where y = 0 solves it (frictionless, Coulomb: item 9);
+  nu        nu from 0.49 to 0.4999999999999999 with every controller: V <= 0 where y = 0 is admissible, the force
+            balance, no contact force without an active set, and a second controller that converges agrees (item 1);
+  restart   -restart_file with the problem changed (a sign, a direction of the same norm, E and nu with the same
+            shear modulus, the obstacle mirrored, the friction law): refused, naming -restart_file; unchanged (also
+            spelled otherwise, reordered, on 2 ranks): accepted with the fresh solve's answer (item 2);
+  misuse    bin/misuse_tests -case GROUP (tests/misuse.c: wrong calls of the library), where that program is built:
+            no signal, exit 0 with every wrong call caught; skipped (one line in the report) where it is not (item 12).
+`--only unload,nu` runs only those generators' cases (numbered as in the full run), --verbose a line per case.
+
 Cases are drawn from --seed and the case number alone, so a case is the same on every machine and in every order;
 --time-limit stops starting new cases (the summary then counts fewer than --count). Every run writes only into its own
 temporary directory ($T in the commands printed); `fuzz.py --seed S --case I --keep` recreates case I there.
 
-usage: fuzz.py [--count N] [--seed S] [--time-limit T] [--jobs J] [--case I] [--keep] [-summary_file F]
+usage: fuzz.py [--count N] [--seed S] [--time-limit T] [--jobs J] [--case I] [--only GEN,..] [--verbose] [--keep]
+               [-summary_file F]
 Output: one line per violation with the command, a count per generator, and "N passed, N failed" (cases).
 """
 import argparse
@@ -44,7 +59,19 @@ import sgrun  # noqa: E402
 
 ROOT = sgrun.ROOT
 ENV = sgrun.mpi_env(single_copy=False)
-CONTROLLERS = ["none", "alm", "pf", "ipf", "pdas", "vi"]
+
+
+def controller_names():
+    """The controllers -cont_type accepts: the SGCONT* names of the public header (the library's registry of types)."""
+    try:
+        with open(os.path.join(ROOT, "include", "signorini.h")) as f:
+            names = re.findall(r'^#define\s+SGCONT\w+\s+"(\w+)"', f.read(), re.M)
+    except OSError:
+        names = []
+    return names or ["none", "alm", "pf", "ipf", "fast", "pdas", "vi"]
+
+
+CONTROLLERS = controller_names()
 DEFAULT_KKT_TOL = 1e-10
 MEM_LIMIT = 2 << 30  # address space per process: an absurd mesh size fails fast instead of swapping the machine
 SENTINEL = b"a file that was here before the run\n"
@@ -101,8 +128,10 @@ def log_uniform(rng, lo, hi):
 class Run:
     """One invocation of bin/signorini. args are relative to the repository, except files in the case directory."""
 
-    def __init__(self, args, np_=1, kkt_tol=None, y0_admissible=False, inputs=(), tail=(), checkpoint=None):
+    def __init__(self, args, np_=1, kkt_tol=None, y0_admissible=False, inputs=(), tail=(), checkpoint=None, exe=None):
         self.args, self.np, self.tail = list(args), np_, list(tail)
+        self.exe = exe  # another program than bin/signorini (bin/misuse_tests): judged by check_misuse
+        self.judge = None  # judge(run, summary) -> [(class, detail)]: the generator's own checks of a run
         self.kkt_tol = kkt_tol
         self.y0_admissible = y0_admissible  # y = 0 is admissible: a solution's energy is <= 0
         self.inputs = list(inputs)  # files of the case directory the run reads
@@ -114,6 +143,9 @@ class Run:
 
 
 class Case:
+    """twin: True for the units twin of gen_options (the same verdict), or a function (case, summaries) ->
+    [(class, detail, run)] that compares the runs of the case (a fresh solve against a restart, two controllers)."""
+
     def __init__(self, gen, index, desc, runs, twin=False):
         self.gen, self.index, self.desc, self.runs, self.twin = gen, index, desc, runs, twin
         self.violations = []  # (class, detail, run)
@@ -554,6 +586,7 @@ def make_checkpoints(master):
         if not os.path.exists(ck):
             sys.exit("fuzz.py: could not make the base checkpoint (%s): exit %d\n%s" % (" ".join(cmd), p.returncode, p.stdout[-2000:]))
         out[ct] = ck
+    out["restart"] = make_restart_bases(master)
     return out
 
 
@@ -637,7 +670,7 @@ def mutate_checkpoint(rng, path):
 
 
 def gen_checkpoint(rng, T, base):
-    ct = rng.choice(sorted(base))
+    ct = rng.choice(sorted(k for k in base if k in CK_RUNS))
     path = os.path.join(T, "ck.h5")
     shutil.copyfile(base[ct], path)
     done = mutate_checkpoint(rng, path) if rng.random() >= 0.1 else "none"
@@ -660,25 +693,513 @@ def gen_checkpoint(rng, T, base):
     return "checkpoint %s->%s: %s" % (ct, run_ct, done), [run], False
 
 
-GENERATORS = [("options", gen_options, 0.35), ("wellposed", gen_wellposed, 0.1), ("optfile", gen_optfile, 0.2), ("mesh", gen_mesh, 0.2), ("checkpoint", gen_checkpoint, 0.15)]
+# ---------------------------------------------------------------- physics of a result (issue 25)
+
+EPS = 2.220446049250313e-16
 
 
-def draw_case(seed, index, T, base):
-    rng = random.Random("fuzz:%d:%d" % (seed, index))
+def vec_of(s, key, dim):
+    v = s.get(key)
+    if isinstance(v, list) and len(v) == dim and all(finite(x) for x in v):
+        return [float(x) for x in v]
+    return None
+
+
+def norm(v):
+    return math.sqrt(sum(x * x for x in v))
+
+
+def stiffness(E, nu):
+    """lambda + 2 mu of (E, nu), the largest modulus of the material (inf at nu = 0.5)."""
+    return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) if nu < 0.5 else float("inf")
+
+
+def force_checks(s, applied, dim, E, nu, friction="none", fparam=0.0, fscale=0.0, rtol=1e-5):
+    """Physics of a result, not the program's own measures: the Dirichlet reactions balance the contact and friction
+    forces and the applied load (reaction_force = contact_force_vector + friction_force_vector - load); the contact
+    force vector is no longer than the summed contact force, which is >= 0 and 0 without an active set; the friction
+    force within its bound. The balance allows the round-off of the reactions, (lambda + 2 mu) |y|_max eps per cell.
+    fscale: a force of the problem (the load, E x displacement): the floor of the force scale, where every force of
+    the answer is 0. Keys the summary does not have are not checked."""
+    v = []
+    R, C = vec_of(s, "reaction_force", dim), vec_of(s, "contact_force_vector", dim)
+    Ff = vec_of(s, "friction_force_vector", dim) or [0.0] * dim
+    cf = s.get("contact_force")
+    cf = float(cf) if finite(cf) else None
+    scale = max([fscale, norm(applied), norm(Ff)] + ([norm(R)] if R else []) + ([norm(C)] if C else []) + ([abs(cf)] if cf is not None else []))
+    if scale == 0:
+        return v
+    umax = s.get("displacement_max") if finite(s.get("displacement_max")) else 0.0
+    roundoff = 100 * EPS * stiffness(E, nu) * umax * math.sqrt(max(1, s.get("cells") or 1))
+    if R and C:
+        off = norm([R[d] - (C[d] + Ff[d] - applied[d]) for d in range(dim)])
+        if not off <= rtol * scale + roundoff:
+            v.append(("b: exit 0 but the forces do not balance",
+                      "reaction %s vs contact %s + friction %s - load %s: off by %.3g (%.2g of the force scale %.4g)"
+                      % tuple(["[%s]" % ",".join("%.5g" % x for x in w) for w in (R, C, Ff, applied)] + [off, off / scale, scale])))
+    if cf is not None:
+        if cf < -rtol * scale:
+            v.append(("b: exit 0 with a negative contact force", "contact_force %.6g" % cf))
+        if C and norm(C) > abs(cf) * (1 + 1e-6) + 1e-6 * scale:
+            v.append(("b: contact force vector longer than the contact force", "|contact_force_vector| %.8g > |contact_force| %.8g" % (norm(C), abs(cf))))
+        if s.get("active_set_size") == 0 and abs(cf) > rtol * scale:
+            v.append(("b: contact force without an active set", "active_set_size 0, contact_force %.6g" % cf))
+        bound = fparam * cf if friction == "coulomb" else fparam * (s.get("contact_area") or 0) if friction == "tresca" else None
+        if bound is not None and norm(Ff) > bound * (1 + 1e-6) + 1e-6 * scale:
+            v.append(("b: friction force beyond its bound", "|friction_force_vector| %.8g > %s bound %.8g" % (norm(Ff), friction, bound)))
+    return v
+
+
+def of_exit0(judge):
+    """A judgement of a result: applied to runs that exit 0 with a summary (the rest check_run judges)."""
+    return lambda run, s: judge(run, s) if run.result["rc"] == 0 and not run.result["timeout"] and s else []
+
+
+def cont_args(ct):
+    """A controller's options file; alm with a growing gamma (with gamma fixed it needs no bound of steps)."""
+    return ["-options_file", "options/cont/%s.opts" % ct] + (["-alm_gamma_factor", "10"] if ct == "alm" else [])
+
+
+def agree(a, b, what, rtol, floor):
+    """Two values of the same problem's answer agree to rtol (relative to the larger) plus an absolute floor."""
+    if not (finite(a) and finite(b)) or abs(a - b) <= rtol * max(abs(a), abs(b)) + floor:
+        return []
+    return ["%s %.10g vs %.10g" % (what, a, b)]
+
+
+# ---------------------------------------------------------------- generator 5: load paths back to zero (issue 25, item 9)
+
+def gen_unload(rng, T, base):
+    """The sliding block (Dirichlet-driven, no loads) along a -load_dirichlet_values path that returns to zero, unloads
+    partly, lifts off or starts at zero, frictionless, Coulomb or Tresca, 2D or 3D, every controller. Judged by the
+    physics of the last step: back at zero a converged run has y = 0 and no contact force (frictionless; with friction
+    when nothing presses); lifted off, a rigid translation (no force, no energy); frictionless, the answer of a fresh
+    solve at the last values (path independence, a twin run); always the force balance and the friction bound.
+    Sometimes -load_factors that go back (the program accepts only increasing ones: an error that names it)."""
+    dim = 3 if rng.random() < 0.2 else 2
+    ct = rng.choice(CONTROLLERS)
+    fr = rng.choice(["none", "none", "coulomb", "tresca"])
+    nu = rng.choice([0.0, 0.3, 0.45, rng.uniform(0, 0.49)])
+    E = 1000.0
+    if dim == 2:
+        args = ["-options_file", "options/sliding_block.opts", "-box_faces", "%d,%d" % (rng.randint(6, 20), rng.randint(3, 10))]
+    else:
+        args = ["-options_file", "options/sliding_block.opts", "-box_dim", "3", "-box_faces", "%d,%d,%d" % (rng.randint(3, 5), rng.randint(2, 3), rng.randint(2, 3)),
+                "-box_lower", "0,0,0", "-box_upper", "1,0.5,0.5", "-dirichlet_ids", "2", "-contact_ids", "1"]
+    g = rng.choice([0.5, 2.0, 10.0])
+    F = rng.choice([0.1, 0.3, 1.0])
+    args += ["-nu", num(nu), "-friction_type", fr] + (["-friction_bound", num(g)] if fr == "tresca" else ["-friction_coefficient", num(F)] if fr == "coulomb" else [])
+    args += cont_args(ct)
+    p = rng.choice([0.01, 0.001, 1e-5])  # the compression of the top
+    tx = rng.choice([0.0, 0.0, 0.2, 1.0, 5.0]) * p  # and its tangential drag (beyond the friction limit from about 0.3 p)
+
+    def value(x, y):  # the top's displacement: x along the first axis, y normal (towards the plane: negative)
+        return [x, y] if dim == 2 else [x, 0.0, y]
+    kind = rng.choice(["zero", "zero", "zero", "partial", "partial", "lift", "tangential_back", "zero_first", "factors_back"])
+    if kind == "zero":
+        path = rng.choice([[value(tx, -p), value(0, 0)], [value(tx / 2, -p / 2), value(tx, -p), value(tx / 2, -p / 2), value(0, 0)],
+                           [value(tx, -p), value(tx, -2 * p), value(0, 0)]])
+    elif kind == "partial":
+        f = rng.choice([0.5, 0.1, 0.9, rng.uniform(0, 1)])
+        path = [value(tx, -p), value(f * tx, -f * p)]
+    elif kind == "lift":
+        path = [value(tx, -p), value(rng.choice([0, tx]), rng.choice([0.5, 1, 2]) * p)]
+    elif kind == "tangential_back":
+        path = [value(tx or p, -p), value(0, -p)]
+    elif kind == "zero_first":
+        path = rng.choice([[value(0, 0), value(tx, -p)], [value(0, 0), value(tx, -p), value(0, 0)]])
+    else:
+        path = None
+    tol = options_in(args, "-cont_kkt_tol", str(DEFAULT_KKT_TOL))
+    if path is None:  # -load_factors that do not increase: refused (an error naming the option) or solved right
+        lf = rng.choice(["0.5,1,0", "1,0.5,1", "0.5,0,1", "0,1", "1,0"])
+        args += ["-dirichlet_values", ",".join(num(x) for x in value(tx, -p)), "-load_steps", str(lf.count(",") + 1), "-load_factors", lf]
+        path = [value(tx * float(t), -p * float(t)) for t in lf.split(",")]
+    else:
+        args += ["-load_steps", str(len(path)), "-load_dirichlet_values", ",".join(num(x) for v in path for x in v)]
+        if dim == 3:  # -dirichlet_values (sliding_block.opts': 2 numbers) is still read
+            args[-4:-4] = ["-dirichlet_values", ",".join(num(x) for x in value(tx, -p))]
+    last = path[-1]
+    peak = max(norm(v) for v in path) or p
+    run = Run(args, 2 if rng.random() < 0.06 else 1, tol, False)
+    run.contact = True
+
+    def judge_failure(run, s):
+        """A step at zero (frictionless or Coulomb: y = 0 solves it) that failed (issue 25, item 9: the displacement
+        scale 0, exit 3 on the right answer, DIVERGED_NAN with Coulomb); other failures may be honest."""
+        conv = s.get("load_step_converged") if s else None
+        if run.result["rc"] == 0 or fr == "tresca" or not isinstance(conv, list) or 0 not in conv or len(conv) > len(path):
+            return []
+        k = conv.index(0)
+        if norm(path[k]) > 0:
+            return []
+        return [("b: a load step back at zero not solved", "step %d of %d (Dirichlet values 0, friction %s): %s"
+                 % (k + 1, len(path), fr, str(s.get("reason"))[:120]))]
+
+    def judge(run, s):
+        v = force_checks(s, [0.0] * dim, dim, E, nu, fr, g if fr == "tresca" else F, E * peak)
+        fsteps = [x for x in (s.get("load_step_contact_force") or []) if finite(x)]
+        fscale = max([abs(x) for x in fsteps] + [E * peak])  # E |u| / height x width: the block's force at peak
+        cf, dmax, e = s.get("contact_force"), s.get("displacement_max"), s.get("energy")
+        nothing_presses = finite(cf) and abs(cf) <= 1e-6 * fscale
+        if norm(last) == 0 and (fr == "none" or nothing_presses):
+            if finite(dmax) and dmax > 1e-6 * peak:
+                v.append(("b: back at zero but the displacement is not", "displacement_max %.4g after a path to %.4g and back (friction %s)" % (dmax, peak, fr)))
+            if finite(cf) and abs(cf) > 1e-6 * fscale:
+                v.append(("b: back at zero with a contact force", "contact_force %.4g (force scale %.4g)" % (cf, fscale)))
+        if last[-1] > 0 and fr != "tresca":  # the top lifted: the block hangs from it, a rigid translation
+            if finite(cf) and abs(cf) > 1e-6 * fscale:
+                v.append(("b: lifted off with a contact force", "contact_force %.4g (force scale %.4g)" % (cf, fscale)))
+            if finite(e) and abs(e) > 1e-8 * fscale * peak:
+                v.append(("b: lifted off with strain energy", "energy %.4g (scale %.4g)" % (e, fscale * peak)))
+        return v
+    run.judge = lambda run, s: of_exit0(judge)(run, s) + judge_failure(run, s)
+    desc = "unload %s %dD friction %s %s: %s" % (ct, dim, fr, kind, " -> ".join("(%s)" % ",".join("%.3g" % x for x in v) for v in path))
+    twin = False
+    if fr == "none" and norm(last) > 0 and kind != "factors_back" and rng.random() < 0.5:
+        # frictionless contact has no history: the path's last step is the fresh solve of its values
+        ct2 = rng.choice(["pdas", "ipf", "pf"])
+        fresh = [a for a in args]
+        i = fresh.index("-load_dirichlet_values")
+        fresh[i - 2:i + 2] = ["-dirichlet_values", ",".join(num(x) for x in last)]
+        fresh += cont_args(ct2)
+        run2 = Run(fresh, 1, tol, False)
+        run2.contact = True
+        desc += " vs fresh %s" % ct2
+
+        def twin(case, summaries):
+            a, b = case.runs
+            sa, sb = summaries
+            if a.result["rc"] or b.result["rc"] or not sa or not sb:
+                return []
+            d = agree(sa.get("energy"), sb.get("energy"), "energy", 1e-5, 1e-8 * E * peak * peak)
+            d += agree(sa.get("contact_force"), sb.get("contact_force"), "contact_force", 1e-5, 1e-6 * E * peak)
+            d += agree(sa.get("displacement_norm"), sb.get("displacement_norm"), "displacement_norm", 1e-5, 1e-6 * peak)
+            return [("b: frictionless path's end differs from a fresh solve", "; ".join(d), a)] if d else []
+        return desc, [run, run2], twin
+    return desc, [run], twin
+
+
+# ---------------------------------------------------------------- generator 6: nu near 0.5 (issue 25, item 1)
+
+NU_NEAR_HALF = ["0.49", "0.499", "0.4999", "0.49999", "0.4999999", "0.499999999", "0.49999999999", "0.4999999999999",
+                "0.499999999999999", "0.4999999999999999"]
+
+
+def gen_nu(rng, T, base):
+    """Near-incompressible material with every controller. Judged by physics, not by the program's verdict: a
+    converged run has V <= 0 where y = 0 is admissible (Example 1: no Dirichlet displacement, the obstacle below the
+    body), its forces balance (force_checks), and a second controller that also converges finds the same energy and
+    contact force; otherwise an error that says why."""
+    nu = rng.choice(NU_NEAR_HALF)
+    ct = rng.choice(CONTROLLERS)
+    kind = rng.choice(["ex1", "ex1", "ex1", "ex1", "ex1_coulomb", "block"])
+    if kind.startswith("ex1"):
+        nx = rng.choice([12, 24, 30, 45, 60])
+        load = rng.choice([2.0, 2.0, 0.5, 20.0])
+        E = 5000.0
+        args = ["-options_file", "tests/opts/ex1_coarse.opts", "-box_faces", "%d,%d" % (nx, max(2, nx // 3)), "-nu", nu,
+                "-neumann_traction", "0,%s" % num(-load)]
+        applied = [0.0, -load]  # the traction on the right face (height 1)
+        fr, F = ("coulomb", 0.3) if kind == "ex1_coulomb" else ("none", 0.0)
+        if fr == "coulomb":
+            args += ["-friction_type", "coulomb", "-friction_coefficient", "0.3", "-pc_type", "lu"]
+        y0 = True
+    else:  # the sliding block, its top moved: y = 0 is not admissible
+        nx = rng.choice([10, 16, 20])
+        E = 1000.0
+        fr, F = rng.choice([("none", 0.0), ("coulomb", 0.3)])
+        args = ["-options_file", "options/sliding_block.opts", "-box_faces", "%d,%d" % (nx, nx // 2), "-nu", nu,
+                "-friction_type", fr, "-dirichlet_values", rng.choice(["0.002,-0.01", "0,-0.01", "0.05,-0.01"])]
+        applied = [0.0, 0.0]
+        y0 = False
+    args += cont_args(ct)
+    tol = options_in(args, "-cont_kkt_tol", str(DEFAULT_KKT_TOL))
+    run = Run(args, 1, tol, y0)
+    run.contact = True
+    fscale = norm(applied) or E * 0.01  # the load, or the block's force at its top's displacement
+    run.judge = of_exit0(lambda run, s: force_checks(s, applied, 2, E, float(nu), fr, F, fscale))
+    desc = "nu %s %s %s" % (nu, ct, kind)
+    if rng.random() < 0.3:
+        ct2 = rng.choice([c for c in ("pdas", "ipf", "pf") if c != ct])
+        run2 = Run(args + cont_args(ct2), 1, tol, y0)
+        run2.contact = True
+        run2.judge = run.judge
+        desc += " vs %s" % ct2
+
+        def twin(case, summaries):
+            a, b = case.runs
+            sa, sb = summaries
+            if a.result["rc"] or b.result["rc"] or not sa or not sb:
+                return []
+            fs = max(abs(x) for x in applied + [sa.get("contact_force") or 0, sb.get("contact_force") or 0] if finite(x))
+            d = agree(sa.get("energy"), sb.get("energy"), "energy", 1e-5, 0)
+            d += agree(sa.get("contact_force"), sb.get("contact_force"), "contact_force", 0, 1e-4 * fs)
+            return [("b: two controllers converged to different answers", "%s vs %s: %s" % (sa.get("cont_type"), sb.get("cont_type"), "; ".join(d)), a)] if d else []
+        return desc, [run, run2], twin
+    return desc, [run], False
+
+
+# ---------------------------------------------------------------- generator 7: restarts of another problem (issue 25, item 2)
+
+# The problem of the restart checkpoints: every datum nonzero and asymmetric (a traction with both components, a
+# Dirichlet displacement, the obstacle's apex off the middle), so that a sign, a direction or a mirror changes it.
+RS_PROBLEM = [("-options_file", "tests/opts/ex1_coarse.opts"), ("-box_faces", "12,4"), ("-E", "5000"), ("-nu", "0.4"),
+              ("-neumann_traction", "1,-2"), ("-dirichlet_values", "0.0005,0"), ("-obstacle_parabola_a", "0.003"),
+              ("-obstacle_parabola_offset", "0.001"), ("-obstacle_parabola_center", "1.25,0")]
+RS_VARIANTS = {  # controller and friction, and how the checkpoint run stops: in a step (-cont_max_it) or between steps
+    "ipf": ([("-options_file", "options/cont/ipf.opts")], ["-cont_max_it", "3"]),
+    "ipf_coulomb": ([("-friction_type", "coulomb"), ("-friction_coefficient", "0.3"), ("-pc_type", "lu"), ("-options_file", "options/cont/ipf.opts")], ["-cont_max_it", "3"]),
+    "pf_tresca_steps": ([("-friction_type", "tresca"), ("-friction_bound", "0.5"), ("-pc_type", "lu"), ("-options_file", "options/cont/pf.opts"),
+                         ("-load_steps", "2")], ["-load_step_stop", "1"]),
+}
+
+
+def flat(pairs):
+    return [x for p in pairs for x in p]
+
+
+def make_restart_bases(master):
+    """For each variant a checkpoint (the run stopped in a step or between load steps) and the summary of the same
+    problem solved fresh, to which an unchanged restart must come."""
+    def make(name):
+        extra, stop = RS_VARIANTS[name]
+        args = flat(RS_PROBLEM + extra)
+        ck, ref = os.path.join(master, "rs_%s.h5" % name), os.path.join(master, "rs_%s.json" % name)
+        cmd = sgrun.command(args + stop + ["-checkpoint_file", ck], None)
+        p = sgrun.execute(cmd, ENV, 120)
+        if not os.path.exists(ck):
+            return "fuzz.py: could not make the restart checkpoint (%s): exit %d\n%s" % (" ".join(cmd), p.returncode, p.stdout[-2000:])
+        p = sgrun.execute(sgrun.command(args + ["-summary_file", ref], None), ENV, 120)
+        return {"ck": ck, "pairs": RS_PROBLEM + extra, "ref": sgrun.summary(ref) if p.returncode == 0 else None}
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        out = dict(zip(RS_VARIANTS, pool.map(make, RS_VARIANTS)))
+    for v in out.values():
+        if isinstance(v, str):
+            sys.exit(v)
+    return out
+
+
+def set_opt(pairs, opt, value):
+    """pairs with opt's value replaced (added if absent; value None: removed)."""
+    out, done = [], False
+    for o, v in pairs:
+        if o == opt:
+            if value is not None and not done:
+                out.append((o, value))
+            done = True
+        else:
+            out.append((o, v))
+    if not done and value is not None:
+        out.append((opt, value))
+    return out
+
+
+def restart_change(rng, name, pairs):
+    """One change of the problem's data (a new problem: the restart must be refused), or None."""
+    fr = dict(pairs).get("-friction_type", "none")
+    kinds = ["traction_sign", "traction_rotated", "traction_turned", "traction_flipped", "dirichlet_sign", "dirichlet_turned",
+             "E", "nu", "E_nu_same_mu", "obstacle_mirrored", "obstacle_shifted", "obstacle_same_gap_sum", "obstacle_offset",
+             "body_force", "geometry"] + (["friction_coefficient", "friction_type"] if fr == "coulomb" else ["friction_bound", "friction_type"] if fr == "tresca" else ["friction_type"])
+    k = rng.choice(kinds)
+    if k == "traction_sign":  # (1,-2) -> (-1,-2): the same norm and largest entry
+        return k, set_opt(pairs, "-neumann_traction", "-1,-2")
+    if k == "traction_rotated":  # by 90 degrees
+        return k, set_opt(pairs, "-neumann_traction", rng.choice(["2,1", "-2,-1"]))
+    if k == "traction_turned":  # by another angle, the same norm
+        a = math.atan2(-2, 1) + rng.choice([-1, 1]) * rng.uniform(0.05, 0.5)
+        return k, set_opt(pairs, "-neumann_traction", "%.17g,%.17g" % (math.sqrt(5) * math.cos(a), math.sqrt(5) * math.sin(a)))
+    if k == "traction_flipped":
+        return k, set_opt(pairs, "-neumann_traction", "-1,2")
+    if k == "dirichlet_sign":
+        return k, set_opt(pairs, "-dirichlet_values", "-0.0005,0")
+    if k == "dirichlet_turned":
+        return k, set_opt(pairs, "-dirichlet_values", rng.choice(["0,0.0005", "0,-0.0005"]))
+    if k == "E":
+        return k, set_opt(pairs, "-E", num(5000 * rng.choice([1.1, 0.5, 1.001])))
+    if k == "nu":
+        return k, set_opt(pairs, "-nu", rng.choice(["0.3", "0.41", "0.45"]))
+    if k == "E_nu_same_mu":  # the shear modulus E / (2 (1 + nu)) kept
+        nu2 = rng.choice([0.3, 0.2, 0.45])
+        return k, set_opt(set_opt(pairs, "-nu", num(nu2)), "-E", "%.17g" % (5000 / 1.4 * (1 + nu2)))
+    if k == "obstacle_mirrored":  # apex at 1.75 instead of 1.25: the mirror image, the same gaps in another order
+        return k, set_opt(pairs, "-obstacle_parabola_center", "1.75,0")
+    if k == "obstacle_shifted":
+        return k, set_opt(pairs, "-obstacle_parabola_center", rng.choice(["1.3,0", "1.5,0", "1.25,0.001"]))
+    if k == "obstacle_same_gap_sum":  # a steeper parabola lowered by as much: the gaps at the 13 vertices sum the same
+        a2 = rng.choice([0.004, 0.0035])
+        m = sum((0.25 * i - 1.25) ** 2 for i in range(13)) / 13
+        return k, set_opt(set_opt(pairs, "-obstacle_parabola_a", num(a2)), "-obstacle_parabola_offset", "%.17g" % (0.001 - (a2 - 0.003) * m))
+    if k == "obstacle_offset":
+        return k, set_opt(pairs, "-obstacle_parabola_offset", rng.choice(["0.002", "0.0005"]))
+    if k == "body_force":
+        return k, set_opt(pairs, "-body_force", rng.choice(["0,-0.5", "0.1,0"]))
+    if k == "geometry":  # the same mesh numbering, other coordinates
+        return k, set_opt(pairs, "-box_upper", rng.choice(["3.1,1", "3,0.9"]))
+    if k == "friction_coefficient":
+        return k, set_opt(pairs, "-friction_coefficient", rng.choice(["0.35", "0.2"]))
+    if k == "friction_bound":
+        return k, set_opt(pairs, "-friction_bound", rng.choice(["0.6", "0.25"]))
+    # another friction law (or none)
+    other = rng.choice([f for f in ("none", "tresca", "coulomb") if f != fr])
+    pairs = set_opt(pairs, "-friction_type", other)
+    if other == "tresca":
+        pairs = set_opt(pairs, "-friction_bound", "0.5")
+    if other == "coulomb":
+        pairs = set_opt(set_opt(pairs, "-friction_coefficient", "0.3"), "-pc_type", "lu")
+    return k + ":" + other, pairs
+
+
+def gen_restart(rng, T, base):
+    """A restart (-restart_file) of a checkpoint with the problem's data changed: a sign, a direction of the same
+    norm, E and nu with the same shear modulus, the obstacle mirrored or lowered with the same gap sum, the friction
+    law: a new problem, which must be refused (a nonzero exit whose message names -restart_file, no result file).
+    Or unchanged (the same, spelled otherwise, options in another order, on 2 ranks): accepted, and its answer that of
+    the problem solved fresh."""
+    name = rng.choice(sorted(base["restart"]))
+    b = base["restart"][name]
+    path = os.path.join(T, "ck.h5")
+    shutil.copyfile(b["ck"], path)
+    pairs = list(b["pairs"])
+    np_ = 1
+    if rng.random() < 0.3:
+        k = rng.choice(["same", "same_spelled", "same_reordered", "same_np2"])
+        if k == "same_spelled":
+            pairs = set_opt(set_opt(set_opt(pairs, "-E", "5e3"), "-neumann_traction", "1.0,-2.00"), "-dirichlet_values", "5e-4,0.0")
+        elif k == "same_reordered":
+            head = [p for p in pairs if p[0] == "-options_file" and "cont/" not in p[1]]
+            rest = [p for p in pairs if p not in head]
+            rng.shuffle(rest)  # options_file of the controller stays after the problem's: none of them sets problem data
+            pairs = head + rest
+        elif k == "same_np2":
+            np_ = 2
+        changed = False
+    else:
+        k, pairs = restart_change(rng, name, pairs)
+        changed = True
+    args = flat(pairs) + ["-restart_file", path]
+    tol = options_in(args, "-cont_kkt_tol", str(DEFAULT_KKT_TOL))
+    run = Run(args, np_, tol, False, inputs=[path])
+    run.contact = True
+    ref = b["ref"]
+    if not changed and ref:
+        run.must_converge = True
+
+    def judge(run, s):
+        rc, out = run.result["rc"], run.result["out"]
+        if changed:
+            if rc == 0:
+                return [("b: restart of another problem accepted", "%s: exit 0, energy %r, contact_force %r (the checkpoint's problem, fresh: %r, %r)"
+                         % (k, s.get("energy") if s else None, s.get("contact_force") if s else None, (ref or {}).get("energy"), (ref or {}).get("contact_force")))]
+            if 0 < rc < 128 and not re.search(r"-restart_file|restart", error_message(out), re.I):
+                last = [l for l in error_message(out).splitlines() if l.strip()]
+                return [("c: a refused restart does not name -restart_file", "%s: exit %d: %s" % (k, rc, " / ".join(last[:2])[:150]))]
+            return []
+        if rc == 0 and s and ref:
+            d = agree(s.get("energy"), ref.get("energy"), "energy", 1e-6, 0)
+            d += agree(s.get("contact_force"), ref.get("contact_force"), "contact_force", 1e-5, 0)
+            if d:
+                return [("b: an unchanged restart differs from the fresh solve", "%s: %s" % (k, "; ".join(d)))]
+        return []
+    run.judge = judge
+    return "restart %s %s %s" % (name, "changed" if changed else "unchanged", k), [run], False
+
+
+# ---------------------------------------------------------------- generator 8: library misuse (issue 25, item 12)
+
+MISUSE = os.path.join(ROOT, "bin", "misuse_tests")
+MISUSE_GROUPS = []
+MISUSE_LOCK = threading.Lock()
+
+
+def misuse_groups():
+    """The groups of wrong calls bin/misuse_tests knows (-case NAME): the list its error message for an unknown name
+    gives, '(problem, cont, ...)'. Empty if the program is not built (it is not in every tree)."""
+    with MISUSE_LOCK:
+        if MISUSE_GROUPS or not os.access(MISUSE, os.X_OK):
+            return list(MISUSE_GROUPS)
+        try:
+            p = sgrun.execute([MISUSE, "-case", "no_such_group_of_the_fuzz_test"], ENV, 60)
+            m = re.search(r"no such group \(([^)]*)\)", p.stdout)
+            MISUSE_GROUPS.extend(g.strip() for g in (m.group(1).split(",") if m else []) if re.match(r"^\w+$", g.strip()))
+        except (OSError, subprocess.SubprocessError):
+            pass
+        return list(MISUSE_GROUPS)
+
+
+def gen_misuse(rng, T, base):
+    """bin/misuse_tests -case GROUP (tests/misuse.c): the library's public functions called wrongly (NULL handles and
+    pointers, a DMDA for a DMPlex, calls out of order, a problem destroyed before its controller). The program catches
+    each error itself and exits 0 when every wrong call returned an error and every right call around them worked.
+    Judged by check_misuse: no signal, no hang, exit 0, no 'not ok' line. Skipped where the program is not built."""
+    if not os.access(MISUSE, os.X_OK):
+        return "misuse: skipped (bin/misuse_tests is not built)", [], False
+    g = rng.choice(misuse_groups() + [""])  # "": all groups in one process (also where the names cannot be read)
+    args = (["-case", g] if g else []) + (["-malloc_debug"] if rng.random() < 0.5 else [])
+    run = Run(args, 1, exe=MISUSE)
+    return "misuse %s" % (g or "all"), [run], False
+
+
+def check_misuse(run, T, before):
+    res = run.result
+    rc, out = res["rc"], res["out"]
+    v = []
+    if res["timeout"]:
+        v.append(("a: hang", "no exit after %g s (killed)" % res["limit"]))
+    elif rc < 0 or rc >= 128 or CRASH.search(out):
+        m = CRASH.search(out)
+        v.append(("a: crash", "exit %d%s" % (rc, ", '%s'" % m.group(0) if m else "")))
+    else:
+        bad = [l for l in out.splitlines() if l.startswith("not ok")]
+        if rc != 0 or bad:
+            msg = bad or [l for l in error_message(out).splitlines() if l.strip()]
+            v.append(("e: a wrong call of the library misbehaved", "exit %d: %s" % (rc, " / ".join(msg[:2])[:200] or "(no message)")))
+        elif not re.search(r"^[1-9]\d* cases, 0 misbehaved", out, re.M):
+            v.append(("e: misuse run without its tally", "exit 0 but no 'N cases, 0 misbehaved' line"))
+    now = {os.path.join(dp, f) for dp, dn, fn in os.walk(T) for f in fn}
+    extra = sorted(now - set(before))
+    if extra:
+        v.append(("d: unexpected file written", " ".join(os.path.relpath(p, T) for p in extra)[:160]))
+    return v, None
+
+
+# weights: the issue-25 kinds (unload, nu, restart, misuse) about 12, 14, 12 and 6 of the 200 cases of make test
+GENERATORS = [("options", gen_options, 0.28), ("wellposed", gen_wellposed, 0.08), ("optfile", gen_optfile, 0.16), ("mesh", gen_mesh, 0.16),
+              ("checkpoint", gen_checkpoint, 0.10), ("unload", gen_unload, 0.06), ("nu", gen_nu, 0.07), ("restart", gen_restart, 0.06),
+              ("misuse", gen_misuse, 0.03)]
+
+
+def pick_generator(rng):
     r, acc = rng.random(), 0.0
     for name, fn, w in GENERATORS:
         acc += w
         if r < acc:
             break
+    return name, fn
+
+
+def generator_of(seed, index):
+    """The generator of case `index` (without drawing the case: for --only)."""
+    return pick_generator(random.Random("fuzz:%d:%d" % (seed, index)))[0]
+
+
+def draw_case(seed, index, T, base):
+    rng = random.Random("fuzz:%d:%d" % (seed, index))
+    name, fn = pick_generator(rng)
     desc, runs, twin = fn(rng, T, base)
-    return Case(name, index, desc, runs, twin)
+    case = Case(name, index, desc, runs, twin)
+    case.skipped = not runs  # a kind this tree cannot run (bin/misuse_tests not built)
+    return case
 
 
 # ---------------------------------------------------------------- running and checking
 
 def shown(run, T):
     """The command as a user would type it in the repository, the case directory written $T."""
-    cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None, "bin/signorini")
+    if run.exe:
+        cmd = sgrun.command(run.args, run.np if run.np > 1 else None, os.path.relpath(run.exe, ROOT))
+    else:
+        cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None, "bin/signorini")
     return " ".join(shlex.quote(a).replace(T, "$T") if T in a else shlex.quote(a) for a in cmd)
 
 
@@ -711,6 +1232,12 @@ def error_message(out):
 # not options of the run: numbers, and the debugging hints PETSc adds to some messages
 NOT_OPTIONS = {"nan", "inf", "infinity", "malloc_dump", "malloc_view", "malloc_debug", "malloc_test", "start_in_debugger",
                "on_error_attach_debugger", "no_signal_handler", "log_view", "info", "help", "options_left", "fp_trap"}
+
+
+def verdict_first(msg):
+    """The lines of a message, the verdict (FAILED, DIVERGED, an error) first: for the report of a failure."""
+    lines = [l for l in msg.splitlines() if l.strip()]
+    return [l for l in lines if re.search(r"FAILED|DIVERGED|rror", l)] + [l for l in lines if not re.search(r"FAILED|DIVERGED|rror", l)]
 
 
 def names_option_or_file(msg, files):
@@ -781,13 +1308,13 @@ def check_run(case, run, T, before):
                 elif finite(eu) and run.exact and e < eu - 1e-8 * abs(eu) - 1e-300:  # an inexact unconstrained solve is no bound
                     v.append(("b: exit 0 with energy below the unconstrained minimum", "energy %.10g < %.10g" % (e, eu)))
     if run.must_converge and rc != 0 and not v:
-        last = [l for l in error_message(out).splitlines() if l.strip()]
+        last = verdict_first(error_message(out))
         v.append(("b: a well-posed problem not solved", "exit %d: %s" % (rc, " / ".join(last[:2])[:150])))
     # (c) a failure names an option or a file
     if rc != 0 and not v:  # a crash or a hang is reported as such
         files = run.inputs + [a for a in run.args if "/" in a or a.endswith((".h5", ".opts", ".msh"))]
         if not names_option_or_file(error_message(out), files):
-            last = [l for l in error_message(out).splitlines() if l.strip()]
+            last = verdict_first(error_message(out))
             v.append(("c: failure names no option or file", "exit %d: %s" % (rc, (" / ".join(last[:2]) if last else "(no message)")[:150])))
     # (d) files
     now = set()
@@ -824,7 +1351,10 @@ def check_run(case, run, T, before):
 
 
 def execute(run, T, timeout):
-    cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None)
+    if run.exe:
+        cmd = sgrun.command(run.args, run.np if run.np > 1 else None, run.exe)
+    else:
+        cmd = sgrun.command(run.args + output_args(T) + run.tail, run.np if run.np > 1 else None)
     t0 = time.time()
     p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True,
                          preexec_fn=_limits)
@@ -871,10 +1401,18 @@ def run_case(case, T, opt, rng):
         before = snapshot(T)
         run.result = execute(run, T, opt.run_timeout)
         run.shown = shown(run, T)
-        v, s = check_run(case, run, T, before)
+        if run.exe:
+            v, s = check_misuse(run, T, before)
+        else:
+            v, s = check_run(case, run, T, before)
+            crashed = any(c.startswith("a:") for c, d in v)
+            if run.judge and not crashed:
+                v += run.judge(run, s)  # the generator's own judgement
         summaries.append(s)
         case.violations += [(c, d, run) for c, d in v]
-    if case.twin and all(r.result["rc"] in (0, 3) for r in case.runs):
+    if callable(case.twin):
+        case.violations += case.twin(case, summaries)
+    elif case.twin and all(r.result["rc"] in (0, 3) for r in case.runs):
         a, b = case.runs[0].result["rc"], case.runs[1].result["rc"]
         if a != b:
             case.violations.append(("b: verdict changes with the units (E, loads, gamma x 10^k)",
@@ -948,8 +1486,104 @@ def self_test():
         ok = (not got) if want is None else any(c.startswith(want) for c in got)
         bad += not ok
         print("%s self-test %s: found %s" % ("ok" if ok else "not ok", want or "clean run", got or "nothing"))
-    print("%d passed, %d failed" % (len(cases) - bad, bad))
+    jbad, jn = judge_self_test()
+    bad += jbad
+    print("%d passed, %d failed" % (len(cases) + jn - bad, bad))
     return bad
+
+
+def judge_self_test():
+    """The judgements of the issue-25 generators on synthetic results: each fault found, each right result passed."""
+    T = tempfile.mkdtemp(prefix="fuzz-self-")
+    base = {"restart": {}}
+    for name, (extra, stop) in RS_VARIANTS.items():
+        ck = os.path.join(T, "rs_%s.h5" % name)
+        open(ck, "wb").close()
+        base["restart"][name] = {"ck": ck, "pairs": RS_PROBLEM + extra, "ref": {"energy": -0.013, "contact_force": 2.66}}
+
+    def find(gen, pred):  # a case of the generator whose description matches
+        for i in range(5000):
+            desc, runs, twin = gen(random.Random("selftest:%d" % i), T, base)
+            if pred(desc, runs):
+                return runs, twin
+        raise RuntimeError("self-test: no case of %s found" % gen.__name__)
+
+    def judged(run, rc, s, out=""):
+        run.result = {"rc": rc, "out": out, "timeout": False, "limit": 30, "seconds": 0}
+        return [c for c, d in run.judge(run, s)]
+
+    def fc(*a):  # the classes force_checks finds
+        return [c for c, d in force_checks(*a)]
+
+    refused = PETSC_ERR % "-restart_file: 'ck.h5' was written for another problem: E differs"
+    # Example 1's answers (nu 0.4): balanced; fast at nu = 0.4999999 (issue 25, item 1); nu = 1 - 1e-16
+    good = {"reaction_force": [2.3e-12, -0.6483], "contact_force_vector": [0, -2.6483], "contact_force": 2.6483, "active_set_size": 14,
+            "displacement_max": 0.007, "cells": 2400}
+    fast = {"reaction_force": [-2.5e-7, 0.9803], "contact_force_vector": [0, -3.438], "contact_force": 1.0197, "active_set_size": 12,
+            "displacement_max": 0.007, "cells": 2400}
+    nocontact = {"reaction_force": [-0.383, 0.4068], "contact_force_vector": [0, 0], "contact_force": 0.8874, "active_set_size": 0,
+                 "displacement_max": 0.007, "cells": 2400}
+    block = {"reaction_force": [7.152, -23.84], "contact_force_vector": [0, -23.84], "friction_force_vector": [7.152, 0],
+             "contact_force": 23.84, "contact_area": 1.0, "active_set_size": 10, "displacement_max": 0.05, "cells": 100}
+    tests = [("force balance: Example 1", fc(good, [0, -2], 2, 5000, 0.4), None),
+             ("force balance: fast at nu 0.4999999", fc(fast, [0, -2], 2, 5000, 0.4999999), "b: exit 0 but the forces do not balance"),
+             ("force vector vs force: fast", fc(fast, [0, -2], 2, 5000, 0.4999999), "b: contact force vector longer"),
+             ("force without active set", fc(nocontact, [0, -2], 2, 5000, 0.4), "b: contact force without an active set"),
+             ("negative contact force", fc(dict(good, contact_force=-0.3), [0, -2], 2, 5000, 0.4), "b: exit 0 with a negative contact force"),
+             ("Coulomb block at its bound", fc(block, [0, 0], 2, 1000, 0.3, "coulomb", 0.3), None),
+             ("Coulomb beyond its bound", fc(block, [0, 0], 2, 1000, 0.3, "coulomb", 0.2), "b: friction force beyond its bound"),
+             ("Tresca beyond its bound", fc(block, [0, 0], 2, 1000, 0.3, "tresca", 5.0), "b: friction force beyond its bound"),
+             ("round-off of the reactions allowed at nu = 1 - 1e-10",
+              fc(dict(good, reaction_force=[0, -0.6493]), [0, -2], 2, 5000, 0.49999999995), None),
+             ("the same imbalance at nu = 0.4", fc(dict(good, reaction_force=[0, -0.6493]), [0, -2], 2, 5000, 0.4), "b: exit 0 but the forces do not balance")]
+    runs, twin = find(gen_unload, lambda d, r: " friction none zero:" in d and " 2D " in d)
+    zero = {"converged": True, "displacement_max": 0.0, "contact_force": 0.0, "energy": 0.0, "reaction_force": [0, 0],
+            "contact_force_vector": [0, 0], "active_set_size": 0, "cells": 100, "load_step_contact_force": [23.8, 0]}
+    tests += [("unload to zero: y = 0", judged(runs[0], 0, zero), None),
+              ("unload to zero: y left over", judged(runs[0], 0, dict(zero, displacement_max=1e-3)), "b: back at zero but the displacement"),
+              ("unload to zero: a force left over", judged(runs[0], 0, dict(zero, contact_force=1.0, active_set_size=3, contact_force_vector=[0, -1.0], reaction_force=[0, -1.0])), "b: back at zero with a contact force"),
+              ("unload to zero: failure judged by check_run only", judged(runs[0], 3, dict(zero, displacement_max=1.0)), None)]
+    n = int(runs[0].args[runs[0].args.index("-load_steps") + 1])
+    tests += [("unload: the step at zero failed", judged(runs[0], 3, {"load_step_converged": [1] * (n - 1) + [0], "reason": "GAMMA_OVERFLOW"}),
+               "b: a load step back at zero not solved"),
+              ("unload: the first (loaded) step failed", judged(runs[0], 3, {"load_step_converged": [0], "reason": "GAMMA_OVERFLOW"}), None)]
+    runs, twin = find(gen_unload, lambda d, r: " friction none lift:" in d)
+    tests += [("lift off: rigid translation", judged(runs[0], 0, dict(zero, displacement_max=0.01)), None),
+              ("lift off with strain energy", judged(runs[0], 0, dict(zero, energy=0.05)), "b: lifted off with strain energy")]
+    runs, twin = find(gen_unload, lambda d, r: " friction none partial:" in d and len(r) == 2)
+    for r in runs:
+        r.result = {"rc": 0}
+    a = {"energy": 0.03, "contact_force": 11.6, "displacement_norm": 0.05}
+    tests += [("path end = fresh solve", [c for c, d, r in twin(type("C", (), {"runs": runs}), [a, dict(a)])], None),
+              ("path end != fresh solve", [c for c, d, r in twin(type("C", (), {"runs": runs}), [a, dict(a, energy=0.0302)])], "b: frictionless path's end differs")]
+    runs, twin = find(gen_nu, lambda d, r: len(r) == 2)
+    for r in runs:
+        r.result = {"rc": 0}
+    a = {"energy": -0.00354368, "contact_force": 1.1423, "cont_type": "pdas"}
+    tests += [("two controllers agree", [c for c, d, r in twin(type("C", (), {"runs": runs}), [a, dict(a)])], None),
+              ("fast 8 % off pdas", [c for c, d, r in twin(type("C", (), {"runs": runs}), [a, dict(a, energy=-0.00325188, contact_force=1.0197)])], "b: two controllers converged to different")]
+    runs, twin = find(gen_restart, lambda d, r: " changed " in d)
+    tests += [("changed restart refused", judged(runs[0], 95, None, refused), None),
+              ("changed restart accepted", judged(runs[0], 0, {"energy": -0.012, "contact_force": 2.6}), "b: restart of another problem accepted"),
+              ("changed restart refused without naming it", judged(runs[0], 95, None, PETSC_ERR % "E differs"), "c: a refused restart does not name")]
+    runs, twin = find(gen_restart, lambda d, r: " unchanged same" in d)
+    tests += [("unchanged restart = fresh", judged(runs[0], 0, {"energy": -0.013, "contact_force": 2.66}), None),
+              ("unchanged restart != fresh", judged(runs[0], 0, {"energy": -0.0121, "contact_force": 2.66}), "b: an unchanged restart differs")]
+    mrun = Run(["-case", "problem"], exe=MISUSE)
+    for label, rc, out, want in [("misuse caught", 0, "ok SgProblemCreate(comm, NULL): error 85\n7 cases, 0 misbehaved\n", None),
+                                 ("misuse: a wrong call accepted", 1, "not ok SgContSolve(NULL): error 0\n7 cases, 1 misbehaved\n", "e: a wrong call"),
+                                 ("misuse: segfault", -11, "", "a: crash"),
+                                 ("misuse: PETSc's signal handler", 59, PETSC_ERR % "Caught signal number 11 SEGV", "a: crash"),
+                                 ("misuse: no tally", 0, "", "e: misuse run without its tally")]:
+        mrun.result = {"rc": rc, "out": out, "timeout": False, "limit": 30, "seconds": 0}
+        tests.append((label, [c for c, d in check_misuse(mrun, T, snapshot(T))[0]], want))
+    shutil.rmtree(T, ignore_errors=True)
+    bad = 0
+    for label, got, want in tests:
+        ok = (not got) if want is None else any(c.startswith(want) for c in got)
+        bad += not ok
+        print("%s self-test %s (%s): found %s" % ("ok" if ok else "not ok", want or "clean", label, got or "nothing"))
+    return bad, len(tests)
 
 
 def repo_listing():
@@ -971,6 +1605,9 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--case", type=int, action="append", help="run only this case (repeatable)")
     ap.add_argument("--keep", action="store_true", help="keep the case directories and print them")
+    ap.add_argument("--verbose", action="store_true", help="print a line per case: its description and exit codes")
+    ap.add_argument("--only", default="", help="run only the cases of these generators (comma-separated names), "
+                    "numbered as in the full run")
     ap.add_argument("-summary_file", "--summary-file", dest="summary_file", default="")
     ap.add_argument("--self-test", action="store_true", help="check the checks on synthetic runs, then stop")
     opt = ap.parse_args()
@@ -990,6 +1627,8 @@ def main():
     TMPDIRS.add(master)
     base = make_checkpoints(master)
     indices = opt.case if opt.case else list(range(opt.count))
+    if opt.only:
+        indices = [i for i in indices if generator_of(opt.seed, i) in opt.only.split(",")]
     cases, lock = [], threading.Lock()
     start = time.time()
 
@@ -1009,6 +1648,9 @@ def main():
             TMPDIRS.discard(T)
         with lock:
             cases.append(case)
+            if opt.verbose:
+                print("case %d %s [%s]: exit %s, %.1f s%s" % (i, case.gen, case.desc, ",".join(str(r.result["rc"]) for r in case.runs) or "-",
+                                                             case.seconds, "" if not case.violations else ", FAIL"), flush=True)
         return case
 
     with ThreadPoolExecutor(max_workers=opt.jobs) as pool:
@@ -1020,8 +1662,9 @@ def main():
     by_class, by_gen = {}, {}
     nviol = 0
     for c in cases:
-        g = by_gen.setdefault(c.gen, {"cases": 0, "failed": 0, "violations": 0})
+        g = by_gen.setdefault(c.gen, {"cases": 0, "failed": 0, "violations": 0, "skipped": 0})
         g["cases"] += 1
+        g["skipped"] += c.skipped
         g["failed"] += bool(c.violations)
         g["violations"] += len(c.violations)
         for cls, detail, run in c.violations:
@@ -1039,6 +1682,10 @@ def main():
     print("# by generator (cases, failing cases, violations):")
     for g in sorted(by_gen):
         print("#   %-10s %5d %5d %5d" % (g, by_gen[g]["cases"], by_gen[g]["failed"], by_gen[g]["violations"]))
+    for g in sorted(by_gen):
+        if by_gen[g]["skipped"]:
+            why = sorted({c.desc for c in cases if c.gen == g and c.skipped})
+            print("# %s: %d cases skipped: %s" % (g, by_gen[g]["skipped"], "; ".join(why)[:200]))
     secs = time.time() - t0
     failed = sum(1 for c in cases if c.violations) + bool(stray)
     print("# seed %d, %d cases in %.1f s (%d runs)" % (opt.seed, len(cases), secs, sum(len(c.runs) for c in cases)))
