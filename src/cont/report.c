@@ -134,11 +134,10 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
       PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs.slip));
     }
     {
-      /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
+      /* the contact force on the body, sum_i w_i lam_i n_i, with the multiplier of contact_force (SgContactKKT's),
+         against the reaction */
       PetscReal F[3] = {0, 0, 0}, R[3];
-      for (PetscInt i = 0; i < ct->cv.n; i++)
-        for (PetscInt d = 0; d < dim; d++) F[d] += ct->cv.w[i] * ct->lam[i] * ct->cv.normal[i * dim + d];
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, F, 3, MPIU_REAL, MPI_SUM, ct->comm));
+      PetscCall(SgContactForceVector(ct->c, ct->y, F));
       PetscCall(SgElasticityReaction(ct->prob, ct->y, R));
       PetscCall(SgSummarySetRealArray(sum, "contact_force_vector", dim, F));
       PetscCall(SgSummarySetRealArray(sum, "reaction_force", dim, R));
