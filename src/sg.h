@@ -174,7 +174,7 @@ typedef struct {
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
 PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
-PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction) */
+PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */

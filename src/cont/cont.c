@@ -776,10 +776,10 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
       PetscReal *yref;
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-      PetscCall(SgContactGetSlipReference(ct->c, &yref));
+      PetscCall(SgContactGetSlipReference(ct->c, &yref)); /* 2 n dim: of the unknowns, then of the full displacement */
       if (!ct->yrsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->yrsteps));
-      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps]));
-      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], yref, ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps]));
+      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], yref, 2 * ct->cv.n * dim));
     }
   }
   {

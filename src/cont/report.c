@@ -293,7 +293,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->cv.n * dim));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
@@ -322,8 +322,8 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &yr));
-      PetscCall(PetscArraycpy(yr, yref, ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &yr));
+      PetscCall(PetscArraycpy(yr, yref, 2 * ct->cv.n * dim));
     }
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     PetscCall(PetscMalloc1(m + 1, &dv));
@@ -347,7 +347,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, yr, ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, yr, 2 * ct->cv.n * dim));
       PetscCall(PetscFree(yr));
     }
     PetscCall(PetscFree(dv));

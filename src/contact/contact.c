@@ -81,7 +81,8 @@ static PetscErrorCode PrescribedSetUp(SgContact c)
   PetscSection      ns;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscCalloc5(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask, c->n * dim + 1, &c->ypref));
+  PetscCall(PetscCalloc4(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask));
+  c->ypref = c->yref + c->n * dim;
   PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->ypfull));
   for (PetscInt i = 0; i < c->n; i++) loc[0] += SgMeshPartial(m, c->vert[i]) ? 1 : 0;
   PetscCall(SgElasticityGetDirichletBoundary(c->prob, &db));
@@ -216,7 +217,8 @@ PetscErrorCode SgContactSetUp(SgContact c)
   }
   c->n = nloc;
   PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
-  if (c->friction) PetscCall(PetscCalloc1(nloc * dim + 1, &c->yref)); /* the first load step's slip: from y = 0 */
+  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement */
+  if (c->friction) PetscCall(PetscCalloc1(2 * nloc * dim + 1, &c->yref));
   nloc = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  off, noff;
@@ -286,7 +288,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   if (!*c) PetscFunctionReturn(0);
   PetscCall(PetscFree5((*c)->vert, (*c)->off, (*c)->normal, (*c)->w, (*c)->d));
   PetscCall(PetscFree2((*c)->klam, (*c)->kact));
-  PetscCall(PetscFree5((*c)->klt, (*c)->kslip, (*c)->kst, (*c)->dmask, (*c)->ypref));
+  PetscCall(PetscFree4((*c)->klt, (*c)->kslip, (*c)->kst, (*c)->dmask));
   PetscCall(PetscFree((*c)->ypfull));
   PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->prefix));
@@ -801,7 +803,8 @@ PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* the slip reference itself (dim per contact vertex; NULL without friction), for the checkpoint */
+/* the slip reference itself (dim per contact vertex; NULL without friction), for the checkpoint; 2 n dim numbers: of
+   the unknowns (what the solvers use), then of the full displacement (the data on the prescribed components) */
 PetscErrorCode SgContactGetSlipReference(SgContact c, PetscReal **yref)
 {
   PetscFunctionBeginUser;

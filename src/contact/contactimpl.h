@@ -52,7 +52,8 @@ struct _n_SgContact {
   PetscBool  haspartial;     /* some contact vertex, on some rank, has fixed components */
   PetscBool  hasdface;       /* some contact vertex has components fixed by a Dirichlet facet of Gamma_c */
   PetscInt  *dmask;          /* per contact vertex: those components (bits) */
-  PetscReal *ypref;          /* the full displacement at the start of the load step, n*dim (used on fixed components) */
+  PetscReal *ypref;          /* the full displacement at the start of the load step, n*dim (used on fixed components):
+                                the second half of yref */
   PetscReal *ypfull;         /* the full displacement of the last recorded SgContactKKT, n*dim, and (from n*dim on)
                                 its y: SgContactSetSlipReference of that y takes the data of that call */
   PetscBool  haverecord;
