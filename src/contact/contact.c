@@ -557,7 +557,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       fm[1] = PetscMax(fm[1], un);
       f[5] += c->w[i] * nt;
       if (st == SG_FRICTION_STICK) err = un;
-      else if (st == SG_FRICTION_SLIP) {
+      else if (st == SG_FRICTION_SLIP && gb > noise) { /* a bound at the noise level (Coulomb, F lam_N tiny): no direction to measure */
         for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
         a = PetscMax(0, a);
         for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
