@@ -398,7 +398,7 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
    motion is prescribed (fixed components) is sliding when that motion is not zero: its friction is the bound along
    the slip (the support supplies the rest of its reaction); held by a Dirichlet facet of Gamma_c, it sticks while it
    does not move, with the reaction as its friction up to the bound (unoise: the displacement noise). */
-static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], const PetscReal dy[], PetscBool act, PetscReal lamN, PetscReal noise, PetscReal unoise, PetscReal lt[], PetscReal u[], PetscReal *gb)
+static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], const PetscReal dy[], PetscBool act, PetscReal lamN, PetscReal noise, PetscReal unoise, PetscReal lt[], PetscReal u[], PetscReal *gb, PetscReal *ntfree)
 {
   const PetscInt   dim = c->dim;
   const PetscReal *n   = &c->normal[i * dim];
@@ -420,9 +420,15 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], c
   nu      = PetscSqrtReal(nu);
   *gb     = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
   partial = (PetscBool)(c->haspartial && SgMeshPartial(c->mesh, v));
-  if (partial)
-    for (PetscInt k = 0; k < dim; k++)
+  *ntfree = nt; /* the part the solution must keep within the bound: that of the free components */
+  if (partial) {
+    *ntfree = 0;
+    for (PetscInt k = 0; k < dim; k++) {
       if (SgMeshFixed(c->mesh, v, k)) up = PetscMax(up, PetscAbsReal(u[k]));
+      else *ntfree += lt[k] * lt[k];
+    }
+    *ntfree = PetscSqrtReal(*ntfree);
+  }
   if (c->friction == SG_FRICTION_COULOMB ? !act : *gb <= noise) return SG_FRICTION_FREE;
   if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) { /* prescribed sliding */
     for (PetscInt k = 0; k < dim; k++) lt[k] = *gb * u[k] / nu;
@@ -525,7 +531,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     for (PetscInt i = 0; i < c->n; i++) {
       const PetscReal noise = 1e-12 * fscale / c->w[i];
       const PetscInt  v     = c->vert[i];
-      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3];
+      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
       char            st;
       for (PetscInt k = 0; k < dim; k++) {
         const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
@@ -536,7 +542,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
           c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
         }
       }
-      st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb);
+      st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb, &ntfree);
       for (PetscInt k = 0; k < dim; k++) {
         nt += lt[k] * lt[k];
         un += u[k] * u[k];
@@ -553,7 +559,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       }
       nt = PetscSqrtReal(nt);
       un = PetscSqrtReal(un);
-      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, nt - gb));
+      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
       fm[1] = PetscMax(fm[1], un);
       f[5] += c->w[i] * nt;
       if (st == SG_FRICTION_STICK) err = un;
