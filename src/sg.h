@@ -112,6 +112,8 @@ PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
 PetscErrorCode SgElasticityMMSErrors(SgElasticity, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
+PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
+PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
 PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
@@ -181,7 +183,7 @@ typedef struct {
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
 PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
-PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction) */
+PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -221,6 +223,7 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
    penetration     ||max(0, g)||_{L2(Gamma_c)} in the problem's units (the paper's infeasibility) */
 PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
 PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
+PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i lam_i n_i with SgContactKKT's multiplier */
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */

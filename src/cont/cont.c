@@ -242,7 +242,7 @@ PetscErrorCode SgContSetUp(SgCont ct)
   if (ct->c && ct->cv.friction) { /* this controller's slip reference: zero, the first load step's start */
     PetscInt dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(PetscCalloc1(ct->cv.n * dim + 1, &ct->yref));
+    PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
   PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
@@ -486,7 +486,7 @@ PetscErrorCode SgContUseSlipReference(SgCont ct)
   if (!ct->yref) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(SgContactGetSlipReference(ct->c, &yref));
-  PetscCall(PetscArraycpy(yref, ct->yref, ct->cv.n * dim));
+  PetscCall(PetscArraycpy(yref, ct->yref, 2 * ct->cv.n * dim));
   PetscFunctionReturn(0);
 }
 
@@ -847,8 +847,8 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
       PetscInt dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       if (!ct->yrsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->yrsteps));
-      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps]));
-      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], ct->yref, ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps])); /* of the unknowns, then of the full displacement */
+      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], ct->yref, 2 * ct->cv.n * dim));
     }
   }
   {
@@ -889,13 +889,12 @@ PetscErrorCode SgContSolve(SgCont ct)
   /* quasi-static friction: a load step's tangential law acts on the slip since the last converged step (the warm
      start y); the first step's slip is from y = 0 */
   if (ct->warm && ct->yref) {
-    const PetscScalar *ya;
-    PetscInt           dim;
+    PetscReal *yref;
+    PetscInt   dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(VecGetArrayRead(ct->y, &ya));
-    for (PetscInt i = 0; i < ct->cv.n; i++)
-      for (PetscInt k = 0; k < dim; k++) ct->yref[i * dim + k] = PetscRealPart(ya[ct->cv.off[i] + k]);
-    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+    PetscCall(SgContactSetSlipReference(ct->c, ct->y)); /* with the prescribed components' data of the step y solved */
+    PetscCall(SgContactGetSlipReference(ct->c, &yref));
+    PetscCall(PetscArraycpy(ct->yref, yref, 2 * ct->cv.n * dim)); /* this controller's */
   }
   PetscCall(SgContUseSlipReference(ct)); /* this controller's, not the last one's that solved the problem */
   if (ct->warm) PetscCall(PrepareWarm(ct));

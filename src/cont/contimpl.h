@@ -101,7 +101,7 @@ struct _n_SgCont {
   PetscReal   *dvsteps;      /* capsteps x ndv: each step's Dirichlet values when they were set (SgProblemSetDirichletValues),
                                 NaN rows for steps without; NULL while none was set */
   /* friction: the state of this controller's solves, not the problem's (another controller on the same problem has its
-     own): the slip reference of its load step (dim per contact vertex; 0 until its first load step ends), copied into
+     own): the slip reference of its load step (2 n dim: of the unknowns, then of the full displacement; 0 until its first load step ends), copied into
      the contact object's working array before each use (SgContUseSlipReference), and the friction summary of its last
      KKT measures */
   PetscReal   *yref;

@@ -133,11 +133,10 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
       PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs.slip));
     }
     {
-      /* the contact force on the body, sum_i w_i lam_i n_i, with the method's multiplier, against the reaction */
+      /* the contact force on the body, sum_i w_i lam_i n_i, with the multiplier of contact_force (SgContactKKT's),
+         against the reaction */
       PetscReal F[3] = {0, 0, 0}, R[3];
-      for (PetscInt i = 0; i < ct->cv.n; i++)
-        for (PetscInt d = 0; d < dim; d++) F[d] += ct->cv.w[i] * ct->lam[i] * ct->cv.normal[i * dim + d];
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, F, 3, MPIU_REAL, MPI_SUM, ct->comm));
+      PetscCall(SgContactForceVector(ct->c, ct->y, F));
       PetscCall(SgElasticityReaction(ct->prob, ct->y, R));
       PetscCall(SgSummarySetRealArray(sum, "contact_force_vector", dim, F));
       PetscCall(SgSummarySetRealArray(sum, "reaction_force", dim, R));
@@ -295,7 +294,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->cv.n * dim));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
@@ -325,8 +324,8 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscMalloc1(ct->cv.n * dim + 1, &yr));
-      PetscCall(PetscArraycpy(yr, yref, ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &yr));
+      PetscCall(PetscArraycpy(yr, yref, 2 * ct->cv.n * dim));
     }
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     PetscCall(PetscMalloc1(m + 1, &dv));
@@ -350,7 +349,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, yr, ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, yr, 2 * ct->cv.n * dim));
       PetscCall(PetscFree(yr));
     }
     PetscCall(PetscFree(dv));

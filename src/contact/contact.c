@@ -67,6 +67,71 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscFunctionReturn(0);
 }
 
+/* Friction with Dirichlet components on contact vertices: which vertices have fixed components (haspartial), and the
+   components that a Dirichlet facet which is a contact facet too fixes (dmask: their reaction is a traction on
+   Gamma_c; a roller on another face, e.g. a symmetry plane, holds the vertex by a force that is no friction). */
+static PetscErrorCode PrescribedSetUp(SgContact c)
+{
+  const SgMesh     *m   = c->mesh;
+  const PetscInt    dim = c->dim, all = (1 << dim) - 1;
+  const SgBoundary *db;
+  PetscInt          loc[2] = {0, 0}, fStart, fEnd, *mark, nd = 0, *dfac = NULL, *dpart = NULL, nfac, *facets, *part;
+  Vec               ml, mg;
+  PetscScalar      *ma;
+  PetscSection      ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc4(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask));
+  c->ypref = c->yref + c->n * dim;
+  PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->ypfull));
+  for (PetscInt i = 0; i < c->n; i++) loc[0] += SgMeshPartial(m, c->vert[i]) ? 1 : 0;
+  PetscCall(SgElasticityGetDirichletBoundary(c->prob, &db));
+  PetscCall(DMPlexGetHeightStratum(c->dm, 1, &fStart, &fEnd));
+  PetscCall(PetscCalloc1(fEnd - fStart + 1, &mark));
+  if (db->active) PetscCall(SgBoundaryGetFacets(c->dm, db, &nd, &dfac, &dpart));
+  for (PetscInt f = 0; f < nd; f++) mark[dfac[f] - fStart] |= db->ncomps ? db->comps[dpart[f]] : all;
+  PetscCall(PetscFree2(dfac, dpart));
+  PetscCall(DMGetLocalVector(c->dmVec, &ml));
+  PetscCall(VecZeroEntries(ml));
+  PetscCall(DMGetLocalSection(c->dmVec, &ns));
+  PetscCall(VecGetArray(ml, &ma));
+  PetscCall(SgBoundaryGetFacets(c->dm, &c->bnd, &nfac, &facets, &part));
+  for (PetscInt f = 0; f < nfac; f++) {
+    PetscInt  fv[3], nfv, off;
+    PetscReal area, nrm[3];
+    if (!mark[facets[f] - fStart]) continue;
+    PetscCall(SgFacetGeometry(c->dm, m, facets[f], &nfv, fv, &area, nrm));
+    for (PetscInt a = 0; a < nfv; a++) {
+      PetscCall(PetscSectionGetOffset(ns, m->vStart + fv[a], &off));
+      for (PetscInt k = 0; k < dim; k++)
+        if (mark[facets[f] - fStart] >> k & 1) ma[off + k] += 1;
+    }
+  }
+  PetscCall(PetscFree2(facets, part));
+  PetscCall(PetscFree(mark));
+  PetscCall(VecRestoreArray(ml, &ma));
+  /* a facet held by another rank marks the vertex there: summed over the ranks */
+  PetscCall(DMGetGlobalVector(c->dmVec, &mg));
+  PetscCall(VecZeroEntries(mg));
+  PetscCall(DMLocalToGlobal(c->dmVec, ml, ADD_VALUES, mg));
+  PetscCall(DMGlobalToLocal(c->dmVec, mg, INSERT_VALUES, ml));
+  PetscCall(DMRestoreGlobalVector(c->dmVec, &mg));
+  PetscCall(VecGetArray(ml, &ma));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(ns, m->vStart + c->vert[i], &off));
+    for (PetscInt k = 0; k < dim; k++)
+      if (PetscRealPart(ma[off + k]) > 0 && SgMeshFixed(m, c->vert[i], k)) c->dmask[i] |= 1 << k;
+    loc[1] += c->dmask[i] ? 1 : 0;
+  }
+  PetscCall(VecRestoreArray(ml, &ma));
+  PetscCall(DMRestoreLocalVector(c->dmVec, &ml));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, 2, MPIU_INT, MPI_MAX, c->comm));
+  c->haspartial = (PetscBool)(loc[0] > 0);
+  c->hasdface   = (PetscBool)(loc[1] > 0);
+  PetscFunctionReturn(0);
+}
+
 /* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
    area-weighted normals are summed over the facets of every rank, then read by the owner. */
 PetscErrorCode SgContactSetUp(SgContact c)
@@ -152,7 +217,8 @@ PetscErrorCode SgContactSetUp(SgContact c)
   }
   c->n = nloc;
   PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
-  if (c->friction) PetscCall(PetscCalloc1(nloc * dim + 1, &c->yref)); /* the first load step's slip: from y = 0 */
+  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement */
+  if (c->friction) PetscCall(PetscCalloc1(2 * nloc * dim + 1, &c->yref));
   nloc = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  off, noff;
@@ -177,6 +243,8 @@ PetscErrorCode SgContactSetUp(SgContact c)
   nglob = c->n;
   PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
   PetscCheck(c->nglobal > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
+  PetscCall(PetscCalloc2(c->n + 1, &c->klam, c->n + 1, &c->kact));
+  if (c->friction) PetscCall(PrescribedSetUp(c));
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -219,6 +287,9 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscFunctionBeginUser;
   if (!*c) PetscFunctionReturn(0);
   PetscCall(PetscFree5((*c)->vert, (*c)->off, (*c)->normal, (*c)->w, (*c)->d));
+  PetscCall(PetscFree2((*c)->klam, (*c)->kact));
+  PetscCall(PetscFree4((*c)->klt, (*c)->kslip, (*c)->kst, (*c)->dmask));
+  PetscCall(PetscFree((*c)->ypfull));
   PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->prefix));
   PetscCall(SgObstacleDestroy(&(*c)->obs));
@@ -318,30 +389,56 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   PetscFunctionReturn(0);
 }
 
-/* Friction at contact vertex i from the residual R_i = (K y - b)_i and the normal multiplier lamN: the tangential
-   multiplier lam_T = -T_i R_i / w_i, the slip u = T_i (y_i - yref_i) (the load step's increment), the bound g (s, or F max(0, lamN)), and the state: free
-   (g at the noise level: nothing to measure), slip (|lam_T| at the bound up to noise), stick. */
-static char FrictionFromResidual(SgContact c, PetscInt i, const PetscScalar ra[], const PetscScalar ya[], PetscReal lamN, PetscReal noise, PetscReal lt[], PetscReal u[], PetscReal *gb)
+/* Friction at contact vertex i from its residual r = (K y - b)_i (on the fixed components: 0, or the reaction where a
+   Dirichlet facet of Gamma_c fixes them), its load step's increment dy = u_i - uref_i of the full displacement (the
+   Dirichlet data on fixed components) and the normal multiplier lamN: the tangential multiplier lam_T = -T_i r / w_i,
+   the slip u = T_i dy, the bound g (s, or F max(0, lamN)), and the state. With Coulomb every active vertex (act) is
+   stick or slip and the others free (a bound at the noise level, F = 0 or F lamN tiny, is met: slip); with Tresca a
+   vertex is free where s is at the noise level. Slip: |lam_T| at the bound up to noise. A vertex whose tangential
+   motion is prescribed (fixed components) is sliding when that motion is not zero: its friction is the bound along
+   the slip (the support supplies the rest of its reaction); held by a Dirichlet facet of Gamma_c, it sticks while it
+   does not move, with the reaction as its friction up to the bound (unoise: the displacement noise). */
+static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], const PetscReal dy[], PetscBool act, PetscReal lamN, PetscReal noise, PetscReal unoise, PetscReal lt[], PetscReal u[], PetscReal *gb, PetscReal *ntfree)
 {
   const PetscInt   dim = c->dim;
   const PetscReal *n   = &c->normal[i * dim];
-  PetscReal        rn = 0, yn = 0, nt = 0;
-
-  PetscReal        dy[3];
+  const PetscInt   v   = c->vert[i];
+  PetscReal        rn = 0, yn = 0, nt = 0, nu = 0, up = 0;
+  PetscBool        partial;
 
   for (PetscInt k = 0; k < dim; k++) {
-    dy[k] = PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
-    rn += n[k] * PetscRealPart(ra[c->off[i] + k]);
+    rn += n[k] * r[k];
     yn += n[k] * dy[k];
   }
   for (PetscInt k = 0; k < dim; k++) {
-    lt[k] = -(PetscRealPart(ra[c->off[i] + k]) - rn * n[k]) / c->w[i];
+    lt[k] = -(r[k] - rn * n[k]) / c->w[i];
     u[k]  = dy[k] - yn * n[k];
     nt += lt[k] * lt[k];
+    nu += u[k] * u[k];
   }
-  nt  = PetscSqrtReal(nt);
-  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
-  if (*gb <= noise) return SG_FRICTION_FREE;
+  nt      = PetscSqrtReal(nt);
+  nu      = PetscSqrtReal(nu);
+  *gb     = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+  partial = (PetscBool)(c->haspartial && SgMeshPartial(c->mesh, v));
+  *ntfree = nt; /* the part the solution must keep within the bound: that of the free components */
+  if (partial) {
+    *ntfree = 0;
+    for (PetscInt k = 0; k < dim; k++) {
+      if (SgMeshFixed(c->mesh, v, k)) up = PetscMax(up, PetscAbsReal(u[k]));
+      else *ntfree += lt[k] * lt[k];
+    }
+    *ntfree = PetscSqrtReal(*ntfree);
+  }
+  if (c->friction == SG_FRICTION_COULOMB ? !act : *gb <= noise) return SG_FRICTION_FREE;
+  if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) { /* prescribed sliding */
+    for (PetscInt k = 0; k < dim; k++) lt[k] = *gb * u[k] / nu;
+    return SG_FRICTION_SLIP;
+  }
+  if (partial && c->dmask[i]) { /* held where it is: the reaction, at most the bound */
+    if (nt > *gb)
+      for (PetscInt k = 0; k < dim; k++) lt[k] *= *gb / nt;
+    return SG_FRICTION_STICK;
+  }
   return nt >= *gb - PetscMax(1e-10 * *gb, noise) ? SG_FRICTION_SLIP : SG_FRICTION_STICK;
 }
 
@@ -401,29 +498,72 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
   PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   fscale = c->Knorm * nrm[1] + c->bnorm_inf;
+  for (PetscInt i = 0; i < c->n; i++) {
+    /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
+       (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
+    const PetscReal noise = 1e-12 * fscale / c->w[i];
+    c->klam[i] = lam[i];
+    c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], noise));
+  }
   if (c->friction) {
     /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
        part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
-       |lam_T| = g (the friction force -w lam_T on the body opposes the slip) */
-    PetscReal f[8] = {0}, fm[2] = {0, 0};
+       |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed components the displacement
+       is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a traction on it. */
+    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = nrm[1];
+    const PetscScalar *ul = NULL, *rfa = NULL;
+    Vec                yloc = NULL, Rf = NULL;
+    if (c->haspartial) {
+      PetscCall(DMGetLocalVector(c->dm, &yloc));
+      PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
+      PetscCall(VecGetArrayRead(yloc, &ul));
+      for (PetscInt i = 0; i < c->n; i++)
+        for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
+    }
+    if (c->hasdface) {
+      PetscCall(VecDuplicate(y, &Rf));
+      PetscCall(SgElasticityFixedResidual(c->prob, y, Rf));
+      PetscCall(VecGetArrayRead(Rf, &rfa));
+    }
+    unoise *= 1e-10;
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
       const PetscReal noise = 1e-12 * fscale / c->w[i];
-      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0;
-      const char      st = FrictionFromResidual(c, i, ra, ya, lam[i], noise, lt, u, &gb);
+      const PetscInt  v     = c->vert[i];
+      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
+      char            st;
+      for (PetscInt k = 0; k < dim; k++) {
+        const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
+        r[k]  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
+        dy[k] = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
+        if (ul && !c->norecord) {
+          c->ypfull[i * dim + k]              = PetscRealPart(ul[c->mesh->loff[v] + k]);
+          c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
+        }
+      }
+      st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb, &ntfree);
       for (PetscInt k = 0; k < dim; k++) {
         nt += lt[k] * lt[k];
         un += u[k] * u[k];
         f[2 + k] += c->w[i] * lt[k];
-        ra[c->off[i] + k] += c->w[i] * lt[k];
+        c->klt[i * dim + k]   = lt[k];
+        c->kslip[i * dim + k] = u[k];
+      }
+      c->kst[i] = st;
+      { /* what the friction balances: the tangential residual on the free components */
+        PetscReal rn = 0;
+        for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+        for (PetscInt k = 0; k < dim; k++)
+          if (!(c->haspartial && SgMeshFixed(c->mesh, v, k))) ra[c->off[i] + k] = rn * c->normal[i * dim + k];
       }
       nt = PetscSqrtReal(nt);
       un = PetscSqrtReal(un);
-      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, nt - gb));
+      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
       fm[1] = PetscMax(fm[1], un);
       f[5] += c->w[i] * nt;
       if (st == SG_FRICTION_STICK) err = un;
-      else if (st == SG_FRICTION_SLIP) {
+      else if (st == SG_FRICTION_SLIP && gb > noise) { /* a bound at the noise level (Coulomb, F lam_N tiny): no direction to measure */
         for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
         a = PetscMax(0, a);
         for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
@@ -434,6 +574,15 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       f[6] += c->w[i] * err * err;
     }
     PetscCall(VecRestoreArrayRead(y, &ya));
+    if (yloc) {
+      PetscCall(VecRestoreArrayRead(yloc, &ul));
+      PetscCall(DMRestoreLocalVector(c->dm, &yloc));
+      if (!c->norecord) c->haverecord = PETSC_TRUE; /* the next load step's slip reference from this y takes these data */
+    }
+    if (Rf) {
+      PetscCall(VecRestoreArrayRead(Rf, &rfa));
+      PetscCall(VecDestroy(&Rf));
+    }
     s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
@@ -452,10 +601,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
-    /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
-       (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
-    const PetscReal noise = 1e-12 * fscale / c->w[i];
-    const PetscBool act   = (PetscBool)(lam[i] > PetscMax(1e-10 * mx[0], noise));
+    const PetscBool act = (PetscBool)c->kact[i]; /* the active set of the fields and of the friction states too */
     s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
     s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
@@ -488,6 +634,34 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 
 /* Vertex fields for output: contact pressure, gap d - tau_N y, penetration max(0, tau_N y - d), active flag, and
    the vector d n from each contact vertex to the obstacle (zero elsewhere; pictures draw the obstacle from it). */
+/* The per-vertex numbers of SgContactKKT at y (klam, kact, klt, kslip, kst) without touching the friction summary or
+   the record of the last solve: the fields and the summary's vectors come from the same definitions as its measures. */
+static PetscErrorCode ContactStateAt(SgContact c, Vec y)
+{
+  SgFrictionSummary fs = c->fsum;
+  SgKKT             kkt;
+
+  PetscFunctionBeginUser;
+  c->norecord = PETSC_TRUE;
+  PetscCall(SgContactKKT(c, y, &kkt));
+  c->norecord = PETSC_FALSE;
+  c->fsum     = fs;
+  PetscFunctionReturn(0);
+}
+
+/* The contact force on the body sum_i w_i lam_i n_i at y, with SgContactKKT's multiplier (whose sum is its force) */
+PetscErrorCode SgContactForceVector(SgContact c, Vec y, PetscReal F[3])
+{
+  PetscFunctionBeginUser;
+  PetscCall(ContactStateAt(c, y));
+  F[0] = F[1] = F[2] = 0;
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) F[k] += c->w[i] * c->klam[i] * c->normal[i * c->dim + k];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, F, 3, MPIU_REAL, MPI_SUM, c->comm));
+  PetscFunctionReturn(0);
+}
+
+/* (lam: unused; the pressure and the active flag are SgContactKKT's, so that the fields integrate to the summary) */
 PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec flds[4], Vec obst)
 {
   Vec                loc[4];
@@ -497,6 +671,8 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   PetscSection       s;
 
   PetscFunctionBeginUser;
+  (void)lam;
+  PetscCall(ContactStateAt(c, y));
   PetscCall(PetscMalloc1(c->n, &g));
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(c, ya, g));
@@ -510,10 +686,10 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   for (PetscInt i = 0; i < c->n; i++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(s, c->mesh->vStart + c->vert[i], &off));
-    la[0][off] = lam[i];
+    la[0][off] = c->klam[i];
     la[1][off] = -g[i];
     la[2][off] = PetscMax(0, g[i]);
-    la[3][off] = lam[i] > 0 ? 1 : 0;
+    la[3][off] = c->kact[i] ? 1 : 0;
   }
   for (PetscInt f = 0; f < 4; f++) {
     PetscCall(VecRestoreArray(loc[f], &la[f]));
@@ -550,19 +726,13 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
    load step T_i (y_i - yref_i) (with load steps the last step's increment; the total T_i y_i without) and the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
 PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec slip, Vec state)
 {
-  const PetscInt     dim = c->dim;
-  Vec                R, lt, ls, lst;
-  const PetscScalar *ya, *ra;
-  PetscScalar       *ta, *sa, *qa;
-  PetscReal          nrm, fscale;
-  PetscSection       vs, ss;
+  const PetscInt dim = c->dim;
+  Vec            lt, ls, lst;
+  PetscScalar   *ta, *sa, *qa;
+  PetscSection   vs, ss;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(y, &R));
-  PetscCall(MatMult(c->K, y, R));
-  PetscCall(VecAXPY(R, -1.0, c->b));
-  PetscCall(VecNorm(y, NORM_INFINITY, &nrm));
-  fscale = c->Knorm * nrm + c->bnorm_inf;
+  PetscCall(ContactStateAt(c, y));
   PetscCall(DMGetLocalSection(c->dmVec, &vs));
   PetscCall(DMGetLocalSection(c->dmVert, &ss));
   PetscCall(DMGetLocalVector(c->dmVec, &lt));
@@ -574,25 +744,16 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
   PetscCall(VecGetArray(lt, &ta));
   PetscCall(VecGetArray(ls, &sa));
   PetscCall(VecGetArray(lst, &qa));
-  PetscCall(VecGetArrayRead(y, &ya));
-  PetscCall(VecGetArrayRead(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscReal rn = 0, lam, l[3], u[3], gb;
-    PetscInt  off, soff;
-    char      st;
-    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
-    lam = -rn / c->w[i];
-    st  = FrictionFromResidual(c, i, ra, ya, lam, 1e-12 * fscale / c->w[i], l, u, &gb);
+    PetscInt off, soff;
     PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
     PetscCall(PetscSectionGetOffset(ss, c->mesh->vStart + c->vert[i], &soff));
     for (PetscInt k = 0; k < dim; k++) {
-      ta[off + k] = l[k];
-      sa[off + k] = u[k];
+      ta[off + k] = c->klt[i * dim + k];
+      sa[off + k] = c->kslip[i * dim + k];
     }
-    qa[soff] = st;
+    qa[soff] = c->kst[i];
   }
-  PetscCall(VecRestoreArrayRead(R, &ra));
-  PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(VecRestoreArray(lt, &ta));
   PetscCall(VecRestoreArray(ls, &sa));
   PetscCall(VecRestoreArray(lst, &qa));
@@ -606,7 +767,6 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
   PetscCall(DMRestoreLocalVector(c->dmVec, &lt));
   PetscCall(DMRestoreLocalVector(c->dmVec, &ls));
   PetscCall(DMRestoreLocalVector(c->dmVert, &lst));
-  PetscCall(VecDestroy(&R));
   PetscFunctionReturn(0);
 }
 
@@ -620,16 +780,37 @@ PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
   if (!c->yref) PetscFunctionReturn(0);
   if (!y) {
     PetscCall(PetscArrayzero(c->yref, c->n * c->dim));
+    PetscCall(PetscArrayzero(c->ypref, c->n * c->dim));
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArrayRead(y, &ya));
   for (PetscInt i = 0; i < c->n; i++)
     for (PetscInt k = 0; k < c->dim; k++) c->yref[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
+  if (c->haspartial) {
+    /* prescribed components: the data of the step y solved, recorded by its SgContactKKT (by now the problem may
+       hold the next step's data); otherwise the problem's current data */
+    PetscInt same = c->haverecord ? 1 : 0;
+    for (PetscInt i = 0; i < c->n * c->dim && same; i++) same = c->ypfull[c->n * c->dim + i] == c->yref[i];
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_INT, MPI_MIN, c->comm));
+    if (same) PetscCall(PetscArraycpy(c->ypref, c->ypfull, c->n * c->dim));
+    else {
+      Vec                yloc;
+      const PetscScalar *ul;
+      PetscCall(DMGetLocalVector(c->dm, &yloc));
+      PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
+      PetscCall(VecGetArrayRead(yloc, &ul));
+      for (PetscInt i = 0; i < c->n; i++)
+        for (PetscInt k = 0; k < c->dim; k++) c->ypref[i * c->dim + k] = PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k]);
+      PetscCall(VecRestoreArrayRead(yloc, &ul));
+      PetscCall(DMRestoreLocalVector(c->dm, &yloc));
+    }
+  }
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscFunctionReturn(0);
 }
 
-/* the slip reference itself (dim per contact vertex; NULL without friction), for the checkpoint */
+/* the slip reference itself (dim per contact vertex; NULL without friction), for the checkpoint; 2 n dim numbers: of
+   the unknowns (what the solvers use), then of the full displacement (the data on the prescribed components) */
 PetscErrorCode SgContactGetSlipReference(SgContact c, PetscReal **yref)
 {
   PetscFunctionBeginUser;

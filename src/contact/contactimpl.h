@@ -46,6 +46,22 @@ struct _n_SgContact {
   SgFrictionSummary fsum;    /* of the last SgContactKKT */
   PetscReal     *yref;       /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
                                 tangential law acts on the slip increment T_i (y_i - yref_i) */
+  /* prescribed tangential motion (friction): the fixed components of partly fixed contact vertices hold Dirichlet
+     data, not unknowns; their slip is the data's increment, and where a Dirichlet facet is a contact facet too its
+     reaction is a traction on Gamma_c (the friction force, up to the bound) */
+  PetscBool  haspartial;     /* some contact vertex, on some rank, has fixed components */
+  PetscBool  hasdface;       /* some contact vertex has components fixed by a Dirichlet facet of Gamma_c */
+  PetscInt  *dmask;          /* per contact vertex: those components (bits) */
+  PetscReal *ypref;          /* the full displacement at the start of the load step, n*dim (used on fixed components):
+                                the second half of yref */
+  PetscReal *ypfull;         /* the full displacement of the last recorded SgContactKKT, n*dim, and (from n*dim on)
+                                its y: SgContactSetSlipReference of that y takes the data of that call */
+  PetscBool  haverecord;
+  PetscBool  norecord;       /* SgContactKKT for the fields: the friction summary and the record left alone */
+  /* per contact vertex, of the last SgContactKKT: the multiplier, the active flag, and with friction lam_T, the slip
+     and the state (the fields and the summary's vectors are these numbers) */
+  PetscReal *klam, *klt, *kslip;
+  char      *kact, *kst;
 };
 
 #define SG_PROBLEM_COOKIE 0x5350524fL /* marks a live SgProblem (cleared when it is freed) */

@@ -10,6 +10,7 @@
    volumes (3D) or surfaces (2D) is a solid: a point is inside if the ray leaves it an odd number of times. */
 #include "contact/contactimpl.h"
 #include <gmshc.h>
+#include <ctype.h>
 
 typedef struct {
   char      file[PETSC_MAX_PATH_LEN];
@@ -90,6 +91,24 @@ static PetscErrorCode CadLoad(SgObstacle o, Obstacle_CAD *cad)
   PetscFunctionReturn(0);
 }
 
+/* A mesh file (STL, gmsh's .msh, ...) by its extension: gmsh reads it as discrete entities, which have no geometry to
+   project onto, so the tessellation is empty; meshed obstacles are not supported (only CAD geometry). */
+static PetscErrorCode CadRefuseMeshFile(SgObstacle o, const char file[])
+{
+  const char *mesh[] = {"stl", "msh", "vtk", "vtu", "unv", "mesh", "bdf", "nas", "inp", "med", "cgns", "ply", "ply2", "off", "obj", "su2", "wrl", "vrml", "x3d", "p3d", "diff"};
+  const char *dot    = strrchr(file, '.'), *slash = strrchr(file, '/');
+  char        ext[16];
+  size_t      k;
+
+  PetscFunctionBeginUser;
+  if (!dot || (slash && dot < slash) || strlen(dot + 1) >= sizeof(ext)) PetscFunctionReturn(0);
+  for (k = 0; dot[1 + k]; k++) ext[k] = (char)tolower((unsigned char)dot[1 + k]);
+  ext[k] = 0;
+  for (size_t i = 0; i < sizeof(mesh) / sizeof(mesh[0]); i++)
+    PetscCheck(strcmp(ext, mesh[i]), o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a mesh file (.%s) is not supported as the obstacle: meshed obstacles (STL, .msh, ...) are not supported yet, only CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", file, ext);
+  PetscFunctionReturn(0);
+}
+
 /* The file read, checked and tessellated; errors name the option and the file. */
 static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
 {
@@ -106,6 +125,18 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   gmshModelGetEntities(&vols, &nvols, (int)dim, &ierr);
   cad->solid = nvols > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (vols) gmshFree(vols);
+  /* a model of discrete entities (a mesh merged by a .geo, or a mesh file under another name) has no geometry */
+  for (size_t k = 0; k < nents; k += 2) {
+    char     *type = NULL;
+    PetscBool discrete;
+    gmshModelGetType(ents[k], ents[k + 1], &type, &ierr);
+    discrete = (PetscBool)(!ierr && type && strstr(type, "Discrete"));
+    if (type) gmshFree(type);
+    if (discrete) {
+      gmshFree(ents);
+      SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: gmsh reads it as a mesh (discrete %s), not as CAD geometry: meshed obstacles (STL, .msh, ...) are not supported yet, only CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", cad->file, dim == 3 ? "surfaces" : "curves");
+    }
+  }
   if (!nents) {
     if (ents) gmshFree(ents);
     SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: the file has no %s: a %" PetscInt_FMT "D obstacle is bounded by %s", cad->file, dim == 3 ? "surfaces" : "curves", dim, dim == 3 ? "surfaces" : "curves in the plane z = 0");
@@ -429,6 +460,7 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-obstacle_cad_verbose", "Let gmsh print its messages", &verbose, NULL));
   PetscCall(PetscTestFile(cad->file, 'r', &exists));
   PetscCheck(exists, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: no such file, or not readable", cad->file);
+  PetscCall(CadRefuseMeshFile(o, cad->file));
   PetscCall(PetscLogEventBegin(CAD_SetUp, 0, 0, 0, 0));
   PetscCall(GmshStart(o->comm, verbose));
   PetscCall(CadSetUp(o, cad));

@@ -1395,3 +1395,69 @@ PetscErrorCode SgElasticityMMSErrors(SgElasticity p, Vec y, PetscReal *l2, Petsc
   *h1 = PetscSqrtReal(e[1]);
   PetscFunctionReturn(0);
 }
+
+/* The reactions on the fixed components of partly fixed vertices: R (a global vector like y) holds (K u - f) there, u
+   the full displacement (the Dirichlet values on those components) and K, f unconstrained; 0 elsewhere. With the
+   contact and friction forces (which the free components balance) they are what holds a vertex whose tangential
+   motion is prescribed (friction with prescribed slip, SgContactKKT). */
+PetscErrorCode SgElasticityFixedResidual(SgElasticity p, Vec y, Vec R)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1, ne = nv * dim;
+  Vec                yloc, rloc;
+  const PetscScalar *ya, *fa;
+  PetscScalar       *ra;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(R));
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(DMGetLocalVector(p->dm, &rloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
+  PetscCall(VecZeroEntries(rloc));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArrayRead(p->fpart, &fa));
+  PetscCall(VecGetArray(rloc, &ra));
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscBool       has = PETSC_FALSE;
+
+    for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || SgMeshPartial(m, cv[a]));
+    if (!has) continue;
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) {
+        xe[a * dim + d] = m->x[cv[a] * dim + d];
+        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
+      }
+    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    for (PetscInt a = 0; a < nv; a++) {
+      if (!SgMeshPartial(m, cv[a])) continue;
+      for (PetscInt i = 0; i < dim; i++) {
+        PetscReal r = 0;
+        if (!SgMeshFixed(m, cv[a], i)) continue;
+        for (PetscInt j = 0; j < ne; j++) r += Ke[(a * dim + i) * ne + j] * ue[j];
+        ra[m->loff[cv[a]] + i] += r;
+      }
+    }
+  }
+  /* the loads of this rank's cells and facets (the unlifted load): subtracted once per local copy */
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (SgMeshPartial(m, v))
+      for (PetscInt d = 0; d < dim; d++)
+        if (SgMeshFixed(m, v, d)) ra[m->loff[v] + d] -= fa[m->loff[v] + d];
+  PetscCall(VecRestoreArray(rloc, &ra));
+  PetscCall(VecRestoreArrayRead(p->fpart, &fa));
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMLocalToGlobal(p->dm, rloc, ADD_VALUES, R));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscCall(DMRestoreLocalVector(p->dm, &rloc));
+  PetscFunctionReturn(0);
+}
+
+/* the Dirichlet part (its label, ids and the components fixed per id) */
+PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity p, const SgBoundary **bnd)
+{
+  PetscFunctionBeginUser;
+  *bnd = &p->dirichlet;
+  PetscFunctionReturn(0);
+}

@@ -723,6 +723,24 @@ static PetscErrorCode DatasetName(Vec v, const char suffix[], char name[], size_
   PetscFunctionReturn(0);
 }
 
+/* s with the XML special characters & < > " ' as entities (out: len bytes; a name too long for it is an error) */
+static PetscErrorCode XmlEscape(const char s[], char out[], size_t len)
+{
+  size_t n = 0;
+
+  PetscFunctionBeginUser;
+  for (const char *c = s; *c; c++) {
+    const char *e = *c == '&' ? "&amp;" : *c == '<' ? "&lt;" : *c == '>' ? "&gt;" : *c == '"' ? "&quot;" : *c == '\'' ? "&apos;" : NULL;
+    size_t      l = e ? strlen(e) : 1;
+    PetscCheck(n + l < len, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-output_file: the name '%s' is too long for the XDMF file", s);
+    if (e) memcpy(out + n, e, l);
+    else out[n] = *c;
+    n += l;
+  }
+  out[n] = 0;
+  PetscFunctionReturn(0);
+}
+
 /* One <Grid> of the XDMF file: the mesh and the fields; step >= 0: the datasets of that load step (their names end in
    _step<step>) at the time value time, inside a temporal collection. */
 static PetscErrorCode WriteXDMFGrid(FILE *fp, const char h5base[], PetscInt dim, PetscInt nvert, PetscInt ncell, PetscInt step, PetscReal time, PetscInt nv, Vec vf[], PetscInt nc, Vec cf[], PetscReal magnification)
@@ -745,25 +763,33 @@ static PetscErrorCode WriteXDMFGrid(FILE *fp, const char h5base[], PetscInt dim,
     const char *name;
     char        dset[256];
     PetscInt    bs;
+    char        xn[512], xd[768];
     PetscCall(PetscObjectGetName((PetscObject)vf[i], &name));
     PetscCall(DatasetName(vf[i], suffix, dset, sizeof(dset)));
+    PetscCall(XmlEscape(name, xn, sizeof(xn)));
+    PetscCall(XmlEscape(dset, xd, sizeof(xd)));
+    name = xn;
     PetscCall(VecGetBlockSize(vf[i], &bs));
     fprintf(fp, "%s   <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", ind, name, bs > 1 ? "Vector" : "Scalar");
     if (bs == 2) { /* ParaView wants 3-component vectors: pad the 2D displacement with a zero */
       fprintf(fp, "%s    <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0*$0)\" Dimensions=\"%" PetscInt_FMT " 3\">\n", ind, nvert);
       for (PetscInt d = 0; d < 2; d++)
-        fprintf(fp, "%s     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", ind, nvert, d, nvert, nvert, h5base, dset);
+        fprintf(fp, "%s     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 1\"><DataItem Dimensions=\"3 2\" Format=\"XML\">0 %" PetscInt_FMT " 1 1 %" PetscInt_FMT " 1</DataItem><DataItem Dimensions=\"%" PetscInt_FMT " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem></DataItem>\n", ind, nvert, d, nvert, nvert, h5base, xd);
       fprintf(fp, "%s    </DataItem>\n", ind);
-    } else fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", ind, nvert, bs, h5base, dset);
+    } else fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/vertex_fields/%s</DataItem>\n", ind, nvert, bs, h5base, xd);
     fprintf(fp, "%s   </Attribute>\n", ind);
   }
   for (PetscInt i = 0; i < nc; i++) {
     const char *name;
     char        dset[256];
+    char        xn[512], xd[768];
     PetscCall(PetscObjectGetName((PetscObject)cf[i], &name));
     PetscCall(DatasetName(cf[i], suffix, dset, sizeof(dset)));
+    PetscCall(XmlEscape(name, xn, sizeof(xn)));
+    PetscCall(XmlEscape(dset, xd, sizeof(xd)));
+    name = xn;
     fprintf(fp, "%s   <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Cell\">\n", ind, name);
-    fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n%s   </Attribute>\n", ind, ncell, h5base, dset, ind);
+    fprintf(fp, "%s    <DataItem Dimensions=\"%" PetscInt_FMT " 1\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/cell_fields/%s</DataItem>\n%s   </Attribute>\n", ind, ncell, h5base, xd, ind);
   }
   fprintf(fp, "%s  </Grid>\n", ind);
   PetscFunctionReturn(0);
@@ -775,6 +801,7 @@ static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char 
 {
   FILE       *fp;
   const char *h5base;
+  char        xbase[PETSC_MAX_PATH_LEN * 6];
   PetscInt    nvert, ncell, dim;
   MPI_Comm    comm;
   DM          dmVert;
@@ -785,6 +812,8 @@ static PetscErrorCode WriteXDMF(SgElasticity p, const char h5name[], const char 
   PetscCall(SgElasticityGetDMs(p, NULL, &dmVert, NULL, NULL));
   /* the XDMF file sits beside the HDF5 file and names it relative to itself */
   h5base = strrchr(h5name, '/') ? strrchr(h5name, '/') + 1 : h5name;
+  PetscCall(XmlEscape(h5base, xbase, sizeof(xbase))); /* a file name with & or < must not break the XML */
+  h5base = xbase;
   PetscCall(VecGetSize(cf[0], &ncell));
   {
     Vec g;
