@@ -175,13 +175,14 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscReal      gT  = c->fgfac * s->gamma;
-  const PetscScalar   *ya;
+  const PetscScalar   *ya, *fa = NULL;
   PetscReal           *blk;
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   s->nforce = 0;
   PetscCall(VecGetArrayRead(y, &ya));
+  if (s->stagnant) PetscCall(VecGetArrayRead(s->r, &fa)); /* F(y): SNES evaluated it at y before this Jacobian */
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscReal *n  = &c->normal[i * dim];
     const PetscReal  mN = s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0;
@@ -195,7 +196,26 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
       if (tt <= 0) st = SG_FRICTION_STICK;
     }
     s->fforce[i] = (char)(st == SG_FRICTION_STICK && zn > gb);
-    s->nforce += s->fforce[i];
+    if (fa && st == SG_FRICTION_STICK && !s->fforce[i]) {
+      /* a Newton step that kept every state did not reduce ||F||: at a large gamma_T the stick force gamma_T T (y - yref)
+         moves in steps of gamma_T ulp(y), which may exceed the correction; a stick vertex whose equilibrium force
+         lam_T - T F_i / w_i (the force the step should reach) lies beyond the bound slips: linearized as slip in the
+         direction of that force (and the step made consistent by PreCheck) */
+      PetscReal le[3], fn = 0, ln = 0;
+      for (PetscInt k = 0; k < dim; k++) fn += n[k] * PetscRealPart(fa[c->off[i] + k]);
+      for (PetscInt k = 0; k < dim; k++) {
+        le[k] = lt[k] - (PetscRealPart(fa[c->off[i] + k]) - fn * n[k]) / c->w[i];
+        ln += le[k] * le[k];
+      }
+      ln = PetscSqrtReal(ln);
+      if (ln > gb) {
+        st = SG_FRICTION_SLIP;
+        zn = ln;
+        for (PetscInt k = 0; k < dim; k++) t[k] = le[k] / ln;
+        s->fforce[i] = 2;
+      }
+    }
+    s->nforce += (s->fforce[i] != 0);
     s->fstjac[i] = st;
     for (PetscInt k = 0; k < dim; k++) s->tjac[i * dim + k] = t[k];
     if (st == SG_FRICTION_FREE) continue;
@@ -210,6 +230,7 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
       }
   }
   PetscCall(VecRestoreArrayRead(y, &ya));
+  if (fa) PetscCall(VecRestoreArrayRead(s->r, &fa));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->nforce, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(SgContactAddBlocks(s->c, blk, P));
   PetscCall(PetscFree(blk));
@@ -285,7 +306,10 @@ static PetscErrorCode PreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool *chang
     PetscReal lt[3], u[3], t[3], zn, gb;
     if (!s->fforce[i]) continue;
     (void)FrictionAt(s, i, xa, s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0, lt, u, t, &zn, &gb);
-    for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
+    if (s->fforce[i] == 2) /* a stick linearized as slip: its model is g t_jac, not z = lam_T */
+      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (gb * s->tjac[i * dim + k] - lt[k]);
+    else
+      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
   }
   PetscCall(VecRestoreArray(s->wpre[0], &ra));
   PetscCall(VecRestoreArrayRead(X, &xa));
@@ -314,6 +338,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   if (it == 0) {
     s->fnorm0       = fnorm;
     s->prev_settled = PETSC_FALSE;
+    s->stagnant     = PETSC_FALSE;
     if (fnorm <= atol) {
       *reason   = SNES_CONVERGED_FNORM_ABS;
       s->reason = SG_SSN_ZERO_RESIDUAL;
@@ -333,6 +358,8 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
        the Newton steps converge instead of landing: measured against the load ||b|| alone */
     small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
   } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
+  /* friction: the next Jacobian reclassifies the sticks from their equilibrium force (FrictionJacobian) */
+  s->stagnant     = (PetscBool)(s->cv.friction && settled && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
@@ -820,6 +847,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->outer   = outer;
   s->havejac = PETSC_FALSE;
   s->nhash   = 0;
+  s->stagnant = PETSC_FALSE;
   PetscCall(SNESSolve(s->snes, NULL, y));
   PetscCall(SNESGetIterationNumber(s->snes, its));
   PetscCall(SNESGetLinearSolveIterations(s->snes, kits));

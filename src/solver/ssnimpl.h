@@ -50,7 +50,9 @@ struct _n_SgSSN {
   PetscReal    *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
   char         *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
   PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
-  char         *fforce;       /* slips that reversed: linearized as stick at the last Jacobian (FrictionJacobian) */
+  char         *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
+                                 equilibrium force exceeds the bound, linearized as slip (FrictionJacobian) */
+  PetscBool     stagnant;     /* the last Newton step kept every state and did not halve ||F|| (Converged) */
   PetscInt      nforce;       /* their number, on all ranks */
   Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
   PetscInt      nstick, nslip, nfchanged;
