@@ -673,6 +673,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
     s->residual_test = (PetscBool)(!preonly || s->cv.friction); /* slip: Newton steps converge, they do not land */
+    s->iterative     = (PetscBool)!preonly;
     PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
     PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
@@ -696,6 +697,8 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree2(s->lamhatT, s->mT));
   PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  PetscCall(KSPDestroy(&s->kspd));
+  PetscCall(VecDestroy(&s->y0));
   if (s->wpre) PetscCall(VecDestroyVecs(2, &s->wpre));
   PetscCall(PetscFree(s->hash));
   PetscCall(PetscFree(*ssn));
@@ -848,11 +851,57 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->havejac = PETSC_FALSE;
   s->nhash   = 0;
   s->stagnant = PETSC_FALSE;
-  PetscCall(SNESSolve(s->snes, NULL, y));
-  PetscCall(SNESGetIterationNumber(s->snes, its));
-  PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
-  PetscCall(SNESGetConvergedReason(s->snes, reason));
-  s->reason = SSNReason(s, *reason);
+  if (s->cv.friction && s->iterative) {
+    if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
+    PetscCall(VecCopy(y, s->y0));
+  }
+  if (s->gamma_direct > 0 && gamma >= s->gamma_direct) { /* the iterative solver failed at a smaller gamma already */
+    *its = *kits = 0;
+    s->reason = SG_SSN_LINEAR_SOLVE;
+  } else {
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, its));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    s->reason = SSNReason(s, *reason);
+  }
+  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) {
+    /* friction with an iterative linear solver: at a large gamma the slip blocks (Coulomb: the coupling F gamma t n^T,
+       far from symmetric) defeat Krylov solvers with an AMG built for elasticity, which fail or whose inexact steps
+       keep the SSN from converging (GMRES + BoomerAMG on the sliding block at gamma ~ 1e12): this (P_gamma) is solved
+       again from the same start with sparse LU (MUMPS), and so are those at larger gammas; said on the output */
+    KSP      ksp;
+    PetscInt its2, kits2;
+    if (!s->kspd) {
+      PC pc;
+      PetscCall(KSPCreate(s->comm, &s->kspd));
+      PetscCall(KSPSetType(s->kspd, KSPPREONLY));
+      PetscCall(KSPGetPC(s->kspd, &pc));
+      PetscCall(PCSetType(pc, PCLU));
+      PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    }
+    if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
+      PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));
+      s->gamma_direct = gamma;
+    }
+    PetscCall(SNESGetKSP(s->snes, &ksp));
+    PetscCall(PetscObjectReference((PetscObject)ksp));
+    PetscCall(SNESSetKSP(s->snes, s->kspd));
+    PetscCall(VecCopy(s->y0, y));
+    s->havejac  = PETSC_FALSE;
+    s->nhash    = 0;
+    s->stagnant = PETSC_FALSE;
+    s->reason   = SG_SSN_ITERATING;
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, &its2));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, &kits2));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    PetscCall(SNESSetKSP(s->snes, ksp));
+    PetscCall(KSPDestroy(&ksp));
+    s->reason = SSNReason(s, *reason);
+    *its += its2;
+    *kits += kits2;
+  }
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }

@@ -52,6 +52,10 @@ struct _n_SgSSN {
   PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
   char         *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
                                  equilibrium force exceeds the bound, linearized as slip (FrictionJacobian) */
+  PetscBool     iterative;    /* the linear solver is not preonly */
+  KSP           kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
+  Vec           y0;           /* the initial guess of the solve, kept for that repetition */
+  PetscReal     gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
   PetscBool     stagnant;     /* the last Newton step kept every state and did not halve ||F|| (Converged) */
   PetscInt      nforce;       /* their number, on all ranks */
   Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
