@@ -197,18 +197,22 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
     }
     s->fforce[i] = (char)(st == SG_FRICTION_STICK && zn > gb);
     if (fa && st == SG_FRICTION_STICK && !s->fforce[i]) {
-      /* a Newton step that kept every state did not reduce ||F||: at a large gamma_T the stick force gamma_T T (y - yref)
-         moves in steps of gamma_T ulp(y), which may exceed the correction; a stick vertex whose equilibrium force
-         lam_T - T F_i / w_i (the force the step should reach) lies beyond the bound slips: linearized as slip in the
-         direction of that force (and the step made consistent by PreCheck) */
-      PetscReal le[3], fn = 0, ln = 0;
+      /* the last Newton step did not halve ||F||: at a large gamma_T the stick force gamma_T T (y - yref) moves in
+         steps of about q = 4 eps gamma_T |y_i|, and a correction below q is rounded away. A stick vertex whose
+         tangential residual T F_i / w_i lies below q and whose equilibrium force lam_T - T F_i / w_i (the force the
+         step should reach) lies beyond the bound slips: linearized as slip in the direction of that force (the step
+         made consistent by PreCheck) */
+      PetscReal le[3], fn = 0, ln = 0, rt = 0, ym = 0;
       for (PetscInt k = 0; k < dim; k++) fn += n[k] * PetscRealPart(fa[c->off[i] + k]);
       for (PetscInt k = 0; k < dim; k++) {
-        le[k] = lt[k] - (PetscRealPart(fa[c->off[i] + k]) - fn * n[k]) / c->w[i];
+        const PetscReal r = (PetscRealPart(fa[c->off[i] + k]) - fn * n[k]) / c->w[i];
+        le[k] = lt[k] - r;
         ln += le[k] * le[k];
+        rt += r * r;
+        ym = PetscMax(ym, PetscMax(PetscAbsReal(PetscRealPart(ya[c->off[i] + k])), PetscAbsReal(c->yref[i * dim + k])));
       }
       ln = PetscSqrtReal(ln);
-      if (ln > gb) {
+      if (ln > gb && PetscSqrtReal(rt) <= 4 * PETSC_MACHINE_EPSILON * gT * ym) {
         st = SG_FRICTION_SLIP;
         zn = ln;
         for (PetscInt k = 0; k < dim; k++) t[k] = le[k] / ln;
@@ -359,7 +363,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
     small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
   } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
   /* friction: the next Jacobian reclassifies the sticks from their equilibrium force (FrictionJacobian) */
-  s->stagnant     = (PetscBool)(s->cv.friction && settled && it > 1 && fnorm > 0.5 * s->prev_fnorm);
+  s->stagnant     = (PetscBool)(s->cv.friction && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {

@@ -56,7 +56,7 @@ struct _n_SgSSN {
   KSP           kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
   Vec           y0;           /* the initial guess of the solve, kept for that repetition */
   PetscReal     gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
-  PetscBool     stagnant;     /* the last Newton step kept every state and did not halve ||F|| (Converged) */
+  PetscBool     stagnant;     /* friction: the last Newton step did not halve ||F|| (Converged) */
   PetscInt      nforce;       /* their number, on all ranks */
   Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
   PetscInt      nstick, nslip, nfchanged;
