@@ -80,6 +80,15 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
     }
     nz = PetscSqrtReal(nz);
     s  = !(g > 0) ? 0 : (nz <= g ? 1 : 2);
+    if (s == 2 && st[i] == 2) {
+      /* a slip whose direction turned by more than 90 degrees since the last solve sticks in the next one (its force
+         then comes from the equilibrium, not from the old direction): with nearly every vertex slipping, the forces
+         g t of the old directions can push the whole contact zone back and forth between +t and -t for ever (the
+         same safeguard as the SSN's, FrictionJacobian in solver/ssn.c) */
+      PetscReal tt = 0;
+      for (PetscInt j = 0; j < dim; j++) tt += z[j] / nz * tdir[i * dim + j];
+      if (tt <= 0) s = 1;
+    }
     if (s == 2)
       for (PetscInt j = 0; j < dim; j++) {
         dt = PetscMax(dt, PetscAbsReal(z[j] / nz - tdir[i * dim + j]));

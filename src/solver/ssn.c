@@ -175,13 +175,14 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscReal      gT  = c->fgfac * s->gamma;
-  const PetscScalar   *ya;
+  const PetscScalar   *ya, *fa = NULL;
   PetscReal           *blk;
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   s->nforce = 0;
   PetscCall(VecGetArrayRead(y, &ya));
+  if (s->stagnant) PetscCall(VecGetArrayRead(s->r, &fa)); /* F(y): SNES evaluated it at y before this Jacobian */
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscReal *n  = &c->normal[i * dim];
     const PetscReal  mN = s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0;
@@ -195,7 +196,30 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
       if (tt <= 0) st = SG_FRICTION_STICK;
     }
     s->fforce[i] = (char)(st == SG_FRICTION_STICK && zn > gb);
-    s->nforce += s->fforce[i];
+    if (fa && st == SG_FRICTION_STICK && !s->fforce[i]) {
+      /* the last Newton step did not halve ||F||: at a large gamma_T the stick force gamma_T T (y - yref) moves in
+         steps of about q = 4 eps gamma_T |y_i|, and a correction below q is rounded away. A stick vertex whose
+         tangential residual T F_i / w_i lies below q and whose equilibrium force lam_T - T F_i / w_i (the force the
+         step should reach) lies beyond the bound slips: linearized as slip in the direction of that force (the step
+         made consistent by PreCheck) */
+      PetscReal le[3], fn = 0, ln = 0, rt = 0, ym = 0;
+      for (PetscInt k = 0; k < dim; k++) fn += n[k] * PetscRealPart(fa[c->off[i] + k]);
+      for (PetscInt k = 0; k < dim; k++) {
+        const PetscReal r = (PetscRealPart(fa[c->off[i] + k]) - fn * n[k]) / c->w[i];
+        le[k] = lt[k] - r;
+        ln += le[k] * le[k];
+        rt += r * r;
+        ym = PetscMax(ym, PetscMax(PetscAbsReal(PetscRealPart(ya[c->off[i] + k])), PetscAbsReal(c->yref[i * dim + k])));
+      }
+      ln = PetscSqrtReal(ln);
+      if (ln > gb && PetscSqrtReal(rt) <= 4 * PETSC_MACHINE_EPSILON * gT * ym) {
+        st = SG_FRICTION_SLIP;
+        zn = ln;
+        for (PetscInt k = 0; k < dim; k++) t[k] = le[k] / ln;
+        s->fforce[i] = 2;
+      }
+    }
+    s->nforce += (s->fforce[i] != 0);
     s->fstjac[i] = st;
     for (PetscInt k = 0; k < dim; k++) s->tjac[i * dim + k] = t[k];
     if (st == SG_FRICTION_FREE) continue;
@@ -210,6 +234,7 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
       }
   }
   PetscCall(VecRestoreArrayRead(y, &ya));
+  if (fa) PetscCall(VecRestoreArrayRead(s->r, &fa));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->nforce, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscCall(SgContactAddBlocks(s->c, blk, P));
   PetscCall(PetscFree(blk));
@@ -285,7 +310,10 @@ static PetscErrorCode PreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool *chang
     PetscReal lt[3], u[3], t[3], zn, gb;
     if (!s->fforce[i]) continue;
     (void)FrictionAt(s, i, xa, s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0, lt, u, t, &zn, &gb);
-    for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
+    if (s->fforce[i] == 2) /* a stick linearized as slip: its model is g t_jac, not z = lam_T */
+      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (gb * s->tjac[i * dim + k] - lt[k]);
+    else
+      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
   }
   PetscCall(VecRestoreArray(s->wpre[0], &ra));
   PetscCall(VecRestoreArrayRead(X, &xa));
@@ -314,6 +342,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   if (it == 0) {
     s->fnorm0       = fnorm;
     s->prev_settled = PETSC_FALSE;
+    s->stagnant     = PETSC_FALSE;
     if (fnorm <= atol) {
       *reason   = SNES_CONVERGED_FNORM_ABS;
       s->reason = SG_SSN_ZERO_RESIDUAL;
@@ -333,6 +362,8 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
        the Newton steps converge instead of landing: measured against the load ||b|| alone */
     small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
   } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
+  /* friction: the next Jacobian reclassifies the sticks from their equilibrium force (FrictionJacobian) */
+  s->stagnant     = (PetscBool)(s->cv.friction && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
@@ -646,6 +677,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
     s->residual_test = (PetscBool)(!preonly || s->cv.friction); /* slip: Newton steps converge, they do not land */
+    s->iterative     = (PetscBool)!preonly;
     PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
     PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
@@ -669,6 +701,8 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree2(s->lamhatT, s->mT));
   PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  PetscCall(KSPDestroy(&s->kspd));
+  PetscCall(VecDestroy(&s->y0));
   if (s->wpre) PetscCall(VecDestroyVecs(2, &s->wpre));
   PetscCall(PetscFree(s->hash));
   PetscCall(PetscFree(*ssn));
@@ -820,11 +854,58 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->outer   = outer;
   s->havejac = PETSC_FALSE;
   s->nhash   = 0;
-  PetscCall(SNESSolve(s->snes, NULL, y));
-  PetscCall(SNESGetIterationNumber(s->snes, its));
-  PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
-  PetscCall(SNESGetConvergedReason(s->snes, reason));
-  s->reason = SSNReason(s, *reason);
+  s->stagnant = PETSC_FALSE;
+  if (s->cv.friction && s->iterative) {
+    if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
+    PetscCall(VecCopy(y, s->y0));
+  }
+  if (s->gamma_direct > 0 && gamma >= s->gamma_direct) { /* the iterative solver failed at a smaller gamma already */
+    *its = *kits = 0;
+    s->reason = SG_SSN_LINEAR_SOLVE;
+  } else {
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, its));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    s->reason = SSNReason(s, *reason);
+  }
+  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) {
+    /* friction with an iterative linear solver: at a large gamma the slip blocks (Coulomb: the coupling F gamma t n^T,
+       far from symmetric) defeat Krylov solvers with an AMG built for elasticity, which fail or whose inexact steps
+       keep the SSN from converging (GMRES + BoomerAMG on the sliding block at gamma ~ 1e12): this (P_gamma) is solved
+       again from the same start with sparse LU (MUMPS), and so are those at larger gammas; said on the output */
+    KSP      ksp;
+    PetscInt its2, kits2;
+    if (!s->kspd) {
+      PC pc;
+      PetscCall(KSPCreate(s->comm, &s->kspd));
+      PetscCall(KSPSetType(s->kspd, KSPPREONLY));
+      PetscCall(KSPGetPC(s->kspd, &pc));
+      PetscCall(PCSetType(pc, PCLU));
+      PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    }
+    if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
+      PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));
+      s->gamma_direct = gamma;
+    }
+    PetscCall(SNESGetKSP(s->snes, &ksp));
+    PetscCall(PetscObjectReference((PetscObject)ksp));
+    PetscCall(SNESSetKSP(s->snes, s->kspd));
+    PetscCall(VecCopy(s->y0, y));
+    s->havejac  = PETSC_FALSE;
+    s->nhash    = 0;
+    s->stagnant = PETSC_FALSE;
+    s->reason   = SG_SSN_ITERATING;
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, &its2));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, &kits2));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    PetscCall(SNESSetKSP(s->snes, ksp));
+    PetscCall(KSPDestroy(&ksp));
+    s->reason = SSNReason(s, *reason);
+    *its += its2;
+    *kits += kits2;
+  }
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }

@@ -50,7 +50,13 @@ struct _n_SgSSN {
   PetscReal    *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
   char         *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
   PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
-  char         *fforce;       /* slips that reversed: linearized as stick at the last Jacobian (FrictionJacobian) */
+  char         *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
+                                 equilibrium force exceeds the bound, linearized as slip (FrictionJacobian) */
+  PetscBool     iterative;    /* the linear solver is not preonly */
+  KSP           kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
+  Vec           y0;           /* the initial guess of the solve, kept for that repetition */
+  PetscReal     gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
+  PetscBool     stagnant;     /* friction: the last Newton step did not halve ||F|| (Converged) */
   PetscInt      nforce;       /* their number, on all ranks */
   Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
   PetscInt      nstick, nslip, nfchanged;
