@@ -3,7 +3,7 @@
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
 #include "solver/ssnimpl.h"
 
-const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL"};
+const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL", "RESIDUAL_AT_ROUNDOFF"};
 
 /* Friction at contact vertex i (ya: the local part of y, mN: the regularized normal multiplier there):
    z = T_i (lamhat_T,i + gamma_T u), u = T_i (y_i - yref_i) the slip since the start of the load step (yref = 0 at the
@@ -146,6 +146,24 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   }
   loc[6] = r1corr2;
   PetscCall(VecRestoreArray(F, &fa));
+  { /* the round-off of the gamma-scaled terms in F: forming gamma (tau_N y - d) on the active set (and the bound F lam_N
+       of Coulomb) and gamma_T T (y - yref) on the friction set, eps gamma w (|tau_N y| + |d|) a vertex; summed in l2 like
+       ||F||. A Newton step on a settled set that leaves ||F|| at this floor has nothing more to gain. */
+    PetscReal fl2 = 0;
+    PetscCall(VecGetArrayRead(y, &ya));
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal t = 0, ymax = 0;
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      if (c->friction && s->fst[i] != SG_FRICTION_FREE) {
+        for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+        t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
+      }
+      fl2 += t * t;
+    }
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl2, 1, MPIU_REAL, MPI_SUM, s->comm));
+    s->ffloor = 4 * PETSC_MACHINE_EPSILON * PetscSqrtReal(fl2);
+  }
   PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->comm));
   PetscCall(SgElasticityDualNorm(s->prob, F, &s->fdual));
   s->r1       = PetscSqrtReal(PetscMax(0, s->fdual * s->fdual + glob[6]));
@@ -327,17 +345,24 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   }
   /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
-     lie below sqrt(rtol) max(||F_0||, ||b||) */
+     lie below sqrt(rtol) max(||F_0||, ||b||) or at the floor of forming the gamma-scaled terms (s->ffloor: at large
+     gamma that floor is above sqrt(rtol) ||b||, and the steps repeat the same iterate until -snes_max_it) */
   if (s->cv.friction) {
     /* friction: ||F_0|| grows with gamma (the penetration of the start) and says nothing about the slip set, where
        the Newton steps converge instead of landing: measured against the load ||b|| alone */
-    small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
-  } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
+    small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * s->bnorm, s->ffloor)));
+  } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm), s->ffloor)));
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
+  } else if (fnorm <= s->ffloor) {
+    /* F(y) (with the states of y itself) is zero to the round-off of its gamma-scaled terms: y solves (P_gamma) as far
+       as double precision can tell; states that still change there flip on round-off (a vertex at the slip bound
+       after a tiny load increment, a gap of a few ulps), and more steps only repeat them */
+    *reason   = SNES_CONVERGED_FNORM_ABS;
+    s->reason = SG_SSN_ROUNDOFF;
   } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma)) {
     /* r1 measures the equilibrium residual, inexact linear solves included */
     *reason   = SNES_CONVERGED_FNORM_ABS;

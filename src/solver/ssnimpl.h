@@ -26,6 +26,7 @@ struct _n_SgSSN {
   PetscInt    nact, nentered, nleft;
   PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
   PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
+  PetscReal   ffloor;         /* the round-off floor of ||F|| at the last residual evaluation (the gamma-scaled terms) */
   PetscBool   prev_settled;
   PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64 *hash;
