@@ -724,10 +724,10 @@ static PetscErrorCode AcceptFailedSSN(SgCont ct)
   PetscFunctionBeginUser;
   if (!(ct->kkt.residual <= ct->kkt_tol)) PetscFunctionReturn(0);
   {
-    char was[sizeof(ct->reason)];
-    PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
+    SgSSNReason sr;
+    PetscCall(SgSSNGetReason(ct->ssn, &sr));
     ct->converged = PETSC_TRUE;
-    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps (the last regularized solve stopped short: %.200s)", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer, was));
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps (the last regularized solve, at gamma %g, stopped with SSN_%s on an iterate that meets the tolerance)", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer, (double)ct->gammas[ct->ngammas - 1], SgSSNReasons[sr]));
   }
   PetscFunctionReturn(0);
 }
