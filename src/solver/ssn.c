@@ -49,7 +49,7 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
    sums w_i (lam_T.u - |lam_T - lamhat_T|^2/(2 gamma_T)) (the regularized Tresca term of J(gamma, y): the value of
    sup_{|mu| <= g} mu.u - |mu - lamhat_T|^2/(2 gamma_T), whose gradient in u is lam_T) and its derivative in gamma,
    c w_i |lam_T - lamhat_T|^2 / (2 gamma_T^2) (for Coulomb the same terms with the bound frozen: no potential) */
-static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[5])
+static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
@@ -81,6 +81,18 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
         changed = (PetscBool)(tt <= 0);
       }
       loc[4] += changed;
+      if (changed) { /* a change beyond round-off: |z| and the bound g differ by more than the round-off of forming them */
+        PetscReal ymax = 0, lh = 0, ro;
+        for (PetscInt k = 0; k < dim; k++) {
+          ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+          lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
+        }
+        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * PetscAbsReal(s->lamhat[i]) + s->gamma * s->groff;
+        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb) + gT * PetscMax(8 * PETSC_MACHINE_EPSILON * ymax, s->groff) + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
+        if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
+        else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
+        else loc[5] += (zn > ro);                                              /* a slip that reversed */
+      }
     }
   }
 }
@@ -92,11 +104,18 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   const PetscInt     dim = s->dim;
   const PetscScalar *ya;
   PetscScalar       *fa, dots[2];
-  PetscReal          loc[7] = {0}, glob[7], r1corr2, floc[5] = {0};
+  PetscReal          loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
   Vec                vecs[2];
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
+  {
+    /* a gap below this is zero as far as the solves can tell (the linear solve's error in y is a few hundred eps
+       ||y|| on our meshes); 1e3 eps relative to the displacements is below any KKT tolerance of (P) one can reach */
+    PetscReal ymax;
+    PetscCall(VecNorm(y, NORM_INFINITY, &ymax));
+    s->groff = 1e3 * PETSC_MACHINE_EPSILON * (ymax + s->dmax);
+  }
   PetscCall(MatMult(s->K, y, F));
   vecs[0] = F;
   vecs[1] = s->b;
@@ -118,6 +137,8 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     if (s->havejac) {
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
+      /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * PetscAbsReal(s->lamhat[i]) + s->gamma * s->groff);
     }
     loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
   }
@@ -163,23 +184,30 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     PetscCall(VecRestoreArrayRead(y, &ya));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl2, 1, MPIU_REAL, MPI_SUM, s->comm));
     s->ffloor = 4 * PETSC_MACHINE_EPSILON * PetscSqrtReal(fl2);
+    { /* and of K y - b itself (a body that just touches: gaps of a few ulps, nothing gamma-scaled) */
+      PetscReal ynorm;
+      PetscCall(VecNorm(y, NORM_2, &ynorm));
+      s->ffloor += 8 * PETSC_MACHINE_EPSILON * (s->Knorm * ynorm + s->bnorm);
+    }
   }
-  PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->comm));
+  PetscCallMPI(MPI_Allreduce(loc, glob, 8, MPIU_REAL, MPI_SUM, s->comm));
   PetscCall(SgElasticityDualNorm(s->prob, F, &s->fdual));
   s->r1       = PetscSqrtReal(PetscMax(0, s->fdual * s->fdual + glob[6]));
   s->r2       = PetscSqrtReal(glob[5]);
   s->nact     = (PetscInt)glob[2];
   s->nentered = (PetscInt)glob[3];
   s->nleft    = (PetscInt)glob[4];
+  s->nhard    = (PetscInt)glob[7];
   s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->energy_shift + glob[0] / (2 * s->gamma);
   s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
   if (c->friction) {
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 5, MPIU_REAL, MPI_SUM, s->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 6, MPIU_REAL, MPI_SUM, s->comm));
     s->V += floc[0];
     s->dVdg += floc[1];
     s->nstick    = (PetscInt)floc[2];
     s->nslip     = (PetscInt)floc[3];
     s->nfchanged = (PetscInt)floc[4];
+    s->nhard += (PetscInt)floc[5];
   }
   PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -357,10 +385,10 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
-  } else if (fnorm <= s->ffloor) {
-    /* F(y) (with the states of y itself) is zero to the round-off of its gamma-scaled terms: y solves (P_gamma) as far
-       as double precision can tell; states that still change there flip on round-off (a vertex at the slip bound
-       after a tiny load increment, a gap of a few ulps), and more steps only repeat them */
+  } else if (s->nhard == 0 && fnorm <= s->ffloor) {
+    /* the states that still change do so on round-off (a gap of a few ulps, a vertex at the slip bound after a tiny
+       load increment: s->nhard counts the others) and F(y) (with the states of y itself) is zero to the round-off of
+       its gamma-scaled terms: y solves (P_gamma) as far as double precision can tell; more steps only repeat them */
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_ROUNDOFF;
   } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma)) {
@@ -844,6 +872,9 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->gamma   = gamma;
   s->outer   = outer;
   s->havejac = PETSC_FALSE;
+  s->dmax    = 0;
+  for (PetscInt i = 0; i < s->cv.n; i++) s->dmax = PetscMax(s->dmax, PetscAbsReal(s->cv.d[i]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash   = 0;
   PetscCall(SNESSolve(s->snes, NULL, y));
   PetscCall(SNESGetIterationNumber(s->snes, its));
@@ -886,7 +917,7 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, m, fa));
   if (c->friction) {
-    PetscReal floc[5] = {0}, fl = 0;
+    PetscReal floc[6] = {0}, fl = 0;
     PetscCall(VecGetArrayRead(y, &ya));
     FrictionResidual(s, ya, m, fa, floc);
     /* the round-off of gamma_T T y on the stick set */
