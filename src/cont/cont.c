@@ -510,7 +510,7 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
   }
   PetscCall(PetscFree(g));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPI_MAX, ct->comm));
-  *gdp = v[0] > 0 && v[1] > 0 ? 1e-3 * v[0] / (PETSC_MACHINE_EPSILON * v[1]) : PETSC_MAX_REAL;
+  *gdp = v[0] > 0 && v[1] > 0 ? 1e-2 * v[0] / (PETSC_MACHINE_EPSILON * v[1]) : PETSC_MAX_REAL;
   PetscFunctionReturn(0);
 }
 

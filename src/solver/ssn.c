@@ -87,8 +87,8 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
           ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
           lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
         }
-        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * PetscAbsReal(s->lamhat[i]) + s->gamma * s->groff;
-        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb) + gT * PetscMax(8 * PETSC_MACHINE_EPSILON * ymax, s->groff) + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
+        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i];
+        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
         if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
         else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
         else loc[5] += (zn > ro);                                              /* a slip that reversed */
@@ -110,11 +110,11 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
   {
-    /* a gap below this is zero as far as the solves can tell (the linear solve's error in y is a few hundred eps
-       ||y|| on our meshes); 1e3 eps relative to the displacements is below any KKT tolerance of (P) one can reach */
+    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y||_inf: a change of a multiplier (times the
+       vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps) */
     PetscReal ymax;
     PetscCall(VecNorm(y, NORM_INFINITY, &ymax));
-    s->groff = 1e3 * PETSC_MACHINE_EPSILON * (ymax + s->dmax);
+    s->kroff = 8 * PETSC_MACHINE_EPSILON * s->Knorm * (ymax + s->dmax);
   }
   PetscCall(MatMult(s->K, y, F));
   vecs[0] = F;
@@ -138,7 +138,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
       /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
-      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * PetscAbsReal(s->lamhat[i]) + s->gamma * s->groff);
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i]);
     }
     loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
   }
@@ -168,14 +168,14 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   loc[6] = r1corr2;
   PetscCall(VecRestoreArray(F, &fa));
   { /* the round-off of the gamma-scaled terms in F: forming gamma (tau_N y - d) on the active set (and the bound F lam_N
-       of Coulomb) and gamma_T T (y - yref) on the friction set, eps gamma w (|tau_N y| + |d|) a vertex; summed in l2 like
+       of Coulomb) and gamma_T T (y - yref) on the stick set, eps gamma w (|tau_N y| + |d|) a vertex; summed in l2 like
        ||F||. A Newton step on a settled set that leaves ||F|| at this floor has nothing more to gain. */
     PetscReal fl2 = 0;
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
       PetscReal t = 0, ymax = 0;
       if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
-      if (c->friction && s->fst[i] != SG_FRICTION_FREE) {
+      if (c->friction && s->fst[i] == SG_FRICTION_STICK) { /* lam_T = z there; at slip g z/|z| is well-conditioned */
         for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
         t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
       }

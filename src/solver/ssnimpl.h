@@ -24,7 +24,7 @@ struct _n_SgSSN {
   char       *act, *actjac;   /* active set there, and the one the last Jacobian used */
   PetscBool   havejac;
   PetscInt    nact, nentered, nleft;
-  PetscReal   groff;          /* the round-off of a gap: 1e3 eps (||y||_inf + max |d|) at the last residual evaluation */
+  PetscReal   kroff;          /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
   PetscReal   dmax;           /* max |d| over the contact vertices (SgSSNSolve) */
   PetscInt    nhard;          /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
   PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
