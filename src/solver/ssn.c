@@ -175,7 +175,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     for (PetscInt i = 0; i < c->n; i++) {
       PetscReal t = 0, ymax = 0;
       if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
-      if (c->friction && s->fst[i] == SG_FRICTION_STICK) { /* lam_T = z there; at slip g z/|z| is well-conditioned */
+      if (c->friction && s->fst[i] != SG_FRICTION_FREE) { /* z, and the Newton step's landing on |z| = g at slip */
         for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
         t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
       }
