@@ -487,30 +487,37 @@ PetscBool SgContGammaCap(SgCont ct, PetscReal lamnorm, PetscReal *cap)
 }
 
 /* The largest gamma double precision resolves on this problem (at the iterate y with multiplier lam): the gap
-   tau_N y - d is formed with the round-off eps (|tau_N y| + |d|), so the regularized multiplier gamma g carries
-   gamma eps max_A (|tau_N y| + |d|). Past the gamma where that reaches 1e-3 of the largest multiplier, the active set
-   of the vertices with small multipliers (the edge of the contact zone) is decided by round-off and the SSN cycles
-   (Example 1 with pf at gamma 1.7e17); the infeasibility on the path there, ||lam|| / gamma, is about 1e3 eps relative
-   to the displacements, the least a path-following run reaches. PETSC_MAX_REAL when nothing is in contact. */
+   n.y - d at a contact vertex carries the round-off eps (|y_i| + |d_i|), so the regularized multiplier gamma g carries
+   gamma eps max (|y_i| + |d_i|), and with friction the tangential gamma_T T y carries gamma_T eps max |y_i|. Past the
+   gamma where that reaches 1e-2 of the largest multiplier (of the largest friction bound), the state of the vertices
+   with small multipliers is decided by round-off and the SSN cycles (Example 1 with pf at gamma 1.7e17); the
+   infeasibility on the path there, ||lam|| / gamma, is about 1e2 eps relative to the displacements.
+   PETSC_MAX_REAL when nothing is in contact. */
 PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
 {
   const SgContactView *c = &ct->cv;
   const PetscScalar   *ya;
-  PetscReal           *g, v[2] = {0, 0};
+  PetscReal            v[3] = {0, 0, 0};
+  PetscInt             dim;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc1(c->n + 1, &g));
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(VecGetArrayRead(ct->y, &ya));
-  PetscCall(SgContactGap(ct->c, ya, g));
-  PetscCall(VecRestoreArrayRead(ct->y, &ya));
   for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal yi = 0;
     if (!(ct->lam[i] > 0)) continue;
+    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
     v[0] = PetscMax(v[0], ct->lam[i]);
-    v[1] = PetscMax(v[1], PetscAbsReal(g[i] + c->d[i]) + PetscAbsReal(c->d[i]));
+    v[1] = PetscMax(v[1], yi + PetscAbsReal(c->d[i]));
+    v[2] = PetscMax(v[2], yi);
   }
-  PetscCall(PetscFree(g));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPI_MAX, ct->comm));
+  PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 3, MPIU_REAL, MPI_MAX, ct->comm));
   *gdp = v[0] > 0 && v[1] > 0 ? 1e-2 * v[0] / (PETSC_MACHINE_EPSILON * v[1]) : PETSC_MAX_REAL;
+  if (c->friction && v[2] > 0) { /* the largest bound: s (Tresca) or F max lam (Coulomb) */
+    const PetscReal gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * v[0];
+    if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (c->fgfac * PETSC_MACHINE_EPSILON * v[2]));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -551,7 +558,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
   }
   if (PetscIsInfOrNanReal(ct->kkt.residual)) PetscCall(SgContFail(ct, "DIVERGED_NAN: the KKT residual is not a number after outer step %" PetscInt_FMT " (check the magnitudes of -neumann_traction, -body_force, -dirichlet_values and -E)", ct->outer));
   else if (ct->outer - ct->best_step >= ct->stall_its) PetscCall(SgContFail(ct, "STALLED: no progress in the KKT residual (%.3e, best %.3e at step %" PetscInt_FMT ") for %" PetscInt_FMT " outer steps (-cont_stall_it); a larger first gamma may help", (double)ct->kkt.residual, (double)ct->best_kkt, ct->best_step, ct->outer - ct->best_step));
-  else if (atcap) PetscCall(SgContFail(ct, "PRECISION_LIMIT: -cont_kkt_tol %.3e is below what path-following (lamhat = 0) reaches in double precision on this problem: at gamma %g the round-off of the regularized multiplier (gamma eps |tau_N y - d|) is 1e-3 of the largest multiplier, and the KKT residual reached is %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); a larger gamma only adds round-off (-cont_type alm, which moves the shift, gets below the infeasibility ||lam|| / gamma)", (double)ct->kkt_tol, (double)gamma_now, (double)ct->kkt.residual, (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium));
+  else if (atcap) PetscCall(SgContFail(ct, "PRECISION_LIMIT: -cont_kkt_tol %.3e is below what path-following (lamhat = 0) reaches in double precision on this problem: at gamma %g the round-off of the regularized multipliers (gamma eps |y|) is 1e-2 of the largest multiplier or friction bound, and the KKT residual reached is %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); a larger gamma only adds round-off (-cont_type alm, which moves the shift, gets below the infeasibility ||lam|| / gamma)", (double)ct->kkt_tol, (double)gamma_now, (double)ct->kkt.residual, (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium));
   else if (!(ct->gamma <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)ct->gamma, (double)ct->gamma_max, (double)ct->kkt.residual));
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;

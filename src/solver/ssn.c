@@ -173,8 +173,9 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     PetscReal fl2 = 0;
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
-      PetscReal t = 0, ymax = 0;
-      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      PetscReal t = 0, ymax = 0, yi = 0;
+      for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (yi + 2 * PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
       if (c->friction && s->fst[i] != SG_FRICTION_FREE) { /* z, and the Newton step's landing on |z| = g at slip */
         for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
         t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
