@@ -173,10 +173,11 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     PetscReal fl2 = 0;
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
-      PetscReal t = 0, ymax = 0, yi = 0;
-      for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
-      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (yi + 2 * PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
-      if (c->friction && s->fst[i] != SG_FRICTION_FREE) { /* z, and the Newton step's landing on |z| = g at slip */
+      PetscReal t = 0, ymax = 0;
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      /* at stick lam_T = z; at slip g z/|z| is well-conditioned, except for the landing of a Newton step from another
+         state on |z| = g (a stick linearization that lands at the slip bound) */
+      if (c->friction && (s->fst[i] == SG_FRICTION_STICK || (s->havejac && s->fst[i] == SG_FRICTION_SLIP && s->fstjac[i] != SG_FRICTION_SLIP))) {
         for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
         t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
       }
@@ -386,7 +387,7 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
-  } else if (s->nhard == 0 && fnorm <= s->ffloor) {
+  } else if (!settled && s->nhard == 0 && fnorm <= s->ffloor) {
     /* the states that still change do so on round-off (a gap of a few ulps, a vertex at the slip bound after a tiny
        load increment: s->nhard counts the others) and F(y) (with the states of y itself) is zero to the round-off of
        its gamma-scaled terms: y solves (P_gamma) as far as double precision can tell; more steps only repeat them */
