@@ -302,7 +302,7 @@ PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckp
 PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);
 
 /* ------------------------------------------------------------------ solver: ssn.c, condense.c */
-typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT } SgSSNReason;
+typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT, SG_SSN_ROUNDOFF } SgSSNReason;
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;
 typedef struct _n_SgCondense *SgCondense;

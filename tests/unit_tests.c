@@ -395,6 +395,47 @@ static PetscErrorCode TestControllers(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* A second SgContSolve at the same load (issue 25, item 8): the warm start is the solution already; the run must say
+   CONVERGED (the first solve's problem from the options, e.g. Coulomb friction) and keep the answer. -resolve_factor t:
+   the load factor of both solves. */
+static PetscErrorCode TestResolve(SgSummary s)
+{
+  SgProblem   prob;
+  SgCont      ct;
+  PetscReal   V[2], t = 1, kkt[2];
+  PetscBool   conv[2];
+  PetscInt    its[2];
+  SgKKT       k;
+  const char *reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-resolve_factor", &t, NULL));
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetFromOptions(prob));
+  PetscCall(SgContCreate(prob, &ct));
+  PetscCall(SgContSetFromOptions(ct));
+  for (PetscInt r = 0; r < 2; r++) {
+    PetscCall(SgProblemSetLoadFactor(prob, t));
+    PetscCall(SgContSolve(ct));
+    PetscCall(SgContGetConvergedReason(ct, &conv[r], &reason));
+    PetscCall(SgContGetEnergy(ct, &V[r]));
+    PetscCall(SgContGetKKT(ct, &k));
+    PetscCall(SgContGetIterationNumbers(ct, NULL, &its[r], NULL));
+    kkt[r] = k.residual;
+  }
+  PetscCall(SgSummarySetBool(s, "converged1", conv[0]));
+  PetscCall(SgSummarySetBool(s, "converged2", conv[1]));
+  PetscCall(SgSummarySetString(s, "reason2", reason));
+  PetscCall(SgSummarySetReal(s, "energy1", V[0]));
+  PetscCall(SgSummarySetReal(s, "energy2", V[1]));
+  PetscCall(SgSummarySetReal(s, "kkt1", kkt[0]));
+  PetscCall(SgSummarySetReal(s, "kkt2", kkt[1]));
+  PetscCall(SgSummarySetInt(s, "ssn2", its[1]));
+  PetscCall(SgContDestroy(&ct));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -416,6 +457,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));
   else if (PetscStrcmp(test, "controllers", &eq) == 0 && eq) PetscCall(TestControllers(s));
+  else if (PetscStrcmp(test, "resolve", &eq) == 0 && eq) PetscCall(TestResolve(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

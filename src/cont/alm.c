@@ -66,5 +66,6 @@ PetscErrorCode SgContCreate_ALM(SgCont ct)
   ct->ops.setfromoptions = SetFromOptions_ALM;
   ct->ops.start          = Start_ALM;
   ct->ops.update         = Update_ALM;
+  ct->ops.shifts         = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

@@ -273,6 +273,8 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(VecDestroy(&ct->y));
   PetscCall(PetscFree(ct->lam));
   PetscCall(PetscFree(ct->yref));
+  PetscCall(VecDestroy(&ct->ybest));
+  PetscCall(PetscFree(ct->lambest));
   PetscCall(PetscFree(ct->gammas));
   PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
@@ -557,15 +559,66 @@ PetscBool SgContGammaCap(SgCont ct, PetscReal lamnorm, PetscReal *cap)
   return PETSC_TRUE;
 }
 
+/* The largest gamma double precision resolves on this problem (at the iterate y with multiplier lam): the gap
+   n.y - d at a contact vertex carries the round-off eps (|y_i| + |d_i|), so the regularized multiplier gamma g carries
+   gamma eps max (|y_i| + |d_i|), and with friction the tangential gamma_T T y carries gamma_T eps max |y_i|. Past the
+   gamma where that reaches 1e-2 of the largest multiplier (of the largest friction bound), the state of the vertices
+   with small multipliers is decided by round-off and the SSN cycles (Example 1 with pf at gamma 1.7e17); the
+   infeasibility on the path there, ||lam|| / gamma, is about 1e2 eps relative to the displacements.
+   PETSC_MAX_REAL when nothing is in contact. */
+PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
+{
+  const SgContactView *c = &ct->cv;
+  const PetscScalar   *ya;
+  PetscReal            v[3] = {0, 0, 0};
+  PetscInt             dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(VecGetArrayRead(ct->y, &ya));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal yi = 0;
+    if (!(ct->lam[i] > 0)) continue;
+    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
+    v[0] = PetscMax(v[0], ct->lam[i]);
+    v[1] = PetscMax(v[1], yi + PetscAbsReal(c->d[i]));
+    v[2] = PetscMax(v[2], yi);
+  }
+  PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 3, MPIU_REAL, MPI_MAX, ct->comm));
+  *gdp = v[0] > 0 && v[1] > 0 ? 1e-2 * v[0] / (PETSC_MACHINE_EPSILON * v[1]) : PETSC_MAX_REAL;
+  if (c->friction && v[2] > 0) { /* the largest bound: s (Tresca) or F max lam (Coulomb) */
+    const PetscReal gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * v[0];
+    if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (c->fgfac * PETSC_MACHINE_EPSILON * v[2]));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* After an outer step (ct->gamma and ct->state already hold the next step's): converged (KKT residual below the
    tolerance), or failed because the outer-step limit is reached, the next gamma overflows, or the KKT residual has not
    improved for -cont_stall_it steps. Then the checkpoint, if asked for. */
 PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
 {
-  const PetscReal gamma_next = ct->gamma;
+  const PetscReal gamma_next = ct->gamma, gamma_now = ct->ngammas ? ct->gammas[ct->ngammas - 1] : SG_NAN;
+  PetscReal       gdp        = PETSC_MAX_REAL;
+  PetscBool       atcap      = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *stop = PETSC_TRUE;
+  if (ct->c && ct->ssn && ct->kkt.residual > ct->kkt_tol) {
+    /* no step past the gamma where double precision ends (SgContGammaPrecision): the next step there, or the honest
+       failure below if this step was there already */
+    PetscCall(SgContGammaPrecision(ct, &gdp));
+    /* this step was at the cap and the type would take a larger gamma: a path-following type (lamhat = 0) can only
+       repeat this step's solution */
+    atcap = (PetscBool)(gamma_now >= 0.999 * gdp && gamma_next > gamma_now && !ct->ops.shifts);
+    if (gamma_next > gdp && !atcap) {
+      SNES snes;
+      PetscCall(SgSSNGetSNES(ct->ssn, &snes));
+      PetscCall(PetscInfo(snes, "outer step %" PetscInt_FMT ": the next gamma %g capped at %g, the largest double precision resolves here\n", ct->outer, (double)gamma_next, (double)PetscMax(gdp, gamma_now)));
+      ct->gamma = PetscMax(gdp, gamma_now);
+    }
+  }
   if (ct->kkt.residual <= ct->kkt_tol) {
     ct->converged = PETSC_TRUE;
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer));
@@ -578,7 +631,8 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
   }
   if (PetscIsInfOrNanReal(ct->kkt.residual)) PetscCall(SgContFail(ct, "DIVERGED_NAN: the KKT residual is not a number after outer step %" PetscInt_FMT " (check the magnitudes of -neumann_traction, -body_force, -dirichlet_values and -E)", ct->outer));
   else if (ct->outer - ct->best_step >= ct->stall_its) PetscCall(SgContFail(ct, "STALLED: no progress in the KKT residual (%.3e, best %.3e at step %" PetscInt_FMT ") for %" PetscInt_FMT " outer steps (-cont_stall_it); a larger first gamma may help", (double)ct->kkt.residual, (double)ct->best_kkt, ct->best_step, ct->outer - ct->best_step));
-  else if (!(gamma_next <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)gamma_next, (double)ct->gamma_max, (double)ct->kkt.residual));
+  else if (atcap) PetscCall(SgContFail(ct, "PRECISION_LIMIT: -cont_kkt_tol %.3e is not met up to gamma %g, the largest at which double precision resolves the regularized multipliers of this problem (their round-off gamma eps |y| is 1e-2 of the largest multiplier or friction bound there; beyond it the SSN decides states on round-off); the KKT residual reached is %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); -cont_type alm, which moves the shift instead of gamma, can get below it", (double)ct->kkt_tol, (double)gamma_now, (double)ct->kkt.residual, (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium));
+  else if (!(ct->gamma <= ct->gamma_max)) PetscCall(SgContFail(ct, "GAMMA_OVERFLOW: the next gamma %g exceeds -cont_gamma_max %g (KKT residual %.3e)", (double)ct->gamma, (double)ct->gamma_max, (double)ct->kkt.residual));
   else if (ct->outer >= ct->max_outer) PetscCall(SgContFail(ct, "MAX_IT: %" PetscInt_FMT " outer steps (-cont_max_it) with KKT residual %.3e > %.3e", ct->outer, (double)ct->kkt.residual, (double)ct->kkt_tol));
   else *stop = PETSC_FALSE;
   PetscCall(SgContCheckpointWrite(ct));
@@ -728,6 +782,62 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+/* The iterate of least KKT residual of this solve (a step at a larger gamma can be worse: round-off) */
+static PetscErrorCode KeepBest(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  if (!PetscIsNormalReal(ct->kkt.residual) && ct->kkt.residual != 0) PetscFunctionReturn(0);
+  if (ct->outerbest > 0 && !(ct->kkt.residual < ct->kktbest)) PetscFunctionReturn(0);
+  if (!ct->ybest) PetscCall(VecDuplicate(ct->y, &ct->ybest));
+  if (!ct->lambest) PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lambest));
+  PetscCall(VecCopy(ct->y, ct->ybest));
+  PetscCall(PetscArraycpy(ct->lambest, ct->lam, ct->cv.n));
+  ct->kktbest   = ct->kkt.residual;
+  ct->outerbest = ct->outer;
+  PetscFunctionReturn(0);
+}
+
+/* An SSN solve that failed (cycling, iteration limit, ...) on an iterate that meets the KKT tolerance of (P): the run
+   has solved (P), whatever the regularized problem's Newton steps did */
+static PetscErrorCode AcceptFailedSSN(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  if (!(ct->kkt.residual <= ct->kkt_tol)) PetscFunctionReturn(0);
+  {
+    SgSSNReason sr;
+    PetscCall(SgSSNGetReason(ct->ssn, &sr));
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e after %" PetscInt_FMT " outer steps (the last regularized solve, at gamma %g, stopped with SSN_%s on an iterate that meets the tolerance)", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outer, (double)ct->gammas[ct->ngammas - 1], SgSSNReasons[sr]));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A failed run ends on the best iterate rather than the last, when that is better; if it meets the tolerance, the run
+   converged (at that outer step). */
+static PetscErrorCode RestoreBest(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  if (ct->converged || ct->outerbest <= 0 || !ct->ybest || !(ct->kktbest < ct->kkt.residual || PetscIsNanReal(ct->kkt.residual))) {
+    ct->outerbest = 0;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecCopy(ct->ybest, ct->y));
+  PetscCall(PetscArraycpy(ct->lam, ct->lambest, ct->cv.n));
+  PetscCall(SgContMeasure(ct));
+  {
+    char was[sizeof(ct->reason)];
+    PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
+    if (ct->kkt.residual <= ct->kkt_tol) {
+      ct->converged = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e at outer step %" PetscInt_FMT " of %" PetscInt_FMT " (the result is that step's iterate; the run went on and stopped with: %.200s)", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outerbest, ct->outer, was));
+    } else {
+      PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.300s; the result is the best iterate, of outer step %" PetscInt_FMT " (KKT residual %.3e)", was, ct->outerbest, (double)ct->kkt.residual));
+    }
+  }
+  ct->outerbest = 0;
+  PetscFunctionReturn(0);
+}
+
 /* The outer loop of every continuation controller (see cont/contimpl.h for the order of the hooks). */
 static PetscErrorCode SolveContinuation(SgCont ct)
 {
@@ -751,11 +861,16 @@ static PetscErrorCode SolveContinuation(SgCont ct)
     PetscCall(SgHistoryRowInit(&mdl));
     if (ct->ops.model) PetscCall(ct->ops.model(ct, &mdl));
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, &mdl));
-    if (!ok) break;
+    PetscCall(KeepBest(ct));
+    if (!ok) {
+      PetscCall(AcceptFailedSSN(ct));
+      break;
+    }
     PetscCall(ct->ops.update(ct, &next));
     ct->gamma = next;
     PetscCall(SgContCheck(ct, &stop));
   }
+  PetscCall(RestoreBest(ct));
   if (ct->ops.finish) PetscCall(ct->ops.finish(ct));
   PetscFunctionReturn(0);
 }

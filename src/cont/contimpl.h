@@ -33,6 +33,7 @@ typedef struct {
   PetscErrorCode (*view)(SgCont, PetscViewer);
   PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
   PetscBool   needs_ssn;
+  PetscBool   shifts;     /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */
   PetscInt    nstate;
   const char *state_names[SG_STATE_MAX];
 } SgContOps;
@@ -67,6 +68,10 @@ struct _n_SgCont {
   PetscBool    gamma_max_set; /* -cont_gamma_max given; else 1e14 x the normal stiffness per contact area (SgContStart) */
   PetscReal    best_kkt;     /* progress watch */
   PetscInt     best_step;
+  Vec          ybest;        /* the iterate of least KKT residual of this solve, its multiplier, residual and step */
+  PetscReal   *lambest;
+  PetscReal    kktbest;
+  PetscInt     outerbest;
   PetscInt     outer, ssn_its, ksp_its;
   PetscInt     ngammas, capgammas;
   PetscReal   *gammas;       /* gamma of every outer step */
@@ -125,6 +130,7 @@ const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);
 #define ValidCont(ct, arg) PetscCall(SgValidCont(ct, PETSC_FUNCTION_NAME, arg))
+PetscErrorCode SgContGammaPrecision(SgCont, PetscReal *);
 PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);

@@ -84,6 +84,11 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
   PetscFunctionBeginUser;
   /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
   if (!SgContGammaCap(ct, PetscSqrtReal(2 * gamma * gamma * dJ), &cap)) cap = PETSC_MAX_REAL;
+  { /* and no further than double precision resolves (SgContGammaPrecision): the last problem there, solved exactly */
+    PetscReal gdp;
+    PetscCall(SgContGammaPrecision(ct, &gdp));
+    cap = PetscMin(cap, gdp);
+  }
   /* rule (15) */
   next = PetscMax(gamma * PetscMax(ipf->tau1, rhoC > 0 ? rhoF / rhoC : PETSC_MAX_REAL), PetscMax(rhoF, rhoC) > 0 ? PetscPowReal(PetscMax(rhoF, rhoC), -ipf->q) : PETSC_MAX_REAL);
   next = PetscMin(next, PETSC_MAX_REAL);

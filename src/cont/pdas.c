@@ -106,6 +106,32 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
   PetscFunctionReturn(0);
 }
 
+/* The KKT residual of the iterate ct->y below the tolerance although nchanged vertices still change their sets: the
+   run converged (the reason says how large the gaps and multipliers of the changing normal sets are). */
+static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next[], const PetscReal g[], PetscInt nchanged)
+{
+  PetscReal v[2] = {0, 0}, Knorm, ymax, ro;
+  PetscInt  loaded = 0;
+
+  /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y||_inf / w): a body that
+     just touches; elsewhere the sets (and the friction fixed point) settle as before, to round-off */
+  if (SgElasticityGetScales(ct->prob, &Knorm, NULL, NULL) || VecNorm(ct->y, NORM_INFINITY, &ymax)) return PETSC_FALSE;
+  ro = 8 * PETSC_MACHINE_EPSILON * Knorm * ymax;
+  for (PetscInt i = 0; i < ct->cv.n; i++) loaded += ((act[i] || next[i]) && PetscAbsReal(ct->lam[i]) * ct->cv.w[i] > ro);
+  if (MPI_Allreduce(MPI_IN_PLACE, &loaded, 1, MPIU_INT, MPI_SUM, ct->comm) || loaded) return PETSC_FALSE;
+  if (SgContMeasure(ct)) return PETSC_FALSE;
+  if (!(ct->kkt.residual <= ct->kkt_tol)) return PETSC_FALSE;
+  for (PetscInt i = 0; i < ct->cv.n; i++) {
+    if (act[i] == next[i]) continue;
+    v[0] = PetscMax(v[0], PetscAbsReal(g[i]));
+    v[1] = PetscMax(v[1], PetscAbsReal(ct->lam[i]));
+  }
+  if (MPI_Allreduce(MPI_IN_PLACE, v, 2, MPIU_REAL, MPI_MAX, ct->comm)) return PETSC_FALSE;
+  ct->converged = PETSC_TRUE;
+  if (PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed state (normal set: largest |gap| %.3e, |multiplier| %.3e there)", (double)ct->kkt.residual, (double)ct->kkt_tol, k, nchanged, (double)v[0], (double)v[1])) return PETSC_FALSE;
+  return PETSC_TRUE;
+}
+
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
   PDAS              *pd = (PDAS *)ct->data;
@@ -284,6 +310,10 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       done          = PETSC_TRUE;
       ct->converged = PETSC_TRUE;
       PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
+    } else if (KKTMet(ct, k, act, next, g, entered + left)) {
+      /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
+         body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
+      done = PETSC_TRUE;
     } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
       PetscInt64 h;
       PetscCall(SgContactActiveSetHash(ct->c, next, &h));

@@ -61,6 +61,17 @@ static PetscErrorCode Update_PF(SgCont ct, PetscReal *next)
     PetscCall(PetscInfo(snes, "PF step %" PetscInt_FMT ": no usable model update (%g), gamma grows by %g\n", ct->outer, (double)*next, (double)pf->fallback));
     *next = gamma * pf->fallback;
   }
+  { /* no further than double precision resolves (SgContGammaPrecision): tau_k = tau0^k alone took Example 1 at
+       -cont_kkt_tol 1e-10 from 1.7e12 (KKT 1.4e-10) to 1.7e17, where the SSN cycles on round-off. (The paper's rule
+       is kept below it: capping at IPF's cap, where the path meets the tolerance, would change Table 2's path.) */
+    PetscReal cap;
+    PetscCall(SgContGammaPrecision(ct, &cap));
+    if (*next > cap && cap > gamma) {
+      PetscCall(SgSSNGetSNES(ct->ssn, &snes));
+      PetscCall(PetscInfo(snes, "PF step %" PetscInt_FMT ": gamma %g capped at %g\n", ct->outer, (double)*next, (double)cap));
+      *next = cap;
+    }
+  }
   PetscFunctionReturn(0);
 }
 

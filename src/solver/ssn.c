@@ -3,7 +3,7 @@
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small). */
 #include "solver/ssnimpl.h"
 
-const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL"};
+const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL", "RESIDUAL_AT_ROUNDOFF"};
 
 /* Friction at contact vertex i (ya: the local part of y, mN: the regularized normal multiplier there):
    z = T_i (lamhat_T,i + gamma_T u), u = T_i (y_i - yref_i) the slip since the start of the load step (yref = 0 at the
@@ -49,7 +49,7 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
    sums w_i (lam_T.u - |lam_T - lamhat_T|^2/(2 gamma_T)) (the regularized Tresca term of J(gamma, y): the value of
    sup_{|mu| <= g} mu.u - |mu - lamhat_T|^2/(2 gamma_T), whose gradient in u is lam_T) and its derivative in gamma,
    c w_i |lam_T - lamhat_T|^2 / (2 gamma_T^2) (for Coulomb the same terms with the bound frozen: no potential) */
-static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[5])
+static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
@@ -81,6 +81,18 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
         changed = (PetscBool)(tt <= 0);
       }
       loc[4] += changed;
+      if (changed) { /* a change beyond round-off: |z| and the bound g differ by more than the round-off of forming them */
+        PetscReal ymax = 0, lh = 0, ro;
+        for (PetscInt k = 0; k < dim; k++) {
+          ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+          lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
+        }
+        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i];
+        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
+        if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
+        else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
+        else loc[5] += (zn > ro);                                              /* a slip that reversed */
+      }
     }
   }
 }
@@ -92,11 +104,18 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   const PetscInt     dim = s->dim;
   const PetscScalar *ya;
   PetscScalar       *fa, dots[2];
-  PetscReal          loc[7] = {0}, glob[7], r1corr2, floc[5] = {0};
+  PetscReal          loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
   Vec                vecs[2];
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
+  {
+    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y||_inf: a change of a multiplier (times the
+       vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps) */
+    PetscReal ymax;
+    PetscCall(VecNorm(y, NORM_INFINITY, &ymax));
+    s->kroff = 8 * PETSC_MACHINE_EPSILON * s->Knorm * (ymax + s->dmax);
+  }
   PetscCall(MatMult(s->K, y, F));
   vecs[0] = F;
   vecs[1] = s->b;
@@ -118,6 +137,8 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     if (s->havejac) {
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
+      /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i]);
     }
     loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
   }
@@ -146,22 +167,49 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   }
   loc[6] = r1corr2;
   PetscCall(VecRestoreArray(F, &fa));
-  PetscCallMPI(MPI_Allreduce(loc, glob, 7, MPIU_REAL, MPI_SUM, s->comm));
+  { /* the round-off of the gamma-scaled terms in F: forming gamma (tau_N y - d) on the active set (and the bound F lam_N
+       of Coulomb) and gamma_T T (y - yref) on the stick set, eps gamma w (|tau_N y| + |d|) a vertex; summed in l2 like
+       ||F||. A Newton step on a settled set that leaves ||F|| at this floor has nothing more to gain. */
+    PetscReal fl2 = 0;
+    PetscCall(VecGetArrayRead(y, &ya));
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal t = 0, ymax = 0;
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      /* at stick lam_T = z; at slip g z/|z| is well-conditioned, except for the landing of a Newton step from another
+         state on |z| = g (a stick linearization that lands at the slip bound) */
+      if (c->friction && (s->fst[i] == SG_FRICTION_STICK || (s->havejac && s->fst[i] == SG_FRICTION_SLIP && s->fstjac[i] != SG_FRICTION_SLIP))) {
+        for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+        t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
+      }
+      fl2 += t * t;
+    }
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl2, 1, MPIU_REAL, MPI_SUM, s->comm));
+    s->ffloor = 4 * PETSC_MACHINE_EPSILON * PetscSqrtReal(fl2);
+    { /* and of K y - b itself (a body that just touches: gaps of a few ulps, nothing gamma-scaled) */
+      PetscReal ynorm;
+      PetscCall(VecNorm(y, NORM_2, &ynorm));
+      s->ffloor += 8 * PETSC_MACHINE_EPSILON * (s->Knorm * ynorm + s->bnorm);
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(loc, glob, 8, MPIU_REAL, MPI_SUM, s->comm));
   PetscCall(SgElasticityDualNorm(s->prob, F, &s->fdual));
   s->r1       = PetscSqrtReal(PetscMax(0, s->fdual * s->fdual + glob[6]));
   s->r2       = PetscSqrtReal(glob[5]);
   s->nact     = (PetscInt)glob[2];
   s->nentered = (PetscInt)glob[3];
   s->nleft    = (PetscInt)glob[4];
+  s->nhard    = (PetscInt)glob[7];
   s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->energy_shift + glob[0] / (2 * s->gamma);
   s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
   if (c->friction) {
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 5, MPIU_REAL, MPI_SUM, s->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 6, MPIU_REAL, MPI_SUM, s->comm));
     s->V += floc[0];
     s->dVdg += floc[1];
     s->nstick    = (PetscInt)floc[2];
     s->nslip     = (PetscInt)floc[3];
     s->nfchanged = (PetscInt)floc[4];
+    s->nhard += (PetscInt)floc[5];
   }
   PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -356,12 +404,13 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   }
   /* with inexact linear solves the residual must be small too: below rtol ||F_0||, or, when a Newton step on an
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
-     lie below sqrt(rtol) max(||F_0||, ||b||) */
+     lie below sqrt(rtol) max(||F_0||, ||b||) or at the floor of forming the gamma-scaled terms (s->ffloor: at large
+     gamma that floor is above sqrt(rtol) ||b||, and the steps repeat the same iterate until -snes_max_it) */
   if (s->cv.friction) {
     /* friction: ||F_0|| grows with gamma (the penetration of the start) and says nothing about the slip set, where
        the Newton steps converge instead of landing: measured against the load ||b|| alone */
-    small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * s->bnorm));
-  } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm)));
+    small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * s->bnorm, s->ffloor)));
+  } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm), s->ffloor)));
   /* friction: the next Jacobian reclassifies the sticks from their equilibrium force (FrictionJacobian) */
   s->stagnant     = (PetscBool)(s->cv.friction && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
@@ -369,6 +418,12 @@ static PetscErrorCode Converged(SNES snes, PetscInt it, PetscReal xnorm, PetscRe
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
+  } else if (!settled && s->nhard == 0 && fnorm <= s->ffloor) {
+    /* the states that still change do so on round-off (a gap of a few ulps, a vertex at the slip bound after a tiny
+       load increment: s->nhard counts the others) and F(y) (with the states of y itself) is zero to the round-off of
+       its gamma-scaled terms: y solves (P_gamma) as far as double precision can tell; more steps only repeat them */
+    *reason   = SNES_CONVERGED_FNORM_ABS;
+    s->reason = SG_SSN_ROUNDOFF;
   } else if (s->nbhd_tau > 0 && PetscSqrtReal(s->r1 * s->r1 + s->r2 * s->r2) <= s->nbhd_tau / PetscSqrtReal(s->gamma)) {
     /* r1 measures the equilibrium residual, inexact linear solves included */
     *reason   = SNES_CONVERGED_FNORM_ABS;
@@ -853,6 +908,9 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->gamma   = gamma;
   s->outer   = outer;
   s->havejac = PETSC_FALSE;
+  s->dmax    = 0;
+  for (PetscInt i = 0; i < s->cv.n; i++) s->dmax = PetscMax(s->dmax, PetscAbsReal(s->cv.d[i]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash   = 0;
   s->stagnant = PETSC_FALSE;
   if (s->cv.friction && s->iterative) {
@@ -942,7 +1000,7 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, m, fa));
   if (c->friction) {
-    PetscReal floc[5] = {0}, fl = 0;
+    PetscReal floc[6] = {0}, fl = 0;
     PetscCall(VecGetArrayRead(y, &ya));
     FrictionResidual(s, ya, m, fa, floc);
     /* the round-off of gamma_T T y on the stick set */

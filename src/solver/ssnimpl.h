@@ -24,8 +24,12 @@ struct _n_SgSSN {
   char       *act, *actjac;   /* active set there, and the one the last Jacobian used */
   PetscBool   havejac;
   PetscInt    nact, nentered, nleft;
+  PetscReal   kroff;          /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
+  PetscReal   dmax;           /* max |d| over the contact vertices (SgSSNSolve) */
+  PetscInt    nhard;          /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
   PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
   PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
+  PetscReal   ffloor;         /* the round-off floor of ||F|| at the last residual evaluation (the gamma-scaled terms) */
   PetscBool   prev_settled;
   PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64 *hash;
