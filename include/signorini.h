@@ -86,11 +86,16 @@ PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many val
 #define SGCONTPDAS "pdas" /* baseline: unregularized primal-dual active set */
 #define SGCONTVI   "vi"   /* baseline: PETSc's SNESVI on the same discrete problem */
 
-/* Measures of a displacement as a solution of the contact problem (P), each dimensionless (see SgContGetKKT). */
+/* Measures of a displacement as a solution of the contact problem (P), each dimensionless (see SgContGetKKT): forces
+   against fscale, the largest nodal force acting on the body (load, support or contact force), lengths against uscale
+   (lscale = uscale sqrt|Gamma_c|); roundoff is the smallest force measure double precision can certify (eps ||K|| ||y||
+   / fscale: above the tolerance the problem cannot be solved to it), balance the resultant of all forces on the body
+   against their sum of magnitudes. */
 typedef struct {
   PetscReal equilibrium, infeasibility, complementarity, dual, residual, rhoF, rhoC, force;
   PetscReal penetration, uscale, lscale;
   PetscInt  nactive;
+  PetscReal fscale, roundoff, balance;
 } SgKKT;
 
 PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem (unless a type is set, SgContSetFromOptions picks the default for the problem: fast in 3D and with iterative solves, ipf in 2D with exact ones, none without contact) */

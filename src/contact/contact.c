@@ -360,19 +360,94 @@ static PetscReal SafeRatio(PetscReal a, PetscReal b)
   return b > 0 ? a / b : PETSC_INFINITY;
 }
 
+/* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
+   stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):
+   F       the force scale: the largest nodal force on the body, a load on the free dofs, a support force on the
+           Dirichlet part (K u - f there) or a contact force (w_i |lam_i|; with friction the whole nodal force w_i |R_i|),
+           and the shear part of ||K|| ||y||, 2 mu / (lambda + 2 mu) ||K|| ||y|| (all of it for nu = 0; a backward error
+           scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
+   Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
+   With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
+   frictionless problem) both are the data's at factor 1 (||b||_inf, the largest Dirichlet value or obstacle
+   translation; failing those the mesh diameter): a zero answer is measured against the problem, not 0/0, nor against
+   its own round-off.
+   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
+           rnoise / F is the smallest equilibrium measure the arithmetic can certify.
+   res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
+           equilibrium the resultant vanishes.
+   R: K y - b with the rollers' fixed components zeroed, before the contact forces are taken out; lam from it. */
+typedef struct {
+  PetscReal F, Y, rnoise, res[3], l1;
+  PetscBool zero;
+} KKTScales;
+
+static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
+{
+  const PetscInt dim = c->dim;
+  PetscReal      fmax, smax, ucur, ufull, bfull, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
+  for (PetscInt i = 0; i < c->n; i++) { /* the contact force on the body at vertex i */
+    PetscReal f[3], rn = 0, a = 0;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    for (PetscInt k = 0; k < dim; k++) {
+      f[k] = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
+      cs[k] += f[k];
+      cs[3] += PetscAbsReal(f[k]);
+      a += f[k] * f[k];
+    }
+    cm = PetscMax(cm, c->friction ? PetscSqrtReal(a) : c->w[i] * PetscAbsReal(lam[i]));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cs, 4, MPIU_REAL, MPI_SUM, c->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cm, 1, MPIU_REAL, MPI_MAX, c->comm));
+  for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
+  sc->l1 += cs[3];
+  PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
+  PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
+  PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, NULL, &diam));
+  PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
+  PetscCall(SgLame(E, nu, &lambda, &mu));
+  sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm_inf);
+  sc->F      = PetscMax(PetscMax(fmax, smax), PetscMax(cm, 2 * mu / (lambda + 2 * mu) * Knorm * ynorm));
+  sc->Y      = PetscMax(PetscMax(ynorm, PetscMax(pen, 0)), ucur);
+  sc->zero   = (PetscBool)(fmax == 0 && ucur == 0 && !(pen > 0));
+  if (sc->zero) {
+    PetscReal Yf, Ff = bfull;
+    PetscCall(SgObstacleGetTranslation(c->obs, T));
+    Yf = PetscMax(ufull, PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]));
+    if (!(Yf > 0) && Ff > 0 && Knorm > 0) Yf = Ff / Knorm;
+    if (!(Yf > 0)) Yf = diam;
+    if (!(Ff > 0)) Ff = Knorm * Yf;
+    sc->Y = PetscMax(sc->Y, Yf);
+    sc->F = PetscMax(sc->F, Ff);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the force below which a nodal force at contact vertex i is round-off: 1e-12 of the force scale, and at least a few
+   times the round-off of forming the residual */
+static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
+{
+  return PetscMax(1e-12 * sc->F, 4 * sc->rnoise) / c->w[i];
+}
+
 /* KKT measures of the original problem (P) for a displacement y. The multiplier is the one that balances the normal
    residual at the contact vertices, lam_i = -(K y - b)_i.n_i / w_i: for the methods' own multipliers it agrees up to
    round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure.
    Every part is dimensionless, so that a tolerance means the same for any load level, material scale and unit system:
-   forces are measured against the equilibrium scale ||K|| ||y|| + ||b|| (a backward error), lengths against the
-   displacement scale Y = max(||y||_inf, largest initial penetration) as root mean squares over Gamma_c. */
+   forces are measured against the force scale F (the largest nodal force acting on the body, see ComputeScales),
+   lengths against the displacement scale Y as root mean squares over Gamma_c. roundoff = eps (||K|| ||y|| + ||b||) / F
+   is what double precision can certify of the force measures: above the tolerance the problem cannot be solved to it
+   (a nearly incompressible material, lambda / mu large). */
 PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 {
   const PetscInt     dim = c->dim;
   Vec                R, Ky;
   PetscScalar       *ra;
   const PetscScalar *ya;
-  PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm[2], fscale;
+  PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm, bal = 0;
+  KKTScales          sc;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
@@ -399,8 +474,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     mx[2]  = PetscMax(mx[2], -c->d[i]);                       /* initial penetration */
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
-  PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
-  fscale = c->Knorm * nrm[1] + c->bnorm_inf;
+  PetscCall(ComputeScales(c, y, ra, lam, mx[2], &sc));
+  for (PetscInt k = 0; k < dim; k++) bal += PetscSqr(sc.res[k]);
+  bal = PetscSqrtReal(bal);
   if (c->friction) {
     /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
        part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
@@ -408,7 +484,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     PetscReal f[8] = {0}, fm[2] = {0, 0};
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
-      const PetscReal noise = 1e-12 * fscale / c->w[i];
+      const PetscReal noise = ForceNoise(c, &sc, i);
       PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0;
       const char      st = FrictionFromResidual(c, i, ra, ya, lam[i], noise, lt, u, &gb);
       for (PetscInt k = 0; k < dim; k++) {
@@ -447,15 +523,14 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
     c->fsum.traction   = f[5];
     c->fsum.slip_max   = fm[1];
-    c->fsum.bound      = SafeRatio(fm[0], fscale);
+    c->fsum.bound      = SafeRatio(fm[0], sc.F);
   }
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
-    /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
-       (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
-    const PetscReal noise = 1e-12 * fscale / c->w[i];
-    const PetscBool act   = (PetscBool)(lam[i] > PetscMax(1e-10 * mx[0], noise));
+    /* pressure counts as acting above the round-off of the derived multiplier (ForceNoise) and a tiny fraction of
+       the largest pressure */
+    const PetscBool act = (PetscBool)(lam[i] > PetscMax(1e-10 * mx[0], ForceNoise(c, &sc, i)));
     s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
     s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
@@ -464,17 +539,20 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     s[7] += (act ? 1 : 0);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
-  /* normwise backward error of the equilibrium equations: ||R|| / (||K|| ||y|| + ||b||), infinity norms; it stays at
-     round-off level for nearly incompressible materials, where ||R|| / ||b|| cannot go below eps ||K|| ||y|| / ||b|| */
-  PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
-  kkt->uscale          = PetscMax(nrm[1], PetscMax(0, mx[2]));
-  kkt->lscale          = kkt->uscale * PetscSqrtReal(c->area);
+  /* the largest nodal force left unbalanced, against the largest force acting: its round-off floor rnoise / F is
+     reported beside it (kkt->roundoff) */
+  PetscCall(VecNorm(R, NORM_INFINITY, &nrm));
+  kkt->uscale          = sc.Y;
+  kkt->lscale          = sc.Y * PetscSqrtReal(c->area);
+  kkt->fscale          = sc.F;
+  kkt->roundoff        = SafeRatio(sc.rnoise, sc.F);
+  kkt->balance         = SafeRatio(bal, sc.l1);
   kkt->penetration     = PetscSqrtReal(s[0]);
-  kkt->equilibrium     = nrm[0] / PetscMax(fscale, PETSC_SMALL);
+  kkt->equilibrium     = SafeRatio(nrm, sc.F);
   kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
   if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
   kkt->complementarity = SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale);
-  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], fscale), c->fsum.bound) : SafeRatio(mx[1], fscale);
+  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound) : SafeRatio(mx[1], sc.F);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];
@@ -554,15 +632,28 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
   Vec                R, lt, ls, lst;
   const PetscScalar *ya, *ra;
   PetscScalar       *ta, *sa, *qa;
-  PetscReal          nrm, fscale;
+  KKTScales          sc;
   PetscSection       vs, ss;
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(y, &R));
   PetscCall(MatMult(c->K, y, R));
   PetscCall(VecAXPY(R, -1.0, c->b));
-  PetscCall(VecNorm(y, NORM_INFINITY, &nrm));
-  fscale = c->Knorm * nrm + c->bnorm_inf;
+  { /* the force scale and noise of SgContactKKT, so that the states agree with its classification */
+    PetscReal *lm, pen = 0;
+    PetscCall(PetscMalloc1(c->n + 1, &lm));
+    PetscCall(VecGetArrayRead(R, &ra));
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal rn = 0;
+      for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+      lm[i] = -rn / c->w[i];
+      pen   = PetscMax(pen, -c->d[i]);
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &pen, 1, MPIU_REAL, MPI_MAX, c->comm));
+    PetscCall(ComputeScales(c, y, ra, lm, pen, &sc));
+    PetscCall(VecRestoreArrayRead(R, &ra));
+    PetscCall(PetscFree(lm));
+  }
   PetscCall(DMGetLocalSection(c->dmVec, &vs));
   PetscCall(DMGetLocalSection(c->dmVert, &ss));
   PetscCall(DMGetLocalVector(c->dmVec, &lt));
@@ -582,7 +673,7 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
     char      st;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
     lam = -rn / c->w[i];
-    st  = FrictionFromResidual(c, i, ra, ya, lam, 1e-12 * fscale / c->w[i], l, u, &gb);
+    st  = FrictionFromResidual(c, i, ra, ya, lam, ForceNoise(c, &sc, i), l, u, &gb);
     PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
     PetscCall(PetscSectionGetOffset(ss, c->mesh->vStart + c->vert[i], &soff));
     for (PetscInt k = 0; k < dim; k++) {
