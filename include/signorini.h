@@ -72,7 +72,7 @@ PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *);
 PetscErrorCode SgProblemHasContact(SgProblem, PetscBool *); /* a contact boundary was given */
 PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector */
 PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
-PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t in (0, 1] (after SetUp) */
+PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t >= 0 (1: the data as given; 0: unloaded; after SetUp) */
 PetscErrorCode SgProblemGetLoadFactor(SgProblem, PetscReal *); /* 1 unless set */
 PetscErrorCode SgProblemSetDirichletValues(SgProblem, const PetscReal[]); /* non-proportional loading: the Dirichlet values of every id (dim per id) for the next solves, not scaled by the load factor (after SetUp); NULL: back to proportional */
 PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many values SgProblemSetDirichletValues takes: dim per Dirichlet id */

@@ -646,7 +646,7 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
     ct->dvsteps = ck.dvsteps;
   }
   ct->rsload   = ck.load;
-  ct->V0unit   = ck.V0 / (ck.load * ck.load);
+  if (ck.load != 0) ct->V0unit = ck.V0 / (ck.load * ck.load); /* a step unloaded to 0 says nothing of it */
   if (ck.step_open) ct->restarted = PETSC_TRUE;
   else {
     ct->have_state = PETSC_TRUE;
@@ -871,7 +871,7 @@ PetscErrorCode SgContSolve(SgCont ct)
   ct->restarted  = PETSC_FALSE;
   ct->warm       = PETSC_FALSE;
   ct->have_state = PETSC_TRUE;
-  ct->V0unit     = ct->V0 / (t * t);
+  if (t != 0) ct->V0unit = ct->V0 / (t * t); /* a step unloaded to 0 says nothing of it */
   if (ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1])) ct->gamma_warm = ct->gammas[ct->ngammas - 1];
   PetscCall(RecordStep(ct, t));
   /* a load step's end: a restart from here starts the next step warm */
