@@ -818,13 +818,12 @@ static PetscErrorCode CheckResult(SgCont ct)
     PetscFunctionReturn(0);
   }
   if (ct->converged && !ct->cv.friction && !strcmp(ct->problem, "P")) {
-    PetscReal dmin = PETSC_MAX_REAL, V0, ynorm, margin;
+    PetscReal dmin = PETSC_MAX_REAL, V0, margin;
     PetscInt  ndofs;
     for (PetscInt i = 0; i < ct->cv.n; i++) dmin = PetscMin(dmin, ct->cv.d[i]);
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dmin, 1, MPIU_REAL, MPI_MIN, ct->comm));
     if (dmin < 0) PetscFunctionReturn(0);
     PetscCall(SgElasticityGetEnergyShift(ct->prob, &V0)); /* V(0) */
-    PetscCall(VecNorm(ct->y, NORM_INFINITY, &ynorm));
     PetscCall(VecGetSize(ct->y, &ndofs));
     /* V(y) - V(y*) is first order in the tolerance (lam . g over Gamma_c) and in the rounding of the forces */
     margin = ct->kkt_tol * (PetscAbsReal(ct->V) + PetscAbsReal(V0) + ndofs * ct->kkt.fscale * ct->kkt.uscale);

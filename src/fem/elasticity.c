@@ -158,7 +158,7 @@ static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings 
   /* nu -> 1/2: lambda / mu = 2 nu / (1 - 2 nu) grows without bound; once the shear part of K is below 1e3 rounding
      units of the volumetric part, K is singular to working precision (a factorization meets zero pivots) and no
      tolerance the KKT measures could certify is left (their round-off, SgKKT.roundoff, is larger still) */
-  PetscCheck(PetscIsNormalReal(p->lambda) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.17g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
+  PetscCheck((PetscIsNormalReal(p->lambda) || p->lambda == 0) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.17g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
   PetscFunctionReturn(0);
 }
 
