@@ -104,7 +104,7 @@ PetscErrorCode SgElasticityMMSErrors(SgElasticity, Vec, PetscReal *, PetscReal *
 PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
 PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *); /* loads and support forces at y: largest components, resultant, l1 sum */
-PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf at factor 1, ||K||_inf, mesh diameter */
+PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf and the total load ||f||_1 at factor 1, mesh diameter */
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
 PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);

@@ -814,7 +814,7 @@ static PetscErrorCode CheckResult(SgCont ct)
     PetscReal E, nu, lambda, mu;
     PetscCall(SgElasticityGetMaterial(ct->prob, &E, &nu));
     PetscCall(SgLame(E, nu, &lambda, &mu));
-    PetscCall(SgContFail(ct, "PRECISION_LIMIT: double precision cannot certify -cont_kkt_tol %.3e for this problem: forming K y - b rounds the nodal forces by %.3e of the largest force on the body (eps ||K|| ||y|| against the loads, supports and contact forces; lambda/mu = %.3g with -nu %.17g), so no solver can reach or verify the tolerance (nu farther from 0.5, a coarser mesh or -cont_kkt_tol above %.1e can be solved); the run: %s%s", (double)ct->kkt_tol, (double)ct->kkt.roundoff, (double)(lambda / mu), (double)nu, (double)(2 * ct->kkt.roundoff), ct->converged ? "CONVERGED, " : "", was));
+    PetscCall(SgContFail(ct, "PRECISION_LIMIT: double precision cannot certify -cont_kkt_tol %.3e here: forming K y - b rounds the nodal forces by %.3e of the largest force on the body (lambda/mu = %.3g, -nu %.16g); no solver can reach or verify it (-cont_kkt_tol above %.1e, nu farther from 0.5 or a coarser mesh can be solved); the run: %s%s", (double)ct->kkt_tol, (double)ct->kkt.roundoff, (double)(lambda / mu), (double)nu, (double)(2 * ct->kkt.roundoff), ct->converged ? "CONVERGED, " : "", was));
     PetscFunctionReturn(0);
   }
   if (ct->converged && !ct->cv.friction && !strcmp(ct->problem, "P")) {

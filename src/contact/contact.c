@@ -368,9 +368,9 @@ static PetscReal SafeRatio(PetscReal a, PetscReal b)
            scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
    Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
    With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
-   frictionless problem) both are the data's at factor 1 (||b||_inf, the largest Dirichlet value or obstacle
-   translation; failing those the mesh diameter): a zero answer is measured against the problem, not 0/0, nor against
-   its own round-off.
+   frictionless problem) both are the data's at factor 1 (the largest Dirichlet value, obstacle translation or the
+   displacement of the total load through the shear modulus; failing those the mesh diameter): a zero answer is
+   measured against the problem, not 0/0, nor against its own round-off.
    rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
            rnoise / F is the smallest equilibrium measure the arithmetic can certify.
    res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
@@ -384,7 +384,7 @@ typedef struct {
 static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
 {
   const PetscInt dim = c->dim;
-  PetscReal      fmax, smax, ucur, ufull, bfull, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
@@ -405,7 +405,7 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   sc->l1 += cs[3];
   PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
-  PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, NULL, &diam));
+  PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
   PetscCall(SgLame(E, nu, &lambda, &mu));
   sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm_inf);
@@ -413,14 +413,14 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   sc->Y      = PetscMax(PetscMax(ynorm, PetscMax(pen, 0)), ucur);
   sc->zero   = (PetscBool)(fmax == 0 && ucur == 0 && !(pen > 0));
   if (sc->zero) {
-    PetscReal Yf, Ff = bfull;
+    /* the full load's: its Dirichlet values, obstacle translation, and the displacement its total load ||f||_1 makes
+       through the shear modulus (strain ||f||_1 / (mu L^(dim-1)) over the length L); the force scale of that */
+    PetscReal Yf;
     PetscCall(SgObstacleGetTranslation(c->obs, T));
-    Yf = PetscMax(ufull, PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]));
-    if (!(Yf > 0) && Ff > 0 && Knorm > 0) Yf = Ff / Knorm;
+    Yf = PetscMax(PetscMax(ufull, PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])), floads / (mu * PetscPowReal(diam, dim - 2)));
     if (!(Yf > 0)) Yf = diam;
-    if (!(Ff > 0)) Ff = Knorm * Yf;
     sc->Y = PetscMax(sc->Y, Yf);
-    sc->F = PetscMax(sc->F, Ff);
+    sc->F = PetscMax(sc->F, PetscMax(bfull, 2 * mu / (lambda + 2 * mu) * Knorm * Yf));
   }
   PetscFunctionReturn(0);
 }

@@ -158,7 +158,7 @@ static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings 
   /* nu -> 1/2: lambda / mu = 2 nu / (1 - 2 nu) grows without bound; once the shear part of K is below 1e3 rounding
      units of the volumetric part, K is singular to working precision (a factorization meets zero pivots) and no
      tolerance the KKT measures could certify is left (their round-off, SgKKT.roundoff, is larger still) */
-  PetscCheck((PetscIsNormalReal(p->lambda) || p->lambda == 0) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.17g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
+  PetscCheck((PetscIsNormalReal(p->lambda) || p->lambda == 0) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.16g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
   PetscFunctionReturn(0);
 }
 
@@ -1460,10 +1460,12 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
 
 /* Displacement and force scales of the data, for the KKT measures when the displacement is (nearly) zero: the largest
    Dirichlet value now (ucur) and at factor 1 (ufull: the values given, whatever the load factor or the values set per
-   step), ||b||_inf at factor 1 (bfull), ||K||_inf and the diameter of the mesh. */
-PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscReal *ufull, PetscReal *bfull, PetscReal *Knorm, PetscReal *diam)
+   step), ||b||_inf at factor 1 (bfull: the largest nodal force, with the lifting of the Dirichlet values), the total
+   load at factor 1 (floads: ||f||_1 on the free dofs, without that lifting) and the diameter of the mesh. */
+PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscReal *ufull, PetscReal *bfull, PetscReal *floads, PetscReal *diam)
 {
   PetscReal u[2] = {0, 0};
+  Vec       fg;
 
   PetscFunctionBeginUser;
   PetscCall(VecNorm(p->ubc, NORM_INFINITY, &u[0]));
@@ -1472,7 +1474,13 @@ PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscR
   if (ucur) *ucur = u[0];
   if (ufull) *ufull = u[1];
   if (bfull) *bfull = p->b1 ? p->bnorm_inf1 : p->bnorm_inf;
-  if (Knorm) *Knorm = p->Knorm;
+  if (floads) {
+    PetscCall(DMGetGlobalVector(p->dm, &fg));
+    PetscCall(VecZeroEntries(fg));
+    PetscCall(DMLocalToGlobal(p->dm, p->fpart1 ? p->fpart1 : p->fpart, ADD_VALUES, fg));
+    PetscCall(VecNorm(fg, NORM_1, floads));
+    PetscCall(DMRestoreGlobalVector(p->dm, &fg));
+  }
   if (diam) *diam = p->diam;
   PetscFunctionReturn(0);
 }
