@@ -73,7 +73,7 @@ PetscErrorCode SgProblemGetSizes(SgProblem, PetscInt *, PetscInt *, PetscInt *);
 PetscErrorCode SgProblemHasContact(SgProblem, PetscBool *); /* a contact boundary was given */
 PetscErrorCode SgProblemCreateVector(SgProblem, Vec *); /* a displacement vector */
 PetscErrorCode SgProblemComputeEnergy(SgProblem, Vec, PetscReal *); /* potential energy V(y) */
-PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t in (0, 1] (after SetUp) */
+PetscErrorCode SgProblemSetLoadFactor(SgProblem, PetscReal); /* load stepping: loads, Dirichlet values and obstacle translation times t >= 0 (1: the data as given; 0: unloaded; after SetUp) */
 PetscErrorCode SgProblemGetLoadFactor(SgProblem, PetscReal *); /* 1 unless set */
 PetscErrorCode SgProblemSetDirichletValues(SgProblem, const PetscReal[]); /* non-proportional loading: the Dirichlet values of every id (dim per id) for the next solves, not scaled by the load factor (after SetUp); NULL: back to proportional */
 PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many values SgProblemSetDirichletValues takes: dim per Dirichlet id */
@@ -87,11 +87,16 @@ PetscErrorCode SgProblemGetDirichletSize(SgProblem, PetscInt *); /* how many val
 #define SGCONTPDAS "pdas" /* baseline: unregularized primal-dual active set */
 #define SGCONTVI   "vi"   /* baseline: PETSc's SNESVI on the same discrete problem */
 
-/* Measures of a displacement as a solution of the contact problem (P), each dimensionless (see SgContGetKKT). */
+/* Measures of a displacement as a solution of the contact problem (P), each dimensionless (see SgContGetKKT): forces
+   against fscale, the largest nodal force acting on the body (load, support or contact force), lengths against uscale
+   (lscale = uscale sqrt|Gamma_c|); roundoff is the smallest force measure double precision can certify (eps ||K|| ||y||
+   / fscale: above the tolerance the problem cannot be solved to it), balance the resultant of all forces on the body
+   against their sum of magnitudes. */
 typedef struct {
   PetscReal equilibrium, infeasibility, complementarity, dual, residual, rhoF, rhoC, force;
   PetscReal penetration, uscale, lscale;
   PetscInt  nactive;
+  PetscReal fscale, roundoff, balance;
 } SgKKT;
 
 PetscErrorCode SgContCreate(SgProblem, SgCont *); /* a solver of the problem, which it holds (SgProblemReference) until SgContDestroy (unless a type is set, SgContSetFromOptions picks the default for the problem: fast in 3D and with iterative solves, ipf in 2D with exact ones, none without contact) */

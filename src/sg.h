@@ -114,6 +114,8 @@ PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
 PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
 PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
+PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *); /* loads and support forces at y: largest components, resultant, l1 sum */
+PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf and the total load ||f||_1 at factor 1, mesh diameter */
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
 PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
@@ -212,14 +214,19 @@ PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
 PetscErrorCode SgContactAddBlocks(SgContact, const PetscReal[], Mat); /* J += a dim x dim block per contact vertex */
 PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
 /* SgContactKKT: measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i, each
-   dimensionless (the same for any load level, material scale and unit system), with the force scale
-   ||K|| ||y|| + ||b|| (infinity norms) and the length scale Y sqrt|Gamma_c|, Y = max(||y||_inf, largest initial
-   penetration):
-   equilibrium     ||K y - b + B^T W lam|| / (||K|| ||y|| + ||b||)          (backward error; interior and tangential part)
+   dimensionless (the same for any load level, material scale and unit system), with the force scale F (the largest
+   nodal force on the body: a load on the free dofs, a support force K u - f on the Dirichlet part, a contact force
+   w_i |lam_i|; not ||K|| ||y||, which grows like lambda as nu -> 1/2) and the length scale Y sqrt|Gamma_c|,
+   Y = max(||y||_inf, largest initial penetration, largest Dirichlet value); with no data at this load factor (the
+   answer is y = 0) both are the data's at factor 1 (infinity norms):
+   equilibrium     ||K y - b + B^T W lam|| / F                              (interior and tangential part)
    infeasibility   ||max(0, g)||_{L2(Gamma_c)} / (Y sqrt|Gamma_c|)
    complementarity (||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}) / (Y sqrt|Gamma_c|), A = {lam > 0}, as an L2 sum of squares
-   dual            max_i w_i max(0, -lam_i) / (||K|| ||y|| + ||b||)        (nodal force a pressure >= 0 cannot balance)
+   dual            max_i w_i max(0, -lam_i) / F                            (nodal force a pressure >= 0 cannot balance)
    residual        max(equilibrium, dual, infeasibility, complementarity): the stopping measure
+   roundoff        eps (||K|| ||y|| + ||b||) / F: the round-off of forming K y - b, the least force measure that double
+                   precision can certify (above the tolerance: the problem cannot be solved to it)
+   balance         |loads + support forces + contact forces| / (sum of their magnitudes): the resultant on the body
    penetration     ||max(0, g)||_{L2(Gamma_c)} in the problem's units (the paper's infeasibility) */
 PetscErrorCode SgContactKKT(SgContact, Vec, SgKKT *);
 PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
@@ -335,7 +342,7 @@ PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
-PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal *, PetscReal *);
+PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *); /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);

@@ -436,6 +436,55 @@ static PetscErrorCode TestResolve(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* A load path through the library (SgProblemSetLoadFactor, SgContSolve per step) with factors from -factors (any
+   order, 0 allowed: unloaded): the problem and the solver from the options. Per step: converged, the energy, the KKT
+   residual and its scales, ||y||_inf, and the energy at factor 1 of a fresh solver (to compare a return to the load). */
+static PetscErrorCode TestLoadPath(SgSummary s)
+{
+  SgProblem prob;
+  SgCont    ct;
+  PetscReal f[16], V[16], r[16], ymax[16], us[16], fs[16], cv[16];
+  PetscInt  n = 16;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetRealArray(NULL, NULL, "-factors", f, &n, &set));
+  PetscCheck(set && n > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-factors: give the load factors of the path");
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetFromOptions(prob));
+  PetscCall(SgContCreate(prob, &ct));
+  PetscCall(SgContSetFromOptions(ct));
+  for (PetscInt k = 0; k < n; k++) {
+    SgKKT       kkt;
+    PetscBool   conv;
+    Vec         y;
+    const char *reason;
+    PetscCall(SgProblemSetLoadFactor(prob, f[k]));
+    PetscCall(SgContSolve(ct));
+    PetscCall(SgContGetConvergedReason(ct, &conv, &reason));
+    PetscCall(SgContGetKKT(ct, &kkt));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "load factor %g: %s %s (KKT equilibrium %.3e, dual %.3e, infeasibility %.3e, complementarity %.3e)\n", (double)f[k], conv ? "CONVERGED" : "FAILED", reason, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity));
+    PetscCall(SgContGetEnergy(ct, &V[k]));
+    PetscCall(SgContGetKKT(ct, &kkt));
+    PetscCall(SgContGetSolution(ct, &y));
+    PetscCall(VecNorm(y, NORM_INFINITY, &ymax[k]));
+    cv[k] = conv;
+    r[k]  = kkt.residual;
+    us[k] = kkt.uscale;
+    fs[k] = kkt.fscale;
+  }
+  PetscCall(SgSummarySetRealArray(s, "factors", n, f));
+  PetscCall(SgSummarySetRealArray(s, "converged", n, cv));
+  PetscCall(SgSummarySetRealArray(s, "energy", n, V));
+  PetscCall(SgSummarySetRealArray(s, "kkt_residual", n, r));
+  PetscCall(SgSummarySetRealArray(s, "displacement_max", n, ymax));
+  PetscCall(SgSummarySetRealArray(s, "displacement_scale", n, us));
+  PetscCall(SgSummarySetRealArray(s, "force_scale", n, fs));
+  PetscCall(SgContDestroy(&ct));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -458,6 +507,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));
   else if (PetscStrcmp(test, "controllers", &eq) == 0 && eq) PetscCall(TestControllers(s));
   else if (PetscStrcmp(test, "resolve", &eq) == 0 && eq) PetscCall(TestResolve(s));
+  else if (PetscStrcmp(test, "loadpath", &eq) == 0 && eq) PetscCall(TestLoadPath(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

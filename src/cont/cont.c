@@ -773,7 +773,7 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
     ct->dvsteps = ck.dvsteps;
   }
   ct->rsload   = ck.load;
-  ct->V0unit   = ck.V0 / (ck.load * ck.load);
+  if (ck.load != 0) ct->V0unit = ck.V0 / (ck.load * ck.load); /* a step unloaded to 0 says nothing of it */
   if (ck.step_open) ct->restarted = PETSC_TRUE;
   else {
     ct->have_state = PETSC_TRUE;
@@ -980,6 +980,43 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* What can be checked of a result beyond its KKT measures (after them, ct->kkt):
+   - double precision: when forming K y - b rounds nodal forces by more than the tolerance times the largest force on the
+     body (SgKKT.roundoff; lambda/mu large, a nearly incompressible material, with a fine mesh), no measure can certify
+     the tolerance, whatever the controller reported: PRECISION_LIMIT, naming the material;
+   - the energy: with y = 0 feasible (no initial penetration) the minimizer of (P) has V <= V(0) (frictionless; with
+     friction (P) is no minimization of V), so a result above it, beyond the tolerance, is no solution: ENERGY_ABOVE_ZERO.
+   A failure's earlier reason is kept at the end of the message. */
+static PetscErrorCode CheckResult(SgCont ct)
+{
+  char was[sizeof(ct->reason)];
+
+  PetscFunctionBeginUser;
+  if (!ct->c) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
+  if (!(ct->kkt.roundoff <= ct->kkt_tol)) {
+    PetscReal E, nu, lambda, mu;
+    PetscCall(SgElasticityGetMaterial(ct->prob, &E, &nu));
+    PetscCall(SgLame(E, nu, &lambda, &mu));
+    PetscCall(SgContFail(ct, "PRECISION_LIMIT: double precision cannot certify -cont_kkt_tol %.3e here: forming K y - b rounds the nodal forces by %.3e of the largest force on the body (lambda/mu = %.3g, -nu %.16g); no solver can reach or verify it (-cont_kkt_tol above %.1e, nu farther from 0.5 or a coarser mesh can be solved); the run: %s%s", (double)ct->kkt_tol, (double)ct->kkt.roundoff, (double)(lambda / mu), (double)nu, (double)(2 * ct->kkt.roundoff), ct->converged ? "CONVERGED, " : "", was));
+    PetscFunctionReturn(0);
+  }
+  if (ct->converged && !ct->cv.friction && !strcmp(ct->problem, "P")) {
+    PetscReal dmin = PETSC_MAX_REAL, V0, margin;
+    PetscInt  ndofs;
+    for (PetscInt i = 0; i < ct->cv.n; i++) dmin = PetscMin(dmin, ct->cv.d[i]);
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dmin, 1, MPIU_REAL, MPI_MIN, ct->comm));
+    if (dmin < 0) PetscFunctionReturn(0);
+    PetscCall(SgElasticityGetEnergyShift(ct->prob, &V0)); /* V(0) */
+    PetscCall(VecGetSize(ct->y, &ndofs));
+    /* V(y) - V(y*) is first order in the tolerance (lam . g over Gamma_c) and in the rounding of the forces */
+    margin = ct->kkt_tol * (PetscAbsReal(ct->V) + PetscAbsReal(V0) + ndofs * ct->kkt.fscale * ct->kkt.uscale);
+    if (!(ct->V <= V0 + margin))
+      PetscCall(SgContFail(ct, "ENERGY_ABOVE_ZERO: the result's energy %.6e exceeds V(0) = %.6e, although y = 0 is feasible (no initial penetration): it is no minimizer of (P) (KKT residual %.3e; the run: %s)", (double)ct->V, (double)V0, (double)ct->kkt.residual, was));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Solve: the controller's steps from the unconstrained start (or the restart file's state), then the energy and the
    KKT measures of the result. Called again (a load step, after SgProblemSetLoadFactor): the steps start from the last
    solution and controller state (see contimpl.h). Reporting is separate (SgContView, SgContWriteSummary, ...). */
@@ -1020,12 +1057,13 @@ PetscErrorCode SgContSolve(SgCont ct)
   if (ct->c) {
     PetscCall(SgContMeasure(ct));
     if (!strcmp(ct->problem, "P")) ct->residual = ct->kkt.residual;
+    PetscCall(CheckResult(ct));
   }
   ct->solved     = PETSC_TRUE;
   ct->restarted  = PETSC_FALSE;
   ct->warm       = PETSC_FALSE;
   ct->have_state = PETSC_TRUE;
-  ct->V0unit     = ct->V0 / (t * t);
+  if (t != 0) ct->V0unit = ct->V0 / (t * t); /* a step unloaded to 0 says nothing of it */
   if (ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1])) ct->gamma_warm = ct->gammas[ct->ngammas - 1];
   PetscCall(RecordStep(ct, t));
   /* a load step's end: a restart from here starts the next step warm */

@@ -59,7 +59,7 @@ static PetscErrorCode Solve_None(SgCont ct)
   PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
   PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, NULL));
-  PetscCall(SgSSNEquilibriumError(ct->ssn, ct->y, &ct->residual, &roundoff));
+  PetscCall(SgSSNEquilibriumError(ct->ssn, ct->y, ct->kkt.fscale, &ct->residual, &roundoff));
   PetscCall(SgSSNGetReason(ct->ssn, &sr));
   if (ok && roundoff > ct->kkt_tol) {
     PetscCall(SgContFail(ct, "PGAMMA_UNVERIFIABLE: SSN_%s at gamma %g, but the round-off of gamma (tau_N y - d) is %.3e of the force scale, above -cont_kkt_tol %.3e: (P_gamma) cannot be checked to that tolerance in double precision (lower -contact_gamma, or solve (P) with -cont_type ipf); as a solution of (P) the KKT residual is %.3e", SgSSNReasons[sr], (double)ct->gamma, (double)roundoff, (double)ct->kkt_tol, (double)ct->kkt.residual));

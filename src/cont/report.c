@@ -108,6 +108,9 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetReal(sum, "dual_infeasibility", ct->kkt.dual));
     PetscCall(SgSummarySetReal(sum, "penetration", ct->kkt.penetration));
     PetscCall(SgSummarySetReal(sum, "displacement_scale", ct->kkt.uscale));
+    PetscCall(SgSummarySetReal(sum, "force_scale", ct->kkt.fscale));
+    PetscCall(SgSummarySetReal(sum, "kkt_roundoff", ct->kkt.roundoff));
+    PetscCall(SgSummarySetReal(sum, "force_balance", ct->kkt.balance));
     PetscCall(SgSummarySetReal(sum, "rho_F", ct->kkt.rhoF));
     PetscCall(SgSummarySetReal(sum, "rho_C", ct->kkt.rhoC));
     PetscCall(SgSummarySetInt(sum, "active_set_size", ct->kkt.nactive));

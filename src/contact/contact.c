@@ -457,19 +457,94 @@ static PetscReal SafeRatio(PetscReal a, PetscReal b)
   return b > 0 ? a / b : PETSC_INFINITY;
 }
 
+/* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
+   stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):
+   F       the force scale: the largest nodal force on the body, a load on the free dofs, a support force on the
+           Dirichlet part (K u - f there) or a contact force (w_i |lam_i|; with friction the whole nodal force w_i |R_i|),
+           and the shear part of ||K|| ||y||, 2 mu / (lambda + 2 mu) ||K|| ||y|| (all of it for nu = 0; a backward error
+           scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
+   Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
+   With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
+   frictionless problem) both are the data's at factor 1 (the largest Dirichlet value, obstacle translation or the
+   displacement of the total load through the shear modulus; failing those the mesh diameter): a zero answer is
+   measured against the problem, not 0/0, nor against its own round-off.
+   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
+           rnoise / F is the smallest equilibrium measure the arithmetic can certify.
+   res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
+           equilibrium the resultant vanishes.
+   R: K y - b with the rollers' fixed components zeroed, before the contact forces are taken out; lam from it. */
+typedef struct {
+  PetscReal F, Y, rnoise, res[3], l1;
+  PetscBool zero;
+} KKTScales;
+
+static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
+{
+  const PetscInt dim = c->dim;
+  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
+  for (PetscInt i = 0; i < c->n; i++) { /* the contact force on the body at vertex i */
+    PetscReal f[3], rn = 0, a = 0;
+    for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    for (PetscInt k = 0; k < dim; k++) {
+      f[k] = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
+      cs[k] += f[k];
+      cs[3] += PetscAbsReal(f[k]);
+      a += f[k] * f[k];
+    }
+    cm = PetscMax(cm, c->friction ? PetscSqrtReal(a) : c->w[i] * PetscAbsReal(lam[i]));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cs, 4, MPIU_REAL, MPI_SUM, c->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cm, 1, MPIU_REAL, MPI_MAX, c->comm));
+  for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
+  sc->l1 += cs[3];
+  PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
+  PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
+  PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
+  PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
+  PetscCall(SgLame(E, nu, &lambda, &mu));
+  sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm_inf);
+  sc->F      = PetscMax(PetscMax(fmax, smax), PetscMax(cm, 2 * mu / (lambda + 2 * mu) * Knorm * ynorm));
+  sc->Y      = PetscMax(PetscMax(ynorm, PetscMax(pen, 0)), ucur);
+  sc->zero   = (PetscBool)(fmax == 0 && ucur == 0 && !(pen > 0));
+  if (sc->zero) {
+    /* the full load's: its Dirichlet values, obstacle translation, and the displacement its total load ||f||_1 makes
+       through the shear modulus (strain ||f||_1 / (mu L^(dim-1)) over the length L); the force scale of that */
+    PetscReal Yf;
+    PetscCall(SgObstacleGetTranslation(c->obs, T));
+    Yf = PetscMax(PetscMax(ufull, PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2])), floads / (mu * PetscPowReal(diam, dim - 2)));
+    if (!(Yf > 0)) Yf = diam;
+    sc->Y = PetscMax(sc->Y, Yf);
+    sc->F = PetscMax(sc->F, PetscMax(bfull, 2 * mu / (lambda + 2 * mu) * Knorm * Yf));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the force below which a nodal force at contact vertex i is round-off: 1e-12 of the force scale, and at least a few
+   times the round-off of forming the residual */
+static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
+{
+  return PetscMax(1e-12 * sc->F, 4 * sc->rnoise) / c->w[i];
+}
+
 /* KKT measures of the original problem (P) for a displacement y. The multiplier is the one that balances the normal
    residual at the contact vertices, lam_i = -(K y - b)_i.n_i / w_i: for the methods' own multipliers it agrees up to
    round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure.
    Every part is dimensionless, so that a tolerance means the same for any load level, material scale and unit system:
-   forces are measured against the equilibrium scale ||K|| ||y|| + ||b|| (a backward error), lengths against the
-   displacement scale Y = max(||y||_inf, largest initial penetration) as root mean squares over Gamma_c. */
+   forces are measured against the force scale F (the largest nodal force acting on the body, see ComputeScales),
+   lengths against the displacement scale Y as root mean squares over Gamma_c. roundoff = eps (||K|| ||y|| + ||b||) / F
+   is what double precision can certify of the force measures: above the tolerance the problem cannot be solved to it
+   (a nearly incompressible material, lambda / mu large). */
 PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 {
   const PetscInt     dim = c->dim;
   Vec                R, Ky;
   PetscScalar       *ra;
   const PetscScalar *ya;
-  PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm[2], fscale;
+  PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm, ynrm, bal = 0, letgo = 0;
+  KKTScales          sc;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
@@ -496,21 +571,26 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     mx[2]  = PetscMax(mx[2], -c->d[i]);                       /* initial penetration */
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPIU_REAL, MPI_MAX, c->comm));
-  PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
-  fscale = c->Knorm * nrm[1] + c->bnorm_inf;
+  PetscCall(ComputeScales(c, y, ra, lam, mx[2], &sc));
+  for (PetscInt k = 0; k < dim; k++) bal += PetscSqr(sc.res[k]);
+  bal = PetscSqrtReal(bal);
+  PetscCall(VecNorm(y, NORM_INFINITY, &ynrm));
   for (PetscInt i = 0; i < c->n; i++) {
-    /* pressure counts as acting above the round-off of the derived multiplier: 1e4 eps of the equilibrium scale
-       (||K|| ||y|| + ||b||) / w_i, and a tiny fraction of the largest pressure */
-    const PetscReal noise = 1e-12 * fscale / c->w[i];
+    /* pressure counts as acting above the round-off of the derived multiplier (ForceNoise) and a tiny fraction of
+       the largest pressure. A pressure at an open gap violates complementarity either way: as a force (w lam / F, an
+       unbalanced nodal force if the vertex is let go) or as a length (the gap, if it is held): the smaller counts, so
+       that an inexact solve's tiny pressure at a far open gap, or a tiny gap under a real pressure, is measured for
+       what it is. One definition: the fields and the friction states use these flags too. */
+    const PetscReal rf = SafeRatio(c->w[i] * lam[i], sc.F), rg = SafeRatio(-PetscMin(0, g[i]), sc.Y);
     c->klam[i] = lam[i];
-    c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], noise));
+    c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], ForceNoise(c, &sc, i)) && !(rf < rg));
   }
   if (c->friction) {
     /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
        part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
        |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed components the displacement
        is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a traction on it. */
-    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = nrm[1];
+    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm;
     const PetscScalar *ul = NULL, *rfa = NULL;
     Vec                yloc = NULL, Rf = NULL;
     if (c->haspartial) {
@@ -529,7 +609,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     unoise *= 1e-10;
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
-      const PetscReal noise = 1e-12 * fscale / c->w[i];
+      const PetscReal noise = ForceNoise(c, &sc, i);
       const PetscInt  v     = c->vert[i];
       PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
       char            st;
@@ -596,12 +676,14 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
     c->fsum.traction   = f[5];
     c->fsum.slip_max   = fm[1];
-    c->fsum.bound      = SafeRatio(fm[0], fscale);
+    c->fsum.bound      = SafeRatio(fm[0], sc.F);
   }
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscBool act = (PetscBool)c->kact[i]; /* the active set of the fields and of the friction states too */
+    const PetscReal rf  = SafeRatio(c->w[i] * lam[i], sc.F), rg = SafeRatio(-PetscMin(0, g[i]), sc.Y);
+    if (!act && rf < rg) letgo = PetscMax(letgo, c->w[i] * lam[i]); /* let go: its force is unbalanced */
     s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
     s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
@@ -610,17 +692,21 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     s[7] += (act ? 1 : 0);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
-  /* normwise backward error of the equilibrium equations: ||R|| / (||K|| ||y|| + ||b||), infinity norms; it stays at
-     round-off level for nearly incompressible materials, where ||R|| / ||b|| cannot go below eps ||K|| ||y|| / ||b|| */
-  PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
-  kkt->uscale          = PetscMax(nrm[1], PetscMax(0, mx[2]));
-  kkt->lscale          = kkt->uscale * PetscSqrtReal(c->area);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &letgo, 1, MPIU_REAL, MPI_MAX, c->comm));
+  /* the largest nodal force left unbalanced, against the largest force acting: its round-off floor rnoise / F is
+     reported beside it (kkt->roundoff) */
+  PetscCall(VecNorm(R, NORM_INFINITY, &nrm));
+  kkt->uscale          = sc.Y;
+  kkt->lscale          = sc.Y * PetscSqrtReal(c->area);
+  kkt->fscale          = sc.F;
+  kkt->roundoff        = SafeRatio(sc.rnoise, sc.F);
+  kkt->balance         = SafeRatio(bal, sc.l1);
   kkt->penetration     = PetscSqrtReal(s[0]);
-  kkt->equilibrium     = nrm[0] / PetscMax(fscale, PETSC_SMALL);
+  kkt->equilibrium     = SafeRatio(nrm, sc.F);
   kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
   if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
-  kkt->complementarity = SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale);
-  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], fscale), c->fsum.bound) : SafeRatio(mx[1], fscale);
+  kkt->complementarity = PetscMax(SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale), SafeRatio(letgo, sc.F));
+  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound) : SafeRatio(mx[1], sc.F);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];

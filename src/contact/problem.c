@@ -435,7 +435,7 @@ PetscErrorCode SgProblemSetLoadFactor(SgProblem p, PetscReal t)
   PetscFunctionBeginUser;
   ValidProblem(p, 1);
   PetscCall(SgProblemSetUp(p));
-  PetscCheck(PetscIsNormalReal(t) && t > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetLoadFactor: the factor must be positive and finite, got %g", (double)t);
+  PetscCheck((PetscIsNormalReal(t) && t > 0) || t == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetLoadFactor: the factor must be finite and >= 0 (0: unloaded), got %g", (double)t);
   PetscCall(SgElasticitySetLoadFactor(p->el, t));
   if (p->c) PetscCall(SgContactSetLoadFactor(p->c, t));
   p->load_set = PETSC_TRUE;

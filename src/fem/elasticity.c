@@ -155,6 +155,10 @@ static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings 
   for (PetscInt d = 0; d < p->nbody_force; d++) PetscCheck(PetscIsNormalReal(p->body_force[d]) || p->body_force[d] == 0, p->comm, PETSC_ERR_USER_INPUT, "-body_force: entry %" PetscInt_FMT " is %g, must be finite", d, (double)p->body_force[d]);
   PetscCheck(!p->rigid_shift_set || (PetscIsNormalReal(p->rigid_shift) && p->rigid_shift > 0) || p->rigid_shift == 0, p->comm, PETSC_ERR_USER_INPUT, "-elasticity_rigid_shift: must be finite and >= 0, got %g", (double)p->rigid_shift);
   PetscCall(SgLame(p->E, p->nu, &p->lambda, &p->mu));
+  /* nu -> 1/2: lambda / mu = 2 nu / (1 - 2 nu) grows without bound; once the shear part of K is below 1e3 rounding
+     units of the volumetric part, K is singular to working precision (a factorization meets zero pivots) and no
+     tolerance the KKT measures could certify is left (their round-off, SgKKT.roundoff, is larger still) */
+  PetscCheck((PetscIsNormalReal(p->lambda) || p->lambda == 0) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.16g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
   PetscFunctionReturn(0);
 }
 
@@ -1345,6 +1349,150 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
     PetscCall(PetscFree2(facets, part));
   }
   PetscCallMPI(MPI_Allreduce(loc, R, 3, MPIU_REAL, MPI_SUM, p->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The forces on the body at the displacement y (free dofs), for the force scale and the force balance of the KKT
+   measures (SgContactKKT): fmax the largest nodal load component on the free dofs, smax the largest nodal support force
+   component (K u - f on the Dirichlet-fixed components, and the elastic foundation of -elasticity_rigid_shift), fsum
+   the resultant of loads and support forces on the body, fl1 the sum of their nodal components' magnitudes. Only the
+   cells at the Dirichlet part are visited: the cost of the measures stays that of a product with K. */
+PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscReal *smax, PetscReal fsum[3], PetscReal *fl1)
+{
+  const SgMesh      *m = &p->mesh;
+  const PetscInt     dim = p->dim, nv = dim + 1;
+  Vec                yloc, sloc, sg, fg;
+  const PetscScalar *ya, *pa, *fa;
+  PetscScalar       *sa;
+  PetscSection       vs;
+  PetscReal          loc[7] = {0, 0, 0, 0, 0, 0, 0}, nrm[4];
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLocalVector(p->dm, &yloc));
+  PetscCall(SgElasticityGlobalToLocal(p, y, yloc));
+  PetscCall(DMGetLocalSection(p->dmVec, &vs));
+  PetscCall(DMGetLocalVector(p->dmVec, &sloc));
+  PetscCall(VecZeroEntries(sloc));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  PetscCall(VecGetArrayRead(p->fpart, &pa));
+  PetscCall(VecGetArray(sloc, &sa));
+  /* support forces: every cell is on exactly one rank and fpart holds this rank's cells' and facets' loads, so the
+     parts of a vertex shared by ranks add up to its force */
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt *cv = &m->cellv[c * nv];
+    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscBool       has = PETSC_FALSE;
+
+    for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcmask[cv[a]]);
+    if (!has) continue;
+    for (PetscInt a = 0; a < nv; a++)
+      for (PetscInt d = 0; d < dim; d++) {
+        xe[a * dim + d] = m->x[cv[a] * dim + d];
+        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
+      }
+    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    for (PetscInt a = 0; a < nv; a++) {
+      PetscInt off;
+      if (!m->bcmask[cv[a]]) continue;
+      PetscCall(PetscSectionGetOffset(vs, m->vStart + cv[a], &off));
+      for (PetscInt i = 0; i < dim; i++) {
+        PetscReal r = 0;
+        if (!SgMeshFixed(m, cv[a], i)) continue;
+        for (PetscInt j = 0; j < nv * dim; j++) r += Ke[(a * dim + i) * nv * dim + j] * ue[j];
+        sa[off + i] += r;
+      }
+    }
+  }
+  /* K u = f + s on a fixed component: the support force on the body s = K u - f; with the load f there the
+     resultant gains K u */
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    if (!m->bcmask[v]) continue;
+    PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+    for (PetscInt d = 0; d < dim; d++)
+      if (SgMeshFixed(m, v, d)) {
+        loc[d] += PetscRealPart(sa[off + d]);
+        sa[off + d] -= PetscRealPart(pa[m->loff[v] + d]);
+      }
+  }
+  PetscCall(VecRestoreArray(sloc, &sa));
+  PetscCall(VecRestoreArrayRead(p->fpart, &pa));
+  PetscCall(VecRestoreArrayRead(yloc, &ya));
+  PetscCall(DMRestoreLocalVector(p->dm, &yloc));
+  PetscCall(DMGetGlobalVector(p->dmVec, &sg));
+  PetscCall(VecZeroEntries(sg));
+  PetscCall(DMLocalToGlobal(p->dmVec, sloc, ADD_VALUES, sg));
+  PetscCall(DMRestoreLocalVector(p->dmVec, &sloc));
+  PetscCall(VecNorm(sg, NORM_INFINITY, &nrm[0]));
+  PetscCall(VecNorm(sg, NORM_1, &nrm[1]));
+  PetscCall(DMRestoreGlobalVector(p->dmVec, &sg));
+  /* the loads on the free dofs (those on the fixed components went into the support forces) */
+  PetscCall(DMGetGlobalVector(p->dm, &fg));
+  PetscCall(VecZeroEntries(fg));
+  PetscCall(DMLocalToGlobal(p->dm, p->fpart, ADD_VALUES, fg));
+  if (m->nfree_glob) {
+    PetscScalar *ga;
+    PetscCall(VecGetArray(fg, &ga));
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (m->goff[v] >= 0 && SgMeshPartial(m, v))
+        for (PetscInt d = 0; d < dim; d++)
+          if (SgMeshFixed(m, v, d)) ga[m->goff[v] + d] = 0;
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (m->goff[v] >= 0)
+        for (PetscInt d = 0; d < dim; d++) loc[3 + d] += PetscRealPart(ga[m->goff[v] + d]);
+    PetscCall(VecRestoreArray(fg, &ga));
+  }
+  PetscCall(VecNorm(fg, NORM_INFINITY, &nrm[2]));
+  PetscCall(VecNorm(fg, NORM_1, &nrm[3]));
+  if (p->rigid_shift > 0) { /* the foundation's force -k M y on the body is a support force */
+    const PetscReal k = p->rigid_shift * p->E / PetscSqr(p->diam);
+    PetscReal       fmx = 0;
+    PetscCall(VecPointwiseMult(fg, p->mass, y));
+    PetscCall(VecGetArrayRead(fg, &fa));
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (m->goff[v] >= 0)
+        for (PetscInt d = 0; d < dim; d++) {
+          loc[d] -= k * PetscRealPart(fa[m->goff[v] + d]);
+          loc[6] += k * PetscAbsReal(PetscRealPart(fa[m->goff[v] + d]));
+          fmx = PetscMax(fmx, k * PetscAbsReal(PetscRealPart(fa[m->goff[v] + d])));
+        }
+    PetscCall(VecRestoreArrayRead(fg, &fa));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fmx, 1, MPIU_REAL, MPI_MAX, p->comm));
+    nrm[0] = PetscMax(nrm[0], fmx);
+  }
+  PetscCall(DMRestoreGlobalVector(p->dm, &fg));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, loc, 7, MPIU_REAL, MPI_SUM, p->comm));
+  if (fmax) *fmax = nrm[2];
+  if (smax) *smax = nrm[0];
+  for (PetscInt d = 0; fsum && d < 3; d++) fsum[d] = d < dim ? loc[d] + loc[3 + d] : 0;
+  if (fl1) *fl1 = nrm[1] + nrm[3] + loc[6];
+  PetscFunctionReturn(0);
+}
+
+/* Displacement and force scales of the data, for the KKT measures when the displacement is (nearly) zero: the largest
+   Dirichlet value now (ucur) and at factor 1 (ufull: the values given, whatever the load factor or the values set per
+   step), ||b||_inf at factor 1 (bfull: the largest nodal force, with the lifting of the Dirichlet values), the total
+   load at factor 1 (floads: ||f||_1 on the free dofs, without that lifting) and the diameter of the mesh. */
+PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscReal *ufull, PetscReal *bfull, PetscReal *floads, PetscReal *diam)
+{
+  PetscReal u[2] = {0, 0};
+  Vec       fg;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecNorm(p->ubc, NORM_INFINITY, &u[0]));
+  PetscCall(VecNorm(p->ubc1 ? p->ubc1 : p->ubc, NORM_INFINITY, &u[1]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, u, 2, MPIU_REAL, MPI_MAX, p->comm));
+  if (ucur) *ucur = u[0];
+  if (ufull) *ufull = u[1];
+  if (bfull) *bfull = p->b1 ? p->bnorm_inf1 : p->bnorm_inf;
+  if (floads) {
+    PetscCall(DMGetGlobalVector(p->dm, &fg));
+    PetscCall(VecZeroEntries(fg));
+    PetscCall(DMLocalToGlobal(p->dm, p->fpart1 ? p->fpart1 : p->fpart, ADD_VALUES, fg));
+    PetscCall(VecNorm(fg, NORM_1, floads));
+    PetscCall(DMRestoreGlobalVector(p->dm, &fg));
+  }
+  if (diam) *diam = p->diam;
   PetscFunctionReturn(0);
 }
 

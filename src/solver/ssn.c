@@ -669,8 +669,8 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SgElasticityGetMesh(p, &s->mesh));
   PetscCall(SgElasticityGetOperators(p, &s->K, &s->b));
   PetscCall(SgElasticityGetMass(p, &s->mass));
-  PetscCall(SgElasticityGetScales(p, &s->Knorm, &s->bnorm, &s->bnorm_inf));
-  PetscCall(SgElasticityGetEnergyShift(p, &s->energy_shift));
+  s->prob = p;
+  PetscCall(SgSSNUpdateLoad(s));
   if (c) PetscCall(SgContactGetView(c, &s->cv));
   PetscCall(PetscTime(&s->t0));
   PetscCall(PetscObjectReference((PetscObject)J));
@@ -765,11 +765,13 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
 }
 
 /* The load scales and the energy shift read again after the problem's load factor changed (load stepping; b and the
-   gaps are shared, not copied). */
+   gaps are shared, not copied). A step without load (b = 0: unloaded to zero) keeps the scales of the full load, so
+   that the stopping tests measure against the problem, not against 0. */
 PetscErrorCode SgSSNUpdateLoad(SgSSN s)
 {
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetScales(s->prob, &s->Knorm, &s->bnorm, &s->bnorm_inf));
+  if (!(s->bnorm > 0)) PetscCall(SgElasticityGetFullLoadScales(s->prob, &s->bnorm, &s->bnorm_inf, NULL));
   PetscCall(SgElasticityGetEnergyShift(s->prob, &s->energy_shift));
   PetscFunctionReturn(0);
 }
@@ -969,12 +971,12 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
 }
 
 /* The measure of a single regularized solve: the equilibrium residual of (P_gamma) at y, ||F(y)||_inf, relative to the
-   force scale ||K|| ||y|| + ||b|| of the KKT measures of (P), after discounting the round-off of forming
+   force scale fscale of the KKT measures of (P) (SgKKT.fscale, the largest nodal force on the body), after discounting the round-off of forming
    gamma (tau_N y - d) on the active set (4 eps max_A gamma w_i (|tau_N y_i| + |d_i|), which at gamma ~ 1e16 is not small).
    Scaling by gamma w instead would hide inexact linear solves: a relative error of 1e-11 there is a pressure error of
    1e-11 gamma |d|. roundoff: that discount relative to the force scale; above the tolerance the error cannot be
    resolved in double precision at this gamma. */
-PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *roundoff)
+PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal *err, PetscReal *roundoff)
 {
   const SgContactView *c   = &s->cv;
   Vec                F;
@@ -1017,9 +1019,8 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal *err, PetscReal *
   }
   PetscCall(VecRestoreArray(F, &fa));
   PetscCall(VecNorm(F, NORM_INFINITY, &nrm[0]));
-  PetscCall(VecNorm(y, NORM_INFINITY, &nrm[1]));
   {
-    const PetscReal scale = s->Knorm * nrm[1] + s->bnorm_inf, r = PetscMax(0, nrm[0] - floor);
+    const PetscReal scale = fscale, r = PetscMax(0, nrm[0] - floor);
     *err      = r > 0 ? (scale > 0 ? r / scale : PETSC_INFINITY) : nrm[0] - nrm[0]; /* NaN passed on */
     *roundoff = floor > 0 ? (scale > 0 ? floor / scale : PETSC_INFINITY) : 0;
   }
