@@ -87,7 +87,7 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
           ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
           lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
         }
-        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i];
+        const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i];
         ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
         if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
         else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
@@ -111,10 +111,12 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
   {
     /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y||_inf: a change of a multiplier (times the
-       vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps) */
+       vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps).
+       ||y|| at least the problem's displacement data (s->udata): a step unloaded to y = 0 has iterates of round-off
+       size, whose gaps would otherwise flip the sets on numbers far below anything the problem can resolve */
     PetscReal ymax;
     PetscCall(VecNorm(y, NORM_INFINITY, &ymax));
-    s->kroff = 8 * PETSC_MACHINE_EPSILON * s->Knorm * (ymax + s->dmax);
+    s->kroff = 8 * PETSC_MACHINE_EPSILON * s->Knorm * (ymax + s->dmax + s->udata);
   }
   PetscCall(MatMult(s->K, y, F));
   vecs[0] = F;
@@ -138,7 +140,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
       /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
-      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]))) + s->kroff / c->w[i]);
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i]);
     }
     loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
   }
@@ -174,7 +176,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
       PetscReal t = 0, ymax = 0;
-      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i])) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
       /* at stick lam_T = z; at slip g z/|z| is well-conditioned, except for the landing of a Newton step from another
          state on |z| = g (a stick linearization that lands at the slip bound) */
       if (c->friction && (s->fst[i] == SG_FRICTION_STICK || (s->havejac && s->fst[i] == SG_FRICTION_SLIP && s->fstjac[i] != SG_FRICTION_SLIP))) {
@@ -189,7 +191,7 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     { /* and of K y - b itself (a body that just touches: gaps of a few ulps, nothing gamma-scaled) */
       PetscReal ynorm;
       PetscCall(VecNorm(y, NORM_2, &ynorm));
-      s->ffloor += 8 * PETSC_MACHINE_EPSILON * (s->Knorm * ynorm + s->bnorm);
+      s->ffloor += 8 * PETSC_MACHINE_EPSILON * (s->Knorm * (ynorm + s->udata) + s->bnorm);
     }
   }
   PetscCallMPI(MPI_Allreduce(loc, glob, 8, MPIU_REAL, MPI_SUM, s->comm));
@@ -772,6 +774,11 @@ PetscErrorCode SgSSNUpdateLoad(SgSSN s)
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetScales(s->prob, &s->Knorm, &s->bnorm, &s->bnorm_inf));
   if (!(s->bnorm > 0)) PetscCall(SgElasticityGetFullLoadScales(s->prob, &s->bnorm, &s->bnorm_inf, NULL));
+  { /* the displacement data: the largest Dirichlet value now and at load factor 1 (the round-off floors' scale) */
+    PetscReal ucur, ufull;
+    PetscCall(SgElasticityGetDataScales(s->prob, &ucur, &ufull, NULL, NULL, NULL));
+    s->udata = PetscMax(ucur, ufull);
+  }
   PetscCall(SgElasticityGetEnergyShift(s->prob, &s->energy_shift));
   PetscFunctionReturn(0);
 }

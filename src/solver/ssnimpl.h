@@ -26,6 +26,7 @@ struct _n_SgSSN {
   PetscInt    nact, nentered, nleft;
   PetscReal   kroff;          /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
   PetscReal   dmax;           /* max |d| over the contact vertices (SgSSNSolve) */
+  PetscReal   udata;          /* the largest Dirichlet value now and at load factor 1 (SgSSNUpdateLoad) */
   PetscInt    nhard;          /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
   PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
   PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
