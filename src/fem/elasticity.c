@@ -1296,6 +1296,29 @@ PetscErrorCode SgElasticityCellFields(SgElasticity p, Vec y, Vec vm, Vec wshear)
   PetscFunctionReturn(0);
 }
 
+/* The element force K_e u_e of cell c (nv dim numbers, vertex by vertex) at the local displacement ya, and the cell's
+   volume: the support and reaction forces below are sums of these over the cells at fixed components. */
+static PetscErrorCode CellForce(SgElasticity p, PetscInt c, const PetscScalar ya[], PetscReal fe[], PetscReal *vol)
+{
+  const SgMesh   *m = &p->mesh;
+  const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
+  const PetscInt *cv  = &m->cellv[c * nv];
+  PetscReal       xe[12], Ke[144], ue[12];
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < nv; a++)
+    for (PetscInt d = 0; d < dim; d++) {
+      xe[a * dim + d] = m->x[cv[a] * dim + d];
+      ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
+    }
+  PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, vol));
+  for (PetscInt i = 0; i < ne; i++) {
+    fe[i] = 0;
+    for (PetscInt j = 0; j < ne; j++) fe[i] += Ke[i * ne + j] * ue[j];
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Total reaction force on the Dirichlet vertices, sum_D (K u - f)_D (u with its Dirichlet values). With the contact
    forces it balances the loads: R = sum_i w_i lam_i n_i - sum f. */
 PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
@@ -1313,25 +1336,15 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
   /* every cell is on exactly one rank, so the element sums need no ownership bookkeeping */
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscReal       fe[12], vol;
     PetscBool       has = PETSC_FALSE;
 
     for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcmask[cv[a]]);
     if (!has) continue;
+    PetscCall(CellForce(p, c, ya, fe, &vol));
     for (PetscInt a = 0; a < nv; a++)
-      for (PetscInt d = 0; d < dim; d++) {
-        xe[a * dim + d] = m->x[cv[a] * dim + d];
-        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
-      }
-    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
-    for (PetscInt a = 0; a < nv; a++) {
-      for (PetscInt i = 0; i < dim; i++) {
-        PetscReal r = -vol / nv * p->body_force[i];
-        if (!SgMeshFixed(m, cv[a], i)) continue;
-        for (PetscInt j = 0; j < nv * dim; j++) r += Ke[(a * dim + i) * nv * dim + j] * ue[j];
-        loc[i] += r;
-      }
-    }
+      for (PetscInt i = 0; i < dim; i++)
+        if (SgMeshFixed(m, cv[a], i)) loc[i] += fe[a * dim + i] - vol / nv * p->body_force[i];
   }
   PetscCall(VecRestoreArrayRead(yloc, &ya));
   PetscCall(DMRestoreLocalVector(p->dm, &yloc));
@@ -1380,27 +1393,18 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
      parts of a vertex shared by ranks add up to its force */
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscReal       fe[12], vol;
     PetscBool       has = PETSC_FALSE;
 
     for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || m->bcmask[cv[a]]);
     if (!has) continue;
-    for (PetscInt a = 0; a < nv; a++)
-      for (PetscInt d = 0; d < dim; d++) {
-        xe[a * dim + d] = m->x[cv[a] * dim + d];
-        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
-      }
-    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    PetscCall(CellForce(p, c, ya, fe, &vol));
     for (PetscInt a = 0; a < nv; a++) {
       PetscInt off;
       if (!m->bcmask[cv[a]]) continue;
       PetscCall(PetscSectionGetOffset(vs, m->vStart + cv[a], &off));
-      for (PetscInt i = 0; i < dim; i++) {
-        PetscReal r = 0;
-        if (!SgMeshFixed(m, cv[a], i)) continue;
-        for (PetscInt j = 0; j < nv * dim; j++) r += Ke[(a * dim + i) * nv * dim + j] * ue[j];
-        sa[off + i] += r;
-      }
+      for (PetscInt i = 0; i < dim; i++)
+        if (SgMeshFixed(m, cv[a], i)) sa[off + i] += fe[a * dim + i];
     }
   }
   /* K u = f + s on a fixed component: the support force on the body s = K u - f; with the load f there the
@@ -1551,7 +1555,7 @@ PetscErrorCode SgElasticityMMSErrors(SgElasticity p, Vec y, PetscReal *l2, Petsc
 PetscErrorCode SgElasticityFixedResidual(SgElasticity p, Vec y, Vec R)
 {
   const SgMesh      *m = &p->mesh;
-  const PetscInt     dim = p->dim, nv = dim + 1, ne = nv * dim;
+  const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc, rloc;
   const PetscScalar *ya, *fa;
   PetscScalar       *ra;
@@ -1567,25 +1571,16 @@ PetscErrorCode SgElasticityFixedResidual(SgElasticity p, Vec y, Vec R)
   PetscCall(VecGetArray(rloc, &ra));
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], ue[12], vol;
+    PetscReal       fe[12], vol;
     PetscBool       has = PETSC_FALSE;
 
     for (PetscInt a = 0; a < nv; a++) has = (PetscBool)(has || SgMeshPartial(m, cv[a]));
     if (!has) continue;
-    for (PetscInt a = 0; a < nv; a++)
-      for (PetscInt d = 0; d < dim; d++) {
-        xe[a * dim + d] = m->x[cv[a] * dim + d];
-        ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
-      }
-    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    PetscCall(CellForce(p, c, ya, fe, &vol));
     for (PetscInt a = 0; a < nv; a++) {
       if (!SgMeshPartial(m, cv[a])) continue;
-      for (PetscInt i = 0; i < dim; i++) {
-        PetscReal r = 0;
-        if (!SgMeshFixed(m, cv[a], i)) continue;
-        for (PetscInt j = 0; j < ne; j++) r += Ke[(a * dim + i) * ne + j] * ue[j];
-        ra[m->loff[cv[a]] + i] += r;
-      }
+      for (PetscInt i = 0; i < dim; i++)
+        if (SgMeshFixed(m, cv[a], i)) ra[m->loff[cv[a]] + i] += fe[a * dim + i];
     }
   }
   /* the loads of this rank's cells and facets (the unlifted load): subtracted once per local copy */
