@@ -259,10 +259,11 @@ static PetscErrorCode CasesProblem(void)
   PetscCall(Check("the energy of y = 0 is finite", (PetscBool)PetscIsNormalReal(V)));
   PetscCall(VecDestroy(&y));
   WRONG(SgProblemSetLoadFactor(NULL, 1), PETSC_ERR_ARG_NULL, "SgProblem");
-  WRONG(SgProblemSetLoadFactor(p, 0), PETSC_ERR_ARG_OUTOFRANGE, "positive");
-  WRONG(SgProblemSetLoadFactor(p, -1), PETSC_ERR_ARG_OUTOFRANGE, "positive");
-  WRONG(SgProblemSetLoadFactor(p, nanv), PETSC_ERR_ARG_OUTOFRANGE, "positive");
-  WRONG(SgProblemSetLoadFactor(p, (PetscReal)INFINITY), PETSC_ERR_ARG_OUTOFRANGE, "positive");
+  RIGHT(SgProblemSetLoadFactor(p, 0)); /* unloaded: y = 0 solves it (a load path back to zero) */
+  WRONG(SgProblemSetLoadFactor(p, -1), PETSC_ERR_ARG_OUTOFRANGE, "finite and >= 0");
+  WRONG(SgProblemSetLoadFactor(p, nanv), PETSC_ERR_ARG_OUTOFRANGE, "finite and >= 0");
+  WRONG(SgProblemSetLoadFactor(p, (PetscReal)INFINITY), PETSC_ERR_ARG_OUTOFRANGE, "finite and >= 0");
+  RIGHT(SgProblemSetLoadFactor(p, 1));
   WRONG(SgProblemSetDirichletValues(NULL, vals), PETSC_ERR_ARG_NULL, "SgProblem");
   WRONG(SgProblemSetDirichletValues(p, bad), PETSC_ERR_ARG_OUTOFRANGE, "finite");
   RIGHT(SgProblemGetDirichletSize(p, &n));

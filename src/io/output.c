@@ -484,6 +484,27 @@ static PetscBool WriteErrno(int e)
   return (PetscBool)(e == ENOSPC || e == EDQUOT || e == EFBIG || e == EROFS || e == EACCES || e == EIO);
 }
 
+/* HDF5 cannot always close a file whose write failed in the middle: PETSc's writers return on the error with their
+   dataset and group open, and the close's flush fails again while the disk stays full, so the file stays open and
+   HDF5's own clean-up at MPI_Finalize crashes (a checkpoint or fields file on a file system that fills during the
+   write). A file system with less than this many bytes free is refused before HDF5 writes anything; a disk that fills
+   during a larger write can still meet that failure. */
+#define SG_HDF5_MIN_FREE (1024.0 * 1024.0)
+
+static PetscBool SpaceBelow(const char path[], double bytes)
+{
+  struct statvfs sv;
+  char           dir[PETSC_MAX_PATH_LEN];
+  char          *slash;
+
+  strncpy(dir, path, sizeof(dir) - 1);
+  dir[sizeof(dir) - 1] = 0;
+  slash                = strrchr(dir, '/');
+  if (slash) *(slash == dir ? slash + 1 : slash) = 0;
+  else strcpy(dir, ".");
+  return (PetscBool)(!statvfs(dir, &sv) && (double)sv.f_bavail * (double)sv.f_frsize < bytes);
+}
+
 static PetscBool DiskFull(const char path[])
 {
   return (PetscBool)!strcmp(SgFileErrorCause(0, path), "no space left on device");
@@ -521,8 +542,13 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
   (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   errno = 0;
-  /* not PetscCall: the error is caught, reported with its cause and the .part removed below */
-  ierr = PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer);
+  if (!direct && SpaceBelow(path, SG_HDF5_MIN_FREE)) {
+    ierr  = PETSC_ERR_FILE_WRITE; /* refused before HDF5 writes anything */
+    errno = ENOSPC;
+  } else {
+    /* not PetscCall: the error is caught, reported with its cause and the .part removed below */
+    ierr = PetscViewerHDF5Open(comm, tmp, FILE_MODE_WRITE, &viewer);
+  }
   /* collective MPI-IO transfers (PETSc's default is independent): every rank writes its part of each dataset in one
      collective call, which MPI-IO can aggregate on a parallel file system */
   if (!ierr) ierr = PetscViewerHDF5SetCollective(viewer, PETSC_TRUE);
