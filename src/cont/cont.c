@@ -891,6 +891,14 @@ static PetscErrorCode PrepareWarm(SgCont ct)
   ct->residual  = SG_NAN;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   ct->gamma = ct->gamma_warm;
+  if (ct->c && ct->ssn && !ct->ops.shifts) {
+    /* the last step ended at the double-precision cap: starting there, a type that only grows gamma would have no room
+       (its first step at the cap is its last) while the new load moves the states, with friction the sticks whose
+       force changes below gamma_T ulp(y) there; so it starts a thousandth below the cap and follows the path up */
+    PetscReal gdp;
+    PetscCall(SgContGammaPrecision(ct, &gdp));
+    if (ct->gamma >= 0.999 * gdp) ct->gamma = 1e-3 * gdp;
+  }
   PetscFunctionReturn(0);
 }
 
