@@ -882,7 +882,10 @@ static PetscErrorCode SolveContinuation(SgCont ct)
    and the controller's state stay (the SSN's load scales are read again by SgContSolve before every solve). */
 static PetscErrorCode PrepareWarm(SgCont ct)
 {
+  PetscReal t;
+
   PetscFunctionBeginUser;
+  PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
   ct->outer = ct->ssn_its = ct->ksp_its = 0;
   ct->ngammas   = 0;
   ct->best_kkt  = 0;
@@ -891,10 +894,11 @@ static PetscErrorCode PrepareWarm(SgCont ct)
   ct->residual  = SG_NAN;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   ct->gamma = ct->gamma_warm;
-  if (ct->c && ct->ssn && !ct->ops.shifts) {
+  if (ct->c && ct->ssn && !ct->ops.shifts && ct->nsteps && ct->steps[ct->nsteps - 1].t != t) {
     /* the last step ended at the double-precision cap: starting there, a type that only grows gamma would have no room
        (its first step at the cap is its last) while the new load moves the states, with friction the sticks whose
-       force changes below gamma_T ulp(y) there; so it starts a thousandth below the cap and follows the path up */
+       force changes below gamma_T ulp(y) there; so it starts a thousandth below the cap and follows the path up (a
+       solve again at the same load factor keeps its gamma: its answer is the last one) */
     PetscReal gdp;
     PetscCall(SgContGammaPrecision(ct, &gdp));
     if (ct->gamma >= 0.999 * gdp) ct->gamma = 1e-3 * gdp;
