@@ -147,7 +147,6 @@ PetscErrorCode SgContactSetUp(SgContact c)
   PetscCall(SgElasticityGetDMs(c->prob, &c->dm, &c->dmVert, &c->dmVec, NULL));
   PetscCall(SgElasticityGetMesh(c->prob, &c->mesh));
   PetscCall(SgElasticityGetOperators(c->prob, &c->K, &c->b));
-  PetscCall(SgElasticityGetScales(c->prob, &c->Knorm, NULL, &c->bnorm_inf));
   m = c->mesh;
   PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
   PetscCall(SgBoundaryGetFacets(c->dm, &c->bnd, &nfac, &facets, &part));
@@ -984,7 +983,6 @@ PetscErrorCode SgContactSetLoadFactor(SgContact c, PetscReal t)
   /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex) */
   if (moves)
     for (PetscInt i = 0; i < c->n; i++) PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &c->d[i]));
-  PetscCall(SgElasticityGetScales(c->prob, NULL, NULL, &c->bnorm_inf));
   PetscFunctionReturn(0);
 }
 

@@ -27,7 +27,6 @@ struct _n_SgContact {
   const SgMesh *mesh;
   Mat           K;
   Vec           b;
-  PetscReal     Knorm, bnorm_inf;
   char          obstype[64]; /* obstacle type given through the interface ("": plane unless -obstacle_type) */
   SgBoundary bnd;
   SgObstacle obs;
