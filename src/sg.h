@@ -297,9 +297,11 @@ typedef struct {
   Vec        *ysteps;     /* nsteps of each (allocated on reading) */
   PetscReal **lamsteps;
   /* friction (written with a friction law only; the law and its parameters are compared on reading): the tangential
-     shift lamhat_T and the load step's slip reference y_prev, dim per contact vertex (the caller's arrays; lamhatT
-     NULL: zeros) */
+     shift lamhat_T and the slip reference, 2 dim per contact vertex: of the unknowns, then of the full displacement
+     (the caller's arrays; lamhatT NULL: zeros). At a load step's end it is the next step's reference. yref_full: the
+     file held the second half (older files did not; it is then a copy of the first) */
   PetscReal  *lamhatT, *yref;
+  PetscBool   yref_full;
   /* non-proportional loading (SgProblemSetDirichletValues): ndv Dirichlet values per finished step (0: none);
      written from / read into dvsteps (nsteps * ndv, allocated on reading; PetscFree) */
   PetscInt    ndv;

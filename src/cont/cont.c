@@ -706,12 +706,29 @@ static PetscErrorCode CheckpointWrite(SgCont ct, PetscBool step_open)
   SgCheckpoint ck;
   PetscBool    ok;
   char         msg[PETSC_MAX_PATH_LEN + 256];
+  PetscReal   *save = NULL, *next = NULL;
 
   PetscFunctionBeginUser;
   if (!ct->ckfile[0]) PetscFunctionReturn(0);
   PetscCall(CheckpointFill(ct, &ck));
   ck.step_open = step_open;
+  if (!step_open && ck.yref) {
+    /* at a step's end the next step's slip reference, with the data of the step solved: prescribed components of the
+       contact vertices take the next step's data once the problem changes, so a restart could not recompute it */
+    PetscReal *cref;
+    PetscInt   dim, n2;
+    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+    n2 = 2 * ct->cv.n * dim;
+    PetscCall(PetscMalloc2(n2 + 1, &save, n2 + 1, &next));
+    PetscCall(SgContactGetSlipReference(ct->c, &cref));
+    PetscCall(PetscArraycpy(save, cref, n2));
+    PetscCall(SgContactSetSlipReference(ct->c, ct->y));
+    PetscCall(PetscArraycpy(next, cref, n2));
+    PetscCall(PetscArraycpy(cref, save, n2));
+    ck.yref = next;
+  }
   PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
+  PetscCall(PetscFree2(save, next));
   if (!ok) {
     /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
     PetscCall(PetscPrintf(ct->comm, "checkpoint not written: %s\n", msg));
@@ -779,6 +796,7 @@ PetscErrorCode SgContCheckpointRead(SgCont ct)
   if (ck.load != 0) ct->V0unit = ck.V0 / (ck.load * ck.load); /* a step unloaded to 0 says nothing of it */
   if (ck.step_open) ct->restarted = PETSC_TRUE;
   else {
+    ct->yref_read  = ck.yref_full; /* the next step's slip reference (ct->yref), when the file holds all of it */
     ct->have_state = PETSC_TRUE;
     ct->gamma_warm = ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1]) ? ct->gammas[ct->ngammas - 1] : ct->gamma;
   }
@@ -1055,7 +1073,8 @@ PetscErrorCode SgContSolve(SgCont ct)
   ct->warm = (PetscBool)(ct->have_state && !ct->restarted);
   /* quasi-static friction: a load step's tangential law acts on the slip since the last converged step (the warm
      start y); the first step's slip is from y = 0 */
-  if (ct->warm && ct->yref) {
+  if (ct->warm && ct->yref && ct->yref_read) ct->yref_read = PETSC_FALSE; /* read from -restart_file into ct->yref */
+  else if (ct->warm && ct->yref) {
     PetscReal *yref;
     PetscInt   dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));

@@ -93,6 +93,7 @@ struct _n_SgCont {
   PetscBool    warm;         /* this solve starts from the last load step's solution and controller state */
   PetscBool    have_state;   /* a load step was solved (or restored from a checkpoint taken between load steps) */
   PetscBool    rsread;       /* -restart_file was read */
+  PetscBool    yref_read;    /* the next load step's slip reference came from a step-end -restart_file */
   PetscReal    gamma_warm;   /* the last gamma solved at: the warm start's first */
   PetscReal    V0unit;       /* V(0) / t^2 (the unconstrained solution is linear in the load factor t) */
   PetscReal    rsload;       /* the load factor of -restart_file's state */

@@ -273,7 +273,7 @@ typedef struct {
   Vec       steps; /* load steps (NULL without) */
   PetscInt  nkept;
   Vec      *kept;  /* 2 per kept step: displacement, multiplier */
-  Vec       fr[2]; /* friction: lamhat_T and the slip reference (NULL without) */
+  Vec       fr[3]; /* friction: lamhat_T, the slip reference of the unknowns and of the full displacement (NULL without) */
   PetscInt  friction;
   PetscReal fparams[3]; /* -friction_bound, -friction_coefficient, -friction_gamma_factor */
   Vec       dv;    /* the finished steps' Dirichlet values (NULL without) */
@@ -343,6 +343,7 @@ static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
   if (ctx->fr[0]) {
     PetscCall(VecView(ctx->fr[0], viewer));
     PetscCall(VecView(ctx->fr[1], viewer));
+    PetscCall(VecView(ctx->fr[2], viewer));
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "friction_type", PETSC_INT, &ctx->friction));
     for (PetscInt i = 0; i < 3; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", FrictionParamNames[i], PETSC_REAL, &ctx->fparams[i]));
   }
@@ -544,6 +545,8 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
       ctx.fparams[2] = cv.fgfac;
       PetscCall(ContactVector(el, &cv, ck->lamhatT, "lamhat_t", &ctx.fr[0]));
       PetscCall(ContactVector(el, &cv, ck->yref, "slip_reference", &ctx.fr[1]));
+      /* the second half: the full displacement at the step's start, which prescribed tangential components slip from */
+      PetscCall(ContactVector(el, &cv, ck->yref ? ck->yref + cv.n * dim : NULL, "slip_reference_full", &ctx.fr[2]));
     }
     if (ck->loadsteps) {
       PetscReal *a;
@@ -576,6 +579,7 @@ PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[]
     PetscCall(VecDestroy(&ctx.mom));
     PetscCall(VecDestroy(&ctx.fr[0]));
     PetscCall(VecDestroy(&ctx.fr[1]));
+    PetscCall(VecDestroy(&ctx.fr[2]));
     for (PetscInt i = 0; i < 2 * ctx.nkept; i++) PetscCall(VecDestroy(&ctx.kept[i]));
     PetscCall(PetscFree(ctx.kept));
   }
@@ -655,6 +659,7 @@ typedef struct {
   PetscInt    friction; /* the friction law (0 in a file of a run without friction) and its parameters */
   PetscReal   fparams[3];
   Vec         FT, FY;   /* lamhat_T and the slip reference */
+  Vec         FYP;      /* the slip reference of the full displacement (NULL in a file without it) */
   Vec         FS;       /* the finished steps' friction numbers */
   PetscInt    nmom;     /* the problem's moments (0 in a file without them) */
   Vec         MOM;
@@ -714,6 +719,8 @@ static PetscErrorCode ReadMoments(PetscViewer viewer, CkRead *rd)
 
 static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
 {
+  PetscBool full;
+
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
   rd->what = "coordinates";
@@ -756,6 +763,9 @@ static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
     PetscCall(LoadSeq(viewer, "lamhat_t", rd->nvert * rd->dim, &rd->FT));
     rd->what = "slip_reference";
     PetscCall(LoadSeq(viewer, "slip_reference", rd->nvert * rd->dim, &rd->FY));
+    rd->what = "slip_reference_full";
+    PetscCall(PetscViewerHDF5HasDataset(viewer, "slip_reference_full", &full));
+    if (full) PetscCall(LoadSeq(viewer, "slip_reference_full", rd->nvert * rd->dim, &rd->FYP));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscFunctionReturn(0);
@@ -971,8 +981,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     }
   }
   if (ierr) {
-    Vec *v[12] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS};
-    for (PetscInt i = 0; i < 12; i++) PetscCall(VecDestroy(v[i]));
+    Vec *v[13] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS, &rd.FYP};
+    for (PetscInt i = 0; i < 13; i++) PetscCall(VecDestroy(v[i]));
     SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
   }
 
@@ -1027,8 +1037,8 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
       PetscCall(VecRestoreArrayRead(rd.G, &ga));
       PetscCall(VecRestoreArrayRead(rd.H, &ha));
       {
-        Vec *v[12] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS};
-        for (PetscInt i = 0; i < 12; i++) PetscCall(VecDestroy(v[i]));
+        Vec *v[13] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS, &rd.FYP};
+        for (PetscInt i = 0; i < 13; i++) PetscCall(VecDestroy(v[i]));
       }
       SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
     }
@@ -1059,9 +1069,10 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
     else ck->lamhat[i] = PetscRealPart(la[idx]);
   }
   if (rd.friction) { /* lamhat_T and the slip reference, matched by the coordinates as lamhat */
-    const PetscScalar *fta, *fya;
+    const PetscScalar *fta, *fya, *fpa = NULL;
     PetscCall(VecGetArrayRead(rd.FT, &fta));
     PetscCall(VecGetArrayRead(rd.FY, &fya));
+    if (rd.FYP) PetscCall(VecGetArrayRead(rd.FYP, &fpa));
     for (PetscInt i = 0; i < cv.n; i++) {
       PetscInt idx;
       PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
@@ -1070,12 +1081,20 @@ PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], Sg
         if (!((PetscIsNormalReal(a) || a == 0) && (PetscIsNormalReal(b) || b == 0))) nbadf++;
         if (ck->lamhatT) ck->lamhatT[i * dim + d] = a;
         if (ck->yref) ck->yref[i * dim + d] = b;
+        if (ck->yref) { /* a file without the full displacement's reference: the unknowns' (exact without prescribed components) */
+          const PetscReal bp = fpa ? PetscRealPart(fpa[idx * dim + d]) : b;
+          if (!(PetscIsNormalReal(bp) || bp == 0)) nbadf++;
+          ck->yref[(cv.n + i) * dim + d] = bp;
+        }
       }
     }
     PetscCall(VecRestoreArrayRead(rd.FT, &fta));
     PetscCall(VecRestoreArrayRead(rd.FY, &fya));
+    if (rd.FYP) PetscCall(VecRestoreArrayRead(rd.FYP, &fpa));
+    ck->yref_full = (PetscBool)(rd.FYP != NULL);
     PetscCall(VecDestroy(&rd.FT));
     PetscCall(VecDestroy(&rd.FY));
+    PetscCall(VecDestroy(&rd.FYP));
   }
   /* the kept load steps' displacements and multipliers, matched by the coordinates as y and lamhat */
   ck->kept     = (PetscBool)(rd.nkept > 0);
