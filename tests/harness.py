@@ -84,7 +84,8 @@ def ini_files(args):
         if not os.path.exists(a) and os.path.basename(a) == "*.ini" and os.path.isdir(os.path.dirname(a) or "."):
             a = os.path.dirname(a) or "."  # an unexpanded tests/*.ini (the tests moved into groups): the whole tree
         if os.path.isdir(a):
-            files += sorted(glob.glob(os.path.join(a, "**", "*.ini"), recursive=True))
+            files += sorted(f for f in glob.glob(os.path.join(a, "**", "*.ini"), recursive=True)
+                            if not os.path.abspath(f).startswith(OUT + os.sep))  # not what the runs wrote
         elif os.path.exists(a) or not os.path.isdir(os.path.join(TESTS, a)):
             files.append(a)
         else:  # a group's name alone
