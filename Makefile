@@ -51,7 +51,7 @@ LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 EX1 = -options_file options/ex1.opts -options_file options/solver/mumps.opts -options_file options/cont/ipf.opts
 TARGETS = all run test check-memory fuzz table1 reproduce figures meshes bench install
 
-.PHONY: $(TARGETS) uninstall deps clean print-cflags
+.PHONY: $(TARGETS) uninstall deps clean print-cflags format format-check
 
 ifeq ($(PETSC_VARIABLES),)
 # PETSc is missing: install the Debian packages when root, otherwise say how.
@@ -120,6 +120,20 @@ endif
 
 deps:
 	scripts/install-deps.sh
+
+# The C sources in the style .clang-format describes (clang-format 14: apt-get install clang-format). format-check
+# names the files whose lines differ and how many, and fails if any do; format rewrites them in place.
+FORMAT_FILES = $(sort $(wildcard include/*.h src/*.h src/*/*.h src/*/*.c app/*.c tests/*.c examples/*.c))
+CLANG_FORMAT ?= clang-format
+format:
+	@command -v $(CLANG_FORMAT) > /dev/null || { echo "$(CLANG_FORMAT) not found: apt-get install clang-format"; exit 1; }
+	$(CLANG_FORMAT) -i --style=file $(FORMAT_FILES)
+format-check:
+	@command -v $(CLANG_FORMAT) > /dev/null || { echo "$(CLANG_FORMAT) not found: apt-get install clang-format"; exit 1; }
+	@n=0; for f in $(FORMAT_FILES); do \
+	  c=$$($(CLANG_FORMAT) --style=file $$f | diff $$f - | grep -c '^<'); \
+	  if [ "$$c" != 0 ]; then echo "$$f: $$c lines"; n=$$((n + c)); fi; \
+	done; echo "$$n lines differ from .clang-format's style (make format rewrites them)"; [ "$$n" = 0 ]
 
 # what make install put under PREFIX (needs no PETSc)
 uninstall:
