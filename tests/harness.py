@@ -86,11 +86,15 @@ def ini_files(args):
         if os.path.isdir(a):
             files += sorted(f for f in glob.glob(os.path.join(a, "**", "*.ini"), recursive=True)
                             if not os.path.abspath(f).startswith(OUT + os.sep))  # not what the runs wrote
-        elif os.path.exists(a) or not os.path.isdir(os.path.join(TESTS, a)):
+        elif os.path.exists(a):
             files.append(a)
+        elif not os.path.isdir(os.path.join(TESTS, a)):
+            sys.exit("harness.py: no file or group %s (the tests are grouped by concern in tests/GROUP/TOPIC.ini: "
+                     "`harness.py -k NAME tests` finds a test in any of them)" % a)
         else:  # a group's name alone
             files += sorted(glob.glob(os.path.join(TESTS, a, "*.ini")))
-    return files
+    seen = set()  # a file named twice (tests and tests/unit) is read once
+    return [f for f in files if not (os.path.realpath(f) in seen or seen.add(os.path.realpath(f)))]
 
 
 def load(files, skip=()):
