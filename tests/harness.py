@@ -29,9 +29,11 @@ is NOT run under valgrind unless it says so (each run costs 10-30 s or more unde
 budget). Tag one test per code path that handles memory: a 2D run, not its 3D, parallel or long variants, not a second
 run of a path another tagged test covers, not the scripted cases (cmd = python ...: they do not run our executables
 under valgrind), not energies compared with long double (valgrind computes it in double precision). The tests a tagged
-test depends on must be tagged too (checked at start). `--list` prints the selected tests without running them.
+test depends on must be tagged too (checked at start). `--list` prints the selected tests without running them;
+`--check` checks the whole tree (names unique, tags yes or no and closed under depends_on, dependencies found, every
+file in a group) and runs nothing.
 
-usage: harness.py [-j JOBS] [-k PATTERN] [-x PATTERN] [--valgrind] [--list] FILE.ini|DIR ...
+usage: harness.py [-j JOBS] [-k PATTERN] [-x PATTERN] [--valgrind] [--list] [--check] FILE.ini|DIR|GROUP ...
 """
 import argparse
 import configparser
@@ -75,6 +77,7 @@ def ssn(rows):
 
 
 TESTS = os.path.join(ROOT, "tests")
+GROUPS = ("unit", "verification", "regression", "features", "input", "parallel")
 
 
 def ini_files(args):
@@ -208,6 +211,22 @@ class Test:
                 self.failures.append("check failed: %s" % c)
 
 
+def check_tree():
+    """--check: the whole tree's test files (load() stops at a duplicate name or a bad memcheck value); 0 if sound."""
+    files = ini_files([TESTS])
+    tests = load(files)
+    bad = ["test %s depends on unknown test %s" % (t.name, r) for t in tests.values() for r in t.depends_on if r not in tests]
+    bad += ["test %s has memcheck = yes but depends on %s, which has not" % (t.name, r) for t in tests.values() if t.memcheck
+            for r in t.depends_on if r in tests and not tests[r].memcheck]
+    bad += ["%s is in no group (tests/GROUP/: %s)" % (os.path.relpath(f, ROOT), ", ".join(GROUPS)) for f in files
+            if os.path.relpath(f, TESTS).split(os.sep)[0] not in GROUPS]
+    for b in bad:
+        print("not ok " + b)
+    print("%d test files, %d tests, %d of them under valgrind (memcheck = yes); %d problems"
+          % (len(files), len(tests), sum(t.memcheck for t in tests.values()), len(bad)))
+    return 1 if bad else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="+")
@@ -216,12 +235,16 @@ def main():
     ap.add_argument("-x", "--exclude", default="", help="leave out tests whose name matches this regex")
     ap.add_argument("--valgrind", action="store_true", help="run the tests tagged memcheck = yes, our executables under valgrind memcheck (tests/valgrind.supp)")
     ap.add_argument("--list", action="store_true", help="print the names of the tests selected, run nothing")
+    ap.add_argument("--check", action="store_true", help="check the tree's test files, run nothing: unique names, "
+                    "memcheck tags yes or no and closed under depends_on, every dependency found, every file in a group")
     opt = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
     if opt.valgrind:
         VALGRIND.extend(["valgrind", "-q", "--leak-check=full", "--errors-for-leak-kinds=definite", "--show-leak-kinds=definite",
                          "--error-exitcode=201", "--suppressions=/usr/share/openmpi/openmpi-valgrind.supp",  # not one of PETSc's error codes (66 is PETSC_ERR_FILE_READ)
                          "--suppressions=" + os.path.join(ROOT, "tests", "valgrind.supp")])
+    if opt.check:
+        sys.exit(check_tree())
     tests = load(ini_files(opt.files))
     known = None
     while any(r not in tests for t in tests.values() for r in t.depends_on):  # a dependency in a file not given
