@@ -1,5 +1,5 @@
 // Quarter of a block [0,2] x [0,2] x [0,2] indented at the corner (0,0,0) of its bottom face by a rigid ball (the
-// Hertz check of tests/rollers.ini): the planes x = 0 and y = 0 are symmetry planes. Tetrahedra refined towards the
+// Hertz check of tests/*/rollers.ini): the planes x = 0 and y = 0 are symmetry planes. Tetrahedra refined towards the
 // corner: the size grows linearly with the distance from it. `scale` divides every size:
 //   gmsh -3 -setnumber scale 2 hertz.geo -o hertz_s2.msh
 // Physical tags follow the box face markers (no -dm_plex_gmsh_use_regions: they are values of "Face Sets"):

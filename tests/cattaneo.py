@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""2D (plane strain) Cattaneo-Mindlin partial slip check (tests/friction.ini, scripts/figures.py --only cattaneo):
+"""2D (plane strain) Cattaneo-Mindlin partial slip check (tests/*/friction.ini, scripts/figures.py --only cattaneo):
 a rigid cylinder (the parabola d = x^2 / (2 R), Hertz's own profile) on the top face y = 0 of an elastic block
 standing for the half plane, pressed by P (per unit thickness), then loaded tangentially by Q < F P with Coulomb
 friction F. K. L. Johnson, Contact Mechanics (1985), eqs. (4.45), (4.43) and section 7.1: for a rigid cylinder on

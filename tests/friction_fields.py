@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks the friction fields of a result file (tests/friction.ini): the states against the summary's stick_size and
+"""Checks the friction fields of a result file (tests/*/friction.ini): the states against the summary's stick_size and
 slip_size, and the friction law vertex by vertex: on the slip set |lam_T| = F p and the slip along lam_T (the body
 feels -lam_T, opposing its slip), on the stick set |lam_T| <= F p.  usage: friction_fields.py RESULT.h5 SUMMARY.json F TOL"""
 import json

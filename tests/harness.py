@@ -1,19 +1,39 @@
 #!/usr/bin/env python3
 """Test harness in PETSc's test vocabulary.
 
-Each section of a tests/*.ini file is one test: a run of bin/signorini (or of a command given by `cmd`) with
+Each section of a tests/GROUP/*.ini file is one test: a run of bin/signorini (or of a command given by `cmd`) with
 `nsize` MPI ranks and `args`, followed by `checks` on the quantities the run computed (its JSON summary and
 CSV history). A check is a Python expression; it may use
     s            this test's summary (dict),        h   its history rows (list of dicts)
     t[name]      the summary of another test,       H[name] its history
 `depends_on = NAME ...` names tests that must have run first: their results are read by the checks (t, H) or their
 files by the run (a restart reads a checkpoint). -k runs them too, -x leaves out the tests that depend on a left-out
-one. (Not PETSc's `requires`, which names configure features.)
+one. A dependency may sit in another file or group: when it is not among the files given, the harness finds it in
+the tree (tests/**/*.ini) and runs it too. (Not PETSc's `requires`, which names configure features.)
     close(a, b, rtol, atol=0), between(x, lo, hi), order(e_coarse, e_fine, ratio), rel(a, b), ssn(rows)
 Tests with `expect_error = REGEX` must fail: nonzero exit, REGEX found in the output, and no result file left.
 Every run uses -options_left: an option the program did not use fails the test.
 
-usage: harness.py [-j JOBS] [-k PATTERN] FILE.ini ...
+Groups (a directory each; a topic may have a file in several groups, named alike, e.g. tests/*/friction.ini):
+    unit          kernels and house rules, each computing what it is checked on (bin/unit_tests, tests/check_layers.py)
+    verification  against known answers: manufactured solutions, analytic obstacles, Hertz, Cattaneo, 1/gamma rates,
+                  the solvers against each other, the KKT measures at the edges of valid input
+    regression    the paper's reproductions: Table 1, Table 2, Examples 1 and 2 with every controller
+    features      one feature each (friction, load steps, rollers, restarts, outputs, the verdicts of the solvers, ...)
+    input         bad input and refusals: options, meshes, files, wrong library calls, the random robustness test
+    parallel      the same runs on several ranks against one
+A FILE argument may be an .ini file, a group's directory or tests/ (every .ini below it).
+
+`memcheck = yes` in a section puts the test into `make check-memory` (harness.py --valgrind runs only those): a test
+is NOT run under valgrind unless it says so (each run costs 10-30 s or more under memcheck, and the suite has a time
+budget). Tag one test per code path that handles memory: a 2D run, not its 3D, parallel or long variants, not a second
+run of a path another tagged test covers, not the scripted cases (cmd = python ...: they do not run our executables
+under valgrind), not energies compared with long double (valgrind computes it in double precision). The tests a tagged
+test depends on must be tagged too (checked at start). `--list` prints the selected tests without running them;
+`--check` checks the whole tree (names unique, tags yes or no and closed under depends_on, dependencies found, every
+file in a group) and runs nothing.
+
+usage: harness.py [-j JOBS] [-k PATTERN] [-x PATTERN] [--valgrind] [--list] [--check] FILE.ini|DIR|GROUP ...
 """
 import argparse
 import configparser
@@ -56,6 +76,46 @@ def ssn(rows):
     return [r for r in rows if r["kind"] == "ssn"]
 
 
+TESTS = os.path.join(ROOT, "tests")
+GROUPS = ("unit", "verification", "regression", "features", "input", "parallel")
+
+
+def ini_files(args):
+    """The .ini files named, and every .ini file below a directory named (sorted)."""
+    files = []
+    for a in args:
+        if not os.path.exists(a) and os.path.basename(a) == "*.ini" and os.path.isdir(os.path.dirname(a) or "."):
+            a = os.path.dirname(a) or "."  # an unexpanded tests/*.ini (the tests moved into groups): the whole tree
+        if os.path.isdir(a):
+            files += sorted(f for f in glob.glob(os.path.join(a, "**", "*.ini"), recursive=True)
+                            if not os.path.abspath(f).startswith(OUT + os.sep))  # not what the runs wrote
+        elif os.path.exists(a):
+            files.append(a)
+        elif not os.path.isdir(os.path.join(TESTS, a)):
+            sys.exit("harness.py: no file or group %s (the tests are grouped by concern in tests/GROUP/TOPIC.ini: "
+                     "`harness.py -k NAME tests` finds a test in any of them)" % a)
+        else:  # a group's name alone
+            files += sorted(glob.glob(os.path.join(TESTS, a, "*.ini")))
+    seen = set()  # a file named twice (tests and tests/unit) is read once
+    return [f for f in files if not (os.path.realpath(f) in seen or seen.add(os.path.realpath(f)))]
+
+
+def load(files, skip=()):
+    """The tests of the files by name; a name twice is an error (`skip`: names already loaded elsewhere)."""
+    tests = {}
+    for fn in files:
+        cp = configparser.ConfigParser(interpolation=None)
+        cp.optionxform = str
+        with open(fn) as f:
+            cp.read_file(f)
+        for name in cp.sections():
+            if name in tests:
+                sys.exit("duplicate test name %s in %s" % (name, fn))
+            if name not in skip:
+                tests[name] = Test(name, cp[name])
+    return tests
+
+
 VALGRIND = []  # --valgrind: the memcheck command put in front of our executables
 
 
@@ -72,6 +132,10 @@ class Test:
         self.depends_on = sec.get("depends_on", "").split()
         self.timeout = float(sec.get("timeout", "600")) * (20 if VALGRIND else 1)
         self.outputs = sec.get("outputs", "").split()  # files the run must not leave behind when it fails
+        self.memcheck = sec.get("memcheck", "no")
+        if self.memcheck not in ("yes", "no"):
+            sys.exit("test %s: memcheck = %s, must be yes or no" % (name, self.memcheck))
+        self.memcheck = self.memcheck == "yes"
         self.returncode = None
         self.output = ""
         self.summary = {}
@@ -147,29 +211,56 @@ class Test:
                 self.failures.append("check failed: %s" % c)
 
 
+def check_tree():
+    """--check: the whole tree's test files (load() stops at a duplicate name or a bad memcheck value); 0 if sound."""
+    files = ini_files([TESTS])
+    tests = load(files)
+    bad = ["test %s depends on unknown test %s" % (t.name, r) for t in tests.values() for r in t.depends_on if r not in tests]
+    bad += ["test %s has memcheck = yes but depends on %s, which has not" % (t.name, r) for t in tests.values() if t.memcheck
+            for r in t.depends_on if r in tests and not tests[r].memcheck]
+    bad += ["%s is in no group (tests/GROUP/: %s)" % (os.path.relpath(f, ROOT), ", ".join(GROUPS)) for f in files
+            if os.path.relpath(f, TESTS).split(os.sep)[0] not in GROUPS]
+    for b in bad:
+        print("not ok " + b)
+    print("%d test files, %d tests, %d of them under valgrind (memcheck = yes); %d problems"
+          % (len(files), len(tests), sum(t.memcheck for t in tests.values()), len(bad)))
+    return 1 if bad else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="+")
     ap.add_argument("-j", "--jobs", type=int, default=2, help="MPI ranks to keep busy at once")
     ap.add_argument("-k", "--match", default="", help="run only tests whose name matches this regex (and the tests they depend on)")
     ap.add_argument("-x", "--exclude", default="", help="leave out tests whose name matches this regex")
-    ap.add_argument("--valgrind", action="store_true", help="run our executables under valgrind memcheck (tests/valgrind.supp)")
+    ap.add_argument("--valgrind", action="store_true", help="run the tests tagged memcheck = yes, our executables under valgrind memcheck (tests/valgrind.supp)")
+    ap.add_argument("--list", action="store_true", help="print the names of the tests selected, run nothing")
+    ap.add_argument("--check", action="store_true", help="check the tree's test files, run nothing: unique names, "
+                    "memcheck tags yes or no and closed under depends_on, every dependency found, every file in a group")
     opt = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
     if opt.valgrind:
         VALGRIND.extend(["valgrind", "-q", "--leak-check=full", "--errors-for-leak-kinds=definite", "--show-leak-kinds=definite",
                          "--error-exitcode=201", "--suppressions=/usr/share/openmpi/openmpi-valgrind.supp",  # not one of PETSc's error codes (66 is PETSC_ERR_FILE_READ)
                          "--suppressions=" + os.path.join(ROOT, "tests", "valgrind.supp")])
-    tests = {}
-    for fn in opt.files:
-        cp = configparser.ConfigParser(interpolation=None)
-        cp.optionxform = str
-        with open(fn) as f:
-            cp.read_file(f)
-        for name in cp.sections():
-            if name in tests:
-                sys.exit("duplicate test name %s in %s" % (name, fn))
-            tests[name] = Test(name, cp[name])
+    if opt.check:
+        sys.exit(check_tree())
+    tests = load(ini_files(opt.files))
+    known = None
+    while any(r not in tests for t in tests.values() for r in t.depends_on):  # a dependency in a file not given
+        if known is None:
+            known = load(ini_files([TESTS]), set(tests))
+        need = {r for t in tests.values() for r in t.depends_on if r not in tests}
+        if not need <= set(known):
+            break  # reported below
+        tests.update({r: known[r] for r in need})
+    if opt.valgrind:  # the tests tagged memcheck = yes, which depend on tagged tests only
+        for t in tests.values():
+            if t.memcheck:
+                for r in t.depends_on:
+                    if r in tests and not tests[r].memcheck:
+                        sys.exit("test %s has memcheck = yes but depends on %s, which has not" % (t.name, r))
+        tests = {n: t for n, t in tests.items() if t.memcheck}
     if opt.match:
         want = {n for n in tests if re.search(opt.match, n)}
         grow = True
@@ -186,6 +277,10 @@ def main():
         for r in t.depends_on:
             if r not in tests:
                 sys.exit("test %s depends on unknown test %s" % (t.name, r))
+    if opt.list:
+        for n in tests:
+            print(n)
+        return
 
     # run: larger jobs first, never more ranks than --jobs at once; a test runs after the tests it depends on (so a
     # restart can read a checkpoint), which come earlier in this order and are thus already taken by a worker

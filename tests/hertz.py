@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Hertz indentation check (tests/rollers.ini): contact radius a and peak pressure p0 of quarter-model results of a
+"""Hertz indentation check (tests/*/rollers.ini): contact radius a and peak pressure p0 of quarter-model results of a
 rigid ball pressed into an elastic block, against the Hertz formulas for a rigid sphere on an elastic half-space,
     a = (3 P R (1 - nu^2) / (4 E))^(1/3),   p0 = 3 P / (2 pi a^2),
 with P the total force, 4 times the quarter's (the sum of the nodal pressures times the lumped weights of the

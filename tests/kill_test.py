@@ -2,8 +2,8 @@
 """Atomic results: kill runs with SIGTERM and SIGKILL at many moments and check that the result files of the previous
 complete run (HDF5, XDMF, summary, history, checkpoint) are never left half-written.
 
-usage: kill_test.py --out PREFIX [--signals TERM,KILL]   (writes PREFIX.json with the counts; used by tests/reliability.ini
-       and, with --signals TERM,INT, by tests/reliability_io.ini)
+usage: kill_test.py --out PREFIX [--signals TERM,KILL]   (writes PREFIX.json with the counts; used by tests/*/runs.ini
+       and, with --signals TERM,INT, by tests/input/files.ini)
 
 SIGTERM and SIGINT are caught: the run removes its ".part" files before it ends, so none may be left after them
 ("left_part_files_caught"). SIGKILL cannot be caught: its ".part" files are counted apart and removed before the next run.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of result files for tests/reliability3_outputs.ini (issue 25, items 6 and 7).
+"""Checks of result files for tests/*/outputs.ini (issue 25, items 6 and 7).
 
   reliability3_fields.py integrals RESULT.h5 SUMMARY.json AXIS VALUE RTOL [STEP]
       The contact fields integrated over Gamma_c against the summary. Gamma_c is taken as the boundary facets (facets

@@ -1,5 +1,5 @@
 /* unit_tests.c: unit tests of the kernels (element stiffness, rigid-body modes, obstacle gaps, model fit).
-   Each test computes its numbers and writes them to -summary_file; tests/unit.ini holds the expected values. */
+   Each test computes its numbers and writes them to -summary_file; tests/unit/kernels.ini holds the expected values. */
 /* white-box tests: they read the elasticity object's fields (the one place outside src/fem that may) */
 #include "fem/femimpl.h"
 #include "cont/contimpl.h"

@@ -1,3 +1,3 @@
-// A .geo with a syntax error (tests/cad.ini: gmsh's message is passed on)
+// A .geo with a syntax error (tests/*/cad.ini: gmsh's message is passed on)
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write the damaged gmsh meshes tests/data/gmsh_*.msh used by tests/reliability_gmsh.ini.
+"""Write the damaged gmsh meshes tests/data/gmsh_*.msh used by tests/input/gmsh.ini.
 
 Each is tests/data/plate_z0.msh (gmsh 4.8, MSH 4.1 ASCII, 56 nodes, 112 elements) with one change. The same plate
 written by gmsh as MSH 2.2 (gmsh -2 -format msh22 tests/data/plate.geo -o tests/data/gmsh_plate_v22.msh) gives
