@@ -441,6 +441,206 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
   PetscFunctionReturn(0);
 }
 
+/* ---- the signed distance (-contact_normal obstacle) */
+
+/* the closest point q to p on the segment [a, b] */
+static void ClosestSegment(const double p[3], const double a[3], const double b[3], double q[3])
+{
+  double ab = 0, ap = 0, s;
+  for (int k = 0; k < 3; k++) {
+    ab += (b[k] - a[k]) * (b[k] - a[k]);
+    ap += (p[k] - a[k]) * (b[k] - a[k]);
+  }
+  s = ab > 0 ? PetscMin(1, PetscMax(0, ap / ab)) : 0;
+  for (int k = 0; k < 3; k++) q[k] = a[k] + s * (b[k] - a[k]);
+}
+
+static double Dist3(const double a[3], const double b[3])
+{
+  return PetscSqrtReal(PetscSqr(a[0] - b[0]) + PetscSqr(a[1] - b[1]) + PetscSqr(a[2] - b[2]));
+}
+
+/* the closest point q to p on the element v (a segment in 2D, a triangle in 3D: its plane's if p projects inside,
+   else the nearest of its edges') */
+static void ClosestElement(PetscInt dim, const double *v, const double p[3], double q[3])
+{
+  double e1[3], e2[3], m[3], mm = 0, h = 0, best = PETSC_MAX_REAL, qe[3];
+  if (dim == 2) {
+    ClosestSegment(p, v, v + 3, q);
+    return;
+  }
+  for (int k = 0; k < 3; k++) {
+    e1[k] = v[3 + k] - v[k];
+    e2[k] = v[6 + k] - v[k];
+  }
+  m[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  m[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  m[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  for (int k = 0; k < 3; k++) {
+    mm += m[k] * m[k];
+    h += (p[k] - v[k]) * m[k];
+  }
+  if (mm > 0) {
+    PetscBool in = PETSC_TRUE;
+    for (int k = 0; k < 3; k++) q[k] = p[k] - h / mm * m[k];
+    for (int e = 0; e < 3 && in; e++) { /* q on the inner side of the three edges */
+      const double *s0 = v + 3 * e, *s1 = v + 3 * ((e + 1) % 3);
+      double        w[3], g[3], side = 0;
+      for (int k = 0; k < 3; k++) w[k] = q[k] - s0[k];
+      g[0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
+      g[1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
+      g[2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
+      for (int k = 0; k < 3; k++) side += g[k] * m[k];
+      if (side < 0) in = PETSC_FALSE;
+    }
+    if (in) return;
+  }
+  for (int e = 0; e < 3; e++) {
+    double d;
+    ClosestSegment(p, v + 3 * e, v + 3 * ((e + 1) % 3), qe);
+    d = Dist3(p, qe);
+    if (d < best) {
+      best = d;
+      for (int k = 0; k < 3; k++) q[k] = qe[k];
+    }
+  }
+}
+
+/* whether x lies inside the solid: the parity of the distinct crossings of the tessellation by a ray from x, in two
+   generic directions (a third decides when they disagree: a ray through an edge of the tessellation) */
+static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
+{
+  const double dirs[3][3] = {{0.5236, 0.6471, 0.5539}, {-0.6133, 0.2719, -0.7417}, {0.3013, -0.8429, 0.4458}};
+  const double dirs2[3][3] = {{0.8316, 0.5554, 0}, {-0.4226, 0.9063, 0}, {-0.7071, -0.7071, 0}};
+  double       tol = 1e-9 * cad->len, t, out;
+  int          vote = 0;
+
+  for (int r = 0; r < 3; r++) {
+    double    n[3];
+    PetscInt  nh = 0, nout = 0;
+    PetscReal *ts = cad->sorted;
+    for (int k = 0; k < 3; k++) n[k] = dim == 3 ? dirs[r][k] : dirs2[r][k];
+    if (dim == 3) {
+      double l = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int k = 0; k < 3; k++) n[k] /= l;
+    }
+    for (PetscInt e = 0; e < cad->nel; e++)
+      if (RayElement(dim, &cad->xyz[e * dim * 3], x, n, &t, &out) && out <= 1e-9 && t > tol) ts[nh++] = t;
+    qsort(ts, (size_t)nh, sizeof(PetscReal), CompareHits);
+    for (PetscInt i = 0; i < nh; i++)
+      if (i == 0 || ts[i] - ts[i - 1] > tol) nout++;
+    vote += nout % 2;
+    if (r == 1 && vote != 1) break; /* the two agree */
+  }
+  return vote >= 2 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* The signed distance: the closest point of the tessellation, made exact on the CAD entities that come near it (gmsh's
+   closest point on an entity, kept if it lies on the entity's tessellated, trimmed part); where none is kept (an
+   edge or corner of the obstacle, straight in the tessellation) the tessellation's point. Away from the surface the
+   normal is x - z (sign from the solid's inside), on it the entity's own normal, oriented by the inside just
+   outside of it. A sheet (no volume) has no inside: a vertex on it has no normal, an error. Two closest points as
+   near but apart: the normal is undefined, an error. */
+static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal *g, PetscReal nb[])
+{
+  Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
+  PetscInt      dim = o->dim;
+  int           sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
+  double        x[3] = {0, 0, 0}, q[3], z[3] = {0, 0, 0}, zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, nrm[3] = {0, 0, 0}, h, bpar[2] = {0, 0}, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
+  PetscBool     found = PETSC_FALSE, inside = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(CAD_Gap, 0, 0, 0, 0));
+  PetscCall(CadLoad(o, cad));
+  cad->nquery++;
+  for (PetscInt k = 0; k < dim; k++) x[k] = (xb[k] - cad->shift[k]) / cad->scale;
+  for (PetscInt e = 0; e < cad->nel; e++) { /* the tessellation's closest point */
+    double d;
+    ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
+    d = Dist3(x, q);
+    if (d < dt) {
+      dt = d;
+      for (int k = 0; k < 3; k++) zt[k] = q[k];
+    }
+  }
+  for (PetscInt e = 0; e < cad->nel && ntag < 64; e++) { /* the entities near it */
+    int       tag = cad->tag[e];
+    PetscBool seen = PETSC_FALSE;
+    ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
+    if (Dist3(x, q) > dt + 8 * cad->dev[tag] + tol) continue;
+    for (int j = 0; j < ntag && !seen; j++) seen = (PetscBool)(tags[j] == tag);
+    if (!seen) tags[ntag++] = tag;
+  }
+  for (int j = 0; j < ntag; j++) { /* each made exact on its CAD entity */
+    double *c = NULL, *par = NULL, d, y[3];
+    size_t  nc, npar;
+    gmshModelGetClosestPoint(sdim, tags[j], x, 3, &c, &nc, &par, &npar, &ierr);
+    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, tags[j]);
+    cad->nnewton++;
+    for (int k = 0; k < 3; k++) y[k] = c[k];
+    d = Dist3(x, y);
+    if (DistTessellation(cad, dim, tags[j], y) <= 4 * cad->dev[tags[j]] + tol) {
+      if (d < dbest) {
+        if (found) {
+          d2 = dbest;
+          for (int k = 0; k < 3; k++) z2[k] = z[k];
+        }
+        dbest = d;
+        btag  = tags[j];
+        for (int k = 0; k < 3; k++) z[k] = y[k];
+        for (size_t k = 0; k < npar && k < 2; k++) bpar[k] = par[k];
+        found = PETSC_TRUE;
+      } else if (d < d2) {
+        d2 = d;
+        for (int k = 0; k < 3; k++) z2[k] = y[k];
+      }
+    }
+    gmshFree(c);
+    if (par) gmshFree(par);
+  }
+  if (!found || dbest > dt + 4 * cad->dev[btag] + tol) { /* an edge or corner: the tessellation's point */
+    btag  = -1;
+    dbest = dt;
+    for (int k = 0; k < 3; k++) z[k] = zt[k];
+  }
+  PetscCheck(btag < 0 || !(d2 - dbest <= 1e-9 * cad->len && Dist3(z, z2) > 1e-6 * cad->len), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], z2[0], z2[1], z2[2]);
+  h = dbest;
+  if (h > 8 * (btag >= 0 ? cad->dev[btag] : 0) + 1e-8 * cad->len) {
+    if (cad->solid) inside = InsideSolid(cad, dim, x);
+    for (int k = 0; k < 3; k++) nrm[k] = (inside ? -1 : 1) * (x[k] - z[k]) / h;
+    *g = cad->scale * (inside ? -h : h);
+  } else { /* on the surface: the entity's normal */
+    double *dv = NULL, l = 0, y[3], off = 8 * cad->dev[btag >= 0 ? btag : 0] + 1e-6 * cad->len, dot = 0;
+    size_t  ndv;
+    PetscCheck(btag >= 0 && cad->solid, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies on %s, where the obstacle's normal cannot be computed", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), btag < 0 ? "an edge or corner of the obstacle" : "a sheet (a model without volumes has no inside to orient it)");
+    if (dim == 3) {
+      gmshModelGetNormal(btag, bpar, 2, &dv, &ndv, &ierr);
+      PetscCheck(!ierr && ndv == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh gave no normal on entity %d", cad->file, btag);
+      for (int k = 0; k < 3; k++) nrm[k] = dv[k];
+    } else {
+      gmshModelGetDerivative(1, btag, bpar, 1, &dv, &ndv, &ierr);
+      PetscCheck(!ierr && ndv == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh gave no tangent on curve %d", cad->file, btag);
+      nrm[0] = dv[1];
+      nrm[1] = -dv[0];
+    }
+    gmshFree(dv);
+    for (int k = 0; k < 3; k++) l += nrm[k] * nrm[k];
+    l = PetscSqrtReal(l);
+    PetscCheck(l > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the obstacle has no normal at the closest point (%g, %g, %g) of the contact vertex at (%g, %g, %g)", cad->file, z[0], z[1], z[2], (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0));
+    for (int k = 0; k < 3; k++) {
+      nrm[k] /= l;
+      y[k] = z[k] + off * nrm[k];
+    }
+    if (InsideSolid(cad, dim, y))
+      for (int k = 0; k < 3; k++) nrm[k] = -nrm[k];
+    for (int k = 0; k < 3; k++) dot += nrm[k] * (x[k] - z[k]);
+    *g = cad->scale * dot;
+  }
+  for (PetscInt k = 0; k < dim; k++) nb[k] = nrm[k];
+  PetscCall(PetscLogEventEnd(CAD_Gap, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
@@ -496,6 +696,7 @@ PetscErrorCode SgObstacleCreate_CAD(SgObstacle o)
   cad->scale        = 1;
   o->data           = cad;
   o->gap            = Gap_CAD;
+  o->distance       = Distance_CAD;
   o->setfromoptions = SetFromOptions_CAD;
   o->destroy        = Destroy_CAD;
   PetscFunctionReturn(0);
