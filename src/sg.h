@@ -207,6 +207,7 @@ typedef struct {
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
+PetscErrorCode SgContactGetNormalType(SgContact, const char *[]); /* -contact_normal: "obstacle" or "body" */
 PetscErrorCode SgContactGetElasticity(SgContact, SgElasticity *);
 PetscErrorCode SgContactActiveSetHash(SgContact, const char[], PetscInt64 *);
 PetscErrorCode SgContactDestroy(SgContact *);

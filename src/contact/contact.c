@@ -332,6 +332,13 @@ PetscErrorCode SgContactGetObstacleType(SgContact c, const char *type[])
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgContactGetNormalType(SgContact c, const char *type[])
+{
+  PetscFunctionBeginUser;
+  *type = c->obsnormal ? "obstacle" : "body";
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContactGetElasticity(SgContact c, SgElasticity *el)
 {
   PetscFunctionBeginUser;

@@ -541,19 +541,19 @@ static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
    normal is x - z (sign from the solid's inside), on it the entity's own normal, oriented by the inside just
    outside of it. A sheet (no volume) has no inside: a vertex on it has no normal, an error. Two closest points as
    near but apart: the normal is undefined, an error. */
-static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal *g, PetscReal nb[])
+/* The closest point z of the obstacle to x (CAD units, xb the vertex in the mesh's units for the messages) at the
+   distance h: the tessellation's, made exact on the CAD entities that come near it (gmsh's closest point on an
+   entity, kept if it lies on its tessellated, trimmed part); where none is kept (an edge or corner of the obstacle,
+   straight in the tessellation) the tessellation's point (*btag = -1). Two entities' closest points as near but apart:
+   an error. */
+static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], const PetscReal xb[], double z[3], double *h, int *btag_, double bpar[2])
 {
-  Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
-  PetscInt      dim = o->dim;
-  int           sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
-  double        x[3] = {0, 0, 0}, q[3], z[3] = {0, 0, 0}, zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, nrm[3] = {0, 0, 0}, h, bpar[2] = {0, 0}, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
-  PetscBool     found = PETSC_FALSE, inside = PETSC_FALSE;
+  PetscInt dim = o->dim;
+  int      sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
+  double   q[3], zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
+  PetscBool found = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(CAD_Gap, 0, 0, 0, 0));
-  PetscCall(CadLoad(o, cad));
-  cad->nquery++;
-  for (PetscInt k = 0; k < dim; k++) x[k] = (xb[k] - cad->shift[k]) / cad->scale;
   for (PetscInt e = 0; e < cad->nel; e++) { /* the tessellation's closest point */
     double d;
     ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
@@ -604,33 +604,67 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
     for (int k = 0; k < 3; k++) z[k] = zt[k];
   }
   PetscCheck(btag < 0 || !(d2 - dbest <= 1e-9 * cad->len && Dist3(z, z2) > 1e-6 * cad->len), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], z2[0], z2[1], z2[2]);
-  h = dbest;
-  if (h > 8 * (btag >= 0 ? cad->dev[btag] : 0) + 1e-8 * cad->len) {
-    if (cad->solid) inside = InsideSolid(cad, dim, x);
+  *h     = dbest;
+  *btag_ = btag;
+  PetscFunctionReturn(0);
+}
+
+/* The signed distance from ClosestCAD's point z: away from the surface the normal is x - z (its sign from the solid's
+   inside), on it the entity's own normal, oriented by the inside just outside of it. A sheet (no volume) has no
+   inside: a vertex on it has no normal, an error. Inside the solid the closest point is checked for uniqueness: the
+   closest points of points 1e-6 of the model's size away in the axes' directions stay near z unless x lies where two
+   parts of the surface are as near (the centre of a ball: an error). */
+static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal *g, PetscReal nb[])
+{
+  Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
+  PetscInt      dim = o->dim;
+  int           btag;
+  double        x[3] = {0, 0, 0}, z[3] = {0, 0, 0}, nrm[3] = {0, 0, 0}, h, bpar[2] = {0, 0}, off;
+  PetscBool     inside = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(CAD_Gap, 0, 0, 0, 0));
+  PetscCall(CadLoad(o, cad));
+  cad->nquery++;
+  for (PetscInt k = 0; k < dim; k++) x[k] = (xb[k] - cad->shift[k]) / cad->scale;
+  PetscCall(ClosestCAD(o, cad, x, xb, z, &h, &btag, bpar));
+  off = 8 * (btag >= 0 ? cad->dev[btag] : 0) + 1e-6 * cad->len;
+  if (h > 1e-7 * cad->len) {
+    if (cad->solid) { /* the side of x; near a curved face, where x and the tessellation may lie on either side of each
+                         other, the side of the point off along the same normal line */
+      double y[3];
+      for (int k = 0; k < 3; k++) y[k] = h < off ? z[k] + off * (x[k] - z[k]) / h : x[k];
+      inside = InsideSolid(cad, dim, y);
+    }
+    if (inside) {
+      for (PetscInt k = 0; k < dim; k++) {
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          double y[3] = {x[0], x[1], x[2]}, zy[3], hy, py[2];
+          int    ty;
+          y[k] += sgn * 1e-6 * cad->len;
+          PetscCall(ClosestCAD(o, cad, y, xb, zy, &hy, &ty, py));
+          PetscCheck(Dist3(z, zy) <= 1e-3 * cad->len, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies inside the obstacle where its closest point on the surface is not unique ((%g, %g, %g) and, 1e-6 of the model's size away, (%g, %g, %g)): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], zy[0], zy[1], zy[2]);
+        }
+      }
+    }
     for (int k = 0; k < 3; k++) nrm[k] = (inside ? -1 : 1) * (x[k] - z[k]) / h;
     *g = cad->scale * (inside ? -h : h);
-  } else { /* on the surface: the entity's normal */
-    double *dv = NULL, l = 0, y[3], off = 8 * cad->dev[btag >= 0 ? btag : 0] + 1e-6 * cad->len, dot = 0;
-    size_t  ndv;
+  } else { /* on the surface: the normal from the closest points of points delta away along the axes (their offset
+              x + delta e_k - z_k is delta (e_k.n) n), oriented by the side of the point off along it */
+    double    best = 0, y[3], dot = 0, delta = 1e-5 * cad->len;
     PetscCheck(btag >= 0 && cad->solid, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies on %s, where the obstacle's normal cannot be computed", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), btag < 0 ? "an edge or corner of the obstacle" : "a sheet (a model without volumes has no inside to orient it)");
-    if (dim == 3) {
-      gmshModelGetNormal(btag, bpar, 2, &dv, &ndv, &ierr);
-      PetscCheck(!ierr && ndv == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh gave no normal on entity %d", cad->file, btag);
-      for (int k = 0; k < 3; k++) nrm[k] = dv[k];
-    } else {
-      gmshModelGetDerivative(1, btag, bpar, 1, &dv, &ndv, &ierr);
-      PetscCheck(!ierr && ndv == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh gave no tangent on curve %d", cad->file, btag);
-      nrm[0] = dv[1];
-      nrm[1] = -dv[0];
+    for (PetscInt k = 0; k < dim; k++) {
+      double yk[3] = {x[0], x[1], x[2]}, zy[3], hy, py[2];
+      int    ty;
+      yk[k] += delta;
+      PetscCall(ClosestCAD(o, cad, yk, xb, zy, &hy, &ty, py));
+      if (hy > best) {
+        best = hy;
+        for (int q = 0; q < 3; q++) nrm[q] = (yk[q] - zy[q]) / hy;
+      }
     }
-    gmshFree(dv);
-    for (int k = 0; k < 3; k++) l += nrm[k] * nrm[k];
-    l = PetscSqrtReal(l);
-    PetscCheck(l > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the obstacle has no normal at the closest point (%g, %g, %g) of the contact vertex at (%g, %g, %g)", cad->file, z[0], z[1], z[2], (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0));
-    for (int k = 0; k < 3; k++) {
-      nrm[k] /= l;
-      y[k] = z[k] + off * nrm[k];
-    }
+    PetscCheck(best > 0.1 * delta, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the obstacle has no normal at the closest point (%g, %g, %g) of the contact vertex at (%g, %g, %g)", cad->file, z[0], z[1], z[2], (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0));
+    for (int k = 0; k < 3; k++) y[k] = z[k] + off * nrm[k];
     if (InsideSolid(cad, dim, y))
       for (int k = 0; k < 3; k++) nrm[k] = -nrm[k];
     for (int k = 0; k < 3; k++) dot += nrm[k] * (x[k] - z[k]);
