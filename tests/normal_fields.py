@@ -6,19 +6,30 @@ The obstacle's signed distance at y = x + u, computed here from its parameters:
     plane:P:N      the half-space below the plane through P with normal N (pointing towards the body)
     ball:C:R[:U]   the half-ball of radius R centred at C standing on the plane through C normal to U (default e_dim),
                    the half-space below that plane included (as -obstacle_type ball)
-Prints the largest penetration max(0, -sd(y)) over all vertices and the vertex; exits 1 if it is above PEN (an
+    parabola:A:OFF:C  below the surface z_d = C_d - OFF - A |z_t - C_t|^2 (d the last axis, t the others; as
+                   -obstacle_type parabola under a flat face at the height C_d): the depth below it along e_d (not a
+                   distance, but zero exactly where y is outside)
+Prints the largest penetration max(0, -sd(y)) over all vertices and the vertex (with load steps: of the last step); exits 1 if it is above PEN (an
 absolute length). With REF.h5 (a result on the same mesh) also the largest difference of the displacements relative
 to the largest displacement of REF; exits 1 if it is above UTOL.
 
 usage: normal_fields.py RESULT.h5 OBSTACLE PEN [REF.h5 UTOL]
 """
 import os
+import re
 import sys
 
+import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
-from plot_mesh import load  # noqa: E402
+
+def load(path):
+    """coordinates and displacement of every vertex; with load steps the last step's displacement"""
+    with h5py.File(path, "r") as f:
+        g = f["vertex_fields"]
+        names = [k for k in g if k.startswith("displacement")]
+        step = lambda k: int(re.search(r"_step(\d+)", k).group(1)) if "_step" in k else 0  # noqa: E731
+        return {"x": f["geometry/vertices"][()], "u": g[max(names, key=step)][()]}
 
 
 def vec(text, dim):
@@ -40,6 +51,10 @@ def signed_distance(spec, y):
         up = vec(part[3], dim) if len(part) == 4 else np.eye(dim)[dim - 1]
         up = up / np.linalg.norm(up)
         return np.minimum(np.linalg.norm(y - c, axis=1) - R, (y - c) @ up)
+    if part[0] == "parabola" and len(part) == 4:
+        a, off, c = float(part[1]), float(part[2]), vec(part[3], dim)
+        rt = y[:, :-1] - c[:-1]
+        return y[:, -1] - (c[-1] - off - a * np.sum(rt * rt, axis=1))
     sys.exit("normal_fields.py: unknown obstacle %s" % spec)
 
 
@@ -52,7 +67,7 @@ def main():
     i = int(np.argmin(sd))
     pen = max(0.0, -sd[i])
     bad = pen > float(sys.argv[3])
-    print("vertices %d, largest |u| %.6g, largest penetration %.6g at x = %s" % (len(x), np.abs(u).max(), pen, np.array2string(x[i], precision=6)))
+    print("vertices %d, largest |u| %.6g, largest penetration %.3e at x = %s" % (len(x), np.abs(u).max(), pen, np.array2string(x[i], precision=6)))
     if len(sys.argv) == 6:
         r = load(sys.argv[4])
         oa, ob = np.lexsort(x.T[::-1]), np.lexsort(r["x"].T[::-1])

@@ -27,6 +27,7 @@ typedef struct {
   int       *hitel, *roottag;
   PetscInt   nquery, nnewton, nkept;
   double     rmax; /* the largest distance left between a refined crossing and the CAD face (CAD units) */
+  double     hel;  /* the longest edge of the tessellation (0: not yet measured; -contact_normal obstacle) */
 } Obstacle_CAD;
 
 static PetscBool     gmsh_up = PETSC_FALSE;
@@ -612,8 +613,9 @@ static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], c
 /* The signed distance from ClosestCAD's point z: away from the surface the normal is x - z (its sign from the solid's
    inside), on it the entity's own normal, oriented by the inside just outside of it. A sheet (no volume) has no
    inside: a vertex on it has no normal, an error. Inside the solid the closest point is checked for uniqueness: the
-   closest points of points 1e-6 of the model's size away in the axes' directions stay near z unless x lies where two
-   parts of the surface are as near (the centre of a ball: an error). */
+   closest points of points 1e-6 of the model's size away in the axes' directions stay near z (within two elements of
+   the tessellation, whose point may stand in for the exact one near an edge) unless x lies where two parts of the
+   surface are as near (the centre of a ball: an error). */
 static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal *g, PetscReal nb[])
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
@@ -627,6 +629,9 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
   PetscCall(CadLoad(o, cad));
   cad->nquery++;
   for (PetscInt k = 0; k < dim; k++) x[k] = (xb[k] - cad->shift[k]) / cad->scale;
+  if (cad->hel == 0)
+    for (PetscInt e = 0; e < cad->nel; e++)
+      for (PetscInt a = 0; a < dim; a++) cad->hel = PetscMax(cad->hel, Dist3(&cad->xyz[(e * dim + a) * 3], &cad->xyz[(e * dim + (a + 1) % dim) * 3]));
   PetscCall(ClosestCAD(o, cad, x, xb, z, &h, &btag, bpar));
   off = 8 * (btag >= 0 ? cad->dev[btag] : 0) + 1e-6 * cad->len;
   if (h > 1e-7 * cad->len) {
@@ -643,7 +648,7 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
           int    ty;
           y[k] += sgn * 1e-6 * cad->len;
           PetscCall(ClosestCAD(o, cad, y, xb, zy, &hy, &ty, py));
-          PetscCheck(Dist3(z, zy) <= 1e-3 * cad->len, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies inside the obstacle where its closest point on the surface is not unique ((%g, %g, %g) and, 1e-6 of the model's size away, (%g, %g, %g)): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], zy[0], zy[1], zy[2]);
+          PetscCheck(Dist3(z, zy) <= PetscMax(1e-3 * cad->len, 2 * cad->hel), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies inside the obstacle where its closest point on the surface is not unique ((%g, %g, %g) and, 1e-6 of the model's size away, (%g, %g, %g)): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], zy[0], zy[1], zy[2]);
         }
       }
     }
