@@ -992,7 +992,7 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
   }
   if (bad >= 0) {
     const PetscReal *x = &c->mesh->x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0));
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)%s", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0), c->obsnormal ? " (the obstacle's, -contact_normal obstacle)" : " (the body's, averaged over its contact facets: -contact_normal obstacle takes the obstacle's)");
   }
   PetscFunctionReturn(0);
 }
