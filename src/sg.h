@@ -154,6 +154,8 @@ PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
 PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
 PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
 PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode SgObstacleDistance(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]); /* signed distance g (> 0 outside) and the unit outward normal n at the closest point */
+PetscErrorCode SgObstacleHasDistance(SgObstacle, PetscBool *);
 PetscErrorCode SgObstacleSetPlacement(SgObstacle, PetscReal);
 PetscErrorCode SgObstacleGetTranslation(SgObstacle, PetscReal[3]);
 PetscErrorCode SgObstacleDestroy(SgObstacle *);
@@ -205,6 +207,7 @@ typedef struct {
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
+PetscErrorCode SgContactGetNormalType(SgContact, const char *[]); /* -contact_normal: "obstacle" or "body" */
 PetscErrorCode SgContactGetElasticity(SgContact, SgElasticity *);
 PetscErrorCode SgContactActiveSetHash(SgContact, const char[], PetscInt64 *);
 PetscErrorCode SgContactDestroy(SgContact *);

@@ -119,6 +119,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetReal(sum, "contact_area", ct->cv.area));
     PetscCall(SgContactGetObstacleType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
+    PetscCall(SgContactGetNormalType(ct->c, &obstype));
+    PetscCall(SgSummarySetString(sum, "contact_normal", obstype));
     PetscCall(SgSummarySetString(sum, "friction_type", SgFrictionTypes[ct->cv.friction]));
     if (ct->cv.friction) {
       /* of this controller's last KKT measures (SgContMeasure): lam_T from the tangential residual */

@@ -35,11 +35,53 @@ static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, 
   PetscFunctionReturn(0);
 }
 
+/* the default of -contact_normal: obstacle for a plane obstacle whose normal is a coordinate axis */
+static PetscBool ObstacleAlongAxis(SgObstacle o)
+{
+  if (strcmp(o->type, "plane")) return PETSC_FALSE;
+  for (PetscInt k = 0; k < o->dim; k++)
+    if (PetscAbsReal(o->p[3 + k]) == 1) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The contact condition of vertex v at x with -contact_normal obstacle and the obstacle at its current placement: the
+   normal -n_o and the gap d = g (the obstacle's signed distance and normal at the closest point: g + n_o.u >= 0). At a
+   partly fixed vertex (a roller) only the free components move: the normal is the projection of -n_o onto them,
+   renormalized, and d the distance along it to the obstacle's tangent plane, g / |projection| (nothing changes where
+   n_o has no fixed component); *keep is false where the projection vanishes (the vertex cannot come into contact). */
+static PetscErrorCode ObstacleCondition(SgContact c, PetscInt v, PetscReal nrm[], PetscReal *d, PetscBool *keep)
+{
+  const PetscInt dim = c->dim;
+  PetscReal      g, no[3], s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgObstacleDistance(c->obs, &c->mesh->x[v * dim], &g, no));
+  *keep = PETSC_TRUE;
+  for (PetscInt k = 0; k < dim; k++) nrm[k] = -no[k];
+  *d = g;
+  if (!SgMeshPartial(c->mesh, v)) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < dim; k++) {
+    if (SgMeshFixed(c->mesh, v, k)) nrm[k] = 0;
+    s += nrm[k] * nrm[k];
+  }
+  if (s == 1) PetscFunctionReturn(0);
+  if (s <= 1e-16) {
+    *keep = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
+  s = PetscSqrtReal(s);
+  for (PetscInt k = 0; k < dim; k++) nrm[k] /= s;
+  *d = g / s;
+  PetscFunctionReturn(0);
+}
+
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
 PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
 {
   SgContact c;
+  char      nmode[64] = "";
+  PetscBool nset      = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *contact = NULL;
@@ -55,7 +97,9 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
   PetscCall(FrictionFromOptions(PetscOptionsObject, c));
+  PetscCall(PetscOptionsString("-contact_normal", "Direction of the contact condition: obstacle (g(x) + n_o.u >= 0, the obstacle's signed distance g and unit normal n_o at the closest point to the vertex; right at edges and corners of the contact boundary and on curved bodies) or body (the paper's tau_N: the body's vertex normal, averaged over the facets; at a corner of Gamma_c a vertex may move into the obstacle). Default: obstacle for a plane obstacle along a coordinate plane (the same answer as body on a face along it, every solver path keeps its coordinate-axis normals), body for any other obstacle (its normals are not coordinate axes, which the truncated multigrid, PDAS and SNESVI need, and the paper's Examples keep their numbers)", NULL, nmode, nmode, sizeof(nmode), &nset));
   PetscOptionsEnd();
+  PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
   PetscCheck(c->bnd.active || c->friction == SG_FRICTION_NONE, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", SgFrictionTypes[c->friction]);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(PetscFree(c->prefix));
@@ -63,6 +107,13 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
     PetscFunctionReturn(0);
   }
   PetscCall(SgObstacleCreate(c->comm, prefix, c->dim, c->obstype, &c->obs));
+  if (nset) c->obsnormal = (PetscBool)!strcmp(nmode, "obstacle");
+  else c->obsnormal = ObstacleAlongAxis(c->obs);
+  if (c->obsnormal) {
+    PetscBool has;
+    PetscCall(SgObstacleHasDistance(c->obs, &has));
+    PetscCheck(has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
+  }
   *contact = c;
   PetscFunctionReturn(0);
 }
@@ -197,7 +248,7 @@ PetscErrorCode SgContactSetUp(SgContact c)
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  noff;
     PetscReal n0 = 0, n1 = 0;
-    if (!SgMeshPartial(m, v)) continue;
+    if (!SgMeshPartial(m, v) || c->obsnormal) continue; /* obstacle: from the obstacle's normal (ObstacleCondition) */
     PetscCall(PetscSectionGetOffset(ns, m->vStart + v, &noff));
     for (PetscInt k = 0; k < dim; k++) {
       n0 += PetscSqr(PetscRealPart(na[noff + k]));
@@ -228,6 +279,12 @@ PetscErrorCode SgContactSetUp(SgContact c)
     c->vert[nloc] = v;
     c->off[nloc]  = m->goff[v];
     c->w[nloc]    = PetscRealPart(wa[off]);
+    if (c->obsnormal) {
+      PetscBool keep;
+      PetscCall(ObstacleCondition(c, v, &c->normal[nloc * dim], &c->d[nloc], &keep));
+      if (keep) nloc++;
+      continue;
+    }
     for (PetscInt k = 0; k < dim; k++) nn += PetscSqr(PetscRealPart(na[noff + k]));
     nn = PetscSqrtReal(nn);
     PetscCheck(nn > 1e-12 * c->w[nloc], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "contact vertex %" PetscInt_FMT " has no defined normal (opposite facet normals cancel)", v);
@@ -235,6 +292,7 @@ PetscErrorCode SgContactSetUp(SgContact c)
     PetscCall(SgObstacleGap(c->obs, &m->x[v * dim], &c->normal[nloc * dim], &c->d[nloc]));
         nloc++;
   }
+  c->n = nloc;
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
   PetscCall(DMRestoreLocalVector(c->dmVert, &wl));
@@ -271,6 +329,13 @@ PetscErrorCode SgContactGetObstacleType(SgContact c, const char *type[])
 {
   PetscFunctionBeginUser;
   PetscCall(SgObstacleGetType(c->obs, type));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetNormalType(SgContact c, const char *type[])
+{
+  PetscFunctionBeginUser;
+  *type = c->obsnormal ? "obstacle" : "body";
   PetscFunctionReturn(0);
 }
 
@@ -927,7 +992,7 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
   }
   if (bad >= 0) {
     const PetscReal *x = &c->mesh->x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0));
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)%s", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0), c->obsnormal ? " (the obstacle's, -contact_normal obstacle)" : " (the body's, averaged over its contact facets: -contact_normal obstacle takes the obstacle's)");
   }
   PetscFunctionReturn(0);
 }
@@ -968,6 +1033,25 @@ PetscErrorCode SgContactActiveSetHash(SgContact c, const char act[], PetscInt64 
   PetscFunctionReturn(0);
 }
 
+/* the gap d of contact vertex i along its normal with the obstacle at its current placement: body, along the ray;
+   obstacle, to the tangent plane at the closest point (the normal is the one of the set-up: a translation does not
+   turn the obstacle; the closest point moves along) */
+static PetscErrorCode VertexGap(SgContact c, PetscInt i, PetscReal *d)
+{
+  const PetscInt   dim = c->dim;
+  const PetscReal *x = &c->mesh->x[c->vert[i] * dim], *n = &c->normal[i * dim];
+
+  PetscFunctionBeginUser;
+  if (c->obsnormal) {
+    PetscReal nrm[3], dd, dot = 0;
+    PetscBool keep;
+    PetscCall(ObstacleCondition(c, c->vert[i], nrm, &dd, &keep));
+    for (PetscInt k = 0; k < dim; k++) dot += nrm[k] * n[k];
+    *d = keep && dot > 0 ? dd / dot : PETSC_MAX_REAL;
+  } else PetscCall(SgObstacleGap(c->obs, x, n, d));
+  PetscFunctionReturn(0);
+}
+
 /* Load stepping: the obstacle at t times its translation (-obstacle_translation), the gaps d recomputed from it (for
    every obstacle type: the translation is applied in SgObstacleGap), and the load scale of the KKT measures (the
    elasticity object's loads must be scaled first). */
@@ -982,7 +1066,7 @@ PetscErrorCode SgContactSetLoadFactor(SgContact c, PetscReal t)
   PetscCall(SgObstacleSetPlacement(c->obs, t));
   /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex) */
   if (moves)
-    for (PetscInt i = 0; i < c->n; i++) PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &c->d[i]));
+    for (PetscInt i = 0; i < c->n; i++) PetscCall(VertexGap(c, i, &c->d[i]));
   PetscFunctionReturn(0);
 }
 
@@ -1003,7 +1087,7 @@ PetscErrorCode SgContactGapSum(SgContact c, PetscReal t, PetscReal *sum)
   PetscCall(SgObstacleSetPlacement(c->obs, t));
   for (PetscInt i = 0; i < c->n; i++) {
     if (t == now) d = c->d[i];
-    else PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &d));
+    else PetscCall(VertexGap(c, i, &d));
     if (d < PETSC_MAX_REAL) s += c->w[i] * d; /* a ray that misses the obstacle (d = PETSC_MAX_REAL) would make it inf */
   }
   PetscCall(SgObstacleSetPlacement(c->obs, now));
@@ -1021,7 +1105,7 @@ PetscErrorCode SgContactGapsAt(SgContact c, PetscReal t, PetscReal d[])
   PetscCall(SgObstacleSetPlacement(c->obs, t));
   for (PetscInt i = 0; i < c->n; i++) {
     if (t == now) d[i] = c->d[i];
-    else PetscCall(SgObstacleGap(c->obs, &c->mesh->x[c->vert[i] * c->dim], &c->normal[i * c->dim], &d[i]));
+    else PetscCall(VertexGap(c, i, &d[i]));
   }
   PetscCall(SgObstacleSetPlacement(c->obs, now));
   PetscFunctionReturn(0);

@@ -12,6 +12,9 @@ struct _n_SgObstacle {
   PetscReal translation[3]; /* -obstacle_translation: a rigid translation of any obstacle at full load */
   PetscReal placement;      /* the part of it applied (the load factor; 1 without load steps) */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+  /* -contact_normal obstacle: the signed distance g from x to the obstacle (> 0 outside) and the obstacle's unit
+     outward normal n at the closest point (pointing towards the body); NULL: a type without it */
+  PetscErrorCode (*distance)(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]);
   PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
   PetscErrorCode (*destroy)(SgObstacle); /* NULL, or frees data */
   void *data;                            /* a type's own state (cad) */
@@ -36,6 +39,8 @@ struct _n_SgContact {
   PetscReal *normal;     /* outward unit normals, n*dim */
   PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
   PetscReal *d;          /* gap to the obstacle along the normal (at the obstacle's current placement) */
+  PetscBool  obsnormal;  /* -contact_normal obstacle: normal = -n_o and d = g, the obstacle's signed distance and
+                            normal at the closest point (SgObstacleDistance); body: the facets' normal, d along it */
   PetscReal  area;
   char      *prefix;
   SgFrictionType friction;   /* -friction_type */

@@ -52,10 +52,25 @@ static PetscErrorCode SetFromOptions_Plane(SgObstacle o, PetscOptionItems *Petsc
   PetscFunctionReturn(0);
 }
 
+/* the signed distance (x - p).m and the plane's normal m */
+static PetscErrorCode Distance_Plane(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  const PetscReal *p = o->p, *m = o->p + 3;
+
+  PetscFunctionBeginUser;
+  *g = 0;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    *g += (x[k] - p[k]) * m[k];
+    n[k] = m[k];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgObstacleCreate_Plane(SgObstacle o)
 {
   PetscFunctionBeginUser;
   o->gap            = Gap_Plane;
+  o->distance       = Distance_Plane;
   o->setfromoptions = SetFromOptions_Plane;
   PetscFunctionReturn(0);
 }
@@ -76,9 +91,49 @@ static PetscErrorCode Gap_Parabola(SgObstacle o, const PetscReal x[], const Pets
   PetscFunctionReturn(0);
 }
 
+/* The parabola's distance (-contact_normal obstacle), consistent with its gap on a flat face: the gap says that the
+   obstacle lies a |x_t - c_t|^2 + offset below a vertex x of a flat face with the normal -u (u = -obstacle_parabola_up,
+   default e_dim), i.e. it is the surface z.u = x.u - offset - a |z_t - c_t|^2 (z_t, x_t the parts normal to u), the
+   face's height x.u taken from the vertex itself (as the gap takes it; the centre's component along u is ignored).
+   Its closest point to x lies at the radius rho in [0, r], r = |x_t - c_t|, the root of 2 a^2 rho^3 + (1 + 2 a off)
+   rho - r = 0 (increasing and convex for rho >= 0: Newton from the root of its linear part converges from the right);
+   there x - z = (off + a rho^2) (u + 2 a rho e_r), along the surface's normal. Every x has a unique closest point. */
+static PetscErrorCode Distance_Parabola(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  const PetscReal a = o->p[0], off = o->p[1], *c = o->p + 2, *u = o->p + 5, b = 1 + 2 * a * off;
+  PetscReal       rt[3], ru = 0, r = 0, rho, h, s = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < o->dim; k++) ru += (x[k] - c[k]) * u[k];
+  for (PetscInt k = 0; k < o->dim; k++) {
+    rt[k] = x[k] - c[k] - ru * u[k];
+    r += rt[k] * rt[k];
+  }
+  r   = PetscSqrtReal(r);
+  rho = r / b;
+  for (PetscInt it = 0; it < 100 && rho > 0; it++) {
+    const PetscReal f = (2 * a * a * rho * rho + b) * rho - r, step = f / (6 * a * a * rho * rho + b);
+    rho -= step;
+    if (PetscAbsReal(step) <= 1e-15 * rho) break;
+  }
+  rho = PetscMax(0, PetscMin(r, rho));
+  h   = off + a * rho * rho;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    n[k] = u[k] + (r > 0 ? 2 * a * rho * rt[k] / r : 0);
+    s += n[k] * n[k];
+  }
+  s = PetscSqrtReal(s);
+  for (PetscInt k = 0; k < o->dim; k++) n[k] /= s;
+  *g = h * s;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetFromOptions_Parabola(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
+  PetscReal nrm = 0;
+
   PetscFunctionBeginUser;
+  o->p[5 + o->dim - 1] = 1;
   o->p[0] = 0.003;
   o->p[1] = 0.001;
   o->p[2] = 1.5;
@@ -88,6 +143,10 @@ static PetscErrorCode SetFromOptions_Parabola(SgObstacle o, PetscOptionItems *Pe
   PetscCheck(PetscIsNormalReal(o->p[0]) || o->p[0] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be finite, got %g", (double)o->p[0]);
   PetscCheck(o->p[0] >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_a: must be >= 0 (an obstacle bending away from the body), got %g", (double)o->p[0]);
   PetscCheck((PetscIsNormalReal(o->p[1]) || o->p[1] == 0) && o->p[1] >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_offset: the initial gap must be finite and >= 0, got %g", (double)o->p[1]);
+  PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_parabola_up", "Direction from the parabola towards the body, for -contact_normal obstacle (the gap along the body's normal does not need it)", o->dim, o->p + 5));
+  for (PetscInt k = 0; k < o->dim; k++) nrm += o->p[5 + k] * o->p[5 + k];
+  PetscCheck(nrm > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_parabola_up: the direction must be nonzero");
+  for (PetscInt k = 0; k < o->dim; k++) o->p[5 + k] /= PetscSqrtReal(nrm);
   PetscFunctionReturn(0);
 }
 
@@ -95,6 +154,7 @@ PetscErrorCode SgObstacleCreate_Parabola(SgObstacle o)
 {
   PetscFunctionBeginUser;
   o->gap            = Gap_Parabola;
+  o->distance       = Distance_Parabola;
   o->setfromoptions = SetFromOptions_Parabola;
   PetscFunctionReturn(0);
 }
@@ -132,6 +192,31 @@ static PetscErrorCode Gap_Ball(SgObstacle o, const PetscReal x[], const PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The half-ball's signed distance: that of the union of the ball and the half-space below its flat side, the smaller
+   of |x - c| - R and (x - c).u (exact outside, where the closest point of the upper half-sphere is the one of the
+   sphere; inside the deeper of the two). At the centre the closest point is not unique: an error. */
+static PetscErrorCode Distance_Ball(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  const PetscReal R = o->p[0], *c = o->p + 1, *u = o->p + 4;
+  PetscReal       r = 0, h = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < o->dim; k++) {
+    r += PetscSqr(x[k] - c[k]);
+    h += (x[k] - c[k]) * u[k];
+  }
+  r = PetscSqrtReal(r);
+  if (h < r - R) {
+    *g = h;
+    for (PetscInt k = 0; k < o->dim; k++) n[k] = u[k];
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(r > 1e-10 * R, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the contact vertex at (%g, %g, %g) lies at the centre of the ball (-obstacle_ball_center): its closest point on the obstacle is not unique, so the obstacle's normal is undefined there", (double)x[0], (double)x[1], (double)(o->dim == 3 ? x[2] : 0));
+  *g = r - R;
+  for (PetscInt k = 0; k < o->dim; k++) n[k] = (x[k] - c[k]) / r;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetFromOptions_Ball(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
   PetscReal nrm = 0;
@@ -153,6 +238,7 @@ PetscErrorCode SgObstacleCreate_Ball(SgObstacle o)
 {
   PetscFunctionBeginUser;
   o->gap            = Gap_Ball;
+  o->distance       = Distance_Ball;
   o->setfromoptions = SetFromOptions_Ball;
   PetscFunctionReturn(0);
 }
@@ -198,6 +284,30 @@ PetscErrorCode SgObstacleGap(SgObstacle o, const PetscReal x[], const PetscReal 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < o->dim; k++) xs[k] = x[k] - o->placement * o->translation[k];
   PetscCall(o->gap(o, xs, n, d));
+  PetscFunctionReturn(0);
+}
+
+/* The signed distance g from x to the obstacle at its placement (> 0 outside) and the obstacle's unit outward normal n
+   at the closest point (pointing towards the body): -contact_normal obstacle. A translation moves the closest point
+   along and leaves the normal. */
+PetscErrorCode SgObstacleDistance(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  PetscReal xs[3], s = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->distance, PETSC_COMM_SELF, PETSC_ERR_SUP, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", o->type);
+  for (PetscInt k = 0; k < o->dim; k++) xs[k] = x[k] - o->placement * o->translation[k];
+  PetscCall(o->distance(o, xs, g, n));
+  for (PetscInt k = 0; k < o->dim; k++) s += n[k] * n[k];
+  PetscCheck(PetscIsNormalReal(*g) || *g == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the distance from the contact vertex at (%g, %g, %g) to the obstacle '%s' is %g", (double)x[0], (double)x[1], (double)(o->dim == 3 ? x[2] : 0), o->type, (double)*g);
+  PetscCheck(PetscAbsReal(s - 1) < 1e-6, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle '%s' has no unit normal at the closest point of the contact vertex at (%g, %g, %g) (length %g)", o->type, (double)x[0], (double)x[1], (double)(o->dim == 3 ? x[2] : 0), (double)PetscSqrtReal(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgObstacleHasDistance(SgObstacle o, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = o->distance ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 

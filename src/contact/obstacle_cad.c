@@ -27,6 +27,7 @@ typedef struct {
   int       *hitel, *roottag;
   PetscInt   nquery, nnewton, nkept;
   double     rmax; /* the largest distance left between a refined crossing and the CAD face (CAD units) */
+  double     hel;  /* the longest edge of the tessellation (0: not yet measured; -contact_normal obstacle) */
 } Obstacle_CAD;
 
 static PetscBool     gmsh_up = PETSC_FALSE;
@@ -441,6 +442,244 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
   PetscFunctionReturn(0);
 }
 
+/* ---- the signed distance (-contact_normal obstacle) */
+
+/* the closest point q to p on the segment [a, b] */
+static void ClosestSegment(const double p[3], const double a[3], const double b[3], double q[3])
+{
+  double ab = 0, ap = 0, s;
+  for (int k = 0; k < 3; k++) {
+    ab += (b[k] - a[k]) * (b[k] - a[k]);
+    ap += (p[k] - a[k]) * (b[k] - a[k]);
+  }
+  s = ab > 0 ? PetscMin(1, PetscMax(0, ap / ab)) : 0;
+  for (int k = 0; k < 3; k++) q[k] = a[k] + s * (b[k] - a[k]);
+}
+
+static double Dist3(const double a[3], const double b[3])
+{
+  return PetscSqrtReal(PetscSqr(a[0] - b[0]) + PetscSqr(a[1] - b[1]) + PetscSqr(a[2] - b[2]));
+}
+
+/* the closest point q to p on the element v (a segment in 2D, a triangle in 3D: its plane's if p projects inside,
+   else the nearest of its edges') */
+static void ClosestElement(PetscInt dim, const double *v, const double p[3], double q[3])
+{
+  double e1[3], e2[3], m[3], mm = 0, h = 0, best = PETSC_MAX_REAL, qe[3];
+  if (dim == 2) {
+    ClosestSegment(p, v, v + 3, q);
+    return;
+  }
+  for (int k = 0; k < 3; k++) {
+    e1[k] = v[3 + k] - v[k];
+    e2[k] = v[6 + k] - v[k];
+  }
+  m[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  m[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  m[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  for (int k = 0; k < 3; k++) {
+    mm += m[k] * m[k];
+    h += (p[k] - v[k]) * m[k];
+  }
+  if (mm > 0) {
+    PetscBool in = PETSC_TRUE;
+    for (int k = 0; k < 3; k++) q[k] = p[k] - h / mm * m[k];
+    for (int e = 0; e < 3 && in; e++) { /* q on the inner side of the three edges */
+      const double *s0 = v + 3 * e, *s1 = v + 3 * ((e + 1) % 3);
+      double        w[3], g[3], side = 0;
+      for (int k = 0; k < 3; k++) w[k] = q[k] - s0[k];
+      g[0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
+      g[1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
+      g[2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
+      for (int k = 0; k < 3; k++) side += g[k] * m[k];
+      if (side < 0) in = PETSC_FALSE;
+    }
+    if (in) return;
+  }
+  for (int e = 0; e < 3; e++) {
+    double d;
+    ClosestSegment(p, v + 3 * e, v + 3 * ((e + 1) % 3), qe);
+    d = Dist3(p, qe);
+    if (d < best) {
+      best = d;
+      for (int k = 0; k < 3; k++) q[k] = qe[k];
+    }
+  }
+}
+
+/* whether x lies inside the solid: the parity of the distinct crossings of the tessellation by a ray from x, in two
+   generic directions (a third decides when they disagree: a ray through an edge of the tessellation) */
+static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
+{
+  const double dirs[3][3] = {{0.5236, 0.6471, 0.5539}, {-0.6133, 0.2719, -0.7417}, {0.3013, -0.8429, 0.4458}};
+  const double dirs2[3][3] = {{0.8316, 0.5554, 0}, {-0.4226, 0.9063, 0}, {-0.7071, -0.7071, 0}};
+  double       tol = 1e-9 * cad->len, t, out;
+  int          vote = 0;
+
+  for (int r = 0; r < 3; r++) {
+    double    n[3];
+    PetscInt  nh = 0, nout = 0;
+    PetscReal *ts = cad->sorted;
+    for (int k = 0; k < 3; k++) n[k] = dim == 3 ? dirs[r][k] : dirs2[r][k];
+    if (dim == 3) {
+      double l = PetscSqrtReal(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int k = 0; k < 3; k++) n[k] /= l;
+    }
+    for (PetscInt e = 0; e < cad->nel; e++)
+      if (RayElement(dim, &cad->xyz[e * dim * 3], x, n, &t, &out) && out <= 1e-9 && t > tol) ts[nh++] = t;
+    qsort(ts, (size_t)nh, sizeof(PetscReal), CompareHits);
+    for (PetscInt i = 0; i < nh; i++)
+      if (i == 0 || ts[i] - ts[i - 1] > tol) nout++;
+    vote += nout % 2;
+    if (r == 1 && vote != 1) break; /* the two agree */
+  }
+  return vote >= 2 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* The signed distance: the closest point of the tessellation, made exact on the CAD entities that come near it (gmsh's
+   closest point on an entity, kept if it lies on the entity's tessellated, trimmed part); where none is kept (an
+   edge or corner of the obstacle, straight in the tessellation) the tessellation's point. Away from the surface the
+   normal is x - z (sign from the solid's inside), on it the entity's own normal, oriented by the inside just
+   outside of it. A sheet (no volume) has no inside: a vertex on it has no normal, an error. Two closest points as
+   near but apart: the normal is undefined, an error. */
+/* The closest point z of the obstacle to x (CAD units, xb the vertex in the mesh's units for the messages) at the
+   distance h: the tessellation's, made exact on the CAD entities that come near it (gmsh's closest point on an
+   entity, kept if it lies on its tessellated, trimmed part); where none is kept (an edge or corner of the obstacle,
+   straight in the tessellation) the tessellation's point (*btag = -1). Two entities' closest points as near but apart:
+   an error. */
+static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], const PetscReal xb[], double z[3], double *h, int *btag_, double bpar[2])
+{
+  PetscInt dim = o->dim;
+  int      sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
+  double   q[3], zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
+  PetscBool found = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < cad->nel; e++) { /* the tessellation's closest point */
+    double d;
+    ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
+    d = Dist3(x, q);
+    if (d < dt) {
+      dt = d;
+      for (int k = 0; k < 3; k++) zt[k] = q[k];
+    }
+  }
+  for (PetscInt e = 0; e < cad->nel && ntag < 64; e++) { /* the entities near it */
+    int       tag = cad->tag[e];
+    PetscBool seen = PETSC_FALSE;
+    ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
+    if (Dist3(x, q) > dt + 8 * cad->dev[tag] + tol) continue;
+    for (int j = 0; j < ntag && !seen; j++) seen = (PetscBool)(tags[j] == tag);
+    if (!seen) tags[ntag++] = tag;
+  }
+  for (int j = 0; j < ntag; j++) { /* each made exact on its CAD entity */
+    double *c = NULL, *par = NULL, d, y[3];
+    size_t  nc, npar;
+    gmshModelGetClosestPoint(sdim, tags[j], x, 3, &c, &nc, &par, &npar, &ierr);
+    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, tags[j]);
+    cad->nnewton++;
+    for (int k = 0; k < 3; k++) y[k] = c[k];
+    d = Dist3(x, y);
+    if (DistTessellation(cad, dim, tags[j], y) <= 4 * cad->dev[tags[j]] + tol) {
+      if (d < dbest) {
+        if (found) {
+          d2 = dbest;
+          for (int k = 0; k < 3; k++) z2[k] = z[k];
+        }
+        dbest = d;
+        btag  = tags[j];
+        for (int k = 0; k < 3; k++) z[k] = y[k];
+        for (size_t k = 0; k < npar && k < 2; k++) bpar[k] = par[k];
+        found = PETSC_TRUE;
+      } else if (d < d2) {
+        d2 = d;
+        for (int k = 0; k < 3; k++) z2[k] = y[k];
+      }
+    }
+    gmshFree(c);
+    if (par) gmshFree(par);
+  }
+  if (!found || dbest > dt + 4 * cad->dev[btag] + tol) { /* an edge or corner: the tessellation's point */
+    btag  = -1;
+    dbest = dt;
+    for (int k = 0; k < 3; k++) z[k] = zt[k];
+  }
+  PetscCheck(btag < 0 || !(d2 - dbest <= 1e-9 * cad->len && Dist3(z, z2) > 1e-6 * cad->len), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], z2[0], z2[1], z2[2]);
+  *h     = dbest;
+  *btag_ = btag;
+  PetscFunctionReturn(0);
+}
+
+/* The signed distance from ClosestCAD's point z: away from the surface the normal is x - z (its sign from the solid's
+   inside), on it the entity's own normal, oriented by the inside just outside of it. A sheet (no volume) has no
+   inside: a vertex on it has no normal, an error. Inside the solid the closest point is checked for uniqueness: the
+   closest points of points 1e-6 of the model's size away in the axes' directions stay near z (within two elements of
+   the tessellation, whose point may stand in for the exact one near an edge) unless x lies where two parts of the
+   surface are as near (the centre of a ball: an error). */
+static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal *g, PetscReal nb[])
+{
+  Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
+  PetscInt      dim = o->dim;
+  int           btag;
+  double        x[3] = {0, 0, 0}, z[3] = {0, 0, 0}, nrm[3] = {0, 0, 0}, h, bpar[2] = {0, 0}, off;
+  PetscBool     inside = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(CAD_Gap, 0, 0, 0, 0));
+  PetscCall(CadLoad(o, cad));
+  cad->nquery++;
+  for (PetscInt k = 0; k < dim; k++) x[k] = (xb[k] - cad->shift[k]) / cad->scale;
+  if (cad->hel == 0)
+    for (PetscInt e = 0; e < cad->nel; e++)
+      for (PetscInt a = 0; a < dim; a++) cad->hel = PetscMax(cad->hel, Dist3(&cad->xyz[(e * dim + a) * 3], &cad->xyz[(e * dim + (a + 1) % dim) * 3]));
+  PetscCall(ClosestCAD(o, cad, x, xb, z, &h, &btag, bpar));
+  off = 8 * (btag >= 0 ? cad->dev[btag] : 0) + 1e-6 * cad->len;
+  if (h > 1e-7 * cad->len) {
+    if (cad->solid) { /* the side of x; near a curved face, where x and the tessellation may lie on either side of each
+                         other, the side of the point off along the same normal line */
+      double y[3];
+      for (int k = 0; k < 3; k++) y[k] = h < off ? z[k] + off * (x[k] - z[k]) / h : x[k];
+      inside = InsideSolid(cad, dim, y);
+    }
+    if (inside) {
+      for (PetscInt k = 0; k < dim; k++) {
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          double y[3] = {x[0], x[1], x[2]}, zy[3], hy, py[2];
+          int    ty;
+          y[k] += sgn * 1e-6 * cad->len;
+          PetscCall(ClosestCAD(o, cad, y, xb, zy, &hy, &ty, py));
+          PetscCheck(Dist3(z, zy) <= PetscMax(1e-3 * cad->len, 2 * cad->hel), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies inside the obstacle where its closest point on the surface is not unique ((%g, %g, %g) and, 1e-6 of the model's size away, (%g, %g, %g)): its normal is undefined", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), z[0], z[1], z[2], zy[0], zy[1], zy[2]);
+        }
+      }
+    }
+    for (int k = 0; k < 3; k++) nrm[k] = (inside ? -1 : 1) * (x[k] - z[k]) / h;
+    *g = cad->scale * (inside ? -h : h);
+  } else { /* on the surface: the normal from the closest points of points delta away along the axes (their offset
+              x + delta e_k - z_k is delta (e_k.n) n), oriented by the side of the point off along it */
+    double    best = 0, y[3], dot = 0, delta = 1e-5 * cad->len;
+    PetscCheck(btag >= 0 && cad->solid, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies on %s, where the obstacle's normal cannot be computed", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), btag < 0 ? "an edge or corner of the obstacle" : "a sheet (a model without volumes has no inside to orient it)");
+    for (PetscInt k = 0; k < dim; k++) {
+      double yk[3] = {x[0], x[1], x[2]}, zy[3], hy, py[2];
+      int    ty;
+      yk[k] += delta;
+      PetscCall(ClosestCAD(o, cad, yk, xb, zy, &hy, &ty, py));
+      if (hy > best) {
+        best = hy;
+        for (int q = 0; q < 3; q++) nrm[q] = (yk[q] - zy[q]) / hy;
+      }
+    }
+    PetscCheck(best > 0.1 * delta, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the obstacle has no normal at the closest point (%g, %g, %g) of the contact vertex at (%g, %g, %g)", cad->file, z[0], z[1], z[2], (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0));
+    for (int k = 0; k < 3; k++) y[k] = z[k] + off * nrm[k];
+    if (InsideSolid(cad, dim, y))
+      for (int k = 0; k < 3; k++) nrm[k] = -nrm[k];
+    for (int k = 0; k < 3; k++) dot += nrm[k] * (x[k] - z[k]);
+    *g = cad->scale * dot;
+  }
+  for (PetscInt k = 0; k < dim; k++) nb[k] = nrm[k];
+  PetscCall(PetscLogEventEnd(CAD_Gap, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
@@ -496,6 +735,7 @@ PetscErrorCode SgObstacleCreate_CAD(SgObstacle o)
   cad->scale        = 1;
   o->data           = cad;
   o->gap            = Gap_CAD;
+  o->distance       = Distance_CAD;
   o->setfromoptions = SetFromOptions_CAD;
   o->destroy        = Destroy_CAD;
   PetscFunctionReturn(0);
