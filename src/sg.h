@@ -19,6 +19,7 @@ PetscErrorCode SgLogEventsRegister(void);
 #define SgValidPointer(ptr, arg) PetscCheck((ptr) != NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (" #ptr ") is NULL", PETSC_FUNCTION_NAME, (int)(arg))
 PetscErrorCode SgValidObject(PetscObject, PetscClassId, const char[], const char[], int);
 #define SgValidHeaderSpecific(obj, classid, cname, arg) PetscCall(SgValidObject((PetscObject)(obj), classid, cname, PETSC_FUNCTION_NAME, (int)(arg)))
+extern PetscClassId SG_PROBLEM_CLASSID, SG_CONT_CLASSID; /* the PETSc classes of SgProblem and SgCont (SgLogEventsRegister) */
 PetscErrorCode SgValidProblem(SgProblem, const char[], int);
 PetscErrorCode SgValidCont(SgCont, const char[], int);
 

@@ -55,29 +55,45 @@ PetscErrorCode SgContRegister(const char name[], PetscErrorCode (*create)(SgCont
   PetscFunctionReturn(0);
 }
 
-/* arg-th argument of fn must be a live SgCont (not NULL, not destroyed) */
+/* arg-th argument of fn must be a live SgCont (not NULL, not destroyed): the class id of its PETSc header, checked also
+   where PETSc's PetscValidHeaderSpecific compiles to nothing (an optimized PETSc) */
 PetscErrorCode SgValidCont(SgCont ct, const char fn[], int arg)
 {
   PetscFunctionBeginUser;
-  PetscCheck(ct, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (the SgCont) is NULL", fn, arg);
-  PetscCheck(ct->cookie == SG_CONT_COOKIE, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d is not an SgCont (destroyed, or never created by SgContCreate)", fn, arg);
+  PetscCall(SgValidObject((PetscObject)ct, SG_CONT_CLASSID, "SgCont", fn, arg));
+  PetscValidHeaderSpecific(ct, SG_CONT_CLASSID, arg);
   PetscFunctionReturn(0);
 }
 
-/* The controller holds the problem (SgProblemReference) until SgContDestroy: the caller may destroy its handle. */
+static PetscErrorCode SgContViewObject(PetscObject obj, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContView((SgCont)obj, viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SgContDestroyObject(PetscObject *obj)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContDestroy((SgCont *)obj));
+  PetscFunctionReturn(0);
+}
+
+/* The controller holds the problem (PetscObjectReference) until SgContDestroy: the caller may destroy its handle. */
 PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 {
-  SgCont ct;
+  SgCont   ct;
+  MPI_Comm comm;
 
   PetscFunctionBeginUser;
   SgValidPointer(cont, 2);
   *cont = NULL;
   PetscCall(SgValidProblem(prob, "SgContCreate", 1));
   PetscCall(SgInitializePackage());
-  PetscCall(PetscNew(&ct));
-  ct->cookie = SG_CONT_COOKIE;
-  PetscCall(SgProblemGetComm(prob, &ct->comm));
-  PetscCall(SgProblemReference(prob));
+  PetscCall(SgProblemGetComm(prob, &comm));
+  PetscCall(PetscHeaderCreate(ct, SG_CONT_CLASSID, "SgCont", "Contact solver", "SgCont", comm, SgContDestroyObject, SgContViewObject));
+  ct->comm = comm;
+  PetscCall(PetscObjectReference((PetscObject)prob));
   ct->problem_obj = prob;
   ct->kkt_tol     = 1e-10;
   ct->max_outer   = 50;
@@ -130,8 +146,7 @@ PetscErrorCode SgContSetOptionsPrefix(SgCont ct, const char prefix[])
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(ct, "SgContSetOptionsPrefix"));
   PetscCheck(!prefix || prefix[0] != '-', ct->comm, PETSC_ERR_ARG_WRONG, "SgContSetOptionsPrefix: the prefix '%s' must not begin with a hyphen", prefix);
-  PetscCall(PetscFree(ct->prefix));
-  PetscCall(PetscStrallocpy(prefix, &ct->prefix));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)ct, prefix));
   PetscFunctionReturn(0);
 }
 
@@ -140,7 +155,7 @@ PetscErrorCode SgContGetOptionsPrefix(SgCont ct, const char *prefix[])
   PetscFunctionBeginUser;
   ValidCont(ct, 1);
   SgValidPointer(prefix, 2);
-  *prefix = ct->prefix;
+  *prefix = ((PetscObject)ct)->prefix;
   PetscFunctionReturn(0);
 }
 
@@ -182,12 +197,12 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
      fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
      can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
-  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
   if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
-  PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
+  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Continuation controller", NULL);
   {
     PetscBool set;
     PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
@@ -206,7 +221,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(create(ct));
   if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
   PetscOptionsEnd();
-  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ct->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
@@ -244,9 +259,9 @@ PetscErrorCode SgContSetUp(SgCont ct)
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
-  PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
+  PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
-    PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
+    PetscCall(SgSSNCreate(ct->prob, ct->c, ((PetscObject)ct)->prefix, ct->ksp, ct->J, &ct->ssn));
     PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
   }
   ct->setup_failed = PETSC_FALSE;
@@ -264,7 +279,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   if (!ct) PetscFunctionReturn(0);
   ValidCont(ct, 1);
   *cont = NULL;
-  ct->cookie = 0;
+  if (--((PetscObject)ct)->refct > 0) PetscFunctionReturn(0);
   if (ct->ops.destroy) PetscCall(ct->ops.destroy(ct)); /* what the controller's data holds */
   PetscCall(PetscFree(ct->data));
   PetscCall(SgSSNDestroy(&ct->ssn));
@@ -276,7 +291,6 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(VecDestroy(&ct->ybest));
   PetscCall(PetscFree(ct->lambest));
   PetscCall(PetscFree(ct->gammas));
-  PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
   PetscCall(SgSummaryDestroy(&ct->sum));
   for (PetscInt k = 0; k < ct->nsteps && ct->ysteps; k++) {
@@ -289,7 +303,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
   PetscCall(SgProblemDestroy(&ct->problem_obj)); /* the controller's hold on it: freed if the caller let it go */
-  PetscCall(PetscFree(ct));
+  PetscCall(PetscHeaderDestroy(&ct));
   PetscFunctionReturn(0);
 }
 

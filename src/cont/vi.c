@@ -46,7 +46,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetOperators(ct->prob, &vi->K, &vi->b));
   PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
-  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ct->prefix ? ct->prefix : ""));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : ""));
   PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
   PetscCall(SgContactAxisAligned(ct->c, "-cont_type vi", axis, sign));
   PetscCall(SgContStart(ct, &ok));
