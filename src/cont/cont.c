@@ -172,6 +172,52 @@ PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it
   PetscFunctionReturn(0);
 }
 
+/* The options of the type under its heading (-help) */
+static PetscErrorCode TypeOptions(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  char head[128];
+
+  PetscFunctionBeginUser;
+  if (!ct->ops.setfromoptions) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(head, sizeof(head), "SgCont %s options (-cont_type %s)", ct->type, ct->type));
+  PetscOptionsHeadBegin(PetscOptionsObject, head);
+  PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+/* With -help, the options of every other registered type too (each read into a scratch controller of that type, which
+   is thrown away), so that -help lists them all whichever type runs. */
+static PetscErrorCode HelpOtherTypes(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  PetscBool     help;
+  int           n;
+  const char  **names;
+  PetscErrorCode (*create)(SgCont);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(PetscOptionsObject->options, &help));
+  if (!help || !PetscOptionsObject->printhelp || PetscOptionsObject->alreadyprinted) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListGet(SgContList, &names, &n));
+  for (int i = 0; i < n; i++) {
+    SgCont    tmp;
+    PetscBool same;
+    PetscCall(PetscStrcmp(names[i], ct->type, &same));
+    if (same) continue;
+    PetscCall(PetscFunctionListFind(SgContList, names[i], &create));
+    PetscCall(PetscNew(&tmp));
+    tmp->comm = ct->comm;
+    PetscCall(PetscStrncpy(tmp->type, names[i], sizeof(tmp->type)));
+    PetscCall(create(tmp));
+    PetscCall(TypeOptions(tmp, PetscOptionsObject));
+    if (tmp->ops.destroy) PetscCall(tmp->ops.destroy(tmp));
+    PetscCall(PetscFree(tmp->data));
+    PetscCall(PetscFree(tmp));
+  }
+  PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
 /* The options under the prefix: -cont_type and the controller's own, the stopping tests, checkpoint and restart files.
    The problem is set up first (its options are read before the solver's). */
 PetscErrorCode SgContSetFromOptions(SgCont ct)
@@ -202,7 +248,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
   if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
-  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Continuation controller", NULL);
+  PetscObjectOptionsBegin((PetscObject)ct);
   {
     PetscBool set;
     PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
@@ -219,7 +265,9 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
   ct->ops.needs_ssn = PETSC_TRUE;
   PetscCall(create(ct));
-  if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
+  PetscCall(PetscObjectChangeTypeName((PetscObject)ct, ct->type));
+  PetscCall(TypeOptions(ct, PetscOptionsObject));
+  PetscCall(HelpOtherTypes(ct, PetscOptionsObject));
   PetscOptionsEnd();
   if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
@@ -266,6 +314,7 @@ PetscErrorCode SgContSetUp(SgCont ct)
   }
   ct->setup_failed = PETSC_FALSE;
   ct->setup        = PETSC_TRUE;
+  PetscCall(PetscObjectViewFromOptions((PetscObject)ct, NULL, "-cont_view")); /* the type and its parameters */
   PetscFunctionReturn(0);
 }
 

@@ -31,7 +31,7 @@ typedef struct {
   PetscErrorCode (*update)(SgCont, PetscReal *);
   PetscErrorCode (*finish)(SgCont);
   PetscErrorCode (*solve)(SgCont);
-  PetscErrorCode (*view)(SgCont, PetscViewer);
+  PetscErrorCode (*view)(SgCont, PetscViewer); /* the type's parameters, continuing SgContView's first line ("; ...", no newline) */
   PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
   PetscBool   needs_ssn;
   PetscBool   shifts;     /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */

@@ -190,3 +190,67 @@ PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const cha
   PetscFunctionReturn(0);
 }
 
+
+/* Renamed options: the new name and the old one, still accepted with a notice (PetscOptionsDeprecated; silenced by
+   -options_suppress_deprecated_warnings). The old name's value goes through the same reader (the numbers are
+   identical, and an error names the option as it was given); the new name wins when both are given. *used: the name
+   that set the value (the new one when neither did), for the caller's messages. */
+static PetscErrorCode OldName(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], PetscBool *given)
+{
+  char text[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, oldname, given));
+  if (!*given) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(text, sizeof(text), "Use -%s%s instead (the same meaning and value).", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", newname + 1));
+  PetscCall(PetscOptionsDeprecated(oldname, NULL, SG_DEPRECATED_IN, text));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscReal *val, const char **used)
+{
+  PetscBool old, set;
+
+  PetscFunctionBeginUser;
+  *used = newname;
+  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
+  if (old) {
+    PetscCall(SgOptionsRealValue(PetscOptionsObject, oldname, text, val, NULL));
+    *used = oldname;
+  }
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, newname, text, val, &set));
+  if (set) *used = newname;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscInt *val, const char **used)
+{
+  PetscBool old, set;
+
+  PetscFunctionBeginUser;
+  *used = newname;
+  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
+  if (old) {
+    PetscCall(SgOptionsIntValue(PetscOptionsObject, oldname, text, val, NULL));
+    *used = oldname;
+  }
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, newname, text, val, &set));
+  if (set) *used = newname;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscBool *val, const char **used)
+{
+  PetscBool old, set;
+
+  PetscFunctionBeginUser;
+  *used = newname;
+  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
+  if (old) {
+    PetscCall(SgOptionsBoolValue(PetscOptionsObject, oldname, text, val, NULL));
+    *used = oldname;
+  }
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, newname, text, val, &set));
+  if (set) *used = newname;
+  PetscFunctionReturn(0);
+}
