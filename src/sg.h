@@ -156,9 +156,7 @@ typedef PetscErrorCode (*SgOutputFill)(void *, PetscInt, PetscInt, Vec[], PetscI
 PetscErrorCode SgOutputWriteSteps(SgElasticity, const char[], PetscInt, const PetscInt[], const PetscReal[], SgOutputFill, void *, PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 
 /* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
-typedef struct _n_SgObstacle *SgObstacle;
-extern PetscFunctionList SgObstacleList;
-PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
+extern PetscFunctionList SgObstacleList; /* SgObstacle and SgObstacleRegister: include/signorini.h */
 PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
 PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
 PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);

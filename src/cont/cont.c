@@ -172,6 +172,35 @@ PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it
   PetscFunctionReturn(0);
 }
 
+/* a line per outer step: the default of -cont_monitor (a program's setting, the option still wins) */
+PetscErrorCode SgContSetMonitor(SgCont ct, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(ct, "SgContSetMonitor"));
+  PetscCheck(on == PETSC_TRUE || on == PETSC_FALSE, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetMonitor: the flag must be PETSC_TRUE or PETSC_FALSE, got %d", (int)on);
+  ct->monitor = on;
+  PetscFunctionReturn(0);
+}
+
+/* The options every controller has */
+static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  PetscFunctionBeginUser;
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
+    if (set) ct->type_default = PETSC_FALSE;
+  }
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this (default: 1e14 x the largest normal stiffness per contact area, n^T K_ii n / w_i)", &ct->gamma_max, &ct->gamma_max_set));
+  PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
+  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
+  PetscFunctionReturn(0);
+}
+
 /* The options of the type under its heading (-help) */
 static PetscErrorCode TypeOptions(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
@@ -188,7 +217,7 @@ static PetscErrorCode TypeOptions(SgCont ct, PetscOptionItems *PetscOptionsObjec
 
 /* With -help, the options of every other registered type too (each read into a scratch controller of that type, which
    is thrown away), so that -help lists them all whichever type runs. */
-static PetscErrorCode HelpOtherTypes(SgCont ct, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode HelpTypes(SgCont ct, const char skip[], PetscOptionItems *PetscOptionsObject)
 {
   PetscBool     help;
   int           n;
@@ -202,7 +231,7 @@ static PetscErrorCode HelpOtherTypes(SgCont ct, PetscOptionItems *PetscOptionsOb
   for (int i = 0; i < n; i++) {
     SgCont    tmp;
     PetscBool same;
-    PetscCall(PetscStrcmp(names[i], ct->type, &same));
+    PetscCall(PetscStrcmp(names[i], skip, &same));
     if (same) continue;
     PetscCall(PetscFunctionListFind(SgContList, names[i], &create));
     PetscCall(PetscNew(&tmp));
@@ -215,6 +244,28 @@ static PetscErrorCode HelpOtherTypes(SgCont ct, PetscOptionItems *PetscOptionsOb
     PetscCall(PetscFree(tmp));
   }
   PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
+/* With -help: the controller's options, those of every type, printed now (before the problem is set up, whose
+   options may be missing); SgContSetFromOptions does not print them again. A copy of the controller reads them, so
+   that nothing is set yet. */
+PetscErrorCode SgContPrintHelp(SgCont ct)
+{
+  PetscBool help;
+  SgCont    tmp;
+
+  PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&tmp));
+  PetscCall(PetscMemcpy(tmp, ct, sizeof(*ct))); /* the settings' defaults (nothing of it is freed or called) */
+  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "SgCont options", "SgCont"); /* the title of PetscObjectOptionsBegin */
+  PetscCall(CommonOptions(tmp, PetscOptionsObject));
+  PetscCall(HelpTypes(tmp, "", PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscCall(PetscFree(tmp));
   PetscFunctionReturn(0);
 }
 
@@ -249,25 +300,14 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* fast is not built for friction: ipf there */
   if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
   PetscObjectOptionsBegin((PetscObject)ct);
-  {
-    PetscBool set;
-    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
-    if (set) ct->type_default = PETSC_FALSE;
-  }
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this (default: 1e14 x the largest normal stiffness per contact area, n^T K_ii n / w_i)", &ct->gamma_max, &ct->gamma_max_set));
-  PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
-  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
+  PetscCall(CommonOptions(ct, PetscOptionsObject));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
   ct->ops.needs_ssn = PETSC_TRUE;
   PetscCall(create(ct));
   PetscCall(PetscObjectChangeTypeName((PetscObject)ct, ct->type));
   PetscCall(TypeOptions(ct, PetscOptionsObject));
-  PetscCall(HelpOtherTypes(ct, PetscOptionsObject));
+  PetscCall(HelpTypes(ct, ct->type, PetscOptionsObject));
   PetscOptionsEnd();
   if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
