@@ -193,8 +193,10 @@ PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const cha
 
 /* Renamed options: the new name and the old one, still accepted with a notice (PetscOptionsDeprecated; silenced by
    -options_suppress_deprecated_warnings). The old name's value goes through the same reader (the numbers are
-   identical, and an error names the option as it was given); the new name wins when both are given. *used: the name
-   that set the value (the new one when neither did), for the caller's messages. */
+   identical, and an error names the option as it was given). When both are given the old name wins, as with PETSc's
+   own PetscOptionsDeprecated (which copies the old value over the new name): a command line of today with an old name
+   keeps overriding an options file that uses the new one. *used: the name that set the value (the new one when
+   neither did), for the caller's messages. */
 static PetscErrorCode OldName(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], PetscBool *given)
 {
   char text[256];
@@ -209,48 +211,45 @@ static PetscErrorCode OldName(PetscOptionItems *PetscOptionsObject, const char n
 
 PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscReal *val, const char **used)
 {
-  PetscBool old, set;
+  PetscBool old;
 
   PetscFunctionBeginUser;
   *used = newname;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, newname, text, val, NULL));
   PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
   if (old) {
     PetscCall(SgOptionsRealValue(PetscOptionsObject, oldname, text, val, NULL));
     *used = oldname;
   }
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, newname, text, val, &set));
-  if (set) *used = newname;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscInt *val, const char **used)
 {
-  PetscBool old, set;
+  PetscBool old;
 
   PetscFunctionBeginUser;
   *used = newname;
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, newname, text, val, NULL));
   PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
   if (old) {
     PetscCall(SgOptionsIntValue(PetscOptionsObject, oldname, text, val, NULL));
     *used = oldname;
   }
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, newname, text, val, &set));
-  if (set) *used = newname;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscBool *val, const char **used)
 {
-  PetscBool old, set;
+  PetscBool old;
 
   PetscFunctionBeginUser;
   *used = newname;
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, newname, text, val, NULL));
   PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
   if (old) {
     PetscCall(SgOptionsBoolValue(PetscOptionsObject, oldname, text, val, NULL));
     *used = oldname;
   }
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, newname, text, val, &set));
-  if (set) *used = newname;
   PetscFunctionReturn(0);
 }
