@@ -228,12 +228,13 @@ static PetscErrorCode HelpTypes(SgCont ct, const char skip[], PetscOptionItems *
   PetscCall(PetscOptionsHasHelp(PetscOptionsObject->options, &help));
   if (!help || !PetscOptionsObject->printhelp || PetscOptionsObject->alreadyprinted) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListGet(SgContList, &names, &n));
-  for (int i = 0; i < n; i++) {
+  for (int i = 0; i < n && names[i]; i++) { /* (PETSc counts the array's closing NULL in n) */
     SgCont    tmp;
     PetscBool same;
     PetscCall(PetscStrcmp(names[i], skip, &same));
     if (same) continue;
     PetscCall(PetscFunctionListFind(SgContList, names[i], &create));
+    if (!create) continue;
     PetscCall(PetscNew(&tmp));
     tmp->comm = ct->comm;
     PetscCall(PetscStrncpy(tmp->type, names[i], sizeof(tmp->type)));
@@ -261,7 +262,7 @@ PetscErrorCode SgContPrintHelp(SgCont ct)
   if (!help) PetscFunctionReturn(0);
   PetscCall(PetscNew(&tmp));
   PetscCall(PetscMemcpy(tmp, ct, sizeof(*ct))); /* the settings' defaults (nothing of it is freed or called) */
-  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "SgCont options", "SgCont"); /* the title of PetscObjectOptionsBegin */
+  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Contact solver (SgCont) options", "SgCont"); /* PetscObjectOptionsBegin's title: listed once */
   PetscCall(CommonOptions(tmp, PetscOptionsObject));
   PetscCall(HelpTypes(tmp, "", PetscOptionsObject));
   PetscOptionsEnd();
