@@ -65,20 +65,6 @@ PetscErrorCode SgValidCont(SgCont ct, const char fn[], int arg)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SgContViewObject(PetscObject obj, PetscViewer viewer)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SgContView((SgCont)obj, viewer));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SgContDestroyObject(PetscObject *obj)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SgContDestroy((SgCont *)obj));
-  PetscFunctionReturn(0);
-}
-
 /* The controller holds the problem (PetscObjectReference) until SgContDestroy: the caller may destroy its handle. */
 PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 {
@@ -91,7 +77,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   PetscCall(SgValidProblem(prob, "SgContCreate", 1));
   PetscCall(SgInitializePackage());
   PetscCall(SgProblemGetComm(prob, &comm));
-  PetscCall(PetscHeaderCreate(ct, SG_CONT_CLASSID, "SgCont", "Contact solver", "SgCont", comm, SgContDestroyObject, SgContViewObject));
+  PetscCall(PetscHeaderCreate(ct, SG_CONT_CLASSID, "SgCont", "Contact solver", "SgCont", comm, SgContDestroy, SgContView)); /* PetscObjectDestroy/View reach them */
   ct->comm = comm;
   PetscCall(PetscObjectReference((PetscObject)prob));
   ct->problem_obj = prob;

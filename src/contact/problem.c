@@ -15,20 +15,6 @@ PetscErrorCode SgValidProblem(SgProblem p, const char fn[], int arg)
 
 #define ValidProblem(p, arg) PetscCall(SgValidProblem(p, PETSC_FUNCTION_NAME, arg))
 
-static PetscErrorCode SgProblemViewObject(PetscObject obj, PetscViewer viewer)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SgProblemView((SgProblem)obj, viewer));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SgProblemDestroyObject(PetscObject *obj)
-{
-  PetscFunctionBeginUser;
-  PetscCall(SgProblemDestroy((SgProblem *)obj));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
 {
   SgProblem p;
@@ -39,7 +25,7 @@ PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
   PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgProblemCreate: the communicator is MPI_COMM_NULL");
   PetscCall(SgLogEventsRegister());
   PetscCall(SgObstacleRegisterAll());
-  PetscCall(PetscHeaderCreate(p, SG_PROBLEM_CLASSID, "SgProblem", "Contact problem", "SgProblem", comm, SgProblemDestroyObject, SgProblemViewObject));
+  PetscCall(PetscHeaderCreate(p, SG_PROBLEM_CLASSID, "SgProblem", "Contact problem", "SgProblem", comm, SgProblemDestroy, SgProblemView)); /* PetscObjectDestroy/View reach them */
   p->comm = comm;
   PetscCall(PetscTime(&p->t_create));
   *prob = p;

@@ -209,47 +209,43 @@ static PetscErrorCode OldName(PetscOptionItems *PetscOptionsObject, const char n
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscReal *val, const char **used)
+typedef PetscErrorCode (*Reader)(PetscOptionItems *, const char[], const char[], void *, PetscBool *);
+static PetscErrorCode ReadReal(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsRealValue(o, opt, text, (PetscReal *)val, set); }
+static PetscErrorCode ReadInt(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsIntValue(o, opt, text, (PetscInt *)val, set); }
+static PetscErrorCode ReadBool(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsBoolValue(o, opt, text, (PetscBool *)val, set); }
+
+static PetscErrorCode Renamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], Reader read, void *val, const char **used)
 {
   PetscBool old;
 
   PetscFunctionBeginUser;
   *used = newname;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, newname, text, val, NULL));
+  PetscCall(read(PetscOptionsObject, newname, text, val, NULL));
   PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
   if (old) {
-    PetscCall(SgOptionsRealValue(PetscOptionsObject, oldname, text, val, NULL));
+    PetscCall(read(PetscOptionsObject, oldname, text, val, NULL));
     *used = oldname;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscReal *val, const char **used)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadReal, val, used));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscInt *val, const char **used)
 {
-  PetscBool old;
-
   PetscFunctionBeginUser;
-  *used = newname;
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, newname, text, val, NULL));
-  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
-  if (old) {
-    PetscCall(SgOptionsIntValue(PetscOptionsObject, oldname, text, val, NULL));
-    *used = oldname;
-  }
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadInt, val, used));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscBool *val, const char **used)
 {
-  PetscBool old;
-
   PetscFunctionBeginUser;
-  *used = newname;
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, newname, text, val, NULL));
-  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
-  if (old) {
-    PetscCall(SgOptionsBoolValue(PetscOptionsObject, oldname, text, val, NULL));
-    *used = oldname;
-  }
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadBool, val, used));
   PetscFunctionReturn(0);
 }
