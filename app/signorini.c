@@ -180,11 +180,6 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-quiet", "Print the results only: neither the settings nor a line per outer step (-cont_monitor false)", &o->quiet, NULL));
   PetscCall(PetscOptionsString("-load_curve_file", "CSV load-displacement curve: one row per load step (with -load_steps)", NULL, o->curvefile, o->curvefile, sizeof(o->curvefile), NULL));
   PetscOptionsEnd();
-  if (o->quiet) {
-    PetscBool set;
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_monitor", &set));
-    if (!set) PetscCall(PetscOptionsSetValue(NULL, "-cont_monitor", "false"));
-  }
   PetscCheck(PetscIsNormalReal(o->magnification) && o->magnification > 0, comm, PETSC_ERR_USER_INPUT, "-output_magnification: must be positive and finite, got %g", (double)o->magnification);
   /* refuse unwritable locations before any work is done */
   PetscCall(SgFileCheckWritable(comm, "-output_file", o->outfile));
@@ -355,10 +350,12 @@ int main(int argc, char **argv)
   PetscCall(OutputOptions(comm, &out));
   PetscCall(LoadStepOptions(comm, &ls));
   PetscCall(SgProblemCreate(comm, &prob));
+  PetscCall(SgContCreate(prob, &cont)); /* the controller holds the problem (nothing read yet) */
+  PetscCall(SgContPrintHelp(cont));     /* -help: the controllers' options, even when the problem's are missing */
   PetscCall(SgProblemSetFromOptions(prob));
   PetscCall(SgProblemSetUp(prob));
   PetscCall(LoadDirichletValues(comm, prob, &ls));
-  PetscCall(SgContCreate(prob, &cont));
+  if (out.quiet) PetscCall(SgContSetMonitor(cont, PETSC_FALSE)); /* -cont_monitor still decides */
   PetscCall(SgContSetFromOptions(cont));
   PetscCall(SgContSetUp(cont));
   if (!out.quiet) { /* what runs, and how to change it */

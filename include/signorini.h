@@ -18,8 +18,9 @@
 extern "C" {
 #endif
 
-typedef struct _n_SgProblem *SgProblem;
-typedef struct _n_SgCont    *SgCont;
+typedef struct _n_SgProblem  *SgProblem;
+typedef struct _n_SgObstacle *SgObstacle; /* a rigid obstacle type (SgObstacleRegister) */
+typedef struct _n_SgCont     *SgCont;
 
 /* Registers the log events, obstacle and controller types; called by the Create functions (PetscFinalize undoes it). */
 PetscErrorCode SgInitializePackage(void);
@@ -61,7 +62,8 @@ PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], Pet
 #define SG_COMPONENT_Y 2
 #define SG_COMPONENT_Z 4
 PetscErrorCode SgProblemSetDirichletComponents(SgProblem, PetscInt, const PetscInt[]);
-PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola, ball or cad (default of -obstacle_type) */
+PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola, ball or cad (default of -obstacle_type), or one of SgObstacleRegister */
+PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle)); /* a new obstacle type for -obstacle_type / SgProblemSetObstacleType (its implementation fills the gap function of src/contact/contactimpl.h) */
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */
 PetscErrorCode SgProblemView(SgProblem, PetscViewer); /* ASCII description (NULL: stdout) */
@@ -105,7 +107,9 @@ PetscErrorCode SgContGetType(SgCont, const char *[]); /* the type (empty before 
 PetscErrorCode SgContSetOptionsPrefix(SgCont, const char[]); /* prefix of the solver's options (-<prefix>cont_type, -<prefix>ksp_type, ...) */
 PetscErrorCode SgContGetOptionsPrefix(SgCont, const char *[]);
 PetscErrorCode SgContSetTolerances(SgCont, PetscReal, PetscInt); /* KKT tolerance, outer-step limit (PETSC_DEFAULT keeps one) */
+PetscErrorCode SgContSetMonitor(SgCont, PetscBool); /* a line per outer step (default of -cont_monitor: PETSC_TRUE) */
 PetscErrorCode SgContSetFromOptions(SgCont); /* read the options (sets the problem up first) */
+PetscErrorCode SgContPrintHelp(SgCont); /* with -help: list the options of the controller and of every type now, before the problem is set up (SgContSetFromOptions does not list them again) */
 PetscErrorCode SgContSetUp(SgCont); /* linear solver, SSN solver */
 PetscErrorCode SgContSolve(SgCont); /* solve from the unconstrained start or -restart_file; called again (after SgProblemSetLoadFactor): a load step warm-started from the last solution and controller state */
 PetscErrorCode SgContGetLoadSteps(SgCont, PetscInt *); /* load steps solved so far (with those of a -restart_file checkpoint taken between load steps) */

@@ -19,6 +19,14 @@ PetscErrorCode SgLogEventsRegister(void);
 #define SgValidPointer(ptr, arg) PetscCheck((ptr) != NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (" #ptr ") is NULL", PETSC_FUNCTION_NAME, (int)(arg))
 PetscErrorCode SgValidObject(PetscObject, PetscClassId, const char[], const char[], int);
 #define SgValidHeaderSpecific(obj, classid, cname, arg) PetscCall(SgValidObject((PetscObject)(obj), classid, cname, PETSC_FUNCTION_NAME, (int)(arg)))
+/* Type options follow PETSc's rule (-ts_adapt_basic_clip): -<prefix>cont_<param> for what every controller has (the
+   first gamma: -cont_gamma), -<prefix>cont_<type>_<param> for a type's own. The names before the rule are read with
+   these, with a deprecation notice (options.c); *used names the option that set the value. */
+#define SG_DEPRECATED_IN "0.2.0"
+PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscReal *, const char **);
+PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscInt *, const char **);
+PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscBool *, const char **);
+extern PetscClassId SG_PROBLEM_CLASSID, SG_CONT_CLASSID; /* the PETSc classes of SgProblem and SgCont (SgLogEventsRegister) */
 PetscErrorCode SgValidProblem(SgProblem, const char[], int);
 PetscErrorCode SgValidCont(SgCont, const char[], int);
 
@@ -148,9 +156,7 @@ typedef PetscErrorCode (*SgOutputFill)(void *, PetscInt, PetscInt, Vec[], PetscI
 PetscErrorCode SgOutputWriteSteps(SgElasticity, const char[], PetscInt, const PetscInt[], const PetscReal[], SgOutputFill, void *, PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 
 /* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
-typedef struct _n_SgObstacle *SgObstacle;
-extern PetscFunctionList SgObstacleList;
-PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle));
+extern PetscFunctionList SgObstacleList; /* SgObstacle and SgObstacleRegister: include/signorini.h */
 PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
 PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
 PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);

@@ -352,6 +352,23 @@ static PetscErrorCode CasesCont(void)
   WRONG(SgContRegister("mine", NULL), PETSC_ERR_ARG_NULL, "SgContRegister");
 
   PetscCall(SgContCreate(p, &c));
+  /* PETSc objects: an object of the other class is refused by the class id of its header */
+  WRONG(SgContSolve((SgCont)p), PETSC_ERR_ARG_WRONG, "is not a SgCont");
+  WRONG(SgProblemSetUp((SgProblem)c), PETSC_ERR_ARG_WRONG, "is not a SgProblem");
+  WRONG(SgProblemView((SgProblem)v, NULL), PETSC_ERR_ARG_WRONG, "is not a SgProblem");
+  WRONG(SgContSetMonitor(NULL, PETSC_FALSE), PETSC_ERR_ARG_NULL, "SgCont");
+  WRONG(SgContSetMonitor(c, 7), PETSC_ERR_ARG_OUTOFRANGE, "PETSC_TRUE");
+  WRONG(SgContPrintHelp(NULL), PETSC_ERR_ARG_NULL, "SgCont");
+  RIGHT(SgContPrintHelp(c)); /* without -help: nothing */
+  WRONG(SgObstacleRegister(NULL, NULL), PETSC_ERR_ARG_NULL, "type name");
+  WRONG(SgObstacleRegister("mine", NULL), PETSC_ERR_ARG_NULL, "SgObstacleRegister");
+  {
+    const char *cname = NULL;
+    RIGHT(PetscObjectGetClassName((PetscObject)c, &cname));
+    PetscCall(Check("an SgCont is a PetscObject of class SgCont", (PetscBool)(cname && !strcmp(cname, "SgCont"))));
+    RIGHT(PetscObjectGetClassName((PetscObject)p, &cname));
+    PetscCall(Check("an SgProblem is a PetscObject of class SgProblem", (PetscBool)(cname && !strcmp(cname, "SgProblem"))));
+  }
   WRONG(SgContSetType(NULL, "ipf"), PETSC_ERR_ARG_NULL, "SgCont");
   WRONG(SgContSetType(c, NULL), PETSC_ERR_ARG_NULL, "type name");
   WRONG(SgContSetType(c, "nosuch"), PETSC_ERR_ARG_UNKNOWN_TYPE, "nosuch");
@@ -388,6 +405,12 @@ static PetscErrorCode CasesCont(void)
 
   PetscCall(SgContSetType(c, SGCONTPDAS));
   RIGHT(SgContSolve(c)); /* SetFromOptions and SetUp on the way */
+  {
+    const char *type = NULL;
+    RIGHT(PetscObjectGetType((PetscObject)c, &type));
+    PetscCall(Check("PetscObjectGetType gives the controller's type", (PetscBool)(type && !strcmp(type, SGCONTPDAS))));
+  }
+  WRONG(SgContSetMonitor(c, PETSC_FALSE), PETSC_ERR_ORDER, "before SgContSetFromOptions");
   WRONG(SgContSetType(c, SGCONTIPF), PETSC_ERR_ORDER, "before SgContSetFromOptions");
   WRONG(SgContSetTolerances(c, 1e-8, 10), PETSC_ERR_ORDER, "before SgContSetFromOptions");
   WRONG(SgContSetFromOptions(c), PETSC_ERR_ORDER, "twice");
@@ -539,9 +562,16 @@ static PetscErrorCode CasesRefcount(PetscReal *energy, PetscReal *energy_ref)
 
   PetscFunctionBeginUser;
   PetscCall(MakeProblem(&p));
-  PetscCall(SgContCreate(p, &c));
-  q = p;
-  RIGHT(SgProblemDestroy(&p));
+  {
+    PetscInt n1 = 0, n2 = 0, n3 = 0;
+    RIGHT(PetscObjectGetReference((PetscObject)p, &n1));
+    PetscCall(SgContCreate(p, &c));
+    RIGHT(PetscObjectGetReference((PetscObject)p, &n2));
+    q = p;
+    RIGHT(SgProblemDestroy(&p));
+    RIGHT(PetscObjectGetReference((PetscObject)q, &n3)); /* the controller's reference keeps it */
+    PetscCall(Check("the controller holds a PETSc reference to its problem (1, 2, then 1 after the caller's destroy)", (PetscBool)(n1 == 1 && n2 == 2 && n3 == 1)));
+  }
   PetscCall(Check("SgProblemDestroy sets the caller's handle to NULL", (PetscBool)!p));
   RIGHT(SgContSetFromOptions(c));
   RIGHT(SgContSolve(c));
@@ -563,6 +593,18 @@ static PetscErrorCode CasesRefcount(PetscReal *energy, PetscReal *energy_ref)
   RIGHT(SgContSolve(d)); /* and still, for the second controller */
   PetscCall(SgContDestroy(&d));
   PetscCall(Check("the energies agree", (PetscBool)(PetscAbsReal(*energy - *energy_ref) <= 1e-12 * PetscAbsReal(*energy_ref))));
+
+  /* PetscObjectReference (the same as SgProblemReference) on a controller: two destroys needed, the first leaves it usable */
+  PetscCall(MakeProblem(&p));
+  PetscCall(SgContCreate(p, &c));
+  PetscCall(SgProblemDestroy(&p));
+  RIGHT(PetscObjectReference((PetscObject)c));
+  d = c;
+  RIGHT(SgContDestroy(&d));
+  PetscCall(Check("SgContDestroy of one holder sets only its handle to NULL", (PetscBool)(!d && c)));
+  RIGHT(SgContSolve(c)); /* (not pdas: the first solve's default entered -ssn_condense into the options database) */
+  RIGHT(PetscObjectDestroy((PetscObject *)&c)); /* PETSc's generic destroy reaches SgContDestroy */
+  PetscCall(Check("PetscObjectDestroy sets the handle to NULL", (PetscBool)!c));
 
   /* SgProblemReference by hand: two destroys needed */
   PetscCall(MakeProblem(&p));

@@ -8,13 +8,14 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  ALM *alm = (ALM *)ct->data;
+  ALM        *alm = (ALM *)ct->data;
+  const char *o1, *o2;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-alm_gamma", "gamma of the first step", &alm->gamma, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-alm_gamma_factor", "gamma_{l+1} = factor * gamma_l (1: gamma fixed)", &alm->factor, NULL));
-  PetscCheck(PetscIsNormalReal(alm->gamma) && alm->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "-alm_gamma: must be positive and finite, got %g", (double)alm->gamma);
-  PetscCheck(PetscIsNormalReal(alm->factor) && alm->factor >= 1, ct->comm, PETSC_ERR_USER_INPUT, "-alm_gamma_factor: must be >= 1 (gamma may not decrease), got %g", (double)alm->factor);
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-alm_gamma", "gamma of the first step", &alm->gamma, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_alm_gamma_factor", "-alm_gamma_factor", "gamma_{l+1} = factor * gamma_l (1: gamma fixed)", &alm->factor, &o2));
+  PetscCheck(PetscIsNormalReal(alm->gamma) && alm->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o1, (double)alm->gamma);
+  PetscCheck(PetscIsNormalReal(alm->factor) && alm->factor >= 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be >= 1 (gamma may not decrease), got %g", o2, (double)alm->factor);
   PetscFunctionReturn(0);
 }
 
@@ -54,6 +55,15 @@ static PetscErrorCode Update_ALM(SgCont ct, PetscReal *next)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_ALM(SgCont ct, PetscViewer viewer)
+{
+  ALM *alm = (ALM *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma %g (-cont_gamma), gamma growth factor %g (-cont_alm_gamma_factor)", (double)alm->gamma, (double)alm->factor));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_ALM(SgCont ct)
 {
   ALM *alm;
@@ -64,6 +74,7 @@ PetscErrorCode SgContCreate_ALM(SgCont ct)
   alm->factor            = 1;
   ct->data               = alm;
   ct->ops.setfromoptions = SetFromOptions_ALM;
+  ct->ops.view           = View_ALM;
   ct->ops.start          = Start_ALM;
   ct->ops.update         = Update_ALM;
   ct->ops.shifts         = PETSC_TRUE;

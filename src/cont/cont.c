@@ -55,29 +55,31 @@ PetscErrorCode SgContRegister(const char name[], PetscErrorCode (*create)(SgCont
   PetscFunctionReturn(0);
 }
 
-/* arg-th argument of fn must be a live SgCont (not NULL, not destroyed) */
+/* arg-th argument of fn must be a live SgCont (not NULL, not destroyed): the class id of its PETSc header, checked also
+   where PETSc's PetscValidHeaderSpecific compiles to nothing (an optimized PETSc) */
 PetscErrorCode SgValidCont(SgCont ct, const char fn[], int arg)
 {
   PetscFunctionBeginUser;
-  PetscCheck(ct, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (the SgCont) is NULL", fn, arg);
-  PetscCheck(ct->cookie == SG_CONT_COOKIE, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d is not an SgCont (destroyed, or never created by SgContCreate)", fn, arg);
+  PetscCall(SgValidObject((PetscObject)ct, SG_CONT_CLASSID, "SgCont", fn, arg));
+  PetscValidHeaderSpecific(ct, SG_CONT_CLASSID, arg);
   PetscFunctionReturn(0);
 }
 
-/* The controller holds the problem (SgProblemReference) until SgContDestroy: the caller may destroy its handle. */
+/* The controller holds the problem (PetscObjectReference) until SgContDestroy: the caller may destroy its handle. */
 PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
 {
-  SgCont ct;
+  SgCont   ct;
+  MPI_Comm comm;
 
   PetscFunctionBeginUser;
   SgValidPointer(cont, 2);
   *cont = NULL;
   PetscCall(SgValidProblem(prob, "SgContCreate", 1));
   PetscCall(SgInitializePackage());
-  PetscCall(PetscNew(&ct));
-  ct->cookie = SG_CONT_COOKIE;
-  PetscCall(SgProblemGetComm(prob, &ct->comm));
-  PetscCall(SgProblemReference(prob));
+  PetscCall(SgProblemGetComm(prob, &comm));
+  PetscCall(PetscHeaderCreate(ct, SG_CONT_CLASSID, "SgCont", "Contact solver", "SgCont", comm, SgContDestroy, SgContView)); /* PetscObjectDestroy/View reach them */
+  ct->comm = comm;
+  PetscCall(PetscObjectReference((PetscObject)prob));
   ct->problem_obj = prob;
   ct->kkt_tol     = 1e-10;
   ct->max_outer   = 50;
@@ -130,8 +132,7 @@ PetscErrorCode SgContSetOptionsPrefix(SgCont ct, const char prefix[])
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(ct, "SgContSetOptionsPrefix"));
   PetscCheck(!prefix || prefix[0] != '-', ct->comm, PETSC_ERR_ARG_WRONG, "SgContSetOptionsPrefix: the prefix '%s' must not begin with a hyphen", prefix);
-  PetscCall(PetscFree(ct->prefix));
-  PetscCall(PetscStrallocpy(prefix, &ct->prefix));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)ct, prefix));
   PetscFunctionReturn(0);
 }
 
@@ -140,7 +141,7 @@ PetscErrorCode SgContGetOptionsPrefix(SgCont ct, const char *prefix[])
   PetscFunctionBeginUser;
   ValidCont(ct, 1);
   SgValidPointer(prefix, 2);
-  *prefix = ct->prefix;
+  *prefix = ((PetscObject)ct)->prefix;
   PetscFunctionReturn(0);
 }
 
@@ -154,6 +155,104 @@ PetscErrorCode SgContSetTolerances(SgCont ct, PetscReal kkt_tol, PetscInt max_it
   PetscCheck(max_it == PETSC_DEFAULT || max_it > 0, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetTolerances: the outer-step limit must be positive (or PETSC_DEFAULT), got %" PetscInt_FMT, max_it);
   if (kkt_tol != (PetscReal)PETSC_DEFAULT) ct->kkt_tol = kkt_tol;
   if (max_it != PETSC_DEFAULT) ct->max_outer = max_it;
+  PetscFunctionReturn(0);
+}
+
+/* a line per outer step: the default of -cont_monitor (a program's setting, the option still wins) */
+PetscErrorCode SgContSetMonitor(SgCont ct, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(ct, "SgContSetMonitor"));
+  PetscCheck(on == PETSC_TRUE || on == PETSC_FALSE, ct->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgContSetMonitor: the flag must be PETSC_TRUE or PETSC_FALSE, got %d", (int)on);
+  ct->monitor = on;
+  PetscFunctionReturn(0);
+}
+
+/* The options every controller has */
+static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  PetscFunctionBeginUser;
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
+    if (set) ct->type_default = PETSC_FALSE;
+  }
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this (default: 1e14 x the largest normal stiffness per contact area, n^T K_ii n / w_i)", &ct->gamma_max, &ct->gamma_max_set));
+  PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
+  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The options of the type under its heading (-help) */
+static PetscErrorCode TypeOptions(SgCont ct, PetscOptionItems *PetscOptionsObject)
+{
+  char head[128];
+
+  PetscFunctionBeginUser;
+  if (!ct->ops.setfromoptions) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(head, sizeof(head), "SgCont %s options (-cont_type %s)", ct->type, ct->type));
+  PetscOptionsHeadBegin(PetscOptionsObject, head);
+  PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+/* With -help, the options of every other registered type too (each read into a scratch controller of that type, which
+   is thrown away), so that -help lists them all whichever type runs. */
+static PetscErrorCode HelpTypes(SgCont ct, const char skip[], PetscOptionItems *PetscOptionsObject)
+{
+  PetscBool     help;
+  int           n;
+  const char  **names;
+  PetscErrorCode (*create)(SgCont);
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(PetscOptionsObject->options, &help));
+  if (!help || !PetscOptionsObject->printhelp || PetscOptionsObject->alreadyprinted) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListGet(SgContList, &names, &n));
+  for (int i = 0; i < n && names[i]; i++) { /* (PETSc counts the array's closing NULL in n) */
+    SgCont    tmp;
+    PetscBool same;
+    PetscCall(PetscStrcmp(names[i], skip, &same));
+    if (same) continue;
+    PetscCall(PetscFunctionListFind(SgContList, names[i], &create));
+    if (!create) continue;
+    PetscCall(PetscNew(&tmp));
+    tmp->comm = ct->comm;
+    PetscCall(PetscStrncpy(tmp->type, names[i], sizeof(tmp->type)));
+    PetscCall(create(tmp));
+    PetscCall(TypeOptions(tmp, PetscOptionsObject));
+    if (tmp->ops.destroy) PetscCall(tmp->ops.destroy(tmp));
+    PetscCall(PetscFree(tmp->data));
+    PetscCall(PetscFree(tmp));
+  }
+  PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
+/* With -help: the controller's options, those of every type, printed now (before the problem is set up, whose
+   options may be missing); SgContSetFromOptions does not print them again. A copy of the controller reads them, so
+   that nothing is set yet. */
+PetscErrorCode SgContPrintHelp(SgCont ct)
+{
+  PetscBool help;
+  SgCont    tmp;
+
+  PetscFunctionBeginUser;
+  ValidCont(ct, 1);
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&tmp));
+  PetscCall(PetscMemcpy(tmp, ct, sizeof(*ct))); /* the settings' defaults (nothing of it is freed or called) */
+  PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Contact solver (SgCont) options", "SgCont"); /* PetscObjectOptionsBegin's title: listed once */
+  PetscCall(CommonOptions(tmp, PetscOptionsObject));
+  PetscCall(HelpTypes(tmp, "", PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscCall(PetscFree(tmp));
   PetscFunctionReturn(0);
 }
 
@@ -182,31 +281,22 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
      fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
      can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
-  PetscCall(SgLinearSolverDefaults(ct->prob, ct->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
   if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
-  PetscOptionsBegin(ct->comm, ct->prefix, "Continuation controller", NULL);
-  {
-    PetscBool set;
-    PetscCall(PetscOptionsFList("-cont_type", "Controller: none (one (P_gamma)), alm, pf, ipf, fast (one capped (P_gamma) with inexact steps), or the baselines pdas and vi", NULL, SgContList, ct->type, ct->type, sizeof(ct->type), &set));
-    if (set) ct->type_default = PETSC_FALSE;
-  }
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_kkt_tol", "Stop when the KKT residual of (P) (dimensionless: relative to the force and displacement scales) is below this; for none, the tolerance of the equilibrium residual of (P_gamma)", &ct->kkt_tol, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_max_it", "Maximum number of outer (continuation) steps", &ct->max_outer, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_gamma_max", "Stop with GAMMA_OVERFLOW when gamma would exceed this (default: 1e14 x the largest normal stiffness per contact area, n^T K_ii n / w_i)", &ct->gamma_max, &ct->gamma_max_set));
-  PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
-  PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
+  PetscObjectOptionsBegin((PetscObject)ct);
+  PetscCall(CommonOptions(ct, PetscOptionsObject));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
   PetscCheck(create, ct->comm, PETSC_ERR_USER_INPUT, "-cont_type: unknown controller '%s' (see -help for the list)", ct->type);
   ct->ops.needs_ssn = PETSC_TRUE;
   PetscCall(create(ct));
-  if (ct->ops.setfromoptions) PetscCall(ct->ops.setfromoptions(ct, PetscOptionsObject));
+  PetscCall(PetscObjectChangeTypeName((PetscObject)ct, ct->type));
+  PetscCall(TypeOptions(ct, PetscOptionsObject));
+  PetscCall(HelpTypes(ct, ct->type, PetscOptionsObject));
   PetscOptionsEnd();
-  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ct->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
@@ -244,13 +334,14 @@ PetscErrorCode SgContSetUp(SgCont ct)
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
-  PetscCall(SgLinearSolverCreate(ct->prob, ct->prefix, &ct->ksp, &ct->J));
+  PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
-    PetscCall(SgSSNCreate(ct->prob, ct->c, ct->prefix, ct->ksp, ct->J, &ct->ssn));
+    PetscCall(SgSSNCreate(ct->prob, ct->c, ((PetscObject)ct)->prefix, ct->ksp, ct->J, &ct->ssn));
     PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
   }
   ct->setup_failed = PETSC_FALSE;
   ct->setup        = PETSC_TRUE;
+  PetscCall(PetscObjectViewFromOptions((PetscObject)ct, NULL, "-cont_view")); /* the type and its parameters */
   PetscFunctionReturn(0);
 }
 
@@ -264,7 +355,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   if (!ct) PetscFunctionReturn(0);
   ValidCont(ct, 1);
   *cont = NULL;
-  ct->cookie = 0;
+  if (--((PetscObject)ct)->refct > 0) PetscFunctionReturn(0);
   if (ct->ops.destroy) PetscCall(ct->ops.destroy(ct)); /* what the controller's data holds */
   PetscCall(PetscFree(ct->data));
   PetscCall(SgSSNDestroy(&ct->ssn));
@@ -276,7 +367,6 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(VecDestroy(&ct->ybest));
   PetscCall(PetscFree(ct->lambest));
   PetscCall(PetscFree(ct->gammas));
-  PetscCall(PetscFree(ct->prefix));
   PetscCall(SgHistoryDestroy(&ct->hist));
   PetscCall(SgSummaryDestroy(&ct->sum));
   for (PetscInt k = 0; k < ct->nsteps && ct->ysteps; k++) {
@@ -289,7 +379,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
   PetscCall(SgProblemDestroy(&ct->problem_obj)); /* the controller's hold on it: freed if the caller let it go */
-  PetscCall(PetscFree(ct));
+  PetscCall(PetscHeaderDestroy(&ct));
   PetscFunctionReturn(0);
 }
 

@@ -20,6 +20,7 @@
 #pragma once
 
 #include "sg.h"
+#include <petsc/private/petscimpl.h> /* PetscHeaderCreate: SgCont is a PetscObject */
 
 typedef struct {
   PetscErrorCode (*setfromoptions)(SgCont, PetscOptionItems *);
@@ -30,7 +31,7 @@ typedef struct {
   PetscErrorCode (*update)(SgCont, PetscReal *);
   PetscErrorCode (*finish)(SgCont);
   PetscErrorCode (*solve)(SgCont);
-  PetscErrorCode (*view)(SgCont, PetscViewer);
+  PetscErrorCode (*view)(SgCont, PetscViewer); /* the type's parameters, continuing SgContView's first line ("; ...", no newline) */
   PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
   PetscBool   needs_ssn;
   PetscBool   shifts;     /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */
@@ -38,13 +39,12 @@ typedef struct {
   const char *state_names[SG_STATE_MAX];
 } SgContOps;
 
-#define SG_CONT_COOKIE 0x53434f4eL /* marks a live SgCont (cleared when it is freed) */
-
+/* A PetscObject (class SG_CONT_CLASSID): its header holds the reference count, the options prefix (-<prefix>cont_*)
+   and, once chosen, the type name (PetscObjectGetType); PetscObjectView/ViewFromOptions reach SgContView. */
 struct _n_SgCont {
-  long         cookie;       /* SG_CONT_COOKIE */
-  MPI_Comm     comm;
+  struct _p_PetscObject hdr;
+  MPI_Comm     comm;         /* the problem's communicator */
   char         type[64];     /* empty until set: then the default for the problem (SgContSetFromOptions) */
-  char        *prefix;
   PetscBool    monitor;      /* -cont_monitor: a line per outer step */
   PetscBool    type_default; /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
   char         solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */

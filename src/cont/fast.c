@@ -36,19 +36,20 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  Fast *f = (Fast *)ct->data;
+  Fast       *f = (Fast *)ct->data;
+  const char *o1, *o2, *o3, *o4, *o5, *o6;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_gamma", "gamma of (P_gamma) (0: estimated from the unconstrained start)", &f->gamma, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_start_rtol", "Relative tolerance of the unconstrained start solve", &f->start_rtol, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-fast_early", "Stop CG when its prospective iterate changes the active set", &f->early, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-fast_ksp_kkt", "Stop CG when its prospective iterate keeps the active set and meets the KKT tolerance of (P)", &f->kkt_stop, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-fast_max_it", "Maximum number of SSN steps per (P_gamma)", &f->max_it, NULL));
-  PetscCheck(f->gamma >= 0 && !PetscIsInfOrNanReal(f->gamma), ct->comm, PETSC_ERR_USER_INPUT, "-fast_gamma: must be >= 0 and finite, got %g", (double)f->gamma);
-  PetscCheck(f->start_rtol > 0 && f->start_rtol < 1, ct->comm, PETSC_ERR_USER_INPUT, "-fast_start_rtol: must be in (0, 1), got %g", (double)f->start_rtol);
-  PetscCheck(f->loose > 0 && f->loose <= 1, ct->comm, PETSC_ERR_USER_INPUT, "-fast_ksp_loose: must be in (0, 1], got %g", (double)f->loose);
-  PetscCheck(f->max_it > 0, ct->comm, PETSC_ERR_USER_INPUT, "-fast_max_it: must be positive, got %" PetscInt_FMT, f->max_it);
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-fast_gamma", "gamma of (P_gamma) (0: estimated from the unconstrained start)", &f->gamma, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_fast_start_rtol", "-fast_start_rtol", "Relative tolerance of the unconstrained start solve", &f->start_rtol, &o2));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_fast_ksp_loose", "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, &o3));
+  PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_fast_early", "-fast_early", "Stop CG when its prospective iterate changes the active set", &f->early, &o4));
+  PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_fast_ksp_kkt", "-fast_ksp_kkt", "Stop CG when its prospective iterate keeps the active set and meets the KKT tolerance of (P)", &f->kkt_stop, &o5));
+  PetscCall(SgOptionsIntRenamed(PetscOptionsObject, "-cont_fast_max_it", "-fast_max_it", "Maximum number of SSN steps per (P_gamma)", &f->max_it, &o6));
+  PetscCheck(f->gamma >= 0 && !PetscIsInfOrNanReal(f->gamma), ct->comm, PETSC_ERR_USER_INPUT, "%s: must be >= 0 and finite, got %g", o1, (double)f->gamma);
+  PetscCheck(f->start_rtol > 0 && f->start_rtol < 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be in (0, 1), got %g", o2, (double)f->start_rtol);
+  PetscCheck(f->loose > 0 && f->loose <= 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be in (0, 1], got %g", o3, (double)f->loose);
+  PetscCheck(f->max_it > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive, got %" PetscInt_FMT, o6, f->max_it);
   PetscFunctionReturn(0);
 }
 
@@ -199,7 +200,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
     PetscCall(EstimateGamma(ct, &ct->gamma));
     ct->gamma = PetscMin(ct->gamma, ct->gamma_max);
   }
-  PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)\n", (double)ct->gamma, (double)ct->kkt.residual));
+  PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)", (double)ct->gamma, (double)ct->kkt.residual));
 
   f->ct = ct;
   PetscCall(VecDuplicate(ct->y, &f->w));
@@ -254,6 +255,17 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_Fast(SgCont ct, PetscViewer viewer)
+{
+  Fast *f = (Fast *)ct->data;
+
+  PetscFunctionBeginUser;
+  if (f->gamma > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "; gamma %g (-cont_gamma)", (double)f->gamma));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "; gamma estimated from the unconstrained start (-cont_gamma 0)"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, ", start rtol %g (-cont_fast_start_rtol), early CG stop %s (-cont_fast_early) tested below %g ||r_0|| (-cont_fast_ksp_loose), KKT stop of CG %s (-cont_fast_ksp_kkt), at most %" PetscInt_FMT " SSN steps (-cont_fast_max_it)", (double)f->start_rtol, f->early ? "on" : "off", (double)f->loose, f->kkt_stop ? "on" : "off", f->max_it));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_Fast(SgCont ct)
 {
   Fast *f;
@@ -268,6 +280,7 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   f->max_it          = 30;
   ct->data               = f;
   ct->ops.setfromoptions = SetFromOptions_Fast;
+  ct->ops.view           = View_Fast;
   ct->ops.solve          = Solve_Fast; /* its own loop: one (P_gamma), gamma raised only if it proves too small */
   PetscFunctionReturn(0);
 }

@@ -13,19 +13,20 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_IPF(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  IPF *ipf = (IPF *)ct->data;
+  IPF        *ipf = (IPF *)ct->data;
+  const char *o1, *o2, *o3, *o4, *o5;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_gamma1", "gamma of the first path step", &ipf->gamma1, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau", "Neighbourhood size: SSN stops when ||(r1,r2)|| <= tau/sqrt(gamma)", &ipf->tau, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau1", "Minimal growth factor of gamma in rule (15)", &ipf->tau1, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_q", "Exponent q of 1/max(rho_F, rho_C)^q in rule (15)", &ipf->q, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ipf_tau3", "Safeguard (16): |tangent - model| <= tau3 |change of J|", &ipf->tau3, NULL));
-  PetscCheck(PetscIsNormalReal(ipf->gamma1) && ipf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_gamma1: must be positive and finite, got %g", (double)ipf->gamma1);
-  PetscCheck(PetscIsNormalReal(ipf->tau) && ipf->tau > 0, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_tau: must be positive and finite, got %g", (double)ipf->tau);
-  PetscCheck(PetscIsNormalReal(ipf->tau1) && ipf->tau1 > 1, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_tau1: must be > 1, got %g", (double)ipf->tau1);
-  PetscCheck(PetscIsNormalReal(ipf->q) && ipf->q >= 1, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_q: must be >= 1, got %g", (double)ipf->q);
-  PetscCheck(PetscIsNormalReal(ipf->tau3) && ipf->tau3 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-ipf_tau3: must be positive and finite, got %g", (double)ipf->tau3);
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-ipf_gamma1", "gamma of the first path step", &ipf->gamma1, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_ipf_tau", "-ipf_tau", "Neighbourhood size: SSN stops when ||(r1,r2)|| <= tau/sqrt(gamma)", &ipf->tau, &o2));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_ipf_tau1", "-ipf_tau1", "Minimal growth factor of gamma in rule (15)", &ipf->tau1, &o3));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_ipf_q", "-ipf_q", "Exponent q of 1/max(rho_F, rho_C)^q in rule (15)", &ipf->q, &o4));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_ipf_tau3", "-ipf_tau3", "Safeguard (16): |tangent - model| <= tau3 |change of J|", &ipf->tau3, &o5));
+  PetscCheck(PetscIsNormalReal(ipf->gamma1) && ipf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o1, (double)ipf->gamma1);
+  PetscCheck(PetscIsNormalReal(ipf->tau) && ipf->tau > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o2, (double)ipf->tau);
+  PetscCheck(PetscIsNormalReal(ipf->tau1) && ipf->tau1 > 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be > 1, got %g", o3, (double)ipf->tau1);
+  PetscCheck(PetscIsNormalReal(ipf->q) && ipf->q >= 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be >= 1, got %g", o4, (double)ipf->q);
+  PetscCheck(PetscIsNormalReal(ipf->tau3) && ipf->tau3 > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o5, (double)ipf->tau3);
   PetscFunctionReturn(0);
 }
 
@@ -105,7 +106,7 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
     *nbhd = 0; /* the last problem: solved exactly */
   } else if (cap <= gamma) *nbhd = 0;
   PetscCall(SgSSNGetSNES(ct->ssn, &snes));
-  PetscCall(PetscInfo(snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)\n", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
+  PetscCall(PetscInfo(snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
   *Jprev = J;
   *nextp = next;
   PetscFunctionReturn(0);
@@ -115,6 +116,15 @@ static PetscErrorCode Finish_IPF(SgCont ct)
 {
   PetscFunctionBeginUser;
   PetscCall(SgSSNSetNeighbourhood(ct->ssn, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode View_IPF(SgCont ct, PetscViewer viewer)
+{
+  IPF *ipf = (IPF *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma %g (-cont_gamma), neighbourhood tau %g (-cont_ipf_tau), growth rule (15): tau1 %g (-cont_ipf_tau1), q %g (-cont_ipf_q), safeguard (16): tau3 %g (-cont_ipf_tau3)", (double)ipf->gamma1, (double)ipf->tau, (double)ipf->tau1, (double)ipf->q, (double)ipf->tau3));
   PetscFunctionReturn(0);
 }
 
@@ -131,6 +141,7 @@ PetscErrorCode SgContCreate_IPF(SgCont ct)
   ipf->tau3              = 100;
   ct->data               = ipf;
   ct->ops.setfromoptions = SetFromOptions_IPF;
+  ct->ops.view           = View_IPF;
   ct->ops.start          = Start_IPF;
   ct->ops.started        = Started_IPF;
   ct->ops.prestep        = PreStep_IPF;

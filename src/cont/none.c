@@ -10,14 +10,15 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_None(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  None *nn = (None *)ct->data;
+  None       *nn = (None *)ct->data;
+  const char *o1, *o2;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_gamma", "Regularization parameter gamma of (P_gamma) (for -cont_type none)", &nn->gamma, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_lamhat", "Constant shift lamhat of (P_gamma) (for -cont_type none)", &nn->lamhat, NULL));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-contact_gamma", "Regularization parameter gamma of (P_gamma)", &nn->gamma, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_none_lamhat", "-contact_lamhat", "Constant shift lamhat of (P_gamma)", &nn->lamhat, &o2));
   if (!ct->c) PetscFunctionReturn(0); /* read, but unused: linear elasticity */
-  PetscCheck(PetscIsNormalReal(nn->gamma) && nn->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "-contact_gamma: gamma must be positive and finite, got %g", (double)nn->gamma);
-  PetscCheck((PetscIsNormalReal(nn->lamhat) || nn->lamhat == 0) && nn->lamhat >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-contact_lamhat: the shift must be finite and >= 0, got %g", (double)nn->lamhat);
+  PetscCheck(PetscIsNormalReal(nn->gamma) && nn->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: gamma must be positive and finite, got %g", o1, (double)nn->gamma);
+  PetscCheck((PetscIsNormalReal(nn->lamhat) || nn->lamhat == 0) && nn->lamhat >= 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: the shift must be finite and >= 0, got %g", o2, (double)nn->lamhat);
   PetscFunctionReturn(0);
 }
 
@@ -75,6 +76,16 @@ static PetscErrorCode Solve_None(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_None(SgCont ct, PetscViewer viewer)
+{
+  None *nn = (None *)ct->data;
+
+  PetscFunctionBeginUser;
+  if (!ct->c) PetscFunctionReturn(0); /* linear elasticity: no gamma */
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; one (P_gamma) at gamma %g (-cont_gamma), shift lamhat %g (-cont_none_lamhat)", (double)nn->gamma, (double)nn->lamhat));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_None(SgCont ct)
 {
   None *nn;
@@ -84,6 +95,7 @@ PetscErrorCode SgContCreate_None(SgCont ct)
   nn->gamma              = 1e4;
   ct->data               = nn;
   ct->ops.setfromoptions = SetFromOptions_None;
+  ct->ops.view           = View_None;
   ct->ops.solve          = Solve_None;
   ct->problem            = ct->c ? "P_gamma" : "elasticity";
   PetscFunctionReturn(0);

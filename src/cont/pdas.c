@@ -16,19 +16,22 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  PDAS *pd = (PDAS *)ct->data;
+  PDAS       *pd = (PDAS *)ct->data;
+  const char *o1, *o2, *o3;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", &pd->c, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-pdas_max_it", "Maximum number of active-set iterations", &pd->maxit, NULL));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_pdas_c", "-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", &pd->c, &o1));
+  PetscCall(SgOptionsIntRenamed(PetscOptionsObject, "-cont_pdas_max_it", "-pdas_max_it", "Maximum number of active-set iterations", &pd->maxit, &o2));
+  /* pdas runs no SSN: its monitor has a name of its own (-ssn_monitor, the SSN's, is still read here with a notice) */
+  PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_pdas_monitor", "-ssn_monitor", "Print the active set and the energy per PDAS iteration", &pd->monitor, &o3));
   {
+    /* the SSN's -ssn_condense is not a pdas option (not listed under it): only refused when set true */
     PetscBool condense = PETSC_FALSE;
-    PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print the active set and the energy per PDAS iteration", &pd->monitor, NULL));
-    PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "(not for pdas)", &condense, NULL));
+    PetscCall(PetscOptionsGetBool(PetscOptionsObject->options, PetscOptionsObject->prefix, "-ssn_condense", &condense, NULL));
     PetscCheck(!condense, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_condense does not apply to -cont_type pdas (its solves eliminate the active normal dofs)");
   }
-  PetscCheck((PetscIsNormalReal(pd->c) || pd->c == 0) && pd->c >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_c: must be finite and >= 0, got %g", (double)pd->c);
-  PetscCheck(pd->maxit > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pdas_max_it: must be positive, got %" PetscInt_FMT, pd->maxit);
+  PetscCheck((PetscIsNormalReal(pd->c) || pd->c == 0) && pd->c >= 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be finite and >= 0, got %g", o1, (double)pd->c);
+  PetscCheck(pd->maxit > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive, got %" PetscInt_FMT, o2, pd->maxit);
   PetscFunctionReturn(0);
 }
 
@@ -339,6 +342,16 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_PDAS(SgCont ct, PetscViewer viewer)
+{
+  PDAS *pd = (PDAS *)ct->data;
+
+  PetscFunctionBeginUser;
+  if (pd->c > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "; active-set constant c %g (-cont_pdas_c), at most %" PetscInt_FMT " iterations (-cont_pdas_max_it)", (double)pd->c, pd->maxit));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "; active-set constant c = E / contact mesh size (-cont_pdas_c 0), at most %" PetscInt_FMT " iterations (-cont_pdas_max_it)", pd->maxit));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_PDAS(SgCont ct)
 {
   PDAS *pd;
@@ -348,6 +361,7 @@ PetscErrorCode SgContCreate_PDAS(SgCont ct)
   pd->maxit          = 100;
   ct->data           = pd;
   ct->ops.setfromoptions = SetFromOptions_PDAS;
+  ct->ops.view           = View_PDAS;
   ct->ops.solve          = Solve_PDAS;
   ct->ops.needs_ssn      = PETSC_FALSE; /* a solver of (P) itself, with the controller's linear solver */
   PetscFunctionReturn(0);

@@ -9,15 +9,16 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOptionsObject)
 {
-  PF *pf = (PF *)ct->data;
+  PF         *pf = (PF *)ct->data;
+  const char *o1, *o2, *o3;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_gamma1", "gamma of the first path step", &pf->gamma1, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_tau0", "tau_k = tau0^k: the model's predicted distance to V(infinity) shrinks by tau_k", &pf->tau0, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-pf_fallback_factor", "gamma growth when the model cannot be fitted (never needed in our runs)", &pf->fallback, NULL));
-  PetscCheck(PetscIsNormalReal(pf->gamma1) && pf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "-pf_gamma1: must be positive and finite, got %g", (double)pf->gamma1);
-  PetscCheck(PetscIsNormalReal(pf->tau0) && pf->tau0 > 0 && pf->tau0 < 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_tau0: must lie in (0, 1), got %g", (double)pf->tau0);
-  PetscCheck(PetscIsNormalReal(pf->fallback) && pf->fallback > 1, ct->comm, PETSC_ERR_USER_INPUT, "-pf_fallback_factor: must be > 1, got %g", (double)pf->fallback);
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-pf_gamma1", "gamma of the first path step", &pf->gamma1, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_pf_tau0", "-pf_tau0", "tau_k = tau0^k: the model's predicted distance to V(infinity) shrinks by tau_k", &pf->tau0, &o2));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_pf_fallback_factor", "-pf_fallback_factor", "gamma growth when the model cannot be fitted (never needed in our runs)", &pf->fallback, &o3));
+  PetscCheck(PetscIsNormalReal(pf->gamma1) && pf->gamma1 > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o1, (double)pf->gamma1);
+  PetscCheck(PetscIsNormalReal(pf->tau0) && pf->tau0 > 0 && pf->tau0 < 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must lie in (0, 1), got %g", o2, (double)pf->tau0);
+  PetscCheck(PetscIsNormalReal(pf->fallback) && pf->fallback > 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be > 1, got %g", o3, (double)pf->fallback);
   PetscFunctionReturn(0);
 }
 
@@ -75,6 +76,15 @@ static PetscErrorCode Update_PF(SgCont ct, PetscReal *next)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_PF(SgCont ct, PetscViewer viewer)
+{
+  PF *pf = (PF *)ct->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma %g (-cont_gamma), tau0 %g (-cont_pf_tau0), fallback growth factor %g (-cont_pf_fallback_factor)", (double)pf->gamma1, (double)pf->tau0, (double)pf->fallback));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_PF(SgCont ct)
 {
   PF *pf;
@@ -86,6 +96,7 @@ PetscErrorCode SgContCreate_PF(SgCont ct)
   pf->fallback           = 10;
   ct->data               = pf;
   ct->ops.setfromoptions = SetFromOptions_PF;
+  ct->ops.view           = View_PF;
   ct->ops.start          = Start_PF;
   ct->ops.model          = Model_PF;
   ct->ops.update         = Update_PF;

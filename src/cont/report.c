@@ -475,8 +475,11 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii) PetscFunctionReturn(0);
   if (!ct->solved) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps\n", ct->type, ct->type_default ? " (the default; -cont_type changes it)" : "", ct->prefix ? " with prefix " : "", ct->prefix ? ct->prefix : "", (double)ct->kkt_tol, ct->max_outer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "SgCont %s%s%s%s: KKT tolerance %g, at most %" PetscInt_FMT " outer steps", ct->type, ct->type_default ? " (the default; -cont_type changes it)" : "", ((PetscObject)ct)->prefix ? " with prefix " : "", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : "", (double)ct->kkt_tol, ct->max_outer));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_FALSE)); /* the type's parameters continue the line */
     if (ct->ops.view) PetscCall(ct->ops.view(ct, viewer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+    PetscCall(PetscViewerASCIIUseTabs(viewer, PETSC_TRUE));
     if (ct->ksp) {
       char name[128];
       PetscCall(LinearSolverName(ct, name, sizeof(name)));

@@ -46,7 +46,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetOperators(ct->prob, &vi->K, &vi->b));
   PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
-  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ct->prefix ? ct->prefix : ""));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : ""));
   PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
   PetscCall(SgContactAxisAligned(ct->c, "-cont_type vi", axis, sign));
   PetscCall(SgContStart(ct, &ok));
@@ -143,6 +143,21 @@ static PetscErrorCode Destroy_VI(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode View_VI(SgCont ct, PetscViewer viewer)
+{
+  VI         *vi     = (VI *)ct->data;
+  const char *prefix = ((PetscObject)ct)->prefix;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; PETSc's SNESVI on the normal displacement components, its options -%svi_snes_*, -%svi_ksp_*\n", prefix ? prefix : "", prefix ? prefix : ""));
+  if (vi->snes) {
+    SNESType type;
+    PetscCall(SNESGetType(vi->snes, &type));
+    PetscCall(PetscViewerASCIIPrintf(viewer, " (%s)", type));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_VI(SgCont ct)
 {
   VI *vi;
@@ -152,6 +167,7 @@ PetscErrorCode SgContCreate_VI(SgCont ct)
   ct->data    = vi;
   ct->ops.solve     = Solve_VI;
   ct->ops.destroy   = Destroy_VI;
+  ct->ops.view      = View_VI;
   ct->ops.needs_ssn = PETSC_FALSE; /* PETSc's SNESVI solves (P) itself */
   PetscFunctionReturn(0);
 }

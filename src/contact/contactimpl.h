@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sg.h"
+#include <petsc/private/petscimpl.h> /* PetscHeaderCreate: SgProblem is a PetscObject */
 
 
 struct _n_SgObstacle {
@@ -68,13 +69,12 @@ struct _n_SgContact {
   char      *kact, *kst;
 };
 
-#define SG_PROBLEM_COOKIE 0x5350524fL /* marks a live SgProblem (cleared when it is freed) */
-
+/* A PetscObject (class SG_PROBLEM_CLASSID): its header holds the reference count (the caller's handle and each
+   controller's PetscObjectReference), the options prefix and the name; PetscObjectView/ViewFromOptions reach
+   SgProblemView through it. */
 struct _n_SgProblem {
-  long                 cookie;      /* SG_PROBLEM_COOKIE */
-  PetscInt             refct;       /* the caller's handle and each controller's (SgProblemReference) */
-  MPI_Comm             comm;
-  char                *prefix;
+  struct _p_PetscObject hdr;
+  MPI_Comm             comm;        /* the caller's communicator (the header keeps PETSc's duplicate) */
   DM                   dm;          /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
   SgElasticitySettings settings;    /* material and boundary parts given through the interface */
   SgBoundary           contact;     /* the contact boundary given through the interface */

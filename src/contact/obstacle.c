@@ -245,7 +245,14 @@ PetscErrorCode SgObstacleCreate_Ball(SgObstacle o)
 
 PetscErrorCode SgObstacleRegister(const char name[], PetscErrorCode (*create)(SgObstacle))
 {
+  size_t len;
+
   PetscFunctionBeginUser;
+  PetscCheck(name && name[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgObstacleRegister: a type name is needed");
+  SgValidPointer(create, 2);
+  PetscCall(PetscStrlen(name, &len));
+  PetscCheck(len < sizeof(((SgObstacle)0)->type), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgObstacleRegister: the type name has %zu characters, at most %zu", len, sizeof(((SgObstacle)0)->type) - 1);
+  PetscCall(SgObstacleRegisterAll()); /* ours first, so that a caller's type of the same name replaces ours */
   PetscCall(PetscFunctionListAdd(&SgObstacleList, name, create));
   PetscFunctionReturn(0);
 }

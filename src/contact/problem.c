@@ -3,12 +3,13 @@
    may be given through the interface, and the options (under the problem's prefix) override them. */
 #include "contact/contactimpl.h"
 
-/* arg-th argument of fn must be a live SgProblem (not NULL, not destroyed) */
+/* arg-th argument of fn must be a live SgProblem (not NULL, not destroyed): the class id of its PETSc header, checked
+   also where PETSc's PetscValidHeaderSpecific compiles to nothing (an optimized PETSc) */
 PetscErrorCode SgValidProblem(SgProblem p, const char fn[], int arg)
 {
   PetscFunctionBeginUser;
-  PetscCheck(p, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (the SgProblem) is NULL", fn, arg);
-  PetscCheck(p->cookie == SG_PROBLEM_COOKIE, PETSC_COMM_SELF, PETSC_ERR_ARG_CORRUPT, "%s: argument %d is not an SgProblem (destroyed, or never created by SgProblemCreate)", fn, arg);
+  PetscCall(SgValidObject((PetscObject)p, SG_PROBLEM_CLASSID, "SgProblem", fn, arg));
+  PetscValidHeaderSpecific(p, SG_PROBLEM_CLASSID, arg);
   PetscFunctionReturn(0);
 }
 
@@ -24,10 +25,8 @@ PetscErrorCode SgProblemCreate(MPI_Comm comm, SgProblem *prob)
   PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgProblemCreate: the communicator is MPI_COMM_NULL");
   PetscCall(SgLogEventsRegister());
   PetscCall(SgObstacleRegisterAll());
-  PetscCall(PetscNew(&p));
-  p->cookie = SG_PROBLEM_COOKIE;
-  p->refct  = 1;
-  p->comm   = comm;
+  PetscCall(PetscHeaderCreate(p, SG_PROBLEM_CLASSID, "SgProblem", "Contact problem", "SgProblem", comm, SgProblemDestroy, SgProblemView)); /* PetscObjectDestroy/View reach them */
+  p->comm = comm;
   PetscCall(PetscTime(&p->t_create));
   *prob = p;
   PetscFunctionReturn(0);
@@ -123,8 +122,7 @@ PetscErrorCode SgProblemSetOptionsPrefix(SgProblem p, const char prefix[])
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetOptionsPrefix"));
   PetscCheck(!prefix || prefix[0] != '-', p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetOptionsPrefix: the prefix '%s' must not begin with a hyphen", prefix);
-  PetscCall(PetscFree(p->prefix));
-  PetscCall(PetscStrallocpy(prefix, &p->prefix));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)p, prefix));
   PetscFunctionReturn(0);
 }
 
@@ -133,7 +131,7 @@ PetscErrorCode SgProblemGetOptionsPrefix(SgProblem p, const char *prefix[])
   PetscFunctionBeginUser;
   ValidProblem(p, 1);
   SgValidPointer(prefix, 2);
-  *prefix = p->prefix;
+  *prefix = ((PetscObject)p)->prefix;
   PetscFunctionReturn(0);
 }
 
@@ -167,10 +165,10 @@ static PetscErrorCode ValuesDimension(SgProblem p, PetscInt *dim)
     PetscCall(DMGetDimension(p->dm, dim));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscOptionsHasName(NULL, p->prefix, "-dm_plex_filename", &file));
+  PetscCall(PetscOptionsHasName(NULL, ((PetscObject)p)->prefix, "-dm_plex_filename", &file));
   if (file) PetscFunctionReturn(0);
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* a malformed -box_dim is reported when the mesh is made */
-  if (PetscOptionsGetInt(NULL, p->prefix, "-box_dim", &d, &set)) set = PETSC_FALSE;
+  if (PetscOptionsGetInt(NULL, ((PetscObject)p)->prefix, "-box_dim", &d, &set)) set = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
   if (set && d == 3) *dim = 3;
   PetscFunctionReturn(0);
@@ -187,8 +185,8 @@ static PetscErrorCode CheckValuesDimension(SgProblem p)
   for (PetscInt t = 0; t < 2; t++) {
     PetscBool set;
     if (!p->values_dim[t] || p->values_dim[t] == dim) continue;
-    PetscCall(PetscOptionsHasName(NULL, p->prefix, opt[t], &set));
-    PetscCheck(set, p->comm, PETSC_ERR_ARG_INCOMP, "SgProblemSetBoundary: the %s values were read as %" PetscInt_FMT " per id (the mesh did not exist yet), but the mesh is %" PetscInt_FMT "D: call SgProblemSetDM (or give -%sbox_dim %" PetscInt_FMT ") before SgProblemSetBoundary", name[t], p->values_dim[t], dim, p->prefix ? p->prefix : "", dim);
+    PetscCall(PetscOptionsHasName(NULL, ((PetscObject)p)->prefix, opt[t], &set));
+    PetscCheck(set, p->comm, PETSC_ERR_ARG_INCOMP, "SgProblemSetBoundary: the %s values were read as %" PetscInt_FMT " per id (the mesh did not exist yet), but the mesh is %" PetscInt_FMT "D: call SgProblemSetDM (or give -%sbox_dim %" PetscInt_FMT ") before SgProblemSetBoundary", name[t], p->values_dim[t], dim, ((PetscObject)p)->prefix ? ((PetscObject)p)->prefix : "", dim);
   }
   PetscFunctionReturn(0);
 }
@@ -265,10 +263,10 @@ PetscErrorCode SgProblemSetFromOptions(SgProblem p)
   PetscCheck(!p->setfromoptions, p->comm, PETSC_ERR_ORDER, "SgProblemSetFromOptions: called twice");
   PetscCall(SgContactDestroy(&p->c)); /* of an earlier call that failed */
   PetscCall(SgElasticityDestroy(&p->el));
-  PetscCall(SgElasticityCreate(p->comm, p->prefix, &p->el));
+  PetscCall(SgElasticityCreate(p->comm, ((PetscObject)p)->prefix, &p->el));
   PetscCall(SgElasticitySetFromOptions(p->el, p->dm, &p->settings));
   PetscCall(CheckValuesDimension(p));
-  PetscCall(SgContactCreate(p->el, p->prefix, p->contact.active ? &p->contact : NULL, p->obstacle, &p->c));
+  PetscCall(SgContactCreate(p->el, ((PetscObject)p)->prefix, p->contact.active ? &p->contact : NULL, p->obstacle, &p->c));
   p->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -300,7 +298,7 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(p->comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &isascii));
   if (!isascii || !p->setup) PetscFunctionReturn(0);
-  PetscCall(PetscViewerASCIIPrintf(viewer, "SgProblem%s%s:\n", p->prefix ? " with prefix " : "", p->prefix ? p->prefix : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "SgProblem%s%s:\n", ((PetscObject)p)->prefix ? " with prefix " : "", ((PetscObject)p)->prefix ? ((PetscObject)p)->prefix : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(SgElasticityView(p->el, viewer));
   if (p->c) {
@@ -314,12 +312,13 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* One more holder of the problem (a controller): SgProblemDestroy frees it when the last one lets it go. */
+/* One more holder of the problem (a controller): SgProblemDestroy frees it when the last one lets it go. The same as
+   PetscObjectReference((PetscObject)p), kept for the programs that call it. */
 PetscErrorCode SgProblemReference(SgProblem p)
 {
   PetscFunctionBeginUser;
   ValidProblem(p, 1);
-  p->refct++;
+  PetscCall(PetscObjectReference((PetscObject)p));
   PetscFunctionReturn(0);
 }
 
@@ -334,13 +333,11 @@ PetscErrorCode SgProblemDestroy(SgProblem *prob)
   if (!p) PetscFunctionReturn(0);
   ValidProblem(p, 1);
   *prob = NULL;
-  if (--p->refct > 0) PetscFunctionReturn(0);
-  p->cookie = 0;
+  if (--((PetscObject)p)->refct > 0) PetscFunctionReturn(0);
   PetscCall(SgContactDestroy(&p->c));
   PetscCall(SgElasticityDestroy(&p->el));
   PetscCall(DMDestroy(&p->dm));
-  PetscCall(PetscFree(p->prefix));
-  PetscCall(PetscFree(p));
+  PetscCall(PetscHeaderDestroy(&p));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
    SgContRegisterAll); SgInitializePackage (cont/cont.c) calls them all. */
 #include "sg.h"
 
+PetscClassId  SG_PROBLEM_CLASSID, SG_CONT_CLASSID;
 PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
 
 PetscErrorCode SgLogEventsRegister(void)
@@ -13,6 +14,8 @@ PetscErrorCode SgLogEventsRegister(void)
   if (done) PetscFunctionReturn(0);
   done = PETSC_TRUE;
   PetscCall(PetscClassIdRegister("Signorini", &cid));
+  PetscCall(PetscClassIdRegister("SgProblem", &SG_PROBLEM_CLASSID));
+  PetscCall(PetscClassIdRegister("SgCont", &SG_CONT_CLASSID));
   PetscCall(PetscLogEventRegister("SgMeshSetUp", cid, &SG_MeshSetUp));
   PetscCall(PetscLogEventRegister("SgAssembly", cid, &SG_Assembly));
   PetscCall(PetscLogEventRegister("SgContactSetUp", cid, &SG_ContactSetUp));

@@ -190,3 +190,62 @@ PetscErrorCode SgOptionsIntValue(PetscOptionItems *PetscOptionsObject, const cha
   PetscFunctionReturn(0);
 }
 
+
+/* Renamed options: the new name and the old one, still accepted with a notice (PetscOptionsDeprecated; silenced by
+   -options_suppress_deprecated_warnings). The old name's value goes through the same reader (the numbers are
+   identical, and an error names the option as it was given). When both are given the old name wins, as with PETSc's
+   own PetscOptionsDeprecated (which copies the old value over the new name): a command line of today with an old name
+   keeps overriding an options file that uses the new one. *used: the name that set the value (the new one when
+   neither did), for the caller's messages. */
+static PetscErrorCode OldName(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], PetscBool *given)
+{
+  char text[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, oldname, given));
+  if (!*given) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(text, sizeof(text), "Use -%s%s instead (the same meaning and value).", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", newname + 1));
+  PetscCall(PetscOptionsDeprecated(oldname, NULL, SG_DEPRECATED_IN, text));
+  PetscFunctionReturn(0);
+}
+
+typedef PetscErrorCode (*Reader)(PetscOptionItems *, const char[], const char[], void *, PetscBool *);
+static PetscErrorCode ReadReal(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsRealValue(o, opt, text, (PetscReal *)val, set); }
+static PetscErrorCode ReadInt(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsIntValue(o, opt, text, (PetscInt *)val, set); }
+static PetscErrorCode ReadBool(PetscOptionItems *o, const char opt[], const char text[], void *val, PetscBool *set) { return SgOptionsBoolValue(o, opt, text, (PetscBool *)val, set); }
+
+static PetscErrorCode Renamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], Reader read, void *val, const char **used)
+{
+  PetscBool old;
+
+  PetscFunctionBeginUser;
+  *used = newname;
+  PetscCall(read(PetscOptionsObject, newname, text, val, NULL));
+  PetscCall(OldName(PetscOptionsObject, newname, oldname, &old));
+  if (old) {
+    PetscCall(read(PetscOptionsObject, oldname, text, val, NULL));
+    *used = oldname;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscReal *val, const char **used)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadReal, val, used));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscInt *val, const char **used)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadInt, val, used));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *PetscOptionsObject, const char newname[], const char oldname[], const char text[], PetscBool *val, const char **used)
+{
+  PetscFunctionBeginUser;
+  PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadBool, val, used));
+  PetscFunctionReturn(0);
+}
