@@ -342,6 +342,16 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
          body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
       done = PETSC_TRUE;
+    } else if (coupled && k > 1) {
+      /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
+         slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
+         that meets the KKT tolerance of (P) has converged whatever they do */
+      PetscCall(SgContMeasure(ct));
+      if (ct->kkt.residual <= ct->kkt_tol) {
+        done          = PETSC_TRUE;
+        ct->converged = PETSC_TRUE;
+        PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
+      } else PetscCall(PetscArraycpy(act, next, c->n));
     } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
       PetscInt64 h;
       PetscCall(SgContactActiveSetHash(ct->c, next, &h));
