@@ -149,6 +149,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscInt64        *hash;
   char              *act, *next;
   PetscBool          done = PETSC_FALSE, ok;
+  PetscReal          kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
   const PetscBool    fr = (PetscBool)(c->friction != SG_FRICTION_NONE);
   const PetscBool    coupled = (PetscBool)(c->friction == SG_FRICTION_COULOMB && pd->coupled);
   char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
@@ -345,13 +346,14 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     } else if (coupled && k > 1) {
       /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
          slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
-         that meets the KKT tolerance of (P) has converged whatever they do */
+         that meets the KKT tolerance of (P), and no longer halves it, has converged whatever they do */
       PetscCall(SgContMeasure(ct));
-      if (ct->kkt.residual <= ct->kkt_tol) {
+      if (ct->kkt.residual <= ct->kkt_tol && !(ct->kkt.residual < 0.5 * kktprev)) { /* and no longer improving */
         done          = PETSC_TRUE;
         ct->converged = PETSC_TRUE;
         PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
       } else PetscCall(PetscArraycpy(act, next, c->n));
+      kktprev = ct->kkt.residual;
     } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
       PetscInt64 h;
       PetscCall(SgContactActiveSetHash(ct->c, next, &h));
