@@ -85,6 +85,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   ct->max_outer   = 50;
   ct->gamma_max   = 1e20;
   ct->stall_its   = 10;
+  ct->coulomb_shifted = PETSC_TRUE;
   ct->residual    = SG_NAN;
   ct->V0 = ct->V = SG_NAN;
   ct->monitor     = PETSC_TRUE;
@@ -183,6 +184,7 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_coulomb_shifted_path", "Coulomb friction: when a regularized solve of pf or ipf fails, solve again from the start on the shifted path (the augmented Lagrangian steps of alm, gamma doubled per step)", &ct->coulomb_shifted, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscFunctionReturn(0);
 }
@@ -365,6 +367,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree(ct->lam));
   PetscCall(PetscFree(ct->yref));
   PetscCall(VecDestroy(&ct->ybest));
+  PetscCall(VecDestroy(&ct->ystart));
   PetscCall(PetscFree(ct->lambest));
   PetscCall(PetscFree(ct->gammas));
   PetscCall(SgHistoryDestroy(&ct->hist));
@@ -949,14 +952,76 @@ static PetscErrorCode RestoreBest(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+/* Coulomb friction when a regularized solve of the path (pf, ipf: lamhat = 0, gamma grown towards 1e13) failed. Beyond a
+   friction coefficient that depends on the mesh (about 5.7 on the sliding block with nu = 0 and 40 x 20 cells) the
+   discrete Coulomb problem has no solution with a connected contact zone: its solutions contact at every other vertex
+   of the slip zone (the others lift off by 1e-5), a mode of the mesh that the SSN at a large gamma cannot reach: its
+   Newton steps peel the edge of the contact zone vertex by vertex and cycle. The shifted path reaches it: from the
+   solve's start, lamhat = 0 and the first gamma of the path, each (P_gamma) solved exactly, the shift set to its
+   multipliers (normal and tangential) and gamma doubled (the steps of -cont_type alm -alm_gamma_factor 2), until the
+   KKT tolerance of (P). Said on the output and in the reason; the shift is 0 again afterwards (the path's). */
+static PetscErrorCode CoulombShiftedPath(SgCont ct)
+{
+  PetscReal  gamma, *lhT;
+  PetscBool  stop = PETSC_FALSE, ok = PETSC_TRUE;
+  PetscInt   dim, outer0 = ct->outer;
+  char       was[sizeof(ct->reason)];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
+  gamma = ct->gammas[0];
+  PetscCall(PetscPrintf(ct->comm, "  %s with Coulomb friction: %.200s; solved again from the start on the shifted path (lamhat = the last multipliers, gamma doubled per step from %g)\n", ct->type, was, (double)gamma));
+  PetscCall(SgSSNSetNeighbourhood(ct->ssn, 0)); /* exact solves */
+  PetscCall(VecCopy(ct->ystart, ct->y));
+  PetscCall(PetscArrayzero(ct->lamhat, ct->cv.n));
+  PetscCall(PetscArrayzero(lhT, ct->cv.n * dim));
+  ct->converged = PETSC_FALSE;
+  ct->best_kkt  = PETSC_MAX_REAL;
+  ct->best_step = ct->outer;
+  while (ok && !stop) {
+    const PetscInt its0 = ct->ssn_its;
+    const PetscReal *mT;
+    ct->outer++;
+    PetscCall(SgContSSN(ct, gamma, &ok));
+    PetscCall(SgContMeasure(ct));
+    PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, NULL));
+    PetscCall(KeepBest(ct));
+    if (!ok) {
+      PetscCall(AcceptFailedSSN(ct));
+      break;
+    }
+    PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->cv.n));
+    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, &mT, NULL));
+    PetscCall(PetscArraycpy(lhT, mT, ct->cv.n * dim));
+    gamma *= 2;
+    ct->gamma = gamma;
+    PetscCall(SgContCheck(ct, &stop));
+  }
+  PetscCall(PetscArrayzero(ct->lamhat, ct->cv.n));
+  PetscCall(PetscArrayzero(lhT, ct->cv.n * dim));
+  if (ct->converged) {
+    char now[sizeof(ct->reason)];
+    PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.200s on the shifted path (outer steps %" PetscInt_FMT "-%" PetscInt_FMT ", after %.250s)", now, outer0 + 1, ct->outer, was));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The outer loop of every continuation controller (see cont/contimpl.h for the order of the hooks). */
 static PetscErrorCode SolveContinuation(SgCont ct)
 {
-  PetscBool stop = PETSC_FALSE, ok;
+  PetscBool stop = PETSC_FALSE, ok, ssnfail = PETSC_FALSE;
+  const PetscBool shifted = (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
 
   PetscFunctionBeginUser;
   if (!ct->restarted && !ct->warm) PetscCall(ct->ops.start(ct));
   PetscCall(SgContStart(ct, &ok)); /* V(0) */
+  if (shifted && ok) {
+    if (!ct->ystart) PetscCall(VecDuplicate(ct->y, &ct->ystart));
+    PetscCall(VecCopy(ct->y, ct->ystart));
+  }
   if (!ct->restarted && !ct->warm && ct->ops.started) PetscCall(ct->ops.started(ct));
   while (ok && !stop) {
     const PetscInt its0 = ct->ssn_its;
@@ -975,11 +1040,17 @@ static PetscErrorCode SolveContinuation(SgCont ct)
     PetscCall(KeepBest(ct));
     if (!ok) {
       PetscCall(AcceptFailedSSN(ct));
+      ssnfail = (PetscBool)!ct->converged;
       break;
     }
     PetscCall(ct->ops.update(ct, &next));
     ct->gamma = next;
     PetscCall(SgContCheck(ct, &stop));
+  }
+  if (shifted && ssnfail && ct->ngammas) {
+    SgSSNReason sr;
+    PetscCall(SgSSNGetReason(ct->ssn, &sr));
+    if (sr == SG_SSN_MAX_IT || sr == SG_SSN_CYCLING || sr == SG_SSN_SNES_FAILED) PetscCall(CoulombShiftedPath(ct));
   }
   PetscCall(RestoreBest(ct));
   if (ct->ops.finish) PetscCall(ct->ops.finish(ct));

@@ -69,6 +69,8 @@ struct _n_SgCont {
   PetscReal    best_kkt;     /* progress watch */
   PetscInt     best_step;
   Vec          ybest;        /* the iterate of least KKT residual of this solve, its multiplier, residual and step */
+  Vec          ystart;       /* Coulomb: the iterate this solve started from (for CoulombShiftedPath) */
+  PetscBool    coulomb_shifted; /* Coulomb: after a failed SSN, solve again on the shifted path (-cont_coulomb_shifted_path) */
   PetscReal   *lambest;
   PetscReal    kktbest;
   PetscInt     outerbest;

@@ -12,6 +12,7 @@ typedef struct {
   PetscReal c;     /* weight of the gap in the active-set test lam + c g > 0 (0: E / contact mesh size) */
   PetscInt  maxit;
   PetscBool monitor;
+  PetscBool coupled; /* Coulomb: the slip force F lam_N t with the normal reaction of the same solve */
 } PDAS;
 
 static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -22,6 +23,7 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
   PetscFunctionBeginUser;
   PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_pdas_c", "-pdas_c", "Constant c of the active-set test lam + c (tau_N y - d) > 0 (0: E / contact mesh size)", &pd->c, &o1));
   PetscCall(SgOptionsIntRenamed(PetscOptionsObject, "-cont_pdas_max_it", "-pdas_max_it", "Maximum number of active-set iterations", &pd->maxit, &o2));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_pdas_coulomb_coupled", "Coulomb: the slip force F lam_N t with the normal reaction lam_N of the same linear solve (nonsymmetric), not the last iterate's", &pd->coupled, NULL));
   /* pdas runs no SSN: its monitor has a name of its own (-ssn_monitor, the SSN's, is still read here with a notice) */
   PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_pdas_monitor", "-ssn_monitor", "Print the active set and the energy per PDAS iteration", &pd->monitor, &o3));
   {
@@ -150,7 +152,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscInt64        *hash;
   char              *act, *next;
   PetscBool          done = PETSC_FALSE, ok;
+  PetscReal          kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
   const PetscBool    fr = (PetscBool)(c->friction != SG_FRICTION_NONE);
+  const PetscBool    coupled = (PetscBool)(c->friction == SG_FRICTION_COULOMB && pd->coupled);
   char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
   PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
   PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
@@ -208,7 +212,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
-    PetscInt           nrows = 0, nact = 0, entered = 0, left = 0, kits;
+    PetscInt           nrows = 0, nact = 0, entered = 0, left = 0, kits, ncoupled = 0;
     KSPConvergedReason kr;
     PetscScalar       *xa;
     const PetscScalar *ya;
@@ -255,12 +259,37 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
             rows[nrows++]       = rstart + c->off[i] + j;
             xa[c->off[i] + j] = c->yref[i * dim + j];
           } else if (fst[i] == 2) {
-            ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+            if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
+              const PetscInt     ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
+              const PetscReal    f   = c->fcoef * tdir[i * dim + j] * c->normal[i * dim + axis[i]];
+              const PetscScalar *va;
+              const PetscInt    *ca;
+              PetscInt           nc;
+              PetscScalar       *vv;
+              const PetscScalar *ba;
+              PetscCall(MatGetRow(K, ra_, &nc, &ca, &va));
+              PetscCall(PetscMalloc1(nc, &vv));
+              for (PetscInt q = 0; q < nc; q++) vv[q] = -f * va[q];
+              PetscCall(MatSetValues(A, 1, &rj, nc, ca, vv, ADD_VALUES));
+              PetscCall(PetscFree(vv));
+              PetscCall(MatRestoreRow(K, ra_, &nc, &ca, &va));
+              PetscCall(VecGetArrayRead(b, &ba));
+              ra[c->off[i] + j] -= f * ba[c->off[i] + axis[i]];
+              PetscCall(VecRestoreArrayRead(b, &ba));
+              ncoupled++;
+            } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
             if (dim == 3) /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
               for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * c->yref[i * dim + q];
           }
         }
       PetscCall(VecRestoreArray(rhs, &ra));
+      if (coupled) {
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncoupled, 1, MPIU_INT, MPI_SUM, ct->comm));
+        if (ncoupled) {
+          PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+          PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+        }
+      }
     }
     PetscCall(VecRestoreArray(x, &xa));
     PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
@@ -317,6 +346,17 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
          body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
       done = PETSC_TRUE;
+    } else if (coupled && k > 1) {
+      /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
+         slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
+         that meets the KKT tolerance of (P), and no longer halves it, has converged whatever they do */
+      PetscCall(SgContMeasure(ct));
+      if (ct->kkt.residual <= ct->kkt_tol && !(ct->kkt.residual < 0.5 * kktprev)) { /* and no longer improving */
+        done          = PETSC_TRUE;
+        ct->converged = PETSC_TRUE;
+        PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
+      } else PetscCall(PetscArraycpy(act, next, c->n));
+      kktprev = ct->kkt.residual;
     } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
       PetscInt64 h;
       PetscCall(SgContactActiveSetHash(ct->c, next, &h));
@@ -359,6 +399,7 @@ PetscErrorCode SgContCreate_PDAS(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&pd));
   pd->maxit          = 100;
+  pd->coupled        = PETSC_TRUE;
   ct->data           = pd;
   ct->ops.setfromoptions = SetFromOptions_PDAS;
   ct->ops.view           = View_PDAS;

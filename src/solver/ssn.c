@@ -31,7 +31,7 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
   }
   nz  = PetscSqrtReal(nz);
   *zn = nz;
-  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * mN;
+  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : (s->gfix ? s->gfix[i] : c->fcoef * mN);
   for (PetscInt k = 0; k < dim; k++) t[k] = nz > 0 ? z[k] / nz : 0;
   if (!(*gb > 0)) {
     for (PetscInt k = 0; k < dim; k++) lamT[k] = 0;
@@ -279,7 +279,7 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
         if (st == SG_FRICTION_STICK) B[a * dim + b] = c->w[i] * gT * T;
         else {
           B[a * dim + b] = c->w[i] * (gb / zn) * gT * (T - t[a] * t[b]);
-          if (c->friction == SG_FRICTION_COULOMB && s->actjac[i]) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * t[a] * n[b];
+          if (c->friction == SG_FRICTION_COULOMB && s->actjac[i] && !s->gfix) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * t[a] * n[b];
         }
       }
   }
@@ -704,6 +704,14 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", &tmg, NULL));
+  s->fp_max_it = 50;
+  s->fp_omega  = 1;
+  s->fp_m      = 8;
+  s->fp_rtol   = 1e-13;
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_max_it", "Coulomb: when the Newton iteration on the coupled law fails, at most this many steps of a fixed point on the Tresca bound s = F lam_N (0: none)", &s->fp_max_it, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_rtol", "Coulomb: that fixed point ends when |F lam_N - s| <= rtol max F lam_N", &s->fp_rtol, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
@@ -714,6 +722,10 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(PetscPopErrorHandler());
     PetscCall(SgSolverConfigured(s->comm, ierr));
   }
+  PetscCheck(s->fp_max_it >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_max_it: must be >= 0, got %" PetscInt_FMT, s->fp_max_it);
+  PetscCheck(s->fp_m >= 1 && s->fp_m <= 100, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_m: must be in [1, 100], got %" PetscInt_FMT, s->fp_m);
+  PetscCheck(s->fp_omega > 0 && s->fp_omega <= 1, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_omega: must be in (0, 1], got %g", (double)s->fp_omega);
+  PetscCheck(PetscIsNormalReal(s->fp_rtol) && s->fp_rtol > 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_rtol: must be positive and finite, got %g", (double)s->fp_rtol);
   PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
   PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
@@ -758,6 +770,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree2(s->lamhatT, s->mT));
   PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  PetscCall(PetscFree(s->gfixw));
   PetscCall(KSPDestroy(&s->kspd));
   PetscCall(VecDestroy(&s->y0));
   if (s->wpre) PetscCall(VecDestroyVecs(2, &s->wpre));
@@ -910,6 +923,123 @@ PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
   PetscFunctionReturn(0);
 }
 
+/* Coulomb when the Newton iteration on the coupled law failed: a fixed point on the Tresca bound. With the bound
+   s_i = F lam_N,i frozen the friction law is Tresca's (a convex problem: no coupling F gamma t n^T in the Jacobian, and
+   the SSN converges from anywhere); its solution y(s) gives new normal multipliers, G(s) = F max(0, lamhat + gamma
+   g(y(s))), and a fixed point s = G(s) solves the Coulomb (P_gamma). G is continuous but, for a large F, not a
+   contraction (more friction presses harder: an eigenvalue of G' above 1, which no relaxation damps), so the fixed
+   point is found by Anderson acceleration (a secant method on G(s) - s over the last fp_m steps). */
+static PetscErrorCode CoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
+{
+  const SgContactView *c = &s->cv;
+  const PetscInt       n = c->n, m = s->fp_m;
+  PetscReal            beta = s->fp_omega, *x, *f, *dX, *dF, *Mat_, *rhs, *gam;
+  PetscInt             k, nh = 0;
+  const PetscScalar   *ya;
+
+  PetscFunctionBeginUser;
+  if (!s->gfixw) PetscCall(PetscMalloc1(n, &s->gfixw));
+  PetscCall(PetscMalloc7(n, &x, n, &f, n * m, &dX, n * m, &dF, m * m, &Mat_, m, &rhs, m, &gam));
+  PetscCall(VecCopy(s->y0, y));
+  PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactGap(s->c, ya, s->g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  for (PetscInt i = 0; i < n; i++) s->gfixw[i] = c->fcoef * PetscMax(0, s->lamhat[i] + s->gamma * s->g[i]);
+  for (k = 0; k < s->fp_max_it; k++) {
+    PetscInt  it2, kit2, jc;
+    PetscReal d = 0, mx = 0;
+    s->gfix     = s->gfixw;
+    s->havejac  = PETSC_FALSE;
+    s->nhash    = 0;
+    s->stagnant = PETSC_FALSE;
+    s->reason   = SG_SSN_ITERATING;
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, &it2));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, &kit2));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    s->reason = SSNReason(s, *reason);
+    *its += it2;
+    *kits += kit2;
+    s->gfix = NULL;
+    if (*reason <= 0) break;
+    PetscCall(VecGetArrayRead(y, &ya));
+    PetscCall(SgContactGap(s->c, ya, s->g));
+    PetscCall(VecRestoreArrayRead(y, &ya));
+    /* the residual f = G(s) - s; the history columns are differences to the previous step */
+    jc = k > 0 ? (k - 1) % m : 0;
+    for (PetscInt i = 0; i < n; i++) {
+      const PetscReal gi = c->fcoef * PetscMax(0, s->lamhat[i] + s->gamma * s->g[i]), fi = gi - s->gfixw[i];
+      d  = PetscMax(d, PetscAbsReal(fi));
+      mx = PetscMax(mx, gi);
+      if (k > 0) {
+        dX[jc * n + i] = s->gfixw[i] - x[i];
+        dF[jc * n + i] = fi - f[i];
+      }
+      x[i] = s->gfixw[i];
+      f[i] = fi;
+    }
+    if (k > 0) nh = PetscMin(nh + 1, m);
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &d, 1, MPIU_REAL, MPI_MAX, s->comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPIU_REAL, MPI_MAX, s->comm));
+    if (s->monitor) PetscCall(PetscPrintf(s->comm, "  Coulomb fixed point %" PetscInt_FMT " at gamma %g: %" PetscInt_FMT " SSN, |G(s) - s| %.3e of %.3e\n", k, (double)s->gamma, it2, (double)d, (double)mx));
+    if (d <= s->fp_rtol * mx) break;
+    /* gam = argmin |f - dF gam| (normal equations, a small ridge), s <- s + beta f - (dX + beta dF) gam, s >= 0 */
+    for (PetscInt a = 0; a < nh; a++) {
+      rhs[a] = 0;
+      for (PetscInt i = 0; i < n; i++) rhs[a] += dF[a * n + i] * f[i];
+      for (PetscInt b = 0; b < nh; b++) {
+        Mat_[a * m + b] = 0;
+        for (PetscInt i = 0; i < n; i++) Mat_[a * m + b] += dF[a * n + i] * dF[b * n + i];
+      }
+    }
+    if (nh) {
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, rhs, (PetscMPIInt)nh, MPIU_REAL, MPI_SUM, s->comm));
+      for (PetscInt a = 0; a < nh; a++) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &Mat_[a * m], (PetscMPIInt)nh, MPIU_REAL, MPI_SUM, s->comm));
+      {
+        PetscReal tr = 0;
+        for (PetscInt a = 0; a < nh; a++) tr += Mat_[a * m + a];
+        for (PetscInt a = 0; a < nh; a++) Mat_[a * m + a] += 1e-12 * tr + PETSC_SMALL * PETSC_SMALL;
+      }
+      /* Gaussian elimination, symmetric positive definite: no pivoting */
+      for (PetscInt a = 0; a < nh; a++) {
+        for (PetscInt b = a + 1; b < nh; b++) {
+          const PetscReal l = Mat_[b * m + a] / Mat_[a * m + a];
+          for (PetscInt q = a; q < nh; q++) Mat_[b * m + q] -= l * Mat_[a * m + q];
+          rhs[b] -= l * rhs[a];
+        }
+      }
+      for (PetscInt a = nh - 1; a >= 0; a--) {
+        PetscReal r = rhs[a];
+        for (PetscInt q = a + 1; q < nh; q++) r -= Mat_[a * m + q] * gam[q];
+        gam[a] = r / Mat_[a * m + a];
+      }
+    }
+    for (PetscInt i = 0; i < n; i++) {
+      PetscReal v = x[i] + beta * f[i];
+      for (PetscInt a = 0; a < nh; a++) v -= (dX[a * n + i] + beta * dF[a * n + i]) * gam[a];
+      s->gfixw[i] = PetscMax(0, v);
+    }
+  }
+  PetscCall(PetscFree7(x, f, dX, dF, Mat_, rhs, gam));
+  if (*reason > 0) { /* the coupled law from the fixed point */
+    PetscInt it2, kit2;
+    s->havejac  = PETSC_FALSE;
+    s->nhash    = 0;
+    s->stagnant = PETSC_FALSE;
+    s->reason   = SG_SSN_ITERATING;
+    PetscCall(SNESSolve(s->snes, NULL, y));
+    PetscCall(SNESGetIterationNumber(s->snes, &it2));
+    PetscCall(SNESGetLinearSolveIterations(s->snes, &kit2));
+    PetscCall(SNESGetConvergedReason(s->snes, reason));
+    s->reason = SSNReason(s, *reason);
+    *its += it2;
+    *kits += kit2;
+    if (s->monitor) PetscCall(PetscPrintf(s->comm, "  Coulomb after %" PetscInt_FMT " fixed-point steps at gamma %g: %s after %" PetscInt_FMT " SSN\n", k, (double)s->gamma, SgSSNReasons[s->reason], it2));
+  }
+  PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g with Coulomb friction: the Newton iteration on the coupled law failed; solved again by a fixed point on the Tresca bound s = F lam_N (%" PetscInt_FMT " steps): %s\n", (double)s->gamma, k, *reason > 0 ? "converged" : SgSSNReasons[s->reason]));
+  PetscFunctionReturn(0);
+}
+
 /* Solve (P_gamma) with the current shift c->lamhat from the initial guess y (overwritten). */
 PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
 {
@@ -922,7 +1052,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash   = 0;
   s->stagnant = PETSC_FALSE;
-  if (s->cv.friction && s->iterative) {
+  if (s->cv.friction && (s->iterative || s->cv.friction == SG_FRICTION_COULOMB)) {
     if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
     PetscCall(VecCopy(y, s->y0));
   }
@@ -973,6 +1103,8 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     *its += its2;
     *kits += kits2;
   }
+  /* Coulomb: a failure of the coupled Newton iteration (cycling states) gets the fixed point on the Tresca bound */
+  if (s->cv.friction == SG_FRICTION_COULOMB && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(CoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }

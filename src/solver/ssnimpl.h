@@ -65,4 +65,8 @@ struct _n_SgSSN {
   PetscInt      nforce;       /* their number, on all ranks */
   Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
   PetscInt      nstick, nslip, nfchanged;
+  PetscReal    *gfix;         /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (CoulombFixedPoint) */
+  PetscReal    *gfixw;        /* its storage, n */
+  PetscInt      fp_max_it, fp_m;
+  PetscReal     fp_omega, fp_rtol;
 };
