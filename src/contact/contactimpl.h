@@ -12,11 +12,16 @@ struct _n_SgObstacle {
   PetscReal translation[3]; /* -obstacle_translation: a rigid translation of any obstacle at full load */
   PetscReal placement;      /* the part of it applied (the load factor; 1 without load steps) */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+  PetscErrorCode (*distance)(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]);
   PetscErrorCode (*setfromoptions)(SgObstacle, PetscOptionItems *);
   PetscErrorCode (*destroy)(SgObstacle); /* NULL, or frees data */
   void *data;                            /* a type's own state (cad) */
 };
 
+/* obstacle_mesh.c: triangulated surfaces (STL, .msh) given as -obstacle_cad_file */
+PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
+PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
+PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
 
 struct _n_SgContact {
   SgElasticity prob;
