@@ -10,11 +10,12 @@ usage: meshobstacle_gen.py DIR
   plane0x2.stl        plane0 in units of a half (coordinates doubled; -obstacle_cad_scale 0.5)
   tilted.stl          planefine turned: through (0,0,-0.55) with normal (0.1,0.05,1)
   sphereL.stl         icosphere of level L (20 4^L triangles, vertices on the sphere) with centre (-0.3,0,-1),
-                      radius 0.5 (Example 2's ball), L = 2, 3, 4; sphere3.msh the same as .msh 2.2
+                      radius 0.5 (Example 2's ball), L = 2, 3, 4; sphere3.msh the same as .msh 2.2;
+                      sphere3.bin.stl and sphere3f.stl (ASCII) with the coordinates rounded to single precision
   halfopen.stl        the upper half of sphere3 only (an open surface)
 2D (Example 1's body on [0,3] x [0,1]):
   line.msh            the line through (0,-0.001) with normal (0.001,1), 40 segments over x in [-1,4]
-  circleN.msh         a polygon of N vertices on the circle centre (2,-5.001), radius 5, N = 200, 800
+  circleN.msh         a polygon of N vertices on the circle centre (2,-5.001), radius 5, N = 200, 800, 3200
 Bad inputs: bad_*.stl / bad_*.msh
 """
 import os
@@ -157,13 +158,15 @@ def main():
             write_msh22(P("sphere3.msh"), nodes, elems, 2)
             up = [e for e in elems if nodes[e][:, 2].mean() > -1]
             write_stl_ascii(P("halfopen.stl"), tris_of(nodes, up))
-            write_stl_binary(P("sphere3.bin.stl"), tris_of(nodes, elems))
+            n32 = nodes.astype(np.float32).astype(float)  # binary STL holds floats: the ASCII twin has the same values
+            write_stl_binary(P("sphere3.bin.stl"), tris_of(n32, elems))
+            write_stl_ascii(P("sphere3f.stl"), tris_of(n32, elems))
     # ---- 2D: the line of tests/cad.ini's plane2d, run from right to left (the obstacle below, to its left)
     d = np.array([1, -0.001]) / np.linalg.norm([1, -0.001])
     s = np.linspace(4, -1, 41)
     pts = np.array([(0 + t * d[0], -0.001 + t * d[1], 0) for t in s])
     write_msh41(P("line.msh"), pts, [(i, i + 1) for i in range(len(pts) - 1)], 1)
-    for N in (200, 800):  # counter-clockwise around the disk
+    for N in (200, 800, 3200):  # counter-clockwise around the disk
         a = 2 * np.pi * np.arange(N) / N
         pts = np.array([(2 + 5 * np.cos(t), -5.001 + 5 * np.sin(t), 0) for t in a])
         write_msh41(P("circle%d.msh" % N), pts, [(i, (i + 1) % N) for i in range(N)], 1)

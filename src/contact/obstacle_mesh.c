@@ -429,7 +429,7 @@ static PetscErrorCode BuildSurface(SgObstacle o, Obstacle_Mesh *m, const Soup *s
   PetscFunctionBeginUser;
   m->nel = s->n;
   for (PetscInt e = 0; e < s->n; e++)
-    for (PetscInt k = 0; k < 3 * nv; k++) PetscCheck(PetscIsNormalReal(s->v[3 * nv * e + k]) || s->v[3 * nv * e + k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: %s %" PetscInt_FMT " has the coordinate %g, must be finite", m->file, dim == 3 ? "triangle" : "segment", e + 1, s->v[3 * nv * e + k]);
+    for (PetscInt k = 0; k < 3 * nv; k++) PetscCheck(PetscIsNormalReal(s->v[3 * nv * e + k]) || s->v[3 * nv * e + k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: %s %" PetscInt_FMT " has a coordinate that is not a finite number (%g)", m->file, dim == 3 ? "triangle" : "segment", e + 1, s->v[3 * nv * e + k]);
   for (PetscInt i = 0; i < np; i++)
     for (int k = 0; k < 3; k++) {
       lo[k] = PetscMin(lo[k], s->v[3 * i + k]);
@@ -538,8 +538,9 @@ static PetscErrorCode Orient(SgObstacle o, Obstacle_Mesh *m)
         const double *x = &m->x[3 * a0];
         PetscBool     ok = (PetscBool)(j - i == 2 && a0 != a1);
         if (!ok) {
+          PetscInt h2 = j - i > 2 ? he[i + 2].id : -1;
           PetscCall(PetscFree(he));
-          if (j - i > 2) SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: triangles %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " share one edge (at the vertex (%g, %g, %g)): the surface is not a manifold, its outside is not defined", m->file, h0 / 3 + 1, h1 / 3 + 1, he[i + 2].id / 3 + 1, x[0], x[1], x[2]);
+          if (h2 >= 0) SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: triangles %" PetscInt_FMT ", %" PetscInt_FMT " and %" PetscInt_FMT " share one edge (at the vertex (%g, %g, %g)): the surface is not a manifold, its outside is not defined", m->file, h0 / 3 + 1, h1 / 3 + 1, h2 / 3 + 1, x[0], x[1], x[2]);
           SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: triangles %" PetscInt_FMT " and %" PetscInt_FMT " traverse their shared edge (from the vertex (%g, %g, %g)) in the same direction: the surface is not consistently oriented (adjacent triangles must run through a shared edge in opposite directions; the triangle normals point outside)", m->file, h0 / 3 + 1, h1 / 3 + 1, x[0], x[1], x[2]);
         }
       }
@@ -657,7 +658,8 @@ static void ClosestOnElement(const Obstacle_Mesh *m, PetscInt e, const double p[
   const double eps = 1e-12;
   const double *a = Vtx(m, e, 0), *b = Vtx(m, e, 1);
 
-  c->e = e;
+  c->e    = e;
+  c->feat = 0;
   if (m->nv == 3) {
     const double *cc = Vtx(m, e, 2);
     double        e1[3], e2[3], w[3], d11, d12, d22, p1, p2, det, s, t;
@@ -729,6 +731,7 @@ static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *
 {
   PetscInt stack[256], sp = 0;
 
+  PetscMemzero(best, sizeof(*best));
   best->d2 = PETSC_MAX_REAL;
   best->e  = PETSC_MAX_INT;
   stack[sp++] = 0;
@@ -759,6 +762,7 @@ static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *
 
 static void ClosestBrute(const Obstacle_Mesh *m, const double p[3], MeshClosest *best)
 {
+  PetscMemzero(best, sizeof(*best));
   best->d2 = PETSC_MAX_REAL;
   best->e  = PETSC_MAX_INT;
   for (PetscInt e = 0; e < m->nel; e++) {
