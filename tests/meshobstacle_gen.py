@@ -11,10 +11,12 @@ usage: meshobstacle_gen.py DIR
   tilted.stl          planefine turned: through (0,0,-0.55) with normal (0.1,0.05,1)
   sphereL.stl         icosphere of level L (20 4^L triangles, vertices on the sphere) with centre (-0.3,0,-1),
                       radius 0.5 (Example 2's ball), L = 2, 3, 4; sphere3.msh the same as .msh 2.2;
-                      sphere3.bin.stl and sphere3f.stl (ASCII) with the coordinates rounded to single precision
+                      sphere3.bin.stl and sphere3f.stl (ASCII) with the coordinates rounded to single precision;
+                      sphere3_unit.stl the same at the origin with radius 1; sphere3_turned.stl turned about its centre
   halfopen.stl        the upper half of sphere3 only (an open surface)
 2D (Example 1's body on [0,3] x [0,1]):
-  line.msh            the line through (0,-0.001) with normal (0.001,1), 40 segments over x in [-1,4]
+  line.msh            the line through (0,-0.001) with normal (0.001,1), 40 segments over x in [-1,4];
+                      line_shifted.msh the same moved by (1, 0.5)
   circleN.msh         a polygon of N vertices on the circle centre (2,-5.001), radius 5, N = 200, 800, 3200
 Bad inputs: bad_*.stl / bad_*.msh
 """
@@ -161,11 +163,18 @@ def main():
             n32 = nodes.astype(np.float32).astype(float)  # binary STL holds floats: the ASCII twin has the same values
             write_stl_binary(P("sphere3.bin.stl"), tris_of(n32, elems))
             write_stl_ascii(P("sphere3f.stl"), tris_of(n32, elems))
+            unit, _ = icosphere(L, np.zeros(3), 1.0)
+            write_stl_ascii(P("sphere3_unit.stl"), tris_of(unit, elems))
+            a, b = 0.7, 0.4  # turned about the centre: another triangulation of the same sphere
+            Rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+            Rx = np.array([[1, 0, 0], [0, np.cos(b), -np.sin(b)], [0, np.sin(b), np.cos(b)]])
+            write_stl_ascii(P("sphere3_turned.stl"), tris_of(np.array([-0.3, 0, -1]) + 0.5 * unit @ (Rx @ Rz).T, elems))
     # ---- 2D: the line of tests/cad.ini's plane2d, run from right to left (the obstacle below, to its left)
     d = np.array([1, -0.001]) / np.linalg.norm([1, -0.001])
     s = np.linspace(4, -1, 41)
     pts = np.array([(0 + t * d[0], -0.001 + t * d[1], 0) for t in s])
     write_msh41(P("line.msh"), pts, [(i, i + 1) for i in range(len(pts) - 1)], 1)
+    write_msh41(P("line_shifted.msh"), pts + np.array([1.0, 0.5, 0]), [(i, i + 1) for i in range(len(pts) - 1)], 1)
     for N in (200, 800, 3200):  # counter-clockwise around the disk
         a = 2 * np.pi * np.arange(N) / N
         pts = np.array([(2 + 5 * np.cos(t), -5.001 + 5 * np.sin(t), 0) for t in a])
