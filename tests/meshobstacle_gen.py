@@ -5,15 +5,16 @@ usage: meshobstacle_gen.py DIR
 
 3D (Example 2's body, [-0.5,0.5] x [-1,1] x [-0.5,0.5]):
   plane2.stl          the plane z = -0.55 as two triangles of [-3,3]^2
-  planefine.stl/.bin.stl/.msh  the same plane, an irregular triangulation (grid 17 x 13 with moved inner vertices)
+  planefine.stl       the same plane, an irregular triangulation (grid 17 x 13 with moved inner vertices)
   plane0.stl          planefine at z = 0 (placed by translation options)
   plane0x2.stl        plane0 in units of a half (coordinates doubled; -obstacle_cad_scale 0.5)
   tilted.stl          planefine turned: through (0,0,-0.55) with normal (0.1,0.05,1)
   sphereL.stl         icosphere of level L (20 4^L triangles, vertices on the sphere) with centre (-0.3,0,-1),
-                      radius 0.5 (Example 2's ball), L = 2, 3, 4; sphere3.msh the same as .msh 2.2;
+                      radius 0.5 (Example 2's ball), L = 2, 3, 4;
                       sphere3.bin.stl and sphere3f.stl (ASCII) with the coordinates rounded to single precision;
                       sphere3_unit.stl the same at the origin with radius 1; sphere3_turned.stl turned about its centre
   halfopen.stl        the upper half of sphere3 only (an open surface)
+  gsphere.msh/gsphere22.msh/gsphere.stl  the ball as gmsh 4.8 meshes it (2,268 triangles), as .msh 4.1, 2.2, STL
 2D (Example 1's body on [0,3] x [0,1]):
   line.msh            the line through (0,-0.001) with normal (0.001,1), 40 segments over x in [-1,4];
                       line_shifted.msh the same moved by (1, 0.5)
@@ -22,6 +23,7 @@ Bad inputs: bad_*.stl / bad_*.msh
 """
 import os
 import struct
+import subprocess
 import sys
 
 import numpy as np
@@ -61,17 +63,6 @@ def write_msh41(path, nodes, elems, etype):
         f.write("$EndNodes\n$Elements\n1 %d 1 %d\n%d 1 %d %d\n" % (len(elems), len(elems), 2 if etype == 2 else 1, etype, len(elems)))
         for i, e in enumerate(elems):
             f.write("%d %s\n" % (i + 1, " ".join(str(v + 1) for v in e)))
-        f.write("$EndElements\n")
-
-
-def write_msh22(path, nodes, elems, etype):
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-        for i, p in enumerate(nodes):
-            f.write("%d %.17g %.17g %.17g\n" % ((i + 1,) + tuple(p)))
-        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-        for i, e in enumerate(elems):
-            f.write("%d %d 2 1 1 %s\n" % (i + 1, etype, " ".join(str(v + 1) for v in e)))
         f.write("$EndElements\n")
 
 
@@ -146,8 +137,6 @@ def main():
     write_stl_ascii(P("plane2.stl"), [sq[[0, 1, 2]], sq[[0, 2, 3]]])
     nodes, elems = plane_fine(-0.55)
     write_stl_ascii(P("planefine.stl"), tris_of(nodes, elems))
-    write_stl_binary(P("planefine.bin.stl"), tris_of(nodes, elems))
-    write_msh41(P("planefine.msh"), nodes, elems, 2)
     n0, e0 = plane_fine(0.0)
     write_stl_ascii(P("plane0.stl"), tris_of(n0, e0))
     write_stl_ascii(P("plane0x2.stl"), tris_of(2 * n0, e0))
@@ -157,7 +146,6 @@ def main():
         nodes, elems = icosphere(L, np.array([-0.3, 0, -1]), 0.5)
         write_stl_ascii(P("sphere%d.stl" % L), tris_of(nodes, elems))
         if L == 3:
-            write_msh22(P("sphere3.msh"), nodes, elems, 2)
             up = [e for e in elems if nodes[e][:, 2].mean() > -1]
             write_stl_ascii(P("halfopen.stl"), tris_of(nodes, up))
             n32 = nodes.astype(np.float32).astype(float)  # binary STL holds floats: the ASCII twin has the same values
@@ -169,6 +157,11 @@ def main():
             Rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
             Rx = np.array([[1, 0, 0], [0, np.cos(b), -np.sin(b)], [0, np.sin(b), np.cos(b)]])
             write_stl_ascii(P("sphere3_turned.stl"), tris_of(np.array([-0.3, 0, -1]) + 0.5 * unit @ (Rx @ Rz).T, elems))
+    # ---- gmsh's own files of Example 2's ball (an OpenCASCADE sphere meshed by gmsh 4.8, outward triangles)
+    with open(P("gsphere.geo"), "w") as f:
+        f.write('SetFactory("OpenCASCADE");\nSphere(1) = {-0.3, 0, -1, 0.5};\nMesh.MeshSizeMax = 0.06;\n')
+    for name, fmt in (("gsphere.msh", ["-format", "msh41"]), ("gsphere22.msh", ["-format", "msh22"]), ("gsphere.stl", [])):
+        subprocess.run(["gmsh", "-2", P("gsphere.geo"), "-o", P(name)] + fmt, check=True, stdout=subprocess.DEVNULL)
     # ---- 2D: the line of tests/cad.ini's plane2d, run from right to left (the obstacle below, to its left)
     d = np.array([1, -0.001]) / np.linalg.norm([1, -0.001])
     s = np.linspace(4, -1, 41)
