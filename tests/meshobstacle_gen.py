@@ -182,6 +182,8 @@ def main():
     write_stl_ascii(P("bad_nonmanifold.stl"), tri + [np.array([(0, 0, 0), (-3, -3, -0.55), (3, 3, -0.55)])])
     with open(P("bad_nan.stl"), "w") as f:
         f.write("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n")
+    with open(P("sphere3.bin.stl"), "rb") as f, open(P("bad_truncated.stl"), "wb") as g:
+        g.write(f.read(5000))
     with open(P("bad_garbage.stl"), "w") as f:
         f.write("this is not a mesh\n")
     nodes, elems = icosphere(1, np.array([0, 0, 0]), 1)

@@ -82,11 +82,12 @@ typedef enum {
   MESH_NONE,
   MESH_STL_ASCII,
   MESH_STL_BINARY,
+  MESH_STL_BINARY_SIZE, /* binary bytes in the header, but not 84 + 50 n bytes */
   MESH_MSH
 } MeshFormat;
 
-/* The format by content: gmsh's $MeshFormat, a binary STL (84 + 50 n bytes, n at byte 80) or an ASCII STL ("solid").
-   *size: the file's size in bytes. */
+/* The format by content: a binary STL (84 + 50 n bytes, n at byte 80; else a NUL in the first 84 bytes says a binary
+   file of another size), gmsh's $MeshFormat, or an ASCII STL ("solid"). *size: the file's size in bytes. */
 static PetscErrorCode SniffFormat(const char file[], MeshFormat *fmt, long *size)
 {
   FILE         *fp = fopen(file, "rb");
@@ -108,6 +109,11 @@ static PetscErrorCode SniffFormat(const char file[], MeshFormat *fmt, long *size
       PetscFunctionReturn(0);
     }
   }
+  for (size_t i = 0; i < got; i++)
+    if (!head[i]) { /* text has no NUL; a binary STL's count has one below 2^24 triangles */
+      *fmt = MESH_STL_BINARY_SIZE;
+      PetscFunctionReturn(0);
+    }
   s = (const char *)head;
   while (got && isspace((unsigned char)*s) && s < (const char *)head + got - 1) s++;
   if ((size_t)(s - (const char *)head) + 11 <= got && !strncmp(s, "$MeshFormat", 11)) *fmt = MESH_MSH;
@@ -131,7 +137,7 @@ PetscErrorCode SgObstacleMeshFileIs(const char file[], PetscBool *ismesh)
   for (size_t i = 0; i < sizeof(cad) / sizeof(cad[0]); i++)
     if (!strcmp(ext, cad[i])) PetscFunctionReturn(0);
   PetscCall(SniffFormat(file, &fmt, &size));
-  *ismesh = (PetscBool)(fmt != MESH_NONE);
+  *ismesh = (PetscBool)(fmt != MESH_NONE && fmt != MESH_STL_BINARY_SIZE);
   PetscFunctionReturn(0);
 }
 
@@ -986,6 +992,16 @@ PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle o, const char file[], const Petsc
   o->distance = Distance_Mesh;
   PetscCall(SniffFormat(file, &fmt, &size));
   PetscCheck(size != 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: the file is empty: a meshed obstacle needs %s", file, el);
+  if (fmt == MESH_STL_BINARY_SIZE) {
+    unsigned char head[84] = {0};
+    FILE         *fp = fopen(file, "rb");
+    unsigned long n  = 0;
+    if (fp) {
+      if (fread(head, 1, 84, fp) == 84) n = (unsigned long)head[80] | (unsigned long)head[81] << 8 | (unsigned long)head[82] << 16 | (unsigned long)head[83] << 24;
+      fclose(fp);
+    }
+    SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a binary file of %ld bytes, but a binary STL of %lu triangles (its header's count) has 84 + 50 x %lu bytes: truncated or not an STL file", file, size, n, n);
+  }
   PetscCheck(fmt != MESH_NONE, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: neither an STL file (ASCII: 'solid ...'; binary: 84 + 50 n bytes) nor a gmsh .msh file ($MeshFormat)", file);
   PetscCheck(o->dim == 3 || fmt == MESH_MSH, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: an STL file holds triangles; a 2D obstacle is a curve of line segments: give a gmsh .msh file with line elements in the plane z = 0", file);
   if (fmt == MESH_STL_ASCII) PetscCall(ReadSTLAscii(o, file, &m->soup));
