@@ -190,6 +190,7 @@ def main():
     write_msh41(P("bad_lines3d.msh"), nodes, [(a, b) for a, b, c in elems], 1)  # 3D: lines only, no triangles
     pts = np.array([(0, 0, 0), (1, 0, 0), (2, 0, 0)])
     write_msh41(P("bad_flip2d.msh"), pts, [(1, 0), (1, 2)], 1)  # both start at vertex 1
+    write_msh41(P("bad_undefined_node.msh"), np.array([(0, 0, 0), (1, 0, 0), (0, 1, 0)]), [(0, 1, 2), (1, 8, 2)], 2)  # node 9
     write_msh41(P("bad_tri2d.msh"), np.array([(0, 0, 0), (1, 0, 0), (0, 1, 0)]), [(0, 1, 2)], 2)  # 2D: no lines
     with open(P("bad_binary.msh"), "w") as f:
         f.write("$MeshFormat\n4.1 1 8\n$EndMeshFormat\n")

@@ -223,185 +223,161 @@ static PetscErrorCode ReadSTLBinary(SgObstacle o, const char file[], Soup *s)
   PetscFunctionReturn(0);
 }
 
+/* reading a .msh file: a problem found stops the reading, reported once the file is closed */
+typedef struct {
+  FILE     *fp;
+  double    version;
+  double   *nx;     /* node coordinates, 3 each */
+  long     *idx;    /* node tag -> position in nx (-1: none) */
+  long      maxtag; /* the largest node tag */
+  PetscBool truncated, badtag, badnode;
+  long      tag, eltag; /* the bad node tag; the element that names it */
+  char      what[64];   /* the section being read */
+} MshReader;
+
+/* $Nodes: 4.1 in entity blocks (the tags, then the coordinates with any parametric ones), 2.2 "tag x y z" lines */
+static PetscErrorCode MshNodes(MshReader *r)
+{
+  long nb = 1, nnodes = 0, mint = 0, nn = 0, *tags = NULL;
+  char tok[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(r->what, "$Nodes", sizeof(r->what)));
+  PetscCall(PetscFree(r->nx));
+  PetscCall(PetscFree(r->idx));
+  r->maxtag = -1;
+  if (r->version >= 4) r->truncated = (PetscBool)(fscanf(r->fp, "%ld %ld %ld %ld", &nb, &nnodes, &mint, &r->maxtag) != 4);
+  else r->truncated = (PetscBool)(fscanf(r->fp, "%ld", &nnodes) != 1);
+  /* at most 1e8 nodes and node tags (far beyond an obstacle's surface) */
+  if (r->truncated || nnodes < 0 || nb < 0 || nnodes > 100000000 || r->maxtag > 100000000) {
+    r->truncated = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscMalloc1(3 * nnodes + 1, &r->nx));
+  PetscCall(PetscMalloc1(nnodes + 1, &tags));
+  for (long b = 0; b < nb && !r->truncated; b++) {
+    int  edim = 0, etag, par = 0;
+    long nin = nnodes;
+    if (r->version >= 4 && (fscanf(r->fp, "%d %d %d %ld", &edim, &etag, &par, &nin) != 4 || nin < 0 || nn + nin > nnodes)) r->truncated = PETSC_TRUE;
+    for (long i = nn; i < nn + nin && !r->truncated; i++) {
+      r->truncated = (PetscBool)(fscanf(r->fp, "%ld", &tags[i]) != 1);
+      for (int k = 0; k < 3 && !r->truncated && r->version < 4; k++) r->truncated = (PetscBool)(fscanf(r->fp, "%255s", tok) != 1 || !ParseReal(tok, &r->nx[3 * i + k]));
+      if (!r->truncated && r->version < 4) r->maxtag = PetscMax(r->maxtag, tags[i]);
+    }
+    for (long i = nn; i < nn + nin && !r->truncated && r->version >= 4; i++) {
+      for (int k = 0; k < 3 && !r->truncated; k++) r->truncated = (PetscBool)(fscanf(r->fp, "%255s", tok) != 1 || !ParseReal(tok, &r->nx[3 * i + k]));
+      for (int k = 0; k < par * edim && !r->truncated; k++) r->truncated = (PetscBool)(fscanf(r->fp, "%255s", tok) != 1);
+    }
+    if (!r->truncated) nn += nin;
+  }
+  if (!r->truncated && (r->maxtag < 0 || r->maxtag > 100000000)) r->truncated = PETSC_TRUE;
+  if (!r->truncated) {
+    PetscCall(PetscMalloc1(r->maxtag + 1, &r->idx));
+    for (long t = 0; t <= r->maxtag; t++) r->idx[t] = -1;
+    for (long i = 0; i < nn && !r->badtag; i++) {
+      if (tags[i] < 0 || tags[i] > r->maxtag) {
+        r->badtag = PETSC_TRUE;
+        r->tag    = tags[i];
+      } else r->idx[tags[i]] = i;
+    }
+  }
+  PetscCall(PetscFree(tags));
+  PetscFunctionReturn(0);
+}
+
+/* $Elements: the triangles (type 2) in 3D or 2-node lines (type 1) in 2D, one line each; 4.1 in entity blocks of one
+   type ("tag n1 n2 ..."), 2.2 "tag type ntags tags... n1 n2 ..." */
+static PetscErrorCode MshElements(SgObstacle o, MshReader *r, Soup *s)
+{
+  PetscInt want = o->dim == 3 ? 2 : 1, nv = o->dim;
+  long     nb = 1, nel = 0, a, b;
+  char     line[4096];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(r->what, "$Elements", sizeof(r->what)));
+  if (r->version >= 4) r->truncated = (PetscBool)(fscanf(r->fp, "%ld %ld %ld %ld", &nb, &nel, &a, &b) != 4);
+  else r->truncated = (PetscBool)(fscanf(r->fp, "%ld", &nel) != 1);
+  if (!r->truncated) r->truncated = (PetscBool)!fgets(line, sizeof(line), r->fp); /* the end of the header line */
+  for (long blk = 0; blk < nb && !r->truncated && !r->badnode; blk++) {
+    int  edim, etag, type = 0;
+    long nin = nel;
+    if (r->version >= 4 && (!fgets(line, sizeof(line), r->fp) || sscanf(line, "%d %d %d %ld", &edim, &etag, &type, &nin) != 4 || nin < 0)) r->truncated = PETSC_TRUE;
+    for (long i = 0; i < nin && !r->truncated && !r->badnode; i++) {
+      char  *p = line, *end;
+      long   tok[64];
+      int    ntok = 0, first = 1; /* the position of the first node tag */
+      double v[9];
+      if (!fgets(line, sizeof(line), r->fp)) {
+        r->truncated = PETSC_TRUE;
+        break;
+      }
+      for (long t = strtol(p, &end, 10); end != p && ntok < 64; t = strtol(p, &end, 10)) {
+        tok[ntok++] = t;
+        p           = end;
+      }
+      if (r->version < 4) {
+        if (ntok < 3) {
+          r->truncated = PETSC_TRUE;
+          break;
+        }
+        type  = (int)tok[1];
+        first = 3 + (int)tok[2];
+      }
+      if (type != want) continue;
+      if (first < 1 || ntok < first + nv) {
+        r->truncated = PETSC_TRUE;
+        break;
+      }
+      for (PetscInt q = 0; q < nv && !r->badnode; q++) {
+        long t = tok[first + q];
+        if (t < 0 || t > r->maxtag || r->idx[t] < 0) {
+          r->badnode = PETSC_TRUE;
+          r->tag     = t;
+          r->eltag   = tok[0];
+        } else
+          for (int k = 0; k < 3; k++) v[3 * q + k] = r->nx[3 * r->idx[t] + k];
+      }
+      if (!r->badnode) PetscCall(SoupAdd(s, nv, v));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* gmsh's ASCII .msh (2.2 or 4.1): the nodes, and the triangles (3D) or 2-node lines (2D) */
 static PetscErrorCode ReadMsh(SgObstacle o, const char file[], Soup *s)
 {
-  FILE     *fp   = fopen(file, "r");
+  MshReader r;
   char      line[4096];
-  double    version = 0, *nx = NULL;
-  long      maxtag = -1, *idx = NULL; /* node tag -> position in nx */
-  PetscInt  want   = o->dim == 3 ? 2 : 1, nv = o->dim, nn = 0;
-  PetscBool truncated = PETSC_FALSE, badnode = PETSC_FALSE, bad = PETSC_FALSE;
-  long      badtag = 0;
-  char      what[64] = "";
+  int       ft = 0, ds = 0;
+  PetscBool binary = PETSC_FALSE, badversion = PETSC_FALSE, early = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  PetscCheck(fp, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: cannot open it", file);
-  while (!truncated && !bad && !badnode && fgets(line, sizeof(line), fp)) {
+  PetscCall(PetscMemzero(&r, sizeof(r)));
+  r.maxtag = -1;
+  r.fp     = fopen(file, "r");
+  PetscCheck(r.fp, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: cannot open it", file);
+  while (!r.truncated && !r.badtag && !r.badnode && !binary && !badversion && !early && fgets(line, sizeof(line), r.fp)) {
     if (!strncmp(line, "$MeshFormat", 11)) {
-      int ft = 0, ds = 0;
-      if (!fgets(line, sizeof(line), fp) || sscanf(line, "%lf %d %d", &version, &ft, &ds) != 3) {
-        truncated = PETSC_TRUE;
-        PetscCall(PetscStrncpy(what, "$MeshFormat", sizeof(what)));
-        break;
-      }
-      if (ft != 0) {
-        fclose(fp);
-        SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a binary .msh file is not read as an obstacle: save it as ASCII (gmsh -save -format msh41 without -bin, or Mesh.Binary = 0)", file);
-      }
-      if (!((version >= 2 && version < 3) || (version >= 4 && version < 5))) {
-        fclose(fp);
-        SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: .msh version %g is not read (2.2 or 4.1)", file, version);
-      }
-    } else if (!strncmp(line, "$Nodes", 6)) {
-      long nb = 1, nnodes = 0, mint = 0;
-      PetscCall(PetscStrncpy(what, "$Nodes", sizeof(what)));
-      if (version >= 4) {
-        if (fscanf(fp, "%ld %ld %ld %ld", &nb, &nnodes, &mint, &maxtag) != 4) truncated = PETSC_TRUE;
-      } else {
-        if (fscanf(fp, "%ld", &nnodes) != 1) truncated = PETSC_TRUE;
-        maxtag = -1;
-      }
-      if (truncated || nnodes < 0 || nb < 0) {
-        truncated = PETSC_TRUE;
-        break;
-      }
-      PetscCall(PetscFree(nx));
-      PetscCall(PetscFree(idx));
-      PetscCall(PetscMalloc1(3 * nnodes + 1, &nx));
-      nn = 0;
-      if (version >= 4) {
-        if (maxtag < 0 || maxtag >= 100000000) {
-          fclose(fp);
-          PetscCall(PetscFree(nx));
-          SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: $Nodes: largest node tag %ld out of range", file, maxtag);
-        }
-        PetscCall(PetscMalloc1(maxtag + 1, &idx));
-        for (long t = 0; t <= maxtag; t++) idx[t] = -1;
-        for (long b = 0; b < nb && !truncated && !bad; b++) {
-          int  edim, etag, par;
-          long nin, *tags;
-          if (fscanf(fp, "%d %d %d %ld", &edim, &etag, &par, &nin) != 4 || nin < 0 || nn + nin > nnodes) {
-            truncated = PETSC_TRUE;
-            break;
-          }
-          PetscCall(PetscMalloc1(nin + 1, &tags));
-          for (long i = 0; i < nin && !truncated; i++)
-            if (fscanf(fp, "%ld", &tags[i]) != 1) truncated = PETSC_TRUE;
-          for (long i = 0; i < nin && !truncated && !bad; i++) {
-            char tok[3][256], ptok[256];
-            for (int k = 0; k < 3 && !truncated; k++)
-              if (fscanf(fp, "%255s", tok[k]) != 1 || !ParseReal(tok[k], &nx[3 * (nn + i) + k])) truncated = PETSC_TRUE;
-            for (int k = 0; k < par * (edim > 0 ? edim : 0) && !truncated; k++)
-              if (fscanf(fp, "%255s", ptok) != 1) truncated = PETSC_TRUE;
-            if (!truncated && (tags[i] < 0 || tags[i] > maxtag)) {
-              bad    = PETSC_TRUE;
-              badtag = tags[i];
-            } else if (!truncated) idx[tags[i]] = nn + i;
-          }
-          PetscCall(PetscFree(tags));
-          nn += nin;
-        }
-      } else {
-        long *tags;
-        PetscCall(PetscMalloc1(nnodes + 1, &tags));
-        for (long i = 0; i < nnodes && !truncated; i++) {
-          char tok[3][256];
-          if (fscanf(fp, "%ld", &tags[i]) != 1) truncated = PETSC_TRUE;
-          for (int k = 0; k < 3 && !truncated; k++)
-            if (fscanf(fp, "%255s", tok[k]) != 1 || !ParseReal(tok[k], &nx[3 * i + k])) truncated = PETSC_TRUE;
-          if (!truncated) maxtag = PetscMax(maxtag, tags[i]);
-        }
-        if (!truncated) {
-          PetscCheck(maxtag < 100000000, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: $Nodes: largest node tag %ld out of range", file, maxtag);
-          PetscCall(PetscMalloc1(maxtag + 1, &idx));
-          for (long t = 0; t <= maxtag; t++) idx[t] = -1;
-          for (long i = 0; i < nnodes; i++) {
-            if (tags[i] < 0) {
-              bad    = PETSC_TRUE;
-              badtag = tags[i];
-            } else idx[tags[i]] = i;
-          }
-          nn = nnodes;
-        }
-        PetscCall(PetscFree(tags));
-      }
-    } else if (!strncmp(line, "$Elements", 9)) {
-      long nb = 1, nel = 0, a, b2;
-      PetscCall(PetscStrncpy(what, "$Elements", sizeof(what)));
-      if (!idx) {
-        fclose(fp);
-        PetscCall(PetscFree(nx));
-        SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: $Elements before any $Nodes", file);
-      }
-      if (version >= 4) {
-        if (fscanf(fp, "%ld %ld %ld %ld", &nb, &nel, &a, &b2) != 4) truncated = PETSC_TRUE;
-      } else if (fscanf(fp, "%ld", &nel) != 1) truncated = PETSC_TRUE;
-      if (!truncated && !fgets(line, sizeof(line), fp)) truncated = PETSC_TRUE; /* the end of the header line */
-      for (long blk = 0; blk < nb && !truncated && !badnode; blk++) {
-        int  edim = 0, etag = 0, type = 0;
-        long nin  = nel;
-        if (version >= 4) {
-          if (!fgets(line, sizeof(line), fp) || sscanf(line, "%d %d %d %ld", &edim, &etag, &type, &nin) != 4 || nin < 0) {
-            truncated = PETSC_TRUE;
-            break;
-          }
-        }
-        for (long i = 0; i < nin && !truncated && !badnode; i++) {
-          char *p = line, *end;
-          long  tok[64];
-          int   ntok = 0;
-          if (!fgets(line, sizeof(line), fp)) {
-            truncated = PETSC_TRUE;
-            break;
-          }
-          while (ntok < 64) {
-            long v = strtol(p, &end, 10);
-            if (end == p) break;
-            tok[ntok++] = v;
-            p           = end;
-          }
-          {
-            int first; /* the position of the first node tag */
-            if (version >= 4) first = 1;
-            else {
-              if (ntok < 3) {
-                truncated = PETSC_TRUE;
-                break;
-              }
-              type  = (int)tok[1];
-              first = 3 + (int)tok[2];
-            }
-            if (type != want) continue;
-            if (ntok < first + nv) {
-              truncated = PETSC_TRUE;
-              break;
-            }
-            {
-              double v[9];
-              for (PetscInt q = 0; q < nv; q++) {
-                long t = tok[first + q];
-                if (t < 0 || t > maxtag || idx[t] < 0) {
-                  badnode = PETSC_TRUE;
-                  badtag  = t;
-                  break;
-                }
-                for (int k = 0; k < 3; k++) v[3 * q + k] = nx[3 * idx[t] + k];
-              }
-              if (!badnode) PetscCall(SoupAdd(s, nv, v));
-            }
-          }
-        }
-      }
+      PetscCall(PetscStrncpy(r.what, "$MeshFormat", sizeof(r.what)));
+      r.truncated = (PetscBool)(!fgets(line, sizeof(line), r.fp) || sscanf(line, "%lf %d %d", &r.version, &ft, &ds) != 3);
+      binary      = (PetscBool)(!r.truncated && ft != 0);
+      badversion  = (PetscBool)(!r.truncated && !((r.version >= 2 && r.version < 3) || (r.version >= 4 && r.version < 5)));
+    } else if (!strncmp(line, "$Nodes", 6)) PetscCall(MshNodes(&r));
+    else if (!strncmp(line, "$Elements", 9)) {
+      if (!r.idx) early = PETSC_TRUE;
+      else PetscCall(MshElements(o, &r, s));
     }
   }
-  fclose(fp);
-  PetscCall(PetscFree(nx));
-  PetscCall(PetscFree(idx));
-  PetscCheck(!truncated, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: the %s section is truncated or malformed", file, what);
-  PetscCheck(!bad, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: node tag %ld out of range", file, badtag);
-  PetscCheck(!badnode, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: element %" PetscInt_FMT " names node %ld, which $Nodes does not define", file, s->n + 1, badtag);
-  PetscCheck(version > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: no $MeshFormat section: not a gmsh .msh file", file);
+  fclose(r.fp);
+  PetscCall(PetscFree(r.nx));
+  PetscCall(PetscFree(r.idx));
+  PetscCheck(!binary, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a binary .msh file is not read as an obstacle: save it as ASCII (gmsh -save -format msh41 without -bin, or Mesh.Binary = 0)", file);
+  PetscCheck(!badversion, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: .msh version %g is not read (2.2 or 4.1)", file, r.version);
+  PetscCheck(!early, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: $Elements before any $Nodes", file);
+  PetscCheck(!r.truncated, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: the %s section is truncated or malformed", file, r.what);
+  PetscCheck(!r.badtag, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: node tag %ld out of range", file, r.tag);
+  PetscCheck(!r.badnode, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: element %ld names node %ld, which $Nodes does not define", file, r.eltag, r.tag);
+  PetscCheck(r.version > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: no $MeshFormat section: not a gmsh .msh file", file);
   PetscFunctionReturn(0);
 }
 
