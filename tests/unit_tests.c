@@ -3,8 +3,9 @@
 /* white-box tests: they read the elasticity object's fields (the one place outside src/fem that may) */
 #include "fem/femimpl.h"
 #include "cont/contimpl.h"
+#include "contact/contactimpl.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -485,6 +486,76 @@ static PetscErrorCode TestLoadPath(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* A meshed obstacle (-obstacle_cad_file, an approximation of the sphere -mesh_center c, -mesh_radius R) queried at
+   random points along random directions (half of them aimed at the centre): the tree's gap and signed distance
+   against brute force over all elements, and both against the exact sphere. */
+static PetscErrorCode TestMeshTree(SgSummary s)
+{
+  PetscInt    dim = 3, npts = 2000, nc = 3, nhit = 0, nmiss = 0, nmismatch = 0, nsign = 0, ninside = 0;
+  PetscReal   c[3] = {0, 0, 0}, R = 1, dgap = 0, ddist = 0, dnrm = 0, esph = 0, egap = 0;
+  SgObstacle  o;
+  PetscRandom rnd;
+
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Meshed obstacle tree test", NULL);
+  PetscCall(PetscOptionsInt("-mesh_dim", "Dimension", NULL, dim, &dim, NULL));
+  PetscCall(PetscOptionsInt("-mesh_points", "Random points", NULL, npts, &npts, NULL));
+  PetscCall(PetscOptionsRealArray("-mesh_center", "Centre of the sphere the mesh approximates", NULL, c, &nc, NULL));
+  PetscCall(PetscOptionsReal("-mesh_radius", "Its radius", NULL, R, &R, NULL));
+  PetscOptionsEnd();
+  PetscCall(PetscOptionsSetValue(NULL, "-obstacle_type", "cad"));
+  PetscCall(SgObstacleCreate(PETSC_COMM_WORLD, NULL, dim, NULL, &o));
+  PetscCheck(o->distance, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "meshtree: the obstacle has no distance op");
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
+  for (PetscInt i = 0; i < npts; i++) {
+    PetscReal x[3] = {0, 0, 0}, n[3] = {0, 0, 0}, r = 0, nn = 0, dt, db, gt, gb, nt[3] = {0, 0, 0}, nb[3] = {0, 0, 0}, gx, b = 0, disc;
+    for (PetscInt k = 0; k < dim; k++) {
+      PetscReal v;
+      PetscCall(PetscRandomGetValueReal(rnd, &v));
+      x[k] = c[k] + 1.6 * R * v;
+      r += PetscSqr(x[k] - c[k]);
+      PetscCall(PetscRandomGetValueReal(rnd, &v));
+      n[k] = i % 2 ? v : c[k] - x[k];
+      nn += n[k] * n[k];
+    }
+    r = PetscSqrtReal(r);
+    for (PetscInt k = 0; k < dim; k++) n[k] /= PetscSqrtReal(nn);
+    PetscCall(SgObstacleGap(o, x, n, &dt));
+    PetscCall(o->distance(o, x, &gt, nt));
+    PetscCall(SgObstacleMeshQueryBrute(o, x, n, &db, &gb, nb));
+    if ((dt == PETSC_MAX_REAL) != (db == PETSC_MAX_REAL)) nmismatch++;
+    else if (dt != PETSC_MAX_REAL) dgap = PetscMax(dgap, PetscAbsReal(dt - db));
+    ddist = PetscMax(ddist, PetscAbsReal(gt - gb));
+    for (PetscInt k = 0; k < dim; k++) dnrm = PetscMax(dnrm, PetscAbsReal(nt[k] - nb[k]));
+    /* the sphere: signed distance |x - c| - R; the ray enters it at -b - sqrt(b^2 - (r^2 - R^2)), b = n.(x - c) */
+    gx   = r - R;
+    esph = PetscMax(esph, PetscAbsReal(gt - gx));
+    if (PetscAbsReal(gx) > 0.05 * R && (gt < 0) != (gx < 0)) nsign++;
+    ninside += gt < 0;
+    for (PetscInt k = 0; k < dim; k++) b += n[k] * (x[k] - c[k]);
+    disc = b * b - (r * r - R * R);
+    if (dt != PETSC_MAX_REAL) {
+      nhit++;
+      if (disc > 0.1 * R * R) egap = PetscMax(egap, PetscAbsReal(dt - (-b - PetscSqrtReal(disc))));
+    } else if (disc > 0.1 * R * R && (gx < 0 || b < 0)) nmiss++; /* the sphere is met well inside its outline, the mesh missed */
+  }
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(SgObstacleDestroy(&o));
+  PetscCall(SgSummarySetInt(s, "points", npts));
+  PetscCall(SgSummarySetInt(s, "hits", nhit));
+  PetscCall(SgSummarySetInt(s, "inside", ninside));
+  PetscCall(SgSummarySetInt(s, "hit_mismatches", nmismatch));
+  PetscCall(SgSummarySetInt(s, "missed_hits", nmiss));
+  PetscCall(SgSummarySetInt(s, "sign_errors", nsign));
+  PetscCall(SgSummarySetReal(s, "tree_gap_difference", dgap));
+  PetscCall(SgSummarySetReal(s, "tree_distance_difference", ddist));
+  PetscCall(SgSummarySetReal(s, "tree_normal_difference", dnrm));
+  PetscCall(SgSummarySetReal(s, "sphere_distance_error", esph));
+  PetscCall(SgSummarySetReal(s, "sphere_gap_error", egap));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -508,6 +579,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "controllers", &eq) == 0 && eq) PetscCall(TestControllers(s));
   else if (PetscStrcmp(test, "resolve", &eq) == 0 && eq) PetscCall(TestResolve(s));
   else if (PetscStrcmp(test, "loadpath", &eq) == 0 && eq) PetscCall(TestLoadPath(s));
+  else if (PetscStrcmp(test, "meshtree", &eq) == 0 && eq) PetscCall(TestMeshTree(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

@@ -106,7 +106,7 @@ static PetscErrorCode CadRefuseMeshFile(SgObstacle o, const char file[])
   for (k = 0; dot[1 + k]; k++) ext[k] = (char)tolower((unsigned char)dot[1 + k]);
   ext[k] = 0;
   for (size_t i = 0; i < sizeof(mesh) / sizeof(mesh[0]); i++)
-    PetscCheck(strcmp(ext, mesh[i]), o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a mesh file (.%s) is not supported as the obstacle: meshed obstacles (STL, .msh, ...) are not supported yet, only CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", file, ext);
+    PetscCheck(strcmp(ext, mesh[i]), o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: a mesh file (.%s) is not supported as the obstacle: of the mesh files only STL and gmsh .msh are read as meshed obstacles; else CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", file, ext);
   PetscFunctionReturn(0);
 }
 
@@ -135,7 +135,7 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
     if (type) gmshFree(type);
     if (discrete) {
       gmshFree(ents);
-      SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: gmsh reads it as a mesh (discrete %s), not as CAD geometry: meshed obstacles (STL, .msh, ...) are not supported yet, only CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", cad->file, dim == 3 ? "surfaces" : "curves");
+      SETERRQ(o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: gmsh reads it as a mesh (discrete %s), not as CAD geometry: give a meshed obstacle as the STL or .msh file itself, or CAD geometry (.geo, .step, .stp, .brep, .iges) that gmsh can project onto", cad->file, dim == 3 ? "surfaces" : "curves");
     }
   }
   if (!nents) {
@@ -683,11 +683,11 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
 static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
-  PetscBool     set, verbose = PETSC_FALSE, exists;
+  PetscBool     set, verbose = PETSC_FALSE, exists, ismesh;
   PetscInt      n = o->dim;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh)", NULL, cad->file, cad->file, sizeof(cad->file), &set));
+  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &set));
   PetscCheck(set && cad->file[0], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_type cad: needs -obstacle_cad_file");
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-obstacle_cad_translation", "Translation of the CAD model, x,y[,z]", 3, cad->shift, &n, &set));
   PetscCheck(!set || n == o->dim, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, n, o->dim);
@@ -699,6 +699,17 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-obstacle_cad_verbose", "Let gmsh print its messages", &verbose, NULL));
   PetscCall(PetscTestFile(cad->file, 'r', &exists));
   PetscCheck(exists, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: no such file, or not readable", cad->file);
+  PetscCall(SgObstacleMeshFileIs(cad->file, &ismesh));
+  if (ismesh) { /* a triangulated surface (obstacle_mesh.c) takes this obstacle over, with the same placement */
+    char      file[PETSC_MAX_PATH_LEN];
+    PetscReal shift[3], scale = cad->scale;
+    PetscCall(PetscStrncpy(file, cad->file, sizeof(file)));
+    for (PetscInt k = 0; k < 3; k++) shift[k] = cad->shift[k];
+    PetscCall(PetscFree(o->data)); /* nothing of it allocated yet */
+    o->destroy = NULL;
+    PetscCall(SgObstacleSetUp_Mesh(o, file, shift, scale));
+    PetscFunctionReturn(0);
+  }
   PetscCall(CadRefuseMeshFile(o, cad->file));
   PetscCall(PetscLogEventBegin(CAD_SetUp, 0, 0, 0, 0));
   PetscCall(GmshStart(o->comm, verbose));
