@@ -339,7 +339,7 @@ int main(int argc, char **argv)
   static LoadSteps ls; /* large: not on the stack */
   SgProblem      prob;
   SgCont         cont;
-  PetscBool      converged;
+  PetscBool      converged, helponly;
   PetscErrorCode ierr_fields = 0, ierr_hist;
 
   if (CheckOptionsFileCycles(argc, argv)) return PETSC_ERR_USER_INPUT;
@@ -353,7 +353,24 @@ int main(int argc, char **argv)
   PetscCall(SgContCreate(prob, &cont)); /* the controller holds the problem (nothing read yet) */
   PetscCall(SgContPrintHelp(cont));     /* -help: the controllers' options, even when the problem's are missing */
   PetscCall(SgProblemSetFromOptions(prob));
-  PetscCall(SgProblemSetUp(prob));
+  PetscCall(PetscOptionsHasHelp(NULL, &helponly));
+  if (helponly) {
+    /* -help without a complete problem (bin/signorini -help): the options are listed above; say what is missing and
+       stop without an error (PETSc's own programs list their options and exit 0) */
+    PetscErrorCode ierr;
+    const char    *why = NULL;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SgProblemSetUp(prob);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      (void)PetscErrorMessage(ierr, NULL, (char **)&why);
+      PetscCall(PetscPrintf(comm, "-help: the options are listed above; no problem was set up, so nothing is solved (%s)\n", why && why[0] ? why : "the problem is incomplete"));
+      PetscCall(SgContDestroy(&cont));
+      PetscCall(SgProblemDestroy(&prob));
+      PetscCall(PetscFinalize());
+      return 0;
+    }
+  } else PetscCall(SgProblemSetUp(prob));
   PetscCall(LoadDirichletValues(comm, prob, &ls));
   if (out.quiet) PetscCall(SgContSetMonitor(cont, PETSC_FALSE)); /* -cont_monitor still decides */
   PetscCall(SgContSetFromOptions(cont));
