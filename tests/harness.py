@@ -46,7 +46,6 @@ import subprocess
 import sys
 import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
 import sgrun  # noqa: E402
@@ -295,30 +294,45 @@ def main():
                 break
         else:
             sys.exit("circular depends_on among: " + " ".join(t.name for t in pending))
-    for t in order_:
-        t.done = threading.Event()
+    # a scheduler with a ready list: a test starts as soon as the tests it depends on have finished and the ranks it
+    # needs are free, the first such in the order above (a worker never sits waiting for a dependency while a rank is
+    # idle, which a pool of workers taking the tests in order did: half the suite's wall time went to such waits)
     t0 = time.time()
     free = [opt.jobs]
+    finished = set()
     cv = threading.Condition()
+    waiting = list(order_)
 
-    def go(t):
-        for r in t.depends_on:
-            tests[r].done.wait()
-        need = min(t.nsize, opt.jobs)
-        with cv:  # take all the ranks a test needs at once
-            cv.wait_for(lambda: free[0] >= need)
-            free[0] -= need
+    def run(t, need):
         try:
             t.run()
         finally:
             with cv:
                 free[0] += need
+                finished.add(t.name)
                 cv.notify_all()
-            t.done.set()
-        return t
+
+    def startable():
+        for t in waiting:
+            if free[0] >= min(t.nsize, opt.jobs) and all(r in finished for r in t.depends_on):
+                return t
+        return None
     before = set(os.listdir(ROOT))
-    with ThreadPoolExecutor(max_workers=opt.jobs) as pool:
-        list(pool.map(go, order_))
+    threads = []
+    with cv:
+        while waiting:
+            t = startable()
+            if t is None:
+                cv.wait()
+                continue
+            need = min(t.nsize, opt.jobs)
+            free[0] -= need
+            waiting.remove(t)
+            th = threading.Thread(target=run, args=(t, need))
+            th.start()
+            threads.append(th)
+    for th in threads:
+        th.join()
     passed = failed = 0
     stray = sorted(repr(f) for f in set(os.listdir(ROOT)) - before)
     if stray:  # every test writes under tests/output; anything new at the top of the tree is a bug
