@@ -395,6 +395,17 @@ static double Dot(const double a[3], const double b[3])
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* the coordinates (s, t) of the projection of w = p - a onto the plane of a + s e1 + t e2 (a triangle's: inside when
+   s, t >= 0 and s + t <= 1) */
+static void Barycentric(const double e1[3], const double e2[3], const double w[3], double *s, double *t)
+{
+  const double d11 = Dot(e1, e1), d12 = Dot(e1, e2), d22 = Dot(e2, e2), p1 = Dot(w, e1), p2 = Dot(w, e2);
+  const double det = d11 * d22 - d12 * d12;
+
+  *s = (d22 * p1 - d12 * p2) / det;
+  *t = (d11 * p2 - d12 * p1) / det;
+}
+
 static const double *Vtx(const Obstacle_Mesh *m, PetscInt e, PetscInt k)
 {
   return &m->x[3 * m->el[m->nv * e + k]];
@@ -644,20 +655,13 @@ static void ClosestOnElement(const Obstacle_Mesh *m, PetscInt e, const double p[
   c->feat = 0;
   if (m->nv == 3) {
     const double *cc = Vtx(m, e, 2);
-    double        e1[3], e2[3], w[3], d11, d12, d22, p1, p2, det, s, t;
+    double        e1[3], e2[3], w[3], s, t;
     for (int k = 0; k < 3; k++) {
       e1[k] = b[k] - a[k];
       e2[k] = cc[k] - a[k];
       w[k]  = p[k] - a[k];
     }
-    d11 = Dot(e1, e1);
-    d12 = Dot(e1, e2);
-    d22 = Dot(e2, e2);
-    p1  = Dot(w, e1);
-    p2  = Dot(w, e2);
-    det = d11 * d22 - d12 * d12;
-    s   = (d22 * p1 - d12 * p2) / det;
-    t   = (d11 * p2 - d12 * p1) / det;
+    Barycentric(e1, e2, w, &s, &t);
     if (s >= -eps && t >= -eps && s + t <= 1 + eps) { /* p projects onto the triangle */
       c->feat = 0;
       c->d2   = 0;
@@ -797,16 +801,9 @@ static PetscBool RayHit(const Obstacle_Mesh *m, PetscInt e, const double x[3], c
     return (PetscBool)(u >= -eps && u <= 1 + eps);
   } else {
     const double *c = Vtx(m, e, 2);
-    double        e2[3], d11, d12, d22, p1, p2, det, s, r;
+    double        e2[3], s, r;
     for (int k = 0; k < 3; k++) e2[k] = c[k] - a[k];
-    d11 = Dot(e1, e1);
-    d12 = Dot(e1, e2);
-    d22 = Dot(e2, e2);
-    p1  = Dot(w, e1);
-    p2  = Dot(w, e2);
-    det = d11 * d22 - d12 * d12;
-    s   = (d22 * p1 - d12 * p2) / det;
-    r   = (d11 * p2 - d12 * p1) / det;
+    Barycentric(e1, e2, w, &s, &r);
     return (PetscBool)(s >= -eps && r >= -eps && s + r <= 1 + eps);
   }
 }

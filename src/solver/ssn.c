@@ -923,6 +923,27 @@ PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
   PetscFunctionReturn(0);
 }
 
+
+/* one more SNES solve from y with a fresh Jacobian and state (the Coulomb fixed point's): its iterations added to *its
+   and *kits, its own SSN iterations in *it */
+static PetscErrorCode SolveAgain(SgSSN s, Vec y, SNESConvergedReason *reason, PetscInt *its, PetscInt *kits, PetscInt *it)
+{
+  PetscInt kit;
+
+  PetscFunctionBeginUser;
+  s->havejac  = PETSC_FALSE;
+  s->nhash    = 0;
+  s->stagnant = PETSC_FALSE;
+  s->reason   = SG_SSN_ITERATING;
+  PetscCall(SNESSolve(s->snes, NULL, y));
+  PetscCall(SNESGetIterationNumber(s->snes, it));
+  PetscCall(SNESGetLinearSolveIterations(s->snes, &kit));
+  PetscCall(SNESGetConvergedReason(s->snes, reason));
+  s->reason = SSNReason(s, *reason);
+  *its += *it;
+  *kits += kit;
+  PetscFunctionReturn(0);
+}
 /* Coulomb when the Newton iteration on the coupled law failed: a fixed point on the Tresca bound. With the bound
    s_i = F lam_N,i frozen the friction law is Tresca's (a convex problem: no coupling F gamma t n^T in the Jacobian, and
    the SSN converges from anywhere); its solution y(s) gives new normal multipliers, G(s) = F max(0, lamhat + gamma
@@ -946,20 +967,10 @@ static PetscErrorCode CoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt 
   PetscCall(VecRestoreArrayRead(y, &ya));
   for (PetscInt i = 0; i < n; i++) s->gfixw[i] = c->fcoef * PetscMax(0, s->lamhat[i] + s->gamma * s->g[i]);
   for (k = 0; k < s->fp_max_it; k++) {
-    PetscInt  it2, kit2, jc;
+    PetscInt  it2, jc;
     PetscReal d = 0, mx = 0;
-    s->gfix     = s->gfixw;
-    s->havejac  = PETSC_FALSE;
-    s->nhash    = 0;
-    s->stagnant = PETSC_FALSE;
-    s->reason   = SG_SSN_ITERATING;
-    PetscCall(SNESSolve(s->snes, NULL, y));
-    PetscCall(SNESGetIterationNumber(s->snes, &it2));
-    PetscCall(SNESGetLinearSolveIterations(s->snes, &kit2));
-    PetscCall(SNESGetConvergedReason(s->snes, reason));
-    s->reason = SSNReason(s, *reason);
-    *its += it2;
-    *kits += kit2;
+    s->gfix = s->gfixw;
+    PetscCall(SolveAgain(s, y, reason, its, kits, &it2));
     s->gfix = NULL;
     if (*reason <= 0) break;
     PetscCall(VecGetArrayRead(y, &ya));
@@ -1022,18 +1033,8 @@ static PetscErrorCode CoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt 
   }
   PetscCall(PetscFree7(x, f, dX, dF, Mat_, rhs, gam));
   if (*reason > 0) { /* the coupled law from the fixed point */
-    PetscInt it2, kit2;
-    s->havejac  = PETSC_FALSE;
-    s->nhash    = 0;
-    s->stagnant = PETSC_FALSE;
-    s->reason   = SG_SSN_ITERATING;
-    PetscCall(SNESSolve(s->snes, NULL, y));
-    PetscCall(SNESGetIterationNumber(s->snes, &it2));
-    PetscCall(SNESGetLinearSolveIterations(s->snes, &kit2));
-    PetscCall(SNESGetConvergedReason(s->snes, reason));
-    s->reason = SSNReason(s, *reason);
-    *its += it2;
-    *kits += kit2;
+    PetscInt it2;
+    PetscCall(SolveAgain(s, y, reason, its, kits, &it2));
     if (s->monitor) PetscCall(PetscPrintf(s->comm, "  Coulomb after %" PetscInt_FMT " fixed-point steps at gamma %g: %s after %" PetscInt_FMT " SSN\n", k, (double)s->gamma, SgSSNReasons[s->reason], it2));
   }
   PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g with Coulomb friction: the Newton iteration on the coupled law failed; solved again by a fixed point on the Tresca bound s = F lam_N (%" PetscInt_FMT " steps): %s\n", (double)s->gamma, k, *reason > 0 ? "converged" : SgSSNReasons[s->reason]));
