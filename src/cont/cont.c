@@ -184,7 +184,7 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
   PetscCall(PetscOptionsString("-checkpoint_file", "HDF5 file with the continuation state, rewritten after every outer step", NULL, ct->ckfile, ct->ckfile, sizeof(ct->ckfile), NULL));
   PetscCall(PetscOptionsString("-restart_file", "Resume from a checkpoint (a continuation controller: alm, pf, ipf; any number of ranks)", NULL, ct->rsfile, ct->rsfile, sizeof(ct->rsfile), NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_coulomb_shifted_path", "Coulomb friction: when a regularized solve of pf or ipf fails, solve again from the start on the shifted path (the augmented Lagrangian steps of alm, gamma doubled per step)", &ct->coulomb_shifted, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_coulomb_shifted_path", "Coulomb friction: when a regularized solve of pf or ipf fails, or the tolerance lies below the double-precision cap of gamma (PRECISION_LIMIT), solve again from the start on the shifted path (the augmented Lagrangian steps of alm, gamma doubled per step)", &ct->coulomb_shifted, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   PetscFunctionReturn(0);
 }
@@ -1051,6 +1051,9 @@ static PetscErrorCode SolveContinuation(SgCont ct)
     SgSSNReason sr;
     PetscCall(SgSSNGetReason(ct->ssn, &sr));
     if (sr == SG_SSN_MAX_IT || sr == SG_SSN_CYCLING || sr == SG_SSN_SNES_FAILED) PetscCall(CoulombShiftedPath(ct));
+  } else if (shifted && !ct->converged && ct->ngammas && !strncmp(ct->reason, "PRECISION_LIMIT", 15)) {
+    /* the tolerance lies below what gamma can reach in double precision (a small load step's slip): the shift moves */
+    PetscCall(CoulombShiftedPath(ct));
   }
   PetscCall(RestoreBest(ct));
   if (ct->ops.finish) PetscCall(ct->ops.finish(ct));
