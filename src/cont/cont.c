@@ -945,7 +945,7 @@ static PetscErrorCode RestoreBest(SgCont ct)
       ct->converged = PETSC_TRUE;
       PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "KKT_RESIDUAL_BELOW_TOL: %.3e <= %.3e at outer step %" PetscInt_FMT " of %" PetscInt_FMT " (the result is that step's iterate; the run went on and stopped with: %.200s)", (double)ct->kkt.residual, (double)ct->kkt_tol, ct->outerbest, ct->outer, was));
     } else {
-      PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.300s; the result is the best iterate, of outer step %" PetscInt_FMT " (KKT residual %.3e)", was, ct->outerbest, (double)ct->kkt.residual));
+      PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.400s; the result is the best iterate, of outer step %" PetscInt_FMT " (KKT residual %.3e)", was, ct->outerbest, (double)ct->kkt.residual));
     }
   }
   ct->outerbest = 0;
@@ -1005,6 +1005,14 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
     char now[sizeof(ct->reason)];
     PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));
     PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.200s on the shifted path (outer steps %" PetscInt_FMT "-%" PetscInt_FMT ", after %.250s)", now, outer0 + 1, ct->outer, was));
+  } else {
+    /* neither path: say that the shifted one failed too, and what is known of such problems, not only the last
+       SSN's advice (more iterations, smaller steps), which the fallbacks have tried */
+    char  now[sizeof(ct->reason)], *advice;
+    PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));
+    PetscCall(PetscStrstr(now, ": raise -snes_max_it", &advice));
+    if (advice) *advice = 0; /* tried */
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.150s on the shifted path, after %.60s...; Coulomb F = %g: above a mesh-dependent F the discrete problem can have several solutions or none (a smaller F, a coarser mesh or Tresca can be solved)", now, was, (double)ct->cv.fcoef));
   }
   PetscFunctionReturn(0);
 }
