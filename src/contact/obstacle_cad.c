@@ -248,52 +248,67 @@ static PetscBool RayElement(PetscInt dim, const double *v, const double x[], con
   }
 }
 
-/* distance from p to the segment [a, b] */
-static double DistSegment(const double p[3], const double a[3], const double b[3])
+/* the closest point q to p on the segment [a, b] */
+static void ClosestSegment(const double p[3], const double a[3], const double b[3], double q[3])
 {
-  double ab = 0, ap = 0, s, d = 0;
+  double ab = 0, ap = 0, s;
   for (int k = 0; k < 3; k++) {
     ab += (b[k] - a[k]) * (b[k] - a[k]);
     ap += (p[k] - a[k]) * (b[k] - a[k]);
   }
   s = ab > 0 ? PetscMin(1, PetscMax(0, ap / ab)) : 0;
-  for (int k = 0; k < 3; k++) d += PetscSqr(p[k] - a[k] - s * (b[k] - a[k]));
-  return PetscSqrtReal(d);
+  for (int k = 0; k < 3; k++) q[k] = a[k] + s * (b[k] - a[k]);
 }
 
-/* distance from p to the triangle abc: to its plane if p projects inside, else to the nearest edge */
-static double DistTriangle(const double p[3], const double a[3], const double b[3], const double c[3])
+static double Dist3(const double a[3], const double b[3])
 {
-  double e1[3], e2[3], m[3], w[3], mm = 0, h = 0, q[3], g[3][3];
+  return PetscSqrtReal(PetscSqr(a[0] - b[0]) + PetscSqr(a[1] - b[1]) + PetscSqr(a[2] - b[2]));
+}
+
+/* the closest point q to p on the element v (a segment in 2D, a triangle in 3D: its plane's if p projects inside,
+   else the nearest of its edges') */
+static void ClosestElement(PetscInt dim, const double *v, const double p[3], double q[3])
+{
+  double e1[3], e2[3], m[3], mm = 0, h = 0, best = PETSC_MAX_REAL, qe[3];
+  if (dim == 2) {
+    ClosestSegment(p, v, v + 3, q);
+    return;
+  }
   for (int k = 0; k < 3; k++) {
-    e1[k] = b[k] - a[k];
-    e2[k] = c[k] - a[k];
+    e1[k] = v[3 + k] - v[k];
+    e2[k] = v[6 + k] - v[k];
   }
   m[0] = e1[1] * e2[2] - e1[2] * e2[1];
   m[1] = e1[2] * e2[0] - e1[0] * e2[2];
   m[2] = e1[0] * e2[1] - e1[1] * e2[0];
   for (int k = 0; k < 3; k++) {
     mm += m[k] * m[k];
-    h += (p[k] - a[k]) * m[k];
+    h += (p[k] - v[k]) * m[k];
   }
   if (mm > 0) {
     PetscBool in = PETSC_TRUE;
-    const double *v[3] = {a, b, c};
     for (int k = 0; k < 3; k++) q[k] = p[k] - h / mm * m[k];
-    /* q inside: on the same side of the three edges as the normal says */
-    for (int e = 0; e < 3 && in; e++) {
-      const double *s0 = v[e], *s1 = v[(e + 1) % 3];
-      double        side = 0;
+    for (int e = 0; e < 3 && in; e++) { /* q on the inner side of the three edges */
+      const double *s0 = v + 3 * e, *s1 = v + 3 * ((e + 1) % 3);
+      double        w[3], g[3], side = 0;
       for (int k = 0; k < 3; k++) w[k] = q[k] - s0[k];
-      g[e][0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
-      g[e][1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
-      g[e][2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
-      for (int k = 0; k < 3; k++) side += g[e][k] * m[k];
+      g[0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
+      g[1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
+      g[2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
+      for (int k = 0; k < 3; k++) side += g[k] * m[k];
       if (side < 0) in = PETSC_FALSE;
     }
-    if (in) return PetscAbsReal(h) / PetscSqrtReal(mm);
+    if (in) return;
   }
-  return PetscMin(DistSegment(p, a, b), PetscMin(DistSegment(p, b, c), DistSegment(p, c, a)));
+  for (int e = 0; e < 3; e++) {
+    double d;
+    ClosestSegment(p, v + 3 * e, v + 3 * ((e + 1) % 3), qe);
+    d = Dist3(p, qe);
+    if (d < best) {
+      best = d;
+      for (int k = 0; k < 3; k++) q[k] = qe[k];
+    }
+  }
 }
 
 /* distance from p to the tessellation of the CAD entity tag */
@@ -301,9 +316,10 @@ static double DistTessellation(Obstacle_CAD *cad, PetscInt dim, int tag, const d
 {
   double dmin = PETSC_MAX_REAL;
   for (PetscInt e = 0; e < cad->nel; e++) {
-    const double *v = &cad->xyz[e * dim * 3];
+    double q[3];
     if (cad->tag[e] != tag) continue;
-    dmin = PetscMin(dmin, dim == 3 ? DistTriangle(p, v, v + 3, v + 6) : DistSegment(p, v, v + 3));
+    ClosestElement(dim, &cad->xyz[e * dim * 3], p, q);
+    dmin = PetscMin(dmin, Dist3(p, q));
   }
   return dmin;
 }
@@ -443,69 +459,6 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
 }
 
 /* ---- the signed distance (-contact_normal obstacle) */
-
-/* the closest point q to p on the segment [a, b] */
-static void ClosestSegment(const double p[3], const double a[3], const double b[3], double q[3])
-{
-  double ab = 0, ap = 0, s;
-  for (int k = 0; k < 3; k++) {
-    ab += (b[k] - a[k]) * (b[k] - a[k]);
-    ap += (p[k] - a[k]) * (b[k] - a[k]);
-  }
-  s = ab > 0 ? PetscMin(1, PetscMax(0, ap / ab)) : 0;
-  for (int k = 0; k < 3; k++) q[k] = a[k] + s * (b[k] - a[k]);
-}
-
-static double Dist3(const double a[3], const double b[3])
-{
-  return PetscSqrtReal(PetscSqr(a[0] - b[0]) + PetscSqr(a[1] - b[1]) + PetscSqr(a[2] - b[2]));
-}
-
-/* the closest point q to p on the element v (a segment in 2D, a triangle in 3D: its plane's if p projects inside,
-   else the nearest of its edges') */
-static void ClosestElement(PetscInt dim, const double *v, const double p[3], double q[3])
-{
-  double e1[3], e2[3], m[3], mm = 0, h = 0, best = PETSC_MAX_REAL, qe[3];
-  if (dim == 2) {
-    ClosestSegment(p, v, v + 3, q);
-    return;
-  }
-  for (int k = 0; k < 3; k++) {
-    e1[k] = v[3 + k] - v[k];
-    e2[k] = v[6 + k] - v[k];
-  }
-  m[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  m[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  m[2] = e1[0] * e2[1] - e1[1] * e2[0];
-  for (int k = 0; k < 3; k++) {
-    mm += m[k] * m[k];
-    h += (p[k] - v[k]) * m[k];
-  }
-  if (mm > 0) {
-    PetscBool in = PETSC_TRUE;
-    for (int k = 0; k < 3; k++) q[k] = p[k] - h / mm * m[k];
-    for (int e = 0; e < 3 && in; e++) { /* q on the inner side of the three edges */
-      const double *s0 = v + 3 * e, *s1 = v + 3 * ((e + 1) % 3);
-      double        w[3], g[3], side = 0;
-      for (int k = 0; k < 3; k++) w[k] = q[k] - s0[k];
-      g[0] = (s1[1] - s0[1]) * w[2] - (s1[2] - s0[2]) * w[1];
-      g[1] = (s1[2] - s0[2]) * w[0] - (s1[0] - s0[0]) * w[2];
-      g[2] = (s1[0] - s0[0]) * w[1] - (s1[1] - s0[1]) * w[0];
-      for (int k = 0; k < 3; k++) side += g[k] * m[k];
-      if (side < 0) in = PETSC_FALSE;
-    }
-    if (in) return;
-  }
-  for (int e = 0; e < 3; e++) {
-    double d;
-    ClosestSegment(p, v + 3 * e, v + 3 * ((e + 1) % 3), qe);
-    d = Dist3(p, qe);
-    if (d < best) {
-      best = d;
-      for (int k = 0; k < 3; k++) q[k] = qe[k];
-    }
-  }
-}
 
 /* whether x lies inside the solid: the parity of the distinct crossings of the tessellation by a ray from x, in two
    generic directions (a third decides when they disagree: a ray through an edge of the tessellation) */
