@@ -193,6 +193,7 @@ typedef struct {
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
 PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
+PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
 PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {

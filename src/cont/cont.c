@@ -799,7 +799,7 @@ static PetscErrorCode CheckpointWrite(SgCont ct, PetscBool step_open)
   SgCheckpoint ck;
   PetscBool    ok;
   char         msg[PETSC_MAX_PATH_LEN + 256];
-  PetscReal   *save = NULL, *next = NULL;
+  PetscReal   *next = NULL;
 
   PetscFunctionBeginUser;
   if (!ct->ckfile[0]) PetscFunctionReturn(0);
@@ -808,20 +808,14 @@ static PetscErrorCode CheckpointWrite(SgCont ct, PetscBool step_open)
   if (!step_open && ck.yref) {
     /* at a step's end the next step's slip reference, with the data of the step solved: prescribed components of the
        contact vertices take the next step's data once the problem changes, so a restart could not recompute it */
-    PetscReal *cref;
-    PetscInt   dim, n2;
+    PetscInt dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    n2 = 2 * ct->cv.n * dim;
-    PetscCall(PetscMalloc2(n2 + 1, &save, n2 + 1, &next));
-    PetscCall(SgContactGetSlipReference(ct->c, &cref));
-    PetscCall(PetscArraycpy(save, cref, n2));
-    PetscCall(SgContactSetSlipReference(ct->c, ct->y));
-    PetscCall(PetscArraycpy(next, cref, n2));
-    PetscCall(PetscArraycpy(cref, save, n2));
+    PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &next)); /* the second half is written with prescribed components only */
+    PetscCall(SgContactComputeSlipReference(ct->c, ct->y, next));
     ck.yref = next;
   }
   PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
-  PetscCall(PetscFree2(save, next));
+  PetscCall(PetscFree(next));
   if (!ok) {
     /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
     PetscCall(PetscPrintf(ct->comm, "checkpoint not written: %s\n", msg));

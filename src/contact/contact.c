@@ -920,29 +920,29 @@ PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec sli
   PetscFunctionReturn(0);
 }
 
-/* The start of a load step's slip: yref = y at the contact vertices (NULL: zero, the first step's start). The
-   tangential law of the step acts on the increment T_i (y_i - yref_i): quasi-static incremental friction. */
-PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
+/* The slip reference of y into ref (2 n dim: of the unknowns, then of the full displacement, which is written only
+   where components of contact vertices are prescribed and is left as it is otherwise; y NULL: zero, the first step's
+   start), without installing it */
+PetscErrorCode SgContactComputeSlipReference(SgContact c, Vec y, PetscReal ref[])
 {
   const PetscScalar *ya;
+  PetscReal         *pref = ref + c->n * c->dim;
 
   PetscFunctionBeginUser;
-  if (!c->yref) PetscFunctionReturn(0);
   if (!y) {
-    PetscCall(PetscArrayzero(c->yref, c->n * c->dim));
-    PetscCall(PetscArrayzero(c->ypref, c->n * c->dim));
+    PetscCall(PetscArrayzero(ref, 2 * c->n * c->dim));
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArrayRead(y, &ya));
   for (PetscInt i = 0; i < c->n; i++)
-    for (PetscInt k = 0; k < c->dim; k++) c->yref[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
+    for (PetscInt k = 0; k < c->dim; k++) ref[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
   if (c->haspartial) {
     /* prescribed components: the data of the step y solved, recorded by its SgContactKKT (by now the problem may
        hold the next step's data); otherwise the problem's current data */
     PetscInt same = c->haverecord ? 1 : 0;
-    for (PetscInt i = 0; i < c->n * c->dim && same; i++) same = c->ypfull[c->n * c->dim + i] == c->yref[i];
+    for (PetscInt i = 0; i < c->n * c->dim && same; i++) same = c->ypfull[c->n * c->dim + i] == ref[i];
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_INT, MPI_MIN, c->comm));
-    if (same) PetscCall(PetscArraycpy(c->ypref, c->ypfull, c->n * c->dim));
+    if (same) PetscCall(PetscArraycpy(pref, c->ypfull, c->n * c->dim));
     else {
       Vec                yloc;
       const PetscScalar *ul;
@@ -950,12 +950,22 @@ PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
       PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
       PetscCall(VecGetArrayRead(yloc, &ul));
       for (PetscInt i = 0; i < c->n; i++)
-        for (PetscInt k = 0; k < c->dim; k++) c->ypref[i * c->dim + k] = PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k]);
+        for (PetscInt k = 0; k < c->dim; k++) pref[i * c->dim + k] = PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k]);
       PetscCall(VecRestoreArrayRead(yloc, &ul));
       PetscCall(DMRestoreLocalVector(c->dm, &yloc));
     }
   }
   PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscFunctionReturn(0);
+}
+
+/* The start of a load step's slip: yref = y at the contact vertices (NULL: zero, the first step's start). The
+   tangential law of the step acts on the increment T_i (y_i - yref_i): quasi-static incremental friction. */
+PetscErrorCode SgContactSetSlipReference(SgContact c, Vec y)
+{
+  PetscFunctionBeginUser;
+  if (!c->yref) PetscFunctionReturn(0);
+  PetscCall(SgContactComputeSlipReference(c, y, c->yref));
   PetscFunctionReturn(0);
 }
 
