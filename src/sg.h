@@ -326,6 +326,7 @@ extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;
 typedef struct _n_SgCondense *SgCondense;
 typedef struct _n_SgTMG      *SgTMG;
+typedef struct _n_SgFrame    *SgFrame;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
@@ -362,6 +363,17 @@ PetscErrorCode SgCondenseDestroy(SgCondense *);
 PetscErrorCode SgTMGCreate(SgSSN, KSP, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG */
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
+/* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
+PetscErrorCode SgFrameCreate(SgElasticity, SgContact, SgFrame *);
+PetscErrorCode SgFrameDestroy(SgFrame *);
+PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices */
+PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */
+void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
+PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
+PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
+PetscErrorCode SgFrameGetRotatedCount(SgFrame, PetscInt *);
+PetscErrorCode SgFrameCreateOperator(SgFrame, Mat, Mat *); /* Q P Q^T as a shell */
+PetscErrorCode SgFrameWrapKSP(SgFrame, KSP);                /* the KSP's preconditioner M becomes Q M^{-1} Q^T */
 
 /* ------------------------------------------------------------------ cont: cont.c (the object and the outer loop),
    report.c (views, summary, fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */

@@ -62,17 +62,17 @@ static PetscErrorCode PCSetUp_Condense(PC pc)
     MatFactorInfo  info;
     MatFactorSchurStatus status;
 
-    PetscCall(MatGetOwnershipRange(cd->ssn->K, &rstart, NULL));
+    PetscCall(MatGetOwnershipRange(cd->ssn->Klin, &rstart, NULL));
     PetscCall(PetscMalloc1(c->n * cd->ncomp, &idx));
     for (PetscInt i = 0; i < c->n; i++)
       for (PetscInt k = 0; k < cd->ncomp; k++) idx[i * cd->ncomp + k] = rstart + c->off[i] + (cd->ncomp == 1 ? cd->axis[i] : k);
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, c->n * cd->ncomp, idx, PETSC_OWN_POINTER, &is));
-    PetscCall(MatGetFactor(cd->ssn->K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
+    PetscCall(MatGetFactor(cd->ssn->Klin, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
     PetscCall(MatFactorSetSchurIS(cd->F, is));
     PetscCall(ISDestroy(&is));
     PetscCall(MatFactorInfoInitialize(&info));
-    PetscCall(MatCholeskyFactorSymbolic(cd->F, cd->ssn->K, NULL, &info));
-    PetscCall(MatCholeskyFactorNumeric(cd->F, cd->ssn->K, &info));
+    PetscCall(MatCholeskyFactorSymbolic(cd->F, cd->ssn->Klin, NULL, &info));
+    PetscCall(MatCholeskyFactorNumeric(cd->F, cd->ssn->Klin, &info));
     PetscCall(MatFactorCreateSchurComplement(cd->F, &cd->S0, &status));
     cd->ready = PETSC_TRUE;
     (void)dim;
@@ -108,11 +108,17 @@ PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
   PetscCall(PetscNew(&cd));
   cd->ssn = s;
   PetscCall(PetscMalloc1(s->cv.n, &cd->axis));
-  for (PetscInt i = 0; i < s->cv.n; i++) {
-    cd->axis[i] = -1;
-    for (PetscInt k = 0; k < dim; k++)
-      if (PetscAbsReal(PetscAbsReal(s->cv.normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
-    if (cd->axis[i] < 0) aligned = PETSC_FALSE;
+  if (s->frame) { /* in the contact frames every normal is an axis (frame.c) */
+    const PetscInt *axis;
+    PetscCall(SgFrameGetAxes(s->frame, &axis, NULL, NULL));
+    PetscCall(PetscArraycpy(cd->axis, axis, s->cv.n));
+  } else {
+    for (PetscInt i = 0; i < s->cv.n; i++) {
+      cd->axis[i] = -1;
+      for (PetscInt k = 0; k < dim; k++)
+        if (PetscAbsReal(PetscAbsReal(s->cv.normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
+      if (cd->axis[i] < 0) aligned = PETSC_FALSE;
+    }
   }
   /* axis-aligned normals: the contact block only touches the normal components, so only they are condensed */
   cd->ncomp = aligned ? 1 : dim;

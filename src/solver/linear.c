@@ -143,6 +143,13 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgContactNormalsAxisAligned(c, &aligned));
+  if (!aligned) { /* the contact frames (-ssn_frame, on unless turned off) make every normal an axis of its frame */
+    char      opt[256];
+    PetscBool frame = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_frame", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &frame, NULL));
+    aligned = frame;
+  }
   PetscCall(PetscStrlen(desc, &n));
   if (iterative) {
     if (!aligned) PetscFunctionReturn(0);

@@ -227,8 +227,11 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
   const PetscReal      gT  = c->fgfac * s->gamma;
   const PetscScalar   *ya, *fa = NULL;
   PetscReal           *blk;
+  const PetscInt      *faxis = NULL;
+  const PetscBool     *frot  = NULL;
 
   PetscFunctionBeginUser;
+  if (s->frame) PetscCall(SgFrameGetAxes(s->frame, &faxis, NULL, &frot));
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   s->nforce = 0;
   PetscCall(VecGetArrayRead(y, &ya));
@@ -273,19 +276,57 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
     s->fstjac[i] = st;
     for (PetscInt k = 0; k < dim; k++) s->tjac[i * dim + k] = t[k];
     if (st == SG_FRICTION_FREE) continue;
-    for (PetscInt a = 0; a < dim; a++)
-      for (PetscInt b = 0; b < dim; b++) {
-        const PetscReal T = (a == b ? 1 : 0) - n[a] * n[b];
-        if (st == SG_FRICTION_STICK) B[a * dim + b] = c->w[i] * gT * T;
-        else {
-          B[a * dim + b] = c->w[i] * (gb / zn) * gT * (T - t[a] * t[b]);
-          if (c->friction == SG_FRICTION_COULOMB && s->actjac[i] && !s->gfix) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * t[a] * n[b];
-        }
+    {
+      /* in the vertex's frame (-ssn_frame) the block Q^T B Q is made from n = e_axis and t in the frame */
+      PetscReal        nf[3] = {0, 0, 0}, tf[3];
+      const PetscReal *nb = n, *tb = t;
+      if (frot && frot[i]) {
+        nf[faxis[i]] = 1;
+        SgFrameVectorToLocal(s->frame, i, t, tf);
+        tf[faxis[i]] = 0;
+        nb = nf;
+        tb = tf;
       }
+      for (PetscInt a = 0; a < dim; a++)
+        for (PetscInt b = 0; b < dim; b++) {
+          const PetscReal T = (a == b ? 1 : 0) - nb[a] * nb[b];
+          if (st == SG_FRICTION_STICK) B[a * dim + b] = c->w[i] * gT * T;
+          else {
+            B[a * dim + b] = c->w[i] * (gb / zn) * gT * (T - tb[a] * tb[b]);
+            if (c->friction == SG_FRICTION_COULOMB && s->actjac[i] && !s->gfix) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * tb[a] * nb[b];
+          }
+        }
+    }
   }
   PetscCall(VecRestoreArrayRead(y, &ya));
   if (fa) PetscCall(VecRestoreArrayRead(s->r, &fa));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->nforce, 1, MPIU_INT, MPI_SUM, s->comm));
+  PetscCall(SgContactAddBlocks(s->c, blk, P));
+  PetscCall(PetscFree(blk));
+  PetscFunctionReturn(0);
+}
+
+/* gamma w_i n_i n_i^T on the active vertices, in the frames: gamma w_i on the normal's diagonal entry at a rotated
+   vertex (exactly: nothing of gamma reaches its tangential entries), the block as without frames elsewhere */
+static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
+{
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscInt      *axis;
+  const PetscBool     *rot;
+  PetscReal           *blk;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgFrameGetAxes(s->frame, &axis, NULL, &rot));
+  PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal *B = &blk[i * dim * dim];
+    if (!s->actjac[i]) continue;
+    if (rot[i]) B[axis[i] * dim + axis[i]] = s->gamma * c->w[i];
+    else
+      for (PetscInt a = 0; a < dim; a++)
+        for (PetscInt b = 0; b < dim; b++) B[a * dim + b] = s->gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
+  }
   PetscCall(SgContactAddBlocks(s->c, blk, P));
   PetscCall(PetscFree(blk));
   PetscFunctionReturn(0);
@@ -328,8 +369,9 @@ static PetscErrorCode Jacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && s->hash[s->nhash - 1] == s->hash[s->nhash - 2] ? -1 : -2));
   }
   /* only the contact block changes: copy the stiffness (same pattern, so factorizations keep their symbolic phase) */
-  PetscCall(MatCopy(s->K, P, SAME_NONZERO_PATTERN));
-  PetscCall(SgContactAddJacobian(s->c, s->actjac, s->gamma, P));
+  PetscCall(MatCopy(s->Klin, P, SAME_NONZERO_PATTERN));
+  if (s->frame) PetscCall(FrameContactJacobian(s, P));
+  else PetscCall(SgContactAddJacobian(s->c, s->actjac, s->gamma, P));
   if (c->friction) PetscCall(FrictionJacobian(s, y, P));
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
@@ -600,7 +642,13 @@ PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y
   PetscCall(SgElasticityGetOperators(el, &K, &b));
   PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
   PetscCall(MatCopy(K, J, SAME_NONZERO_PATTERN));
-  PetscCall(KSPSetOperators(ksp, J, J));
+  {
+    Mat Kf = NULL, Pf = NULL; /* the SSN's contact frames (FrameSetUp): the preconditioner works on Q^T K Q */
+    PetscCall(PetscObjectQuery((PetscObject)ksp, "SgFrameStiffness", (PetscObject *)&Kf));
+    PetscCall(PetscObjectQuery((PetscObject)ksp, "SgFramePmat", (PetscObject *)&Pf));
+    if (Pf) PetscCall(MatCopy(Kf, Pf, SAME_NONZERO_PATTERN));
+    PetscCall(KSPSetOperators(ksp, J, Pf ? Pf : J));
+  }
   PetscCall(PetscTime(&t0));
   /* the first set-up of the linear solver is where some configurations that cannot work fail */
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
@@ -653,13 +701,37 @@ static PetscErrorCode ReasonView(SNES snes, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* -ssn_frame: the Jacobians are assembled in the contact frames into Pf (a copy of Q^T K Q), the Krylov method
+   multiplies with Q Pf Q^T; the elasticity solve without contact takes Pf (= Q^T K Q) as its preconditioning matrix
+   (SgLinearSolveUnconstrained finds both on the KSP) */
+static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
+{
+  MatNullSpace nsp;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgFrameGetStiffness(s->frame, &s->Klin));
+  PetscCall(MatDuplicate(s->Klin, MAT_COPY_VALUES, &s->Pf));
+  PetscCall(MatGetNearNullSpace(s->Klin, &nsp));
+  if (nsp) PetscCall(MatSetNearNullSpace(s->Pf, nsp));
+  PetscCall(MatSetOption(s->Pf, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  if (s->cv.friction == SG_FRICTION_COULOMB) {
+    PetscCall(MatSetOption(s->Pf, MAT_SPD, PETSC_FALSE));
+    PetscCall(MatSetOption(s->Pf, MAT_SYMMETRIC, PETSC_FALSE));
+  }
+  PetscCall(SgFrameCreateOperator(s->frame, s->Pf, &s->Jf));
+  PetscCall(SNESSetJacobian(s->snes, s->Jf, s->Pf, Jacobian, s));
+  PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFrameStiffness", (PetscObject)s->Klin));
+  PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFramePmat", (PetscObject)s->Pf));
+  PetscFunctionReturn(0);
+}
+
 /* The SSN solver of (P_gamma) on the contact boundary c, its SNES (options under the prefix) solving with the linear
    solver ksp on the working matrix J (SgLinearSolverCreate). */
 PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP ksp, Mat J, SgSSN *ssn)
 {
   SgSSN          s;
   SNESLineSearch ls;
-  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE;
+  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE, frame = PETSC_TRUE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -712,6 +784,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_rtol", "Coulomb: that fixed point ends when |F lam_N - s| <= rtol max F lam_N", &s->fp_rtol, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame", "Solve the linear systems in each contact vertex's frame (n, t1, t2) where its normal is not a coordinate axis (curved or tilted contact): the contact term becomes a diagonal entry, which AMG, the truncated multigrid, condensation and the bound-constrained solvers need", &frame, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
@@ -728,9 +801,13 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCheck(PetscIsNormalReal(s->fp_rtol) && s->fp_rtol > 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_rtol: must be positive and finite, got %g", (double)s->fp_rtol);
   PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
   PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
+  s->Klin = s->K;
+  if (frame && c) PetscCall(SgFrameCreate(p, c, &s->frame));
+  if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
   if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
+  if (s->frame) PetscCall(SgFrameWrapKSP(s->frame, ksp)); /* around whichever preconditioner the KSP has now */
   {
     char      name[256];
     PetscBool flg;
@@ -765,6 +842,9 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(SgCondenseDestroy(&s->cond));
   PetscCall(SgTMGDestroy(&s->tmg));
   PetscCall(MatDestroy(&s->J));
+  PetscCall(MatDestroy(&s->Jf));
+  PetscCall(MatDestroy(&s->Pf));
+  PetscCall(SgFrameDestroy(&s->frame));
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
@@ -1081,6 +1161,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
       PetscCall(KSPGetPC(s->kspd, &pc));
       PetscCall(PCSetType(pc, PCLU));
       PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+      if (s->frame) PetscCall(SgFrameWrapKSP(s->frame, s->kspd));
     }
     if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
       PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));

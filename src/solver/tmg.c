@@ -7,7 +7,8 @@
    vertex to the smoother, where gamma fixes it), and the coarse operators are the Galerkin products P_t^T J P_t, made
    as a correction of K's Galerkin hierarchy (Update). With the truncation the gamma block drops out of the coarse
    operators: P_t^T J P_t = P_t^T K P_t.
-   Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block). */
+   Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block): any normal is, in
+   the contact frames (-ssn_frame, frame.c), where all of this works on Q^T J Q and Q^T K Q. */
 #include "solver/ssnimpl.h"
 
 struct _n_SgTMG {
@@ -55,7 +56,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
   PetscCall(PetscFree(P));
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
-  PetscCall(MatMatMult(t->ssn->K, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
+  PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
   PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
   for (PetscInt l = n - 2; l > 0; l--) PetscCall(MatPtAP(t->AK[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[l - 1]));
   for (PetscInt l = 0; l < n - 1; l++) PetscCall(MatDuplicate(t->AK[l], MAT_COPY_VALUES, &t->A[l]));
@@ -176,7 +177,7 @@ static PetscErrorCode Update(SgTMG t)
     PetscCall(ISCreateGeneral(t->ssn->comm, na, rows, PETSC_USE_POINTER, &isA));
     PetscCall(MatCreateSubMatrix(t->P[n - 1], isA, t->cols, MAT_INITIAL_MATRIX, &E));
     PetscCall(MatCreateSubMatrix(t->KP, isA, t->cols, MAT_INITIAL_MATRIX, &M));
-    PetscCall(MatCreateSubMatrix(t->ssn->K, isA, isA, MAT_INITIAL_MATRIX, &KAA));
+    PetscCall(MatCreateSubMatrix(t->ssn->Klin, isA, isA, MAT_INITIAL_MATRIX, &KAA));
     PetscCall(MatPtAP(KAA, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &D));
     PetscCall(MatTransposeMatMult(E, M, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
     PetscCall(MatTranspose(C, MAT_INITIAL_MATRIX, &Ct));
@@ -271,7 +272,13 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
   t->fresh    = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
   for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
-  PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
+  if (s->frame) { /* every normal is the axis of its frame (frame.c) */
+    const PetscInt  *axis;
+    const PetscReal *sign;
+    PetscCall(SgFrameGetAxes(s->frame, &axis, &sign, NULL));
+    PetscCall(PetscArraycpy(t->axis, axis, s->cv.n));
+    PetscCall(PetscArraycpy(t->sign, sign, s->cv.n));
+  } else PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg", t->axis, t->sign));
   PetscCall(PetscObjectReference((PetscObject)pc));
   t->amg = pc;
   PetscCall(PCCreate(s->comm, &pc));
