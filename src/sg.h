@@ -354,6 +354,7 @@ PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
+PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec); /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *); /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
@@ -372,8 +373,8 @@ void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscR
 PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
 PetscErrorCode SgFrameGetRotatedCount(SgFrame, PetscInt *);
-PetscErrorCode SgFrameCreateOperator(SgFrame, Mat, Mat *); /* Q P Q^T as a shell */
-PetscErrorCode SgFrameWrapKSP(SgFrame, KSP);                /* the KSP's preconditioner M becomes Q M^{-1} Q^T */
+PetscErrorCode SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
+PetscErrorCode SgFrameDetachKSP(SgFrame, KSP);
 
 /* ------------------------------------------------------------------ cont: cont.c (the object and the outer loop),
    report.c (views, summary, fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */

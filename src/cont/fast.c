@@ -83,7 +83,9 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
     PetscCall(SgSSNGetSNES(s, &snes));
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
     PetscCall(SNESGetSolution(snes, &y));
-    PetscCall(VecWAXPY(f->w, -1.0, x, y));
+    PetscCall(VecCopy(x, f->w));
+    PetscCall(SgSSNKSPVectorToGlobal(s, f->w)); /* the KSP iterates in the contact frames (-ssn_frame) */
+    PetscCall(VecAYPX(f->w, -1.0, y));
     PetscCall(SgSSNCountSetChanges(s, f->w, &changed));
     if (changed && f->early) {
       *reason      = KSP_CONVERGED_RTOL;

@@ -5,20 +5,20 @@
    keep every component. In the vertex's own orthonormal frame Q_i = [n, t1, t2] the block is gamma w e_0 e_0^T, a
    diagonal entry. The linear systems J dy = F of the SSN are therefore solved as (Q^T J Q) z = Q^T F, dy = Q z, with
    Q block diagonal (Q_i at the rotated vertices, the identity elsewhere):
-   - the rotated stiffness Q^T K Q is formed once (it does not change);
-   - the SSN's Jacobians are assembled directly in the frame (the contact blocks on the normal dof: no round-off of
-     gamma leaks into the tangential entries), into the preconditioning matrix;
-   - the Krylov method still iterates on the original vectors: its operator is Q (Q^T J Q) Q^T (a shell) and its
-     preconditioner Q M^{-1} Q^T with M the configured preconditioner (AMG, truncated multigrid, factorization,
-     condensation) of the rotated matrix, whose near null space gets the rotated rigid-body modes.
-   Residuals, iterates, controllers and outputs stay in the original coordinates. At a roller (a fixed component e_k)
-   the frame keeps e_k in its place, so the Dirichlet rows stay rows of the identity; vertices whose normal is already
-   +-e_k keep the identity. */
+   - the rotated stiffness Q^T K Q is formed once (it does not change), with the rotated rigid-body modes as its near
+     null space;
+   - the SSN's Jacobians are assembled directly in the frames (the contact blocks on the normal dof: no round-off of
+     gamma leaks into the tangential entries);
+   - the KSP (Krylov method and the configured preconditioner: AMG, truncated multigrid, factorization, condensation)
+     works on these matrices; its right-hand side is turned into the frames before the solve and its solution back
+     after it (KSPSetPreSolve/PostSolve), so the SNES around it never sees the frames.
+   Residuals, iterates, controllers and outputs stay in the original coordinates. At a roller (a fixed component e_f,
+   the normal orthogonal to it) the frame keeps e_f in its place, so the Dirichlet rows stay rows of the identity;
+   vertices whose normal is already +-e_k keep the identity. */
 #include "solver/ssnimpl.h"
 
 struct _n_SgFrame {
   MPI_Comm     comm;
-  PetscInt     refct;         /* the SSN, the shell operator and each wrapped KSP hold one */
   PetscInt     dim, n, nrot;  /* contact vertices here; of those rotated (on all ranks: nrot_global) */
   PetscInt     nrot_global;
   const PetscInt *off;        /* dof offset of each contact vertex (the contact view's) */
@@ -28,59 +28,43 @@ struct _n_SgFrame {
   PetscReal   *sign;          /* n = sign Q_i e_axis */
   Mat          Kr;            /* Q^T K Q */
   MatNullSpace nsp;           /* the rotated near null space (NULL if the problem has none) */
-  Vec          w;             /* work vector (the shell operator and preconditioner) */
-  Mat          P;             /* the preconditioning matrix the shell operator multiplies with */
+  Vec          b;             /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
 };
 
 static PetscLogEvent SG_FrameSetUp;
 static PetscBool     frame_registered = PETSC_FALSE;
 
-/* the frame of contact vertex i with unit normal n, a fixed component (or -1) and whether it is aligned */
-static void VertexFrame(PetscInt dim, const PetscReal n[], PetscInt fixed, PetscReal Q[], PetscInt *axis)
+/* The frame of a contact vertex with unit normal n: the rotation closest to the identity that turns e_k, k the
+   component of n largest in size, into s n (s = sign n_k): Q = I + [u]x + [u]x^2 / (1 + c), u = e_k x s n, c = s n_k.
+   Its columns stay near the coordinate axes they replace, so that the rotated dofs remain what an unknown-based AMG
+   takes them for (the normal of a face turned from -e_z by 30 degrees is still dof z of its vertex), and a fixed
+   component e_f of a roller (n orthogonal to it, so u along e_f) keeps its place. n = s Q e_k. */
+static void VertexFrame(PetscInt dim, const PetscReal n[], PetscReal Q[], PetscInt *axis, PetscReal *sign)
 {
-  for (PetscInt k = 0; k < dim * dim; k++) Q[k] = 0;
-  if (dim == 2) { /* [n, t], t = n turned by 90 degrees */
-    Q[0] = n[0], Q[2] = n[1];
-    Q[1] = -n[1], Q[3] = n[0];
-    *axis = 0;
-    return;
-  }
-  if (fixed >= 0) { /* e_fixed stays; n and e_fixed x n fill the other two slots */
-    const PetscInt j1 = fixed == 0 ? 1 : 0, j2 = fixed == 2 ? 1 : 2;
-    PetscReal      t[3], e[3] = {0, 0, 0};
-    e[fixed] = 1;
-    t[0]     = e[1] * n[2] - e[2] * n[1];
-    t[1]     = e[2] * n[0] - e[0] * n[2];
-    t[2]     = e[0] * n[1] - e[1] * n[0];
-    for (PetscInt a = 0; a < 3; a++) {
-      Q[a * 3 + fixed] = e[a];
-      Q[a * 3 + j1]    = n[a];
-      Q[a * 3 + j2]    = t[a];
+  PetscInt  k = 0;
+  PetscReal v[3] = {0, 0, 0}, u[3], c, Ux[3][3], U2[3][3], e[3] = {0, 0, 0};
+
+  for (PetscInt a = 1; a < dim; a++)
+    if (PetscAbsReal(n[a]) > PetscAbsReal(n[k])) k = a;
+  *sign = n[k] > 0 ? 1 : -1;
+  *axis = k;
+  for (PetscInt a = 0; a < dim; a++) v[a] = *sign * n[a];
+  e[k] = 1;
+  u[0] = e[1] * v[2] - e[2] * v[1];
+  u[1] = e[2] * v[0] - e[0] * v[2];
+  u[2] = e[0] * v[1] - e[1] * v[0];
+  c    = v[k];
+  Ux[0][0] = 0, Ux[0][1] = -u[2], Ux[0][2] = u[1];
+  Ux[1][0] = u[2], Ux[1][1] = 0, Ux[1][2] = -u[0];
+  Ux[2][0] = -u[1], Ux[2][1] = u[0], Ux[2][2] = 0;
+  for (PetscInt a = 0; a < 3; a++)
+    for (PetscInt b = 0; b < 3; b++) {
+      U2[a][b] = 0;
+      for (PetscInt m = 0; m < 3; m++) U2[a][b] += Ux[a][m] * Ux[m][b];
     }
-    *axis = j1;
-    return;
-  }
-  { /* t1: the coordinate axis least aligned with n, made orthogonal to it; t2 = n x t1 */
-    PetscInt  m = 0;
-    PetscReal t1[3], t2[3], nt = 0, tn = 0;
-    for (PetscInt a = 1; a < 3; a++)
-      if (PetscAbsReal(n[a]) < PetscAbsReal(n[m])) m = a;
-    for (PetscInt a = 0; a < 3; a++) t1[a] = (a == m ? 1 : 0) - n[m] * n[a];
-    for (PetscInt a = 0; a < 3; a++) nt += t1[a] * t1[a];
-    nt = PetscSqrtReal(nt);
-    for (PetscInt a = 0; a < 3; a++) t1[a] /= nt;
-    t2[0] = n[1] * t1[2] - n[2] * t1[1];
-    t2[1] = n[2] * t1[0] - n[0] * t1[2];
-    t2[2] = n[0] * t1[1] - n[1] * t1[0];
-    for (PetscInt a = 0; a < 3; a++) tn += t2[a] * t2[a];
-    tn = PetscSqrtReal(tn);
-    for (PetscInt a = 0; a < 3; a++) {
-      Q[a * 3 + 0] = n[a];
-      Q[a * 3 + 1] = t1[a];
-      Q[a * 3 + 2] = t2[a] / tn;
-    }
-    *axis = 0;
-  }
+  for (PetscInt a = 0; a < dim; a++)
+    for (PetscInt b = 0; b < dim; b++) Q[a * dim + b] = (a == b) + Ux[a][b] + U2[a][b] / (1 + c);
+  for (PetscInt a = 0; a < dim; a++) Q[a * dim + k] = v[a]; /* the normal's column exactly */
 }
 
 /* x_i <- Q_i^T x_i (to the frame) or Q_i x_i (back) at the rotated vertices of a local array */
@@ -189,14 +173,13 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(PetscNew(&f));
   PetscCall(SgElasticityGetComm(el, &f->comm));
-  f->refct = 1;
-  f->dim   = dim;
-  f->n     = cv.n;
+  f->dim = dim;
+  f->n   = cv.n;
   f->off = cv.off;
   PetscCall(PetscMalloc4(cv.n * dim * dim, &f->Q, cv.n, &f->rot, cv.n, &f->axis, cv.n, &f->sign));
   for (PetscInt i = 0; i < cv.n; i++) {
     const PetscReal *n = &cv.normal[i * dim];
-    PetscInt         k = -1, fixed = -1;
+    PetscInt         k = -1;
     for (PetscInt a = 0; a < dim; a++)
       if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
     if (k >= 0) { /* already an axis: the identity, the normal on dof k */
@@ -206,11 +189,8 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
       f->sign[i] = n[k] > 0 ? 1 : -1;
       continue;
     }
-    for (PetscInt a = 0; a < dim; a++)
-      if (SgMeshFixed(m, cv.vert[i], a)) fixed = a; /* the normal is orthogonal to it (contact.c); two fixed: an axis */
-    VertexFrame(dim, n, fixed, &f->Q[i * dim * dim], &f->axis[i]);
-    f->rot[i]  = PETSC_TRUE;
-    f->sign[i] = 1;
+    VertexFrame(dim, n, &f->Q[i * dim * dim], &f->axis[i], &f->sign[i]);
+    f->rot[i] = PETSC_TRUE;
     f->nrot++;
   }
   PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
@@ -235,7 +215,6 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
     for (PetscInt k = 0; k < nv; k++) PetscCall(VecDestroy(&rv[k]));
     PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
   }
-  PetscCall(MatCreateVecs(f->Kr, &f->w, NULL));
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
   PetscCall(PetscInfo(NULL, "-ssn_frame: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
   *frame = f;
@@ -249,11 +228,10 @@ PetscErrorCode SgFrameDestroy(SgFrame *frame)
   PetscFunctionBeginUser;
   if (!f) PetscFunctionReturn(0);
   *frame = NULL;
-  if (--f->refct > 0) PetscFunctionReturn(0);
   PetscCall(PetscFree4(f->Q, f->rot, f->axis, f->sign));
   PetscCall(MatDestroy(&f->Kr));
   PetscCall(MatNullSpaceDestroy(&f->nsp));
-  PetscCall(VecDestroy(&f->w));
+  PetscCall(VecDestroy(&f->b));
   PetscCall(PetscFree(f));
   PetscFunctionReturn(0);
 }
@@ -283,160 +261,47 @@ PetscErrorCode SgFrameGetRotatedCount(SgFrame f, PetscInt *nrot)
   PetscFunctionReturn(0);
 }
 
-/* --- the operator Q P Q^T (a shell on the frame's preconditioning matrix P) --- */
-static PetscErrorCode MatMult_Frame(Mat A, Vec x, Vec y)
+/* --- a KSP solving in the frames: J x = b becomes (Q^T J Q) z = Q^T b, x = Q z; its matrices are the frame's --- */
+static PetscErrorCode PreSolve_Frame(KSP ksp, Vec b, Vec x, void *ctx)
 {
-  SgFrame f;
+  SgFrame f = (SgFrame)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(MatShellGetContext(A, &f));
-  PetscCall(VecCopy(x, f->w));
-  PetscCall(SgFrameToLocal(f, f->w));
-  PetscCall(MatMult(f->P, f->w, y));
-  PetscCall(SgFrameToGlobal(f, y));
+  if (!f->b) PetscCall(VecDuplicate(b, &f->b));
+  PetscCall(VecCopy(b, f->b)); /* the caller's right-hand side, given back unchanged after the solve */
+  PetscCall(SgFrameToLocal(f, b));
+  PetscCall(SgFrameToLocal(f, x)); /* a nonzero initial guess */
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode MatDestroy_Frame(Mat A)
+static PetscErrorCode PostSolve_Frame(KSP ksp, Vec b, Vec x, void *ctx)
 {
-  SgFrame f;
+  SgFrame f = (SgFrame)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(MatShellGetContext(A, &f));
-  PetscCall(SgFrameDestroy(&f));
+  PetscCall(VecCopy(f->b, b));
+  PetscCall(SgFrameToGlobal(f, x));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode MatMultTranspose_Frame(Mat A, Vec x, Vec y)
+/* The KSP (whose operators will be the frame's matrices: Q^T K Q, the SSN's Jacobians assembled in the frames) takes
+   and returns vectors in the original coordinates, and iterates in the frames: its residuals, its preconditioner
+   (AMG, truncated multigrid, factorization, condensation) and its stopping test all see the rotated system, where
+   gamma sits on the normal dofs' diagonal only (the original coordinates would mix the round-off of gamma w, 1e8-1e15,
+   into the tangential residual). The iterate of KSPBuildSolution during the solve is in the frames. */
+PetscErrorCode SgFrameAttachKSP(SgFrame f, KSP ksp)
 {
-  SgFrame f;
-
   PetscFunctionBeginUser;
-  PetscCall(MatShellGetContext(A, &f));
-  PetscCall(VecCopy(x, f->w));
-  PetscCall(SgFrameToLocal(f, f->w));
-  PetscCall(MatMultTranspose(f->P, f->w, y));
-  PetscCall(SgFrameToGlobal(f, y));
+  PetscCall(KSPSetPreSolve(ksp, PreSolve_Frame, f));
+  PetscCall(KSPSetPostSolve(ksp, PostSolve_Frame, f));
   PetscFunctionReturn(0);
 }
 
-/* The operator of the Krylov method, Q P Q^T in the original coordinates, for the frame's matrix P (the SSN assembles
-   its Jacobians into P). */
-PetscErrorCode SgFrameCreateOperator(SgFrame f, Mat P, Mat *A)
+PetscErrorCode SgFrameDetachKSP(SgFrame f, KSP ksp)
 {
-  PetscInt m, M;
-
   PetscFunctionBeginUser;
-  f->P = P;
-  PetscCall(MatGetLocalSize(P, &m, NULL));
-  PetscCall(MatGetSize(P, &M, NULL));
-  PetscCall(MatCreateShell(f->comm, m, m, M, M, f, A));
-  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))MatMult_Frame));
-  PetscCall(MatShellSetOperation(*A, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMultTranspose_Frame));
-  PetscCall(MatShellSetOperation(*A, MATOP_DESTROY, (void (*)(void))MatDestroy_Frame));
-  f->refct++;
-  PetscCall(MatSetBlockSize(*A, f->dim));
-  PetscCall(PetscObjectSetName((PetscObject)*A, "Q J_frame Q^T"));
-  PetscFunctionReturn(0);
-}
-
-/* --- the preconditioner Q M^{-1} Q^T, M the KSP's configured preconditioner on the frame's matrix --- */
-typedef struct {
-  SgFrame f;
-  PC      inner;
-  Vec     w;
-} FramePC;
-
-static PetscErrorCode PCSetUp_Frame(PC pc)
-{
-  FramePC *fp;
-  Mat      A, P;
-
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &fp));
-  PetscCall(PCGetOperators(pc, &A, &P));
-  PetscCall(PCSetOperators(fp->inner, P, P));
-  PetscCall(PCSetUp(fp->inner));
-  if (!fp->w) PetscCall(MatCreateVecs(P, &fp->w, NULL));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode PCApply_Frame(PC pc, Vec r, Vec x)
-{
-  FramePC *fp;
-
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &fp));
-  PetscCall(VecCopy(r, fp->w));
-  PetscCall(SgFrameToLocal(fp->f, fp->w));
-  PetscCall(PCApply(fp->inner, fp->w, x));
-  PetscCall(SgFrameToGlobal(fp->f, x));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode PCApplyTranspose_Frame(PC pc, Vec r, Vec x)
-{
-  FramePC *fp;
-
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &fp));
-  PetscCall(VecCopy(r, fp->w));
-  PetscCall(SgFrameToLocal(fp->f, fp->w));
-  PetscCall(PCApplyTranspose(fp->inner, fp->w, x));
-  PetscCall(SgFrameToGlobal(fp->f, x));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode PCView_Frame(PC pc, PetscViewer v)
-{
-  FramePC *fp;
-
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &fp));
-  PetscCall(PetscViewerASCIIPrintf(v, "contact frames (-ssn_frame): %" PetscInt_FMT " contact vertices rotated into (n, t); the preconditioner of the rotated matrix:\n", fp->f->nrot_global));
-  PetscCall(PetscViewerASCIIPushTab(v));
-  PetscCall(PCView(fp->inner, v));
-  PetscCall(PetscViewerASCIIPopTab(v));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode PCDestroy_Frame(PC pc)
-{
-  FramePC *fp;
-
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &fp));
-  PetscCall(PCDestroy(&fp->inner));
-  PetscCall(VecDestroy(&fp->w));
-  PetscCall(SgFrameDestroy(&fp->f));
-  PetscCall(PetscFree(fp));
-  PetscFunctionReturn(0);
-}
-
-/* The KSP's preconditioner (whatever it is configured to: AMG, the truncated multigrid, a factorization, the
-   condensation) moves inside Q M^{-1} Q^T: it is set up on the frame's matrix, the KSP's preconditioning matrix. */
-PetscErrorCode SgFrameWrapKSP(SgFrame f, KSP ksp)
-{
-  FramePC *fp;
-  PC       pc, inner;
-
-  PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(ksp, &inner));
-  PetscCall(PetscObjectReference((PetscObject)inner));
-  PetscCall(PetscNew(&fp));
-  fp->f     = f;
-  fp->inner = inner;
-  f->refct++;
-  PetscCall(PCCreate(f->comm, &pc));
-  PetscCall(PCSetType(pc, PCSHELL));
-  PetscCall(PCShellSetContext(pc, fp));
-  PetscCall(PCShellSetName(pc, "contact frames"));
-  PetscCall(PCShellSetSetUp(pc, PCSetUp_Frame));
-  PetscCall(PCShellSetApply(pc, PCApply_Frame));
-  PetscCall(PCShellSetApplyTranspose(pc, PCApplyTranspose_Frame));
-  PetscCall(PCShellSetView(pc, PCView_Frame));
-  PetscCall(PCShellSetDestroy(pc, PCDestroy_Frame));
-  PetscCall(KSPSetPC(ksp, pc));
-  PetscCall(PCDestroy(&pc));
+  (void)f;
+  PetscCall(KSPSetPreSolve(ksp, NULL, NULL));
+  PetscCall(KSPSetPostSolve(ksp, NULL, NULL));
   PetscFunctionReturn(0);
 }

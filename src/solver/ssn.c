@@ -643,11 +643,11 @@ PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y
   PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
   PetscCall(MatCopy(K, J, SAME_NONZERO_PATTERN));
   {
-    Mat Kf = NULL, Pf = NULL; /* the SSN's contact frames (FrameSetUp): the preconditioner works on Q^T K Q */
+    Mat Kf = NULL, Pf = NULL; /* the SSN's contact frames (FrameSetUp): the KSP solves with Q^T K Q */
     PetscCall(PetscObjectQuery((PetscObject)ksp, "SgFrameStiffness", (PetscObject *)&Kf));
     PetscCall(PetscObjectQuery((PetscObject)ksp, "SgFramePmat", (PetscObject *)&Pf));
     if (Pf) PetscCall(MatCopy(Kf, Pf, SAME_NONZERO_PATTERN));
-    PetscCall(KSPSetOperators(ksp, J, Pf ? Pf : J));
+    PetscCall(KSPSetOperators(ksp, Pf ? Pf : J, Pf ? Pf : J));
   }
   PetscCall(PetscTime(&t0));
   /* the first set-up of the linear solver is where some configurations that cannot work fail */
@@ -701,9 +701,9 @@ static PetscErrorCode ReasonView(SNES snes, void *ctx)
   PetscFunctionReturn(0);
 }
 
-/* -ssn_frame: the Jacobians are assembled in the contact frames into Pf (a copy of Q^T K Q), the Krylov method
-   multiplies with Q Pf Q^T; the elasticity solve without contact takes Pf (= Q^T K Q) as its preconditioning matrix
-   (SgLinearSolveUnconstrained finds both on the KSP) */
+/* -ssn_frame: the Jacobians are assembled in the contact frames into Pf (a copy of Q^T K Q) and the KSP solves with
+   it in the frames (SgFrameAttachKSP); the elasticity solve without contact takes Q^T K Q (SgLinearSolveUnconstrained
+   finds both on the KSP) */
 static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
 {
   MatNullSpace nsp;
@@ -718,10 +718,18 @@ static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
     PetscCall(MatSetOption(s->Pf, MAT_SPD, PETSC_FALSE));
     PetscCall(MatSetOption(s->Pf, MAT_SYMMETRIC, PETSC_FALSE));
   }
-  PetscCall(SgFrameCreateOperator(s->frame, s->Pf, &s->Jf));
-  PetscCall(SNESSetJacobian(s->snes, s->Jf, s->Pf, Jacobian, s));
+  PetscCall(SNESSetJacobian(s->snes, s->Pf, s->Pf, Jacobian, s));
+  PetscCall(SgFrameAttachKSP(s->frame, ksp));
   PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFrameStiffness", (PetscObject)s->Klin));
   PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFramePmat", (PetscObject)s->Pf));
+  PetscFunctionReturn(0);
+}
+
+/* x (a vector of the SSN's KSP during its solve, e.g. KSPBuildSolution's) in the original coordinates, in place */
+PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN s, Vec x)
+{
+  PetscFunctionBeginUser;
+  if (s->frame) PetscCall(SgFrameToGlobal(s->frame, x));
   PetscFunctionReturn(0);
 }
 
@@ -807,7 +815,6 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
   if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
-  if (s->frame) PetscCall(SgFrameWrapKSP(s->frame, ksp)); /* around whichever preconditioner the KSP has now */
   {
     char      name[256];
     PetscBool flg;
@@ -837,12 +844,18 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
 
   PetscFunctionBeginUser;
   if (!s) PetscFunctionReturn(0);
+  if (s->frame) { /* the KSP is the controller's: it forgets the frames */
+    KSP ksp;
+    PetscCall(SNESGetKSP(s->snes, &ksp));
+    PetscCall(SgFrameDetachKSP(s->frame, ksp));
+    PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFrameStiffness", NULL));
+    PetscCall(PetscObjectCompose((PetscObject)ksp, "SgFramePmat", NULL));
+  }
   PetscCall(SNESDestroy(&s->snes));
   PetscCall(PetscViewerDestroy(&s->reason_viewer));
   PetscCall(SgCondenseDestroy(&s->cond));
   PetscCall(SgTMGDestroy(&s->tmg));
   PetscCall(MatDestroy(&s->J));
-  PetscCall(MatDestroy(&s->Jf));
   PetscCall(MatDestroy(&s->Pf));
   PetscCall(SgFrameDestroy(&s->frame));
   PetscCall(VecDestroy(&s->r));
@@ -1161,7 +1174,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
       PetscCall(KSPGetPC(s->kspd, &pc));
       PetscCall(PCSetType(pc, PCLU));
       PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-      if (s->frame) PetscCall(SgFrameWrapKSP(s->frame, s->kspd));
+      if (s->frame) PetscCall(SgFrameAttachKSP(s->frame, s->kspd));
     }
     if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
       PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));

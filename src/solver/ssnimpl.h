@@ -40,8 +40,7 @@ struct _n_SgSSN {
   SgTMG       tmg;            /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
   SgFrame     frame;          /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
   Mat         Klin;           /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
-  Mat         Pf;             /* with frames: the Jacobian assembled in them (the preconditioning matrix) */
-  Mat         Jf;             /* with frames: Q Pf Q^T, the Krylov method's operator */
+  Mat         Pf;             /* with frames: the Jacobian assembled in them (the KSP's matrices) */
   PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason reason;
   PetscBool   monitor;
