@@ -229,9 +229,10 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
   PetscReal           *blk;
   const PetscInt      *faxis = NULL;
   const PetscBool     *frot  = NULL;
+  const PetscReal     *fsign = NULL;
 
   PetscFunctionBeginUser;
-  if (s->frame) PetscCall(SgFrameGetAxes(s->frame, &faxis, NULL, &frot));
+  if (s->frame) PetscCall(SgFrameGetAxes(s->frame, &faxis, &fsign, &frot));
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   s->nforce = 0;
   PetscCall(VecGetArrayRead(y, &ya));
@@ -281,7 +282,7 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
       PetscReal        nf[3] = {0, 0, 0}, tf[3];
       const PetscReal *nb = n, *tb = t;
       if (frot && frot[i]) {
-        nf[faxis[i]] = 1;
+        nf[faxis[i]] = fsign[i]; /* n = sign Q e_axis */
         SgFrameVectorToLocal(s->frame, i, t, tf);
         tf[faxis[i]] = 0;
         nb = nf;
