@@ -266,6 +266,44 @@ static PetscErrorCode View_Fast(SgCont ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* the checkpoint (fast resumes from the end of a load step only): the counts of its linear solves, which its summary
+   keys report over all the load steps of the run (gamma, y and the path are the controller's; a file without them:
+   none counted) */
+static PetscErrorCode Save_Fast(SgCont ct, SgCheckpointWriter w)
+{
+  Fast           *f    = (Fast *)ct->data;
+  const PetscReal n[3] = {f->nearly, f->nfull, f->nkkt};
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContSaveState(ct, w, 0, NULL, NULL));
+  PetscCall(SgCheckpointWriterReals(w, "fast_linear_solves", 3, n));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Load_Fast(SgCont ct, SgCheckpointReader r)
+{
+  Fast     *f = (Fast *)ct->data;
+  PetscBool has;
+  PetscReal *n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContLoadState(ct, r, 0, NULL, NULL));
+  PetscCall(SgCheckpointReaderHasDataset(r, "fast_linear_solves", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(SgCheckpointReaderReals(r, "fast_linear_solves", 3, NULL, &n));
+  for (PetscInt i = 0; i < 3; i++)
+    if (!(n[i] >= 0 && n[i] <= PETSC_MAX_INT / 4 && n[i] == PetscFloorReal(n[i]))) {
+      const PetscReal v = n[i];
+      PetscCall(PetscFree(n));
+      PetscCall(SgCheckpointReaderDamaged(&r, "a count of fast_linear_solves", v));
+    }
+  f->nearly = (PetscInt)n[0];
+  f->nfull  = (PetscInt)n[1];
+  f->nkkt   = (PetscInt)n[2];
+  PetscCall(PetscFree(n));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_Fast(SgCont ct)
 {
   Fast *f;
@@ -281,6 +319,8 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   ct->data               = f;
   ct->ops.setfromoptions = SetFromOptions_Fast;
   ct->ops.view           = View_Fast;
+  ct->ops.save           = Save_Fast;
+  ct->ops.load           = Load_Fast;
   ct->ops.solve          = Solve_Fast; /* its own loop: one (P_gamma), gamma raised only if it proves too small */
   PetscFunctionReturn(0);
 }
