@@ -266,41 +266,46 @@ static PetscErrorCode View_Fast(SgCont ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
-/* the checkpoint (fast resumes from the end of a load step only): the counts of its linear solves, which its summary
-   keys report over all the load steps of the run (gamma, y and the path are the controller's; a file without them:
-   none counted) */
+/* the checkpoint (fast resumes from the end of a load step only): what a solve leaves to the next one, the counts of
+   the linear solves (its summary keys count over all the load steps of a run) and whether the early CG stop is still on
+   (a fallback to exact steps turns it off for the rest of the run); gamma, y and the path are the controller's. The
+   dataset "fast_state" (a file without it: nothing counted, the options' early stop) */
+#define NSTATE_FAST 5
+
 static PetscErrorCode Save_Fast(SgCont ct, SgCheckpointWriter w)
 {
-  Fast           *f    = (Fast *)ct->data;
-  const PetscReal n[3] = {f->nearly, f->nfull, f->nkkt};
+  Fast           *f                 = (Fast *)ct->data;
+  const PetscReal v[NSTATE_FAST] = {f->nearly, f->nfull, f->nkkt, f->early, f->last_full};
 
   PetscFunctionBeginUser;
   PetscCall(SgContSaveState(ct, w, 0, NULL, NULL));
-  PetscCall(SgCheckpointWriterReals(w, "fast_linear_solves", 3, n));
+  PetscCall(SgCheckpointWriterReals(w, "fast_state", NSTATE_FAST, v));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Load_Fast(SgCont ct, SgCheckpointReader r)
 {
-  Fast     *f = (Fast *)ct->data;
-  PetscBool has;
-  PetscReal *n;
+  Fast      *f = (Fast *)ct->data;
+  PetscBool  has;
+  PetscReal *v;
 
   PetscFunctionBeginUser;
   PetscCall(SgContLoadState(ct, r, 0, NULL, NULL));
-  PetscCall(SgCheckpointReaderHasDataset(r, "fast_linear_solves", &has));
+  PetscCall(SgCheckpointReaderHasDataset(r, "fast_state", &has));
   if (!has) PetscFunctionReturn(0);
-  PetscCall(SgCheckpointReaderReals(r, "fast_linear_solves", 3, NULL, &n));
-  for (PetscInt i = 0; i < 3; i++)
-    if (!(n[i] >= 0 && n[i] <= PETSC_MAX_INT / 4 && n[i] == PetscFloorReal(n[i]))) {
-      const PetscReal v = n[i];
-      PetscCall(PetscFree(n));
-      PetscCall(SgCheckpointReaderDamaged(&r, "a count of fast_linear_solves", v));
+  PetscCall(SgCheckpointReaderReals(r, "fast_state", NSTATE_FAST, NULL, &v));
+  for (PetscInt i = 0; i < NSTATE_FAST; i++)
+    if (!(v[i] >= 0 && v[i] <= (i < 3 ? PETSC_MAX_INT / 4 : 1) && v[i] == PetscFloorReal(v[i]))) {
+      const PetscReal bad = v[i];
+      PetscCall(PetscFree(v));
+      PetscCall(SgCheckpointReaderDamaged(&r, "a number of fast_state", bad));
     }
-  f->nearly = (PetscInt)n[0];
-  f->nfull  = (PetscInt)n[1];
-  f->nkkt   = (PetscInt)n[2];
-  PetscCall(PetscFree(n));
+  f->nearly    = (PetscInt)v[0];
+  f->nfull     = (PetscInt)v[1];
+  f->nkkt      = (PetscInt)v[2];
+  f->early     = (PetscBool)(v[3] != 0);
+  f->last_full = (PetscBool)(v[4] != 0);
+  PetscCall(PetscFree(v));
   PetscFunctionReturn(0);
 }
 

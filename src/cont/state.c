@@ -153,7 +153,9 @@ static PetscErrorCode LoadBase(SgCont ct, SgCheckpointReader r, PetscBool step_e
   }
   PetscCall(SgCheckpointReaderHistory(r, loadsteps ? PETSC_MAX_INT : ints[0], ct->hist));
   PetscCall(SgCheckpointReaderDisplacement(r, "displacement", "a displacement", ct->y));
-  PetscCall(SgCheckpointReaderContact(r, "lamhat", 1, PETSC_TRUE, "a multiplier shift lamhat (must be >= 0)", ct->lamhat ? ct->lamhat : ct->lam));
+  /* a baseline's multiplier (no SSN) may lie a round-off below 0 */
+  if (ct->lamhat) PetscCall(SgCheckpointReaderContact(r, "lamhat", 1, PETSC_TRUE, "a multiplier shift lamhat (must be >= 0)", ct->lamhat));
+  else PetscCall(SgCheckpointReaderContact(r, "lamhat", 1, PETSC_FALSE, "a multiplier", ct->lam));
   ct->gamma     = reals[0];
   ct->V0        = reals[1];
   ct->best_kkt  = reals[2];
