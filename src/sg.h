@@ -271,54 +271,43 @@ PetscErrorCode SgHistoryGetRows(SgHistory, PetscInt *, SgHistoryRow **);
 PetscErrorCode SgHistoryReset(SgHistory);
 
 /* ------------------------------------------------------------------ io: checkpoint.c
-   The state of a continuation after an outer step, written atomically; vertex data with the vertex coordinates, so
-   that a restart may use another partition. The controller's own numbers are named (nstate, names): no list of
-   controller types here. */
-#define SG_STATE_MAX 8
+   The checkpoint file: the problem's fingerprint and the vertex coordinates (a restart may use another partition),
+   written atomically; each owner of a state (the controller, its type, the friction state, the load steps:
+   cont/state.c) saves it through a writer and loads it through a reader, by names of its own. A reader that refuses
+   (another problem or mesh, a damaged file) is freed before the error returns: the caller's handle is gone then. */
 /* one load step's result (quasi-static load stepping: SgProblemSetLoadFactor, SgContSolve again) */
 typedef struct {
   PetscReal t, obstacle_displacement, normal_displacement_max, force, kkt, energy, time;
   PetscInt  outer, ssn_its, ksp_its, nactive;
   PetscBool converged;
-  /* friction (not in checkpoints, which friction does not write): stick and slip sets, |sum w lam_T|, sum w |lam_T| */
+  /* friction: stick and slip sets, |sum w lam_T|, sum w |lam_T| */
   PetscInt  nstick, nslip;
   PetscReal friction_force, friction_traction;
 } SgLoadStep;
 #define SG_LOADSTEP_NREAL 12
-typedef struct {
-  char        type[64];
-  PetscReal   gamma, V0, best_kkt;
-  PetscInt    outer, ssn_its, ksp_its, best_step;
-  Vec         y;          /* the displacement (global vector of the problem) */
-  PetscReal  *lamhat;     /* per contact vertex */
-  PetscInt    ngammas;
-  PetscReal  *gammas;     /* written from / read into (allocated on reading; PetscFree) */
-  SgHistory   hist;
-  PetscInt    nstate;
-  const char *state_names[SG_STATE_MAX];
-  PetscReal   state[SG_STATE_MAX];
-  /* load stepping (only with loadsteps set: a run without load steps writes the file as before) */
-  PetscBool   loadsteps;
-  PetscReal   load;       /* the load factor of y */
-  PetscInt    nsteps;     /* load steps finished */
-  PetscBool   step_open;  /* y is an outer step inside load step nsteps+1, not the end of load step nsteps */
-  SgLoadStep *steps;      /* written from / read into (allocated on reading; PetscFree) */
-  PetscBool   kept;       /* every finished step's displacement and multiplier (for the fields of all steps) */
-  Vec        *ysteps;     /* nsteps of each (allocated on reading) */
-  PetscReal **lamsteps;
-  /* friction (written with a friction law only; the law and its parameters are compared on reading): the tangential
-     shift lamhat_T and the slip reference, 2 dim per contact vertex: of the unknowns, then of the full displacement
-     (the caller's arrays; lamhatT NULL: zeros). At a load step's end it is the next step's reference. yref_full: the
-     file held the second half (older files did not; it is then a copy of the first) */
-  PetscReal  *lamhatT, *yref;
-  PetscBool   yref_full;
-  /* non-proportional loading (SgProblemSetDirichletValues): ndv Dirichlet values per finished step (0: none);
-     written from / read into dvsteps (nsteps * ndv, allocated on reading; PetscFree) */
-  PetscInt    ndv;
-  PetscReal  *dvsteps;
-} SgCheckpoint;
-PetscErrorCode SgCheckpointWrite(SgElasticity, SgContact, const char[], SgCheckpoint *, PetscBool *, char[], size_t);
-PetscErrorCode SgCheckpointRead(SgElasticity, SgContact, const char[], SgCheckpoint *);
+typedef struct _n_SgCheckpointWriter *SgCheckpointWriter;
+typedef struct _n_SgCheckpointReader *SgCheckpointReader;
+PetscErrorCode SgCheckpointWriterCreate(SgElasticity, SgContact, const char[], SgCheckpointWriter *);
+PetscErrorCode SgCheckpointWriterAttribute(SgCheckpointWriter, const char[], PetscDataType, const void *); /* PETSC_INT, PETSC_REAL, PETSC_STRING */
+PetscErrorCode SgCheckpointWriterReals(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);       /* numbers every rank has */
+PetscErrorCode SgCheckpointWriterDisplacement(SgCheckpointWriter, const char[], Vec, PetscBool);            /* per vertex, with the Dirichlet values or zeros there */
+PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);     /* bs per contact vertex (NULL: zeros) */
+PetscErrorCode SgCheckpointWriterHistory(SgCheckpointWriter, SgHistory);
+PetscErrorCode SgCheckpointWriterHas(SgCheckpointWriter, const char[], PetscBool *);
+PetscErrorCode SgCheckpointWriterCommit(SgCheckpointWriter, PetscBool *, char[], size_t); /* ok, and why not */
+PetscErrorCode SgCheckpointWriterDestroy(SgCheckpointWriter *);
+PetscErrorCode SgCheckpointReaderOpen(SgElasticity, SgContact, const char[], SgCheckpointReader *);
+PetscErrorCode SgCheckpointReaderGetFile(SgCheckpointReader, const char **);
+PetscErrorCode SgCheckpointReaderHasAttribute(SgCheckpointReader, const char[], PetscBool *);
+PetscErrorCode SgCheckpointReaderHasDataset(SgCheckpointReader, const char[], PetscBool *);
+PetscErrorCode SgCheckpointReaderAttribute(SgCheckpointReader, const char[], PetscDataType, void *); /* PETSC_STRING: a char ** to PetscFree */
+PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader, const char[], PetscInt, PetscInt *, PetscReal **); /* n (< 0: any), allocated */
+PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader, const char[], const char[], Vec);
+PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader, const char[], PetscInt, PetscBool, const char[], PetscReal[]);
+PetscErrorCode SgCheckpointReaderHistory(SgCheckpointReader, PetscInt, SgHistory);
+PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *, const char[], PetscReal); /* frees the reader, returns the error */
+PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *);                          /* frees the reader quietly, before a refusal */
+PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *);
 
 /* ------------------------------------------------------------------ solver: ssn.c, condense.c */
 typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT, SG_SSN_ROUNDOFF } SgSSNReason;

@@ -308,7 +308,6 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
     PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
-  PetscCheck(ct->ops.nstate <= SG_STATE_MAX, ct->comm, PETSC_ERR_PLIB, "-cont_type %s keeps %" PetscInt_FMT " state values, at most %d", ct->type, ct->ops.nstate, SG_STATE_MAX);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
   ct->setup_failed          = PETSC_FALSE;
   ct->setfromoptions_called = PETSC_TRUE;
@@ -749,147 +748,6 @@ PetscErrorCode SgContCheckBaseline(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* The checkpoint's record of the controller: the common state and the type's own named numbers. */
-static PetscErrorCode CheckpointFill(SgCont ct, SgCheckpoint *ck)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(ck, sizeof(*ck)));
-  PetscCall(PetscStrncpy(ck->type, ct->type, sizeof(ck->type)));
-  ck->gamma     = ct->gamma;
-  ck->V0        = ct->V0;
-  ck->best_kkt  = ct->best_kkt;
-  ck->outer     = ct->outer;
-  ck->ssn_its   = ct->ssn_its;
-  ck->ksp_its   = ct->ksp_its;
-  ck->best_step = ct->best_step;
-  ck->y         = ct->y;
-  ck->lamhat    = ct->lamhat ? ct->lamhat : ct->lam; /* without SSN (pdas, vi): the multiplier, the next load step's start */
-  ck->ngammas   = ct->ngammas;
-  ck->gammas    = ct->gammas;
-  ck->hist      = ct->hist;
-  ck->nstate    = ct->ops.nstate;
-  for (PetscInt i = 0; i < ct->ops.nstate; i++) {
-    ck->state_names[i] = ct->ops.state_names[i];
-    ck->state[i]       = ct->state[i];
-  }
-  PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &ck->loadsteps));
-  PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &ck->load));
-  ck->nsteps    = ct->nsteps;
-  ck->step_open = PETSC_TRUE; /* an outer step's checkpoint; the end of a load step is written by SgContSolve */
-  ck->steps     = ct->steps;
-  /* the finished steps' solutions, when they are kept for the fields and none is missing */
-  ck->kept = (PetscBool)(ct->store_steps && ct->ysteps && ct->nsteps > 0);
-  for (PetscInt k = 0; ck->kept && k < ct->nsteps; k++)
-    if (!ct->ysteps[k]) ck->kept = PETSC_FALSE;
-  ck->ysteps   = ct->ysteps;
-  ck->lamsteps = ct->lamsteps;
-  ck->ndv      = ct->dvsteps ? ct->ndv : 0;
-  ck->dvsteps  = ct->dvsteps;
-  ck->lamhatT  = NULL;
-  ck->yref     = NULL;
-  if (ct->c && ct->cv.friction) { /* lamhat_T (none without an SSN: pdas) and the slip reference */
-    if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &ck->lamhatT, NULL, NULL));
-    ck->yref = ct->yref; /* this controller's (a restart reads into it) */
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode CheckpointWrite(SgCont ct, PetscBool step_open)
-{
-  SgCheckpoint ck;
-  PetscBool    ok;
-  char         msg[PETSC_MAX_PATH_LEN + 256];
-  PetscReal   *next = NULL;
-
-  PetscFunctionBeginUser;
-  if (!ct->ckfile[0]) PetscFunctionReturn(0);
-  PetscCall(CheckpointFill(ct, &ck));
-  ck.step_open = step_open;
-  if (!step_open && ck.yref) {
-    /* at a step's end the next step's slip reference, with the data of the step solved: prescribed components of the
-       contact vertices take the next step's data once the problem changes, so a restart could not recompute it */
-    PetscInt dim;
-    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &next)); /* the second half is written with prescribed components only */
-    PetscCall(SgContactComputeSlipReference(ct->c, ct->y, next));
-    ck.yref = next;
-  }
-  PetscCall(SgCheckpointWrite(ct->prob, ct->c, ct->ckfile, &ck, &ok, msg, sizeof(msg)));
-  PetscCall(PetscFree(next));
-  if (!ok) {
-    /* the run stops (SgContCheck) and reports this as its reason; the summary and history are still written */
-    PetscCall(PetscPrintf(ct->comm, "checkpoint not written: %s\n", msg));
-    PetscCall(SgContFail(ct, "CHECKPOINT_FAILED: %s", msg));
-    ct->ckfile[0] = 0;
-  }
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SgContCheckpointWrite(SgCont ct)
-{
-  PetscFunctionBeginUser;
-  PetscCall(CheckpointWrite(ct, PETSC_TRUE));
-  PetscFunctionReturn(0);
-}
-
-/* The state of -restart_file (read once, by the first SgContSolve or SgContGetLoadSteps). A checkpoint taken after an
-   outer step resumes that continuation (ct->restarted); one taken at the end of a load step holds that step's solution
-   and controller state, from which the next SgContSolve is a warm start. */
-PetscErrorCode SgContCheckpointRead(SgCont ct)
-{
-  SgCheckpoint ck;
-
-  PetscFunctionBeginUser;
-  if (ct->rsread || !ct->rsfile[0]) PetscFunctionReturn(0);
-  ct->rsread = PETSC_TRUE;
-  PetscCall(SgContSetUp(ct));
-  PetscCall(CheckpointFill(ct, &ck));
-  ck.gammas  = NULL;
-  ck.steps   = NULL;
-  ck.dvsteps = NULL;
-  PetscCall(SgCheckpointRead(ct->prob, ct->c, ct->rsfile, &ck));
-  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.dvsteps));
-  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.gammas));
-  if (ct->ops.solve && ck.step_open) PetscCall(PetscFree(ck.steps));
-  /* any type resumes after a load step; inside one, only a continuation has outer steps to resume */
-  PetscCheck(!ct->ops.solve || !ck.step_open, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: -cont_type %s has no outer steps to resume (the continuation controllers alm, pf and ipf have; any type resumes from the end of a load step)", ct->type);
-  ct->gamma     = ck.gamma;
-  ct->V0        = ck.V0;
-  ct->best_kkt  = ck.best_kkt;
-  ct->outer     = ck.outer;
-  ct->ssn_its   = ck.ssn_its;
-  ct->ksp_its   = ck.ksp_its;
-  ct->best_step = ck.best_step;
-  for (PetscInt i = 0; i < ct->ops.nstate; i++) ct->state[i] = ck.state[i];
-  ct->ngammas = 0;
-  for (PetscInt i = 0; i < ck.ngammas; i++) PetscCall(SgContAddGamma(ct, ck.gammas[i]));
-  PetscCall(PetscFree(ck.gammas));
-  PetscCall(PetscFree(ct->steps));
-  ct->steps    = ck.steps;
-  ct->nsteps   = ct->capsteps = ck.nsteps;
-  if (ck.kept) { /* the fields of the steps before the restart */
-    ct->ysteps   = ck.ysteps;
-    ct->lamsteps = ck.lamsteps;
-  }
-  if (ck.dvsteps) { /* the finished steps' Dirichlet values */
-    PetscInt m;
-    PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
-    PetscCheck(ck.ndv == m, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: the checkpoint holds %" PetscInt_FMT " Dirichlet values per load step, this problem has %" PetscInt_FMT, ck.ndv, m);
-    PetscCall(PetscFree(ct->dvsteps));
-    ct->ndv     = ck.ndv;
-    ct->dvsteps = ck.dvsteps;
-  }
-  ct->rsload   = ck.load;
-  if (ck.load != 0) ct->V0unit = ck.V0 / (ck.load * ck.load); /* a step unloaded to 0 says nothing of it */
-  if (ck.step_open) ct->restarted = PETSC_TRUE;
-  else {
-    ct->yref_read  = ck.yref_full; /* the next step's slip reference (ct->yref), when the file holds all of it */
-    ct->have_state = PETSC_TRUE;
-    ct->gamma_warm = ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1]) ? ct->gammas[ct->ngammas - 1] : ct->gamma;
-  }
-  PetscFunctionReturn(0);
-}
-
 /* The iterate of least KKT residual of this solve (a step at a larger gamma can be worse: round-off) */
 static PetscErrorCode KeepBest(SgCont ct)
 {
@@ -1267,7 +1125,7 @@ PetscErrorCode SgContSolve(SgCont ct)
   if (ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1])) ct->gamma_warm = ct->gammas[ct->ngammas - 1];
   PetscCall(RecordStep(ct, t));
   /* a load step's end: a restart from here starts the next step warm */
-  if (loadsteps && ct->converged) PetscCall(CheckpointWrite(ct, PETSC_FALSE));
+  if (loadsteps && ct->converged) PetscCall(SgContCheckpointWriteStepEnd(ct));
   PetscFunctionReturn(0);
 }
 

@@ -13,10 +13,14 @@
      ops->finish    after the loop, optional
    A solver that is not a continuation (none, and the baselines pdas and vi, which solve (P) directly without the SSN)
    sets ops->solve instead, and needs_ssn = PETSC_FALSE if it does not use the SSN.
-   ops->nstate/state_names name the controller's numbers that a checkpoint keeps (ct->state[]).
+   Checkpoints (cont/state.c, as PETSc's TSAdaptLoad): the object saves and loads its own state (type name, counters,
+   gamma, y, lamhat, path, history), the friction state and the load steps, and calls ops->save/ops->load for the
+   type's own (optional: a type without them keeps nothing). A type's numbers between outer steps go through
+   SgContSaveState/SgContLoadState (the datasets "state" and "state_names": a file of another version of the type is
+   refused); other data under names of its own.
    Load steps: a second SgContSolve (after SgProblemSetLoadFactor) is warm (ct->warm): SgContStart keeps y and takes
    V(0) = t^2 V0unit, ops->start and ops->started are skipped, ct->gamma = ct->gamma_warm (the last gamma solved at),
-   and lamhat and ct->state[] stay as the last step left them; a type with ops->solve reads ct->warm itself. */
+   and lamhat and the type's state stay as the last step left them; a type with ops->solve reads ct->warm itself. */
 #pragma once
 
 #include "sg.h"
@@ -33,10 +37,10 @@ typedef struct {
   PetscErrorCode (*solve)(SgCont);
   PetscErrorCode (*view)(SgCont, PetscViewer); /* the type's parameters, continuing SgContView's first line ("; ...", no newline) */
   PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
+  PetscErrorCode (*save)(SgCont, SgCheckpointWriter); /* the type's own state into a checkpoint, optional */
+  PetscErrorCode (*load)(SgCont, SgCheckpointReader); /* and out of one (-restart_file) */
   PetscBool   needs_ssn;
   PetscBool   shifts;     /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */
-  PetscInt    nstate;
-  const char *state_names[SG_STATE_MAX];
 } SgContOps;
 
 /* A PetscObject (class SG_CONT_CLASSID): its header holds the reference count, the options prefix (-<prefix>cont_*)
@@ -60,7 +64,6 @@ struct _n_SgCont {
   PetscReal   *lam;          /* the multiplier at y */
   PetscReal    kkt_tol;
   PetscReal    gamma;        /* gamma of the next outer step */
-  PetscReal    state[SG_STATE_MAX]; /* a controller's own state between outer steps (checkpointed) */
   PetscBool    restarted;    /* the state comes from -restart_file */
   char         ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
   PetscInt     max_outer, stall_its;
@@ -128,7 +131,10 @@ PetscErrorCode SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
 PetscErrorCode SgContCheck(SgCont, PetscBool *);
 PetscErrorCode SgContCheckBaseline(SgCont);
 PetscErrorCode SgContCheckpointWrite(SgCont);
+PetscErrorCode SgContCheckpointWriteStepEnd(SgCont);
 PetscErrorCode SgContCheckpointRead(SgCont);
+PetscErrorCode SgContSaveState(SgCont, SgCheckpointWriter, PetscInt, const char *const[], const PetscReal[]);
+PetscErrorCode SgContLoadState(SgCont, SgCheckpointReader, PetscInt, const char *const[], PetscReal[]);
 const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);

@@ -268,6 +268,49 @@ static PetscErrorCode View_Fast(SgCont ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* the checkpoint (fast resumes from the end of a load step only): what a solve leaves to the next one, the counts of
+   the linear solves (its summary keys count over all the load steps of a run) and whether the early CG stop is still on
+   (a fallback to exact steps turns it off for the rest of the run); gamma, y and the path are the controller's. The
+   dataset "fast_state" (a file without it: nothing counted, the options' early stop) */
+#define NSTATE_FAST 5
+
+static PetscErrorCode Save_Fast(SgCont ct, SgCheckpointWriter w)
+{
+  Fast           *f                 = (Fast *)ct->data;
+  const PetscReal v[NSTATE_FAST] = {f->nearly, f->nfull, f->nkkt, f->early, f->last_full};
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContSaveState(ct, w, 0, NULL, NULL));
+  PetscCall(SgCheckpointWriterReals(w, "fast_state", NSTATE_FAST, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Load_Fast(SgCont ct, SgCheckpointReader r)
+{
+  Fast      *f = (Fast *)ct->data;
+  PetscBool  has;
+  PetscReal *v;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContLoadState(ct, r, 0, NULL, NULL));
+  PetscCall(SgCheckpointReaderHasDataset(r, "fast_state", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(SgCheckpointReaderReals(r, "fast_state", NSTATE_FAST, NULL, &v));
+  for (PetscInt i = 0; i < NSTATE_FAST; i++)
+    if (!(v[i] >= 0 && v[i] <= (i < 3 ? PETSC_MAX_INT / 4 : 1) && v[i] == PetscFloorReal(v[i]))) {
+      const PetscReal bad = v[i];
+      PetscCall(PetscFree(v));
+      PetscCall(SgCheckpointReaderDamaged(&r, "a number of fast_state", bad));
+    }
+  f->nearly    = (PetscInt)v[0];
+  f->nfull     = (PetscInt)v[1];
+  f->nkkt      = (PetscInt)v[2];
+  f->early     = (PetscBool)(v[3] != 0);
+  f->last_full = (PetscBool)(v[4] != 0);
+  PetscCall(PetscFree(v));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_Fast(SgCont ct)
 {
   Fast *f;
@@ -283,6 +326,8 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   ct->data               = f;
   ct->ops.setfromoptions = SetFromOptions_Fast;
   ct->ops.view           = View_Fast;
+  ct->ops.save           = Save_Fast;
+  ct->ops.load           = Load_Fast;
   ct->ops.solve          = Solve_Fast; /* its own loop: one (P_gamma), gamma raised only if it proves too small */
   PetscFunctionReturn(0);
 }

@@ -9,6 +9,8 @@
 typedef struct {
   PetscReal gamma1, tau, tau1, q, tau3;
   PetscReal gamma, J, dJ, C1, C2, E, rhoF, rhoC; /* the last step's path data (Model_IPF) */
+  PetscReal state[2]; /* between outer steps (checkpointed): J of the last step (J(0, y_0) = V(0) at first) and the
+                         neighbourhood tau (0: the last problem, solved exactly) */
 } IPF;
 
 static PetscErrorCode SetFromOptions_IPF(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -35,8 +37,8 @@ static PetscErrorCode Start_IPF(SgCont ct)
   IPF *ipf = (IPF *)ct->data;
 
   PetscFunctionBeginUser;
-  ct->gamma    = ipf->gamma1;
-  ct->state[1] = ipf->tau; /* the neighbourhood tau (0: the last problem, solved exactly) */
+  ct->gamma     = ipf->gamma1;
+  ipf->state[1] = ipf->tau; /* the neighbourhood tau (0: the last problem, solved exactly) */
   for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }
@@ -44,14 +46,14 @@ static PetscErrorCode Start_IPF(SgCont ct)
 static PetscErrorCode Started_IPF(SgCont ct)
 {
   PetscFunctionBeginUser;
-  ct->state[0] = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
+  ((IPF *)ct->data)->state[0] = ct->V0; /* J(gamma_0 = 0, y_0) = V(0) */
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode PreStep_IPF(SgCont ct)
 {
   PetscFunctionBeginUser;
-  PetscCall(SgSSNSetNeighbourhood(ct->ssn, ct->state[1]));
+  PetscCall(SgSSNSetNeighbourhood(ct->ssn, ((IPF *)ct->data)->state[1]));
   PetscFunctionReturn(0);
 }
 
@@ -76,7 +78,7 @@ static PetscErrorCode Model_IPF(SgCont ct, SgHistoryRow *row)
 static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
 {
   IPF            *ipf   = (IPF *)ct->data;
-  PetscReal      *Jprev = &ct->state[0], *nbhd = &ct->state[1];
+  PetscReal      *Jprev = &ipf->state[0], *nbhd = &ipf->state[1];
   const PetscReal gamma = ipf->gamma, J = ipf->J, dJ = ipf->dJ, C1 = ipf->C1, C2 = ipf->C2, E = ipf->E, rhoF = ipf->rhoF, rhoC = ipf->rhoC;
   PetscReal       next, dJk, cap;
   PetscInt        cuts = 0;
@@ -128,6 +130,24 @@ static PetscErrorCode View_IPF(SgCont ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* the checkpoint: the path model's last J and the neighbourhood (gamma, y and the path are the controller's; the
+   step's path data are computed again by the next step's Model_IPF) */
+static const char *const StateNames_IPF[2] = {"J_previous", "neighbourhood_tau"};
+
+static PetscErrorCode Save_IPF(SgCont ct, SgCheckpointWriter w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContSaveState(ct, w, 2, StateNames_IPF, ((IPF *)ct->data)->state));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Load_IPF(SgCont ct, SgCheckpointReader r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContLoadState(ct, r, 2, StateNames_IPF, ((IPF *)ct->data)->state));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_IPF(SgCont ct)
 {
   IPF *ipf;
@@ -148,8 +168,7 @@ PetscErrorCode SgContCreate_IPF(SgCont ct)
   ct->ops.model          = Model_IPF;
   ct->ops.update         = Update_IPF;
   ct->ops.finish         = Finish_IPF;
-  ct->ops.nstate         = 2;
-  ct->ops.state_names[0] = "J_previous";
-  ct->ops.state_names[1] = "neighbourhood_tau";
+  ct->ops.save           = Save_IPF;
+  ct->ops.load           = Load_IPF;
   PetscFunctionReturn(0);
 }

@@ -5,6 +5,7 @@
 
 typedef struct {
   PetscReal gamma1, tau0, fallback;
+  PetscReal tauk; /* tau_k = tau0^k: the state between outer steps (checkpointed) */
 } PF;
 
 static PetscErrorCode SetFromOptions_PF(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -28,7 +29,7 @@ static PetscErrorCode Start_PF(SgCont ct)
 
   PetscFunctionBeginUser;
   ct->gamma    = pf->gamma1;
-  ct->state[0] = 1; /* tau_k = tau0^k */
+  pf->tauk     = 1; /* tau_k = tau0^k */
   for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }
@@ -48,7 +49,7 @@ static PetscErrorCode Model_PF(SgCont ct, SgHistoryRow *row)
 static PetscErrorCode Update_PF(SgCont ct, PetscReal *next)
 {
   PF        *pf   = (PF *)ct->data;
-  PetscReal *tauk = &ct->state[0];
+  PetscReal *tauk = &pf->tauk;
   PetscReal  gamma, V, dV, C1, C2, E;
   SNES       snes;
 
@@ -85,6 +86,23 @@ static PetscErrorCode View_PF(SgCont ct, PetscViewer viewer)
   PetscFunctionReturn(0);
 }
 
+/* the checkpoint: tau_k (gamma, y and the path are the controller's) */
+static const char *const StateNames_PF[1] = {"tau_k"};
+
+static PetscErrorCode Save_PF(SgCont ct, SgCheckpointWriter w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContSaveState(ct, w, 1, StateNames_PF, &((PF *)ct->data)->tauk));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Load_PF(SgCont ct, SgCheckpointReader r)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgContLoadState(ct, r, 1, StateNames_PF, &((PF *)ct->data)->tauk));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContCreate_PF(SgCont ct)
 {
   PF *pf;
@@ -100,7 +118,7 @@ PetscErrorCode SgContCreate_PF(SgCont ct)
   ct->ops.start          = Start_PF;
   ct->ops.model          = Model_PF;
   ct->ops.update         = Update_PF;
-  ct->ops.nstate         = 1;
-  ct->ops.state_names[0] = "tau_k";
+  ct->ops.save           = Save_PF;
+  ct->ops.load           = Load_PF;
   PetscFunctionReturn(0);
 }

@@ -1,10 +1,10 @@
-/* checkpoint.c: the continuation state after every outer step (-checkpoint_file) and the restart from it
-   (-restart_file). Vertex data are stored with the vertex coordinates and matched by them on reading, so a restart may
-   use another number of ranks (another partition) than the run that wrote the file. */
+/* checkpoint.c: the checkpoint file (-checkpoint_file, -restart_file): the problem's fingerprint, atomic writing, and a
+   writer and a reader through which each owner of a state saves and loads its own (src/cont/state.c). Vertex data are
+   stored with the vertex coordinates and matched by them on reading, so a restart may use another number of ranks
+   (another partition) than the run that wrote the file. */
 #include "io/ioimpl.h"
 #include <petscviewerhdf5.h>
 
-#define NREAL 3    /* gamma, V0, best KKT (the controller's own state: the dataset "state", named by the attribute "state_names") */
 #define NHIST 22   /* numbers per history row */
 
 static void RowToReals(const SgHistoryRow *r, PetscReal a[])
@@ -253,167 +253,57 @@ static void MomentsCompare(PetscInt dim, PetscInt n, const PetscReal F0[], const
   }
 }
 
-static PetscErrorCode StateNames(const SgCheckpoint *ck, char names[], size_t len)
+/* ------------------------------------------------------------------ the file
+   The group /checkpoint holds the vertex coordinates (by which a reader matches the vertices of any partition), the
+   mesh size and the problem's fingerprint, written and checked here; beside them, whatever each owner of a state puts
+   in through a writer and takes out through a reader (the controller, its type, the friction state, the load steps:
+   src/cont/state.c). The file is written whole or not at all (SgFileWriteHDF5: a .part renamed). */
+
+/* Run f(ctx) with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
+static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(void *), void *ctx, PetscErrorCode *ierr)
 {
+  H5E_auto2_t efunc;
+  void       *edata;
+  int         e;
+
   PetscFunctionBeginUser;
-  names[0] = 0;
-  for (PetscInt i = 0; i < ck->nstate; i++) {
-    size_t l;
-    PetscCall(PetscStrlen(names, &l));
-    PetscCall(PetscSNPrintf(names + l, len - l, i ? ",%s" : "%s", ck->state_names[i]));
-  }
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  *ierr = f(ctx); /* not PetscCall: a damaged file is reported by the caller, naming -restart_file */
+  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
+  PetscCall(PetscPopErrorHandler());
+  e = *ierr ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_INT, MPI_MAX, comm));
+  *ierr = e ? PETSC_ERR_FILE_READ : 0;
   PetscFunctionReturn(0);
 }
 
-typedef struct {
-  SgCheckpoint *ck;
-  Vec       v[7];
-  PetscInt  ints[6];
-  PetscReal print[NPRINT];
-  Vec       steps; /* load steps (NULL without) */
-  PetscInt  nkept;
-  Vec      *kept;  /* 2 per kept step: displacement, multiplier */
-  Vec       fr[3]; /* friction: lamhat_T, the slip reference of the unknowns and of the full displacement (NULL without) */
-  PetscInt  friction;
-  PetscReal fparams[3]; /* -friction_bound, -friction_coefficient, -friction_gamma_factor */
-  Vec       dv;    /* the finished steps' Dirichlet values (NULL without) */
-  Vec       fsteps; /* friction: each finished step's stick and slip sets, friction force and traction integral */
-  PetscInt  nmom;   /* the problem's moments and their sizes (ProblemMoments) */
-  Vec       mom;
-} CkCtx;
-
-static const char *FrictionParamNames[3] = {"friction_bound", "friction_coefficient", "friction_gamma_factor"};
-
-static void StepToReals(const SgLoadStep *r, PetscReal a[])
-{
-  const PetscReal v[SG_LOADSTEP_NREAL] = {r->t, r->obstacle_displacement, r->normal_displacement_max, r->force, r->kkt, r->energy, r->time, r->outer, r->ssn_its, r->ksp_its, r->nactive, r->converged};
-  for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = v[k];
-}
-
-static void RealsToStep(const PetscReal a[], SgLoadStep *r)
-{
-  r->t                       = a[0];
-  r->obstacle_displacement   = a[1];
-  r->normal_displacement_max = a[2];
-  r->force                   = a[3];
-  r->kkt                     = a[4];
-  r->energy                  = a[5];
-  r->time                    = a[6];
-  r->outer                   = (PetscInt)a[7];
-  r->ssn_its                 = (PetscInt)a[8];
-  r->ksp_its                 = (PetscInt)a[9];
-  r->nactive                 = (PetscInt)a[10];
-  r->converged               = (PetscBool)(a[11] != 0);
-  r->nstick = r->nslip = 0; /* friction: from the dataset load_steps_friction */
-  r->friction_force = r->friction_traction = SG_NAN;
-}
-
-static PetscErrorCode WriteBody(PetscViewer viewer, void *vctx)
-{
-  CkCtx      *ctx      = (CkCtx *)vctx;
-  const char *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  for (PetscInt i = 0; i < 7; i++) PetscCall(VecView(ctx->v[i], viewer));
-  for (PetscInt i = 0; i < 6; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", names[i], PETSC_INT, &ctx->ints[i]));
-  for (PetscInt i = 0; i < NPRINT; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, &ctx->print[i]));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, ctx->ck->type));
-  {
-    char names[SG_STATE_MAX * 64];
-    PetscCall(StateNames(ctx->ck, names, sizeof(names)));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, names));
-  }
-  if (ctx->steps) {
-    const PetscInt open = ctx->ck->step_open;
-    PetscCall(VecView(ctx->steps, viewer));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, &ctx->ck->load));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, &ctx->ck->nsteps));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, &open));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, &ctx->nkept));
-    for (PetscInt i = 0; i < 2 * ctx->nkept; i++) PetscCall(VecView(ctx->kept[i], viewer));
-    if (ctx->dv) {
-      PetscCall(VecView(ctx->dv, viewer));
-      PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "load_dirichlet_count", PETSC_INT, &ctx->ck->ndv));
-    }
-  }
-  if (ctx->fsteps) PetscCall(VecView(ctx->fsteps, viewer));
-  PetscCall(VecView(ctx->mom, viewer));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "problem_moments", PETSC_INT, &ctx->nmom));
-  if (ctx->fr[0]) {
-    PetscCall(VecView(ctx->fr[0], viewer));
-    PetscCall(VecView(ctx->fr[1], viewer));
-    PetscCall(VecView(ctx->fr[2], viewer));
-    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", "friction_type", PETSC_INT, &ctx->friction));
-    for (PetscInt i = 0; i < 3; i++) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", FrictionParamNames[i], PETSC_REAL, &ctx->fparams[i]));
-  }
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscFunctionReturn(0);
-}
-
-/* A displacement y and a per-contact-vertex array as vertex-ordered vectors (the owned vertices in local order, as the
-   coordinates are written), for a kept load step. */
-static PetscErrorCode StepVectors(SgElasticity el, SgContact c, Vec y, const PetscReal lam[], PetscInt step, Vec *U, Vec *L)
-{
-  const SgMesh      *m;
-  SgContactView      cv = {0};
-  PetscInt           dim, nown = 0, k = 0;
-  MPI_Comm           comm;
-  DM                 dm, dmVert;
-  PetscSection       gs;
-  PetscReal         *vl;
-  Vec                yloc;
-  PetscScalar       *ua, *la;
-  const PetscScalar *ya;
-  char               name[64];
-
-  PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgElasticityGetMesh(el, &m));
-  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
-  if (c) PetscCall(SgContactGetView(c, &cv));
-  PetscCall(DMGetGlobalSection(dmVert, &gs));
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-    if (off >= 0) nown++;
-  }
-  PetscCall(PetscCalloc1(m->nv, &vl));
-  for (PetscInt i = 0; i < cv.n; i++) vl[cv.vert[i]] = lam[i];
-  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, U));
-  PetscCall(VecCreateMPI(comm, nown, PETSC_DETERMINE, L));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, step));
-  PetscCall(PetscObjectSetName((PetscObject)*U, name));
-  PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, step));
-  PetscCall(PetscObjectSetName((PetscObject)*L, name));
-  PetscCall(DMGetLocalVector(dm, &yloc));
-  PetscCall(VecSet(yloc, 0));
-  PetscCall(DMGlobalToLocal(dm, y, INSERT_VALUES, yloc)); /* the free values: the Dirichlet ones are not read back */
-  PetscCall(VecGetArrayRead(yloc, &ya));
-  PetscCall(VecGetArray(*U, &ua));
-  PetscCall(VecGetArray(*L, &la));
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-    if (off < 0) continue;
-    for (PetscInt d = 0; d < dim; d++) ua[k * dim + d] = ya[m->loff[v] + d];
-    la[k++] = vl[v];
-  }
-  PetscCall(VecRestoreArray(*U, &ua));
-  PetscCall(VecRestoreArray(*L, &la));
-  PetscCall(VecRestoreArrayRead(yloc, &ya));
-  PetscCall(DMRestoreLocalVector(dm, &yloc));
-  PetscCall(PetscFree(vl));
-  PetscFunctionReturn(0);
-}
-
-/* dim numbers per contact vertex (a, NULL: zeros) as a vertex-ordered vector (the owned vertices in local order, as the
-   coordinates are written; zeros off the contact boundary) */
-static PetscErrorCode ContactVector(SgElasticity el, const SgContactView *cv, const PetscReal a[], const char name[], Vec *V)
+/* bs numbers per vertex of the mesh (vals, m->nv * bs) as a vertex-ordered vector: the owned vertices in local order,
+   as the coordinates are written */
+static PetscErrorCode OwnedVertices(SgElasticity el, PetscInt *nown)
 {
   const SgMesh *m;
-  PetscInt      dim, nown = 0, k = 0, *ci;
+  DM            dmVert;
+  PetscSection  gs;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
+  PetscCall(DMGetGlobalSection(dmVert, &gs));
+  *nown = 0;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
+    if (off >= 0) (*nown)++;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode VertexVector(SgElasticity el, const char name[], PetscInt bs, const PetscReal vals[], Vec *V)
+{
+  const SgMesh *m;
+  PetscInt      nown, k = 0;
   MPI_Comm      comm;
   DM            dmVert;
   PetscSection  gs;
@@ -421,175 +311,524 @@ static PetscErrorCode ContactVector(SgElasticity el, const SgContactView *cv, co
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
   PetscCall(DMGetGlobalSection(dmVert, &gs));
-  PetscCall(PetscMalloc1(m->nv + 1, &ci));
-  for (PetscInt v = 0; v < m->nv; v++) ci[v] = -1;
-  for (PetscInt i = 0; i < cv->n; i++) ci[cv->vert[i]] = i;
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-    if (off >= 0) nown++;
-  }
-  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, V));
+  PetscCall(OwnedVertices(el, &nown));
+  PetscCall(VecCreateMPI(comm, nown * bs, PETSC_DETERMINE, V));
   PetscCall(PetscObjectSetName((PetscObject)*V, name));
   PetscCall(VecGetArray(*V, &va));
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt off;
     PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
     if (off < 0) continue;
-    for (PetscInt d = 0; d < dim; d++) va[k * dim + d] = ci[v] >= 0 && a ? a[ci[v] * dim + d] : 0;
+    for (PetscInt d = 0; d < bs; d++) va[k * bs + d] = vals[v * bs + d];
     k++;
   }
   PetscCall(VecRestoreArray(*V, &va));
-  PetscCall(PetscFree(ci));
   PetscFunctionReturn(0);
 }
 
-/* Write the state ck to file (atomically). ok = PETSC_FALSE and msg say why if the file could not be written (a full
-   disk, say): the caller decides what that means for the run. */
-PetscErrorCode SgCheckpointWrite(SgElasticity el, SgContact c, const char file[], SgCheckpoint *ck, PetscBool *ok, char msg[], size_t len)
+/* ---- the writer: collects the datasets and attributes, written by SgCheckpointWriterCommit */
+typedef struct {
+  char          name[64];
+  PetscDataType type;
+  PetscInt      i;
+  PetscReal     r;
+  char         *s;
+} CkAttr;
+
+struct _n_SgCheckpointWriter {
+  SgElasticity el;
+  SgContact    c;
+  MPI_Comm     comm;
+  char         file[PETSC_MAX_PATH_LEN];
+  PetscInt     nvec, capvec, natt, capatt;
+  Vec         *vec;
+  CkAttr      *att;
+};
+
+static PetscErrorCode WriterAddVec(SgCheckpointWriter w, Vec v)
+{
+  PetscFunctionBeginUser;
+  if (w->nvec == w->capvec) {
+    Vec *a;
+    w->capvec = 2 * w->capvec + 8;
+    PetscCall(PetscMalloc1(w->capvec, &a));
+    PetscCall(PetscArraycpy(a, w->vec, w->nvec));
+    PetscCall(PetscFree(w->vec));
+    w->vec = a;
+  }
+  w->vec[w->nvec++] = v;
+  PetscFunctionReturn(0);
+}
+
+/* an attribute of /checkpoint: type PETSC_INT (value a PetscInt *), PETSC_REAL (PetscReal *) or PETSC_STRING (char *) */
+PetscErrorCode SgCheckpointWriterAttribute(SgCheckpointWriter w, const char name[], PetscDataType type, const void *value)
+{
+  CkAttr *a;
+
+  PetscFunctionBeginUser;
+  PetscCheck(type == PETSC_INT || type == PETSC_REAL || type == PETSC_STRING, w->comm, PETSC_ERR_SUP, "SgCheckpointWriterAttribute: %s: an integer, real or string", name);
+  if (w->natt == w->capatt) {
+    CkAttr *b;
+    w->capatt = 2 * w->capatt + 16;
+    PetscCall(PetscMalloc1(w->capatt, &b));
+    PetscCall(PetscArraycpy(b, w->att, w->natt));
+    PetscCall(PetscFree(w->att));
+    w->att = b;
+  }
+  a = &w->att[w->natt++];
+  PetscCall(PetscMemzero(a, sizeof(*a)));
+  PetscCall(PetscStrncpy(a->name, name, sizeof(a->name)));
+  a->type = type;
+  if (type == PETSC_INT) a->i = *(const PetscInt *)value;
+  else if (type == PETSC_REAL) a->r = *(const PetscReal *)value;
+  else PetscCall(PetscStrallocpy((const char *)value, &a->s));
+  PetscFunctionReturn(0);
+}
+
+/* n numbers that every rank has (rank 0's are written) */
+PetscErrorCode SgCheckpointWriterReals(SgCheckpointWriter w, const char name[], PetscInt n, const PetscReal a[])
+{
+  Vec v;
+
+  PetscFunctionBeginUser;
+  PetscCall(RootVec(w->comm, name, n, a, &v));
+  PetscCall(WriterAddVec(w, v));
+  PetscFunctionReturn(0);
+}
+
+/* a displacement (a global vector of the problem) per vertex: with its Dirichlet values (with_data), else with zeros
+   in the prescribed components */
+PetscErrorCode SgCheckpointWriterDisplacement(SgCheckpointWriter w, const char name[], Vec y, PetscBool with_data)
 {
   const SgMesh      *m;
-  SgContactView      cv = {0};
   PetscInt           dim;
-  MPI_Comm           comm;
-  DM                 dm, dmVert;
-  PetscSection       gs;
-  PetscInt           nown = 0, k = 0, nvert, ints[6], nh;
-  PetscReal         *vl, reals[NREAL], *hist;
-  SgHistoryRow      *rows;
-  Vec                X, U, L, R, G, H, S, yloc;
-  PetscScalar       *xa, *ua, *la;
+  DM                 dm;
+  Vec                yloc, v;
+  PetscReal         *vals;
   const PetscScalar *ya;
 
   PetscFunctionBeginUser;
-  *ok = PETSC_TRUE;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgElasticityGetMesh(el, &m));
-  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
-  if (c) PetscCall(SgContactGetView(c, &cv));
-  PetscCall(DMGetGlobalSection(dmVert, &gs));
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-    if (off >= 0) nown++;
-  }
-  PetscCall(PetscCalloc1(m->nv, &vl));
-  for (PetscInt i = 0; i < cv.n; i++) vl[cv.vert[i]] = ck->lamhat[i];
-  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, &X));
-  PetscCall(VecCreateMPI(comm, nown * dim, PETSC_DETERMINE, &U));
-  PetscCall(VecCreateMPI(comm, nown, PETSC_DETERMINE, &L));
-  PetscCall(PetscObjectSetName((PetscObject)X, "coordinates"));
-  PetscCall(PetscObjectSetName((PetscObject)U, "displacement"));
-  PetscCall(PetscObjectSetName((PetscObject)L, "lamhat"));
+  PetscCall(SgElasticityGetDimension(w->el, &dim));
+  PetscCall(SgElasticityGetMesh(w->el, &m));
+  PetscCall(SgElasticityGetDMs(w->el, &dm, NULL, NULL, NULL));
   PetscCall(DMGetLocalVector(dm, &yloc));
-  PetscCall(SgElasticityGlobalToLocal(el, ck->y, yloc));
-  PetscCall(VecGetArrayRead(yloc, &ya));
-  PetscCall(VecGetArray(X, &xa));
-  PetscCall(VecGetArray(U, &ua));
-  PetscCall(VecGetArray(L, &la));
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-    if (off < 0) continue;
-    for (PetscInt d = 0; d < dim; d++) {
-      xa[k * dim + d] = m->x[v * dim + d];
-      ua[k * dim + d] = ya[m->loff[v] + d];
-    }
-    la[k++] = vl[v];
+  if (with_data) PetscCall(SgElasticityGlobalToLocal(w->el, y, yloc));
+  else {
+    PetscCall(VecSet(yloc, 0));
+    PetscCall(DMGlobalToLocal(dm, y, INSERT_VALUES, yloc)); /* the free values: the Dirichlet ones are not read back */
   }
-  PetscCall(VecRestoreArray(X, &xa));
-  PetscCall(VecRestoreArray(U, &ua));
-  PetscCall(VecRestoreArray(L, &la));
+  PetscCall(PetscMalloc1(m->nv * dim + 1, &vals));
+  PetscCall(VecGetArrayRead(yloc, &ya));
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) vals[v * dim + d] = PetscRealPart(ya[m->loff[v] + d]);
   PetscCall(VecRestoreArrayRead(yloc, &ya));
   PetscCall(DMRestoreLocalVector(dm, &yloc));
-  PetscCall(PetscFree(vl));
+  PetscCall(VertexVector(w->el, name, dim, vals, &v));
+  PetscCall(PetscFree(vals));
+  PetscCall(WriterAddVec(w, v));
+  PetscFunctionReturn(0);
+}
 
-  reals[0] = ck->gamma;
-  reals[1] = ck->V0;
-  reals[2] = ck->best_kkt;
-  PetscCall(SgHistoryGetRows(ck->hist, &nh, &rows));
-  PetscCall(PetscMalloc1(NHIST * nh + 1, &hist));
-  for (PetscInt i = 0; i < nh; i++) RowToReals(&rows[i], &hist[i * NHIST]);
-  PetscCall(RootVec(comm, "reals", NREAL, reals, &R));
-  PetscCall(RootVec(comm, "state", ck->nstate, ck->state, &S));
-  PetscCall(RootVec(comm, "gammas", ck->ngammas, ck->gammas, &G));
-  PetscCall(RootVec(comm, "history", NHIST * nh, hist, &H));
-  PetscCall(PetscFree(hist));
-  PetscCall(VecGetSize(L, &nvert));
-  ints[0] = dim;
-  ints[1] = nvert;
-  ints[2] = ck->outer;
-  ints[3] = ck->ssn_its;
-  ints[4] = ck->ksp_its;
-  ints[5] = ck->best_step;
+/* bs numbers per contact vertex (a; NULL: zeros), zeros at the other vertices */
+PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter w, const char name[], PetscInt bs, const PetscReal a[])
+{
+  const SgMesh *m;
+  SgContactView cv = {0};
+  PetscReal    *vals;
+  Vec           v;
 
-  {
-    CkCtx ctx = {ck, {X, U, L, R, S, G, H}, {0}, {0}, NULL, 0, NULL, {NULL, NULL}, 0, {0, 0, 0}, NULL, NULL, 0, NULL};
-    for (PetscInt i = 0; i < 6; i++) ctx.ints[i] = ints[i];
-    PetscCall(ProblemPrint(el, c, ctx.print));
-    {
-      PetscReal F[MOM_MAX], Sz[MOM_MAX], a[2 * MOM_MAX];
-      PetscCall(ProblemMoments(el, c, &ctx.nmom, F, Sz));
-      for (PetscInt i = 0; i < ctx.nmom; i++) a[i] = F[i], a[ctx.nmom + i] = Sz[i];
-      PetscCall(RootVec(comm, "problem_moments", 2 * ctx.nmom, a, &ctx.mom));
-    }
-    if (c && cv.friction) {
-      ctx.friction   = cv.friction;
-      ctx.fparams[0] = cv.fbound;
-      ctx.fparams[1] = cv.fcoef;
-      ctx.fparams[2] = cv.fgfac;
-      PetscCall(ContactVector(el, &cv, ck->lamhatT, "lamhat_t", &ctx.fr[0]));
-      PetscCall(ContactVector(el, &cv, ck->yref, "slip_reference", &ctx.fr[1]));
-      /* the second half: the full displacement at the step's start, which prescribed tangential components slip from */
-      PetscCall(ContactVector(el, &cv, ck->yref ? ck->yref + cv.n * dim : NULL, "slip_reference_full", &ctx.fr[2]));
-    }
-    if (ck->loadsteps) {
-      PetscReal *a;
-      PetscCall(PetscMalloc1(SG_LOADSTEP_NREAL * ck->nsteps + 1, &a));
-      for (PetscInt i = 0; i < ck->nsteps; i++) StepToReals(&ck->steps[i], &a[i * SG_LOADSTEP_NREAL]);
-      PetscCall(RootVec(comm, "load_steps", SG_LOADSTEP_NREAL * ck->nsteps, a, &ctx.steps));
-      PetscCall(PetscFree(a));
-      if (ck->ndv > 0) PetscCall(RootVec(comm, "load_dirichlet_values", ck->ndv * ck->nsteps, ck->dvsteps, &ctx.dv));
-      if (ctx.friction) {
-        PetscCall(PetscMalloc1(4 * ck->nsteps + 1, &a));
-        for (PetscInt i = 0; i < ck->nsteps; i++) {
-          a[4 * i]     = ck->steps[i].nstick;
-          a[4 * i + 1] = ck->steps[i].nslip;
-          a[4 * i + 2] = ck->steps[i].friction_force;
-          a[4 * i + 3] = ck->steps[i].friction_traction;
-        }
-        PetscCall(RootVec(comm, "load_steps_friction", 4 * ck->nsteps, a, &ctx.fsteps));
-        PetscCall(PetscFree(a));
-      }
-      if (ck->kept) {
-        ctx.nkept = ck->nsteps;
-        PetscCall(PetscMalloc1(2 * ck->nsteps + 1, &ctx.kept));
-        for (PetscInt i = 0; i < ck->nsteps; i++) PetscCall(StepVectors(el, c, ck->ysteps[i], ck->lamsteps[i], i, &ctx.kept[2 * i], &ctx.kept[2 * i + 1]));
-      }
-    }
-    PetscCall(SgFileWriteHDF5(comm, "-checkpoint_file", file, WriteBody, &ctx, PETSC_TRUE, ok, msg, len));
-    PetscCall(VecDestroy(&ctx.steps));
-    PetscCall(VecDestroy(&ctx.dv));
-    PetscCall(VecDestroy(&ctx.fsteps));
-    PetscCall(VecDestroy(&ctx.mom));
-    PetscCall(VecDestroy(&ctx.fr[0]));
-    PetscCall(VecDestroy(&ctx.fr[1]));
-    PetscCall(VecDestroy(&ctx.fr[2]));
-    for (PetscInt i = 0; i < 2 * ctx.nkept; i++) PetscCall(VecDestroy(&ctx.kept[i]));
-    PetscCall(PetscFree(ctx.kept));
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(w->el, &m));
+  if (w->c) PetscCall(SgContactGetView(w->c, &cv));
+  PetscCall(PetscCalloc1(m->nv * bs + 1, &vals));
+  for (PetscInt i = 0; a && i < cv.n; i++)
+    for (PetscInt d = 0; d < bs; d++) vals[cv.vert[i] * bs + d] = a[i * bs + d];
+  PetscCall(VertexVector(w->el, name, bs, vals, &v));
+  PetscCall(PetscFree(vals));
+  PetscCall(WriterAddVec(w, v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointWriterHistory(SgCheckpointWriter w, SgHistory hist)
+{
+  PetscInt      nh;
+  SgHistoryRow *rows;
+  PetscReal    *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgHistoryGetRows(hist, &nh, &rows));
+  PetscCall(PetscMalloc1(NHIST * nh + 1, &a));
+  for (PetscInt i = 0; i < nh; i++) RowToReals(&rows[i], &a[i * NHIST]);
+  PetscCall(SgCheckpointWriterReals(w, "history", NHIST * nh, a));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
+/* whether a dataset or attribute of this name was put in */
+PetscErrorCode SgCheckpointWriterHas(SgCheckpointWriter w, const char name[], PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = PETSC_FALSE;
+  for (PetscInt i = 0; !*has && i < w->natt; i++) PetscCall(PetscStrcmp(w->att[i].name, name, has));
+  for (PetscInt i = 0; !*has && i < w->nvec; i++) {
+    const char *n;
+    PetscCall(PetscObjectGetName((PetscObject)w->vec[i], &n));
+    PetscCall(PetscStrcmp(n, name, has));
   }
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&U));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&R));
-  PetscCall(VecDestroy(&S));
-  PetscCall(VecDestroy(&G));
-  PetscCall(VecDestroy(&H));
+  PetscFunctionReturn(0);
+}
+
+/* A writer for file with what identifies the problem and its mesh: the vertex coordinates, the mesh size and the
+   fingerprint (ProblemPrint, ProblemMoments). */
+PetscErrorCode SgCheckpointWriterCreate(SgElasticity el, SgContact c, const char file[], SgCheckpointWriter *wp)
+{
+  SgCheckpointWriter w;
+  const SgMesh      *m;
+  PetscInt           dim, nvert, nmom;
+  PetscReal          print[NPRINT], F[MOM_MAX], Sz[MOM_MAX], a[2 * MOM_MAX];
+  Vec                X;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&w));
+  w->el = el;
+  w->c  = c;
+  PetscCall(SgElasticityGetComm(el, &w->comm));
+  PetscCall(PetscStrncpy(w->file, file, sizeof(w->file)));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(VertexVector(el, "coordinates", dim, m->x, &X));
+  PetscCall(WriterAddVec(w, X));
+  PetscCall(VecGetSize(X, &nvert));
+  nvert /= dim;
+  PetscCall(SgCheckpointWriterAttribute(w, "dim", PETSC_INT, &dim));
+  PetscCall(SgCheckpointWriterAttribute(w, "vertices", PETSC_INT, &nvert));
+  PetscCall(ProblemPrint(el, c, print));
+  for (PetscInt i = 0; i < NPRINT; i++) PetscCall(SgCheckpointWriterAttribute(w, PrintNames[i], PETSC_REAL, &print[i]));
+  PetscCall(ProblemMoments(el, c, &nmom, F, Sz));
+  for (PetscInt i = 0; i < nmom; i++) a[i] = F[i], a[nmom + i] = Sz[i];
+  PetscCall(SgCheckpointWriterReals(w, "problem_moments", 2 * nmom, a));
+  PetscCall(SgCheckpointWriterAttribute(w, "problem_moments", PETSC_INT, &nmom));
+  *wp = w;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteBody(PetscViewer viewer, void *ctx)
+{
+  SgCheckpointWriter w = (SgCheckpointWriter)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
+  for (PetscInt i = 0; i < w->nvec; i++) PetscCall(VecView(w->vec[i], viewer));
+  for (PetscInt i = 0; i < w->natt; i++) {
+    const CkAttr *a = &w->att[i];
+    const void   *v = a->type == PETSC_INT ? (const void *)&a->i : (a->type == PETSC_REAL ? (const void *)&a->r : (const void *)a->s);
+    PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/checkpoint", a->name, a->type, v));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Write the file (atomically). ok = PETSC_FALSE and msg say why if it could not be written (a full disk, say): the
+   caller decides what that means for the run. */
+PetscErrorCode SgCheckpointWriterCommit(SgCheckpointWriter w, PetscBool *ok, char msg[], size_t len)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgFileWriteHDF5(w->comm, "-checkpoint_file", w->file, WriteBody, w, PETSC_TRUE, ok, msg, len));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointWriterDestroy(SgCheckpointWriter *wp)
+{
+  SgCheckpointWriter w = *wp;
+
+  PetscFunctionBeginUser;
+  if (!w) PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < w->nvec; i++) PetscCall(VecDestroy(&w->vec[i]));
+  for (PetscInt i = 0; i < w->natt; i++) PetscCall(PetscFree(w->att[i].s));
+  PetscCall(PetscFree(w->vec));
+  PetscCall(PetscFree(w->att));
+  PetscCall(PetscFree(*wp));
+  PetscFunctionReturn(0);
+}
+
+/* ---- the reader: opens the file, checks that it is a checkpoint of this problem and mesh and matches the vertices;
+   the owners then take out their parts. Every refusal names -restart_file and the file; a reader that refuses is
+   closed and freed first (the caller's handle is then gone: the error returns). */
+struct _n_SgCheckpointReader {
+  SgElasticity el;
+  SgContact    c;
+  MPI_Comm     comm;
+  char         file[PETSC_MAX_PATH_LEN];
+  PetscViewer  viewer;
+  PetscInt     dim, nvert;
+  PetscInt    *idx; /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+};
+
+/* one read of the file, run quietly (a damaged file is reported by the caller) */
+typedef struct {
+  SgCheckpointReader r;
+  const char        *name;
+  PetscDataType      type;
+  void              *value;
+  PetscInt           n; /* a dataset's expected size (-1: any) */
+  Vec                v;
+  PetscBool          has;
+} CkItem;
+
+static PetscErrorCode ItemOpen(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, it->r->file, FILE_MODE_READ, &it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemClose(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(it->r->viewer, "/checkpoint", it->name, &it->has));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5ReadAttribute(it->r->viewer, "/checkpoint", it->name, it->type, NULL, it->value));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(PetscViewerHDF5HasDataset(it->r->viewer, it->name, &it->has));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &it->v));
+  PetscCall(PetscObjectSetName((PetscObject)it->v, it->name));
+  if (it->n >= 0) PetscCall(VecSetSizes(it->v, it->n, it->n));
+  PetscCall(VecSetType(it->v, VECSEQ));
+  PetscCall(VecLoad(it->v, it->r->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Close the file and free the reader, with error printing off (a damaged file can fail at H5Fclose): for a refusal,
+   before the error is returned. */
+PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  PetscErrorCode     ierr;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  if (r->viewer) PetscCall(Quietly(r->comm, ItemClose, &it, &ierr));
+  PetscCall(PetscFree(r->idx));
+  PetscCall(PetscFree(*rp));
+  PetscFunctionReturn(0);
+}
+
+/* the file's name, for the owners' messages */
+PetscErrorCode SgCheckpointReaderGetFile(SgCheckpointReader r, const char **file)
+{
+  PetscFunctionBeginUser;
+  *file = r->file;
+  PetscFunctionReturn(0);
+}
+
+/* the reader freed, then: "-restart_file: 'file' is damaged: <what> is <val>" */
+PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *rp, const char what[], PetscReal val)
+{
+  char     f[PETSC_MAX_PATH_LEN], w[256];
+  MPI_Comm comm = (*rp)->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, (*rp)->file, sizeof(f)));
+  PetscCall(PetscStrncpy(w, what, sizeof(w)));
+  PetscCall(SgCheckpointReaderAbandon(rp));
+  SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, w, (double)val);
+}
+
+/* run a read quietly; a failure is reported as "cannot read <what>" (the reader freed) */
+static PetscErrorCode ReaderRun(SgCheckpointReader *rp, PetscErrorCode (*f)(void *), CkItem *it, const char what[])
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(Quietly((*rp)->comm, f, it, &ierr));
+  if (ierr) {
+    char     file[PETSC_MAX_PATH_LEN], w[128];
+    MPI_Comm comm = (*rp)->comm;
+    PetscCall(PetscStrncpy(file, (*rp)->file, sizeof(file)));
+    PetscCall(PetscStrncpy(w, what, sizeof(w)));
+    PetscCall(VecDestroy(&it->v));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", file, w);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasAttribute(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasAttribute, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasDataset(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasDataset, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+/* an attribute of /checkpoint (PETSC_INT: PetscInt *, PETSC_REAL: PetscReal *, PETSC_STRING: char ** to PetscFree) */
+PetscErrorCode SgCheckpointReaderAttribute(SgCheckpointReader r, const char name[], PetscDataType type, void *value)
+{
+  CkItem it = {r, name, type, value, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemAttribute, &it, name));
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of n numbers (n < 0: any number; *len says how many) into a (allocated here; PetscFree) */
+PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader r, const char name[], PetscInt n, PetscInt *len, PetscReal **a)
+{
+  CkItem             it = {r, name, PETSC_REAL, NULL, n, NULL, PETSC_FALSE};
+  char               what[96];
+  const PetscScalar *va;
+  PetscInt           m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(what, sizeof(what), "the dataset %s (of the expected size)", name));
+  PetscCall(ReaderRun(&r, ItemDataset, &it, what));
+  PetscCall(VecGetSize(it.v, &m));
+  PetscCall(PetscMalloc1(m + 1, a));
+  PetscCall(VecGetArrayRead(it.v, &va));
+  for (PetscInt i = 0; i < m; i++) (*a)[i] = PetscRealPart(va[i]);
+  PetscCall(VecRestoreArrayRead(it.v, &va));
+  PetscCall(VecDestroy(&it.v));
+  if (len) *len = m;
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of bs numbers per vertex of the file, all finite (and >= 0 if nonneg; else refused as damaged, naming
+   what), in file order (allocated here; PetscFree) */
+static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
+{
+  PetscInt bad = -1, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(*rp, name, (*rp)->nvert * bs, &n, a));
+  for (PetscInt i = 0; bad < 0 && i < n; i++)
+    if ((!PetscIsNormalReal((*a)[i]) && (*a)[i] != 0) || (nonneg && !((*a)[i] >= 0))) bad = i;
+  if (bad >= 0) {
+    const PetscReal val = (*a)[bad];
+    PetscCall(PetscFree(*a));
+    PetscCall(SgCheckpointReaderDamaged(rp, what, val));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* a displacement per vertex into y (a global vector of the problem), matched by the coordinates; the prescribed
+   components of y are 0 (the file holds the full displacement: a fixed component of a roller is data) */
+PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char name[], const char what[], Vec y)
+{
+  const SgMesh *m;
+  const PetscInt dim = r->dim;
+  PetscReal    *a;
+  PetscScalar  *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  PetscCall(ReaderVertexData(&r, name, dim, PETSC_FALSE, what, &a));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (m->goff[v] < 0 || r->idx[v] < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : a[r->idx[v] * dim + d];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
+/* bs numbers per contact vertex into a (NULL: only checked), matched by the coordinates */
+PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal a[])
+{
+  SgContactView cv = {0};
+  PetscReal    *f;
+
+  PetscFunctionBeginUser;
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(&r, name, bs, nonneg, what, &f));
+  for (PetscInt i = 0; a && i < cv.n; i++)
+    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = r->idx[cv.vert[i]] >= 0 ? f[r->idx[cv.vert[i]] * bs + d] : 0;
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/* the history rows (of outer steps up to maxouter) into hist */
+PetscErrorCode SgCheckpointReaderHistory(SgCheckpointReader r, PetscInt maxouter, SgHistory hist)
+{
+  PetscReal *ha;
+  PetscInt   nh;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(r, "history", -1, &nh, &ha));
+  {
+    const char *what = NULL;
+    PetscReal   val  = 0;
+    if (nh % NHIST) what = "the length of the history", val = nh;
+    for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
+      const PetscReal kind = ha[i * NHIST], outer = ha[i * NHIST + 1];
+      if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
+      else if (!(outer >= 0 && outer <= maxouter && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+    }
+    if (what) PetscCall(PetscFree(ha));
+    if (what) PetscCall(SgCheckpointReaderDamaged(&r, what, val));
+  }
+  PetscCall(SgHistoryReset(hist));
+  for (PetscInt i = 0; i < nh / NHIST; i++) {
+    SgHistoryRow row;
+    RealsToRow(&ha[i * NHIST], &row);
+    PetscCall(SgHistoryAdd(hist, &row));
+  }
+  PetscCall(PetscFree(ha));
   PetscFunctionReturn(0);
 }
 
@@ -609,615 +848,166 @@ static int CmpIndex(const void *a, const void *b)
   return CmpPoint(&SortX[*(const PetscInt *)a * SortDim], &SortX[*(const PetscInt *)b * SortDim]);
 }
 
-static PetscErrorCode FindVertex(const PetscInt perm[], PetscInt n, const PetscReal x[], PetscInt *idx)
+static void FindVertex(const PetscInt perm[], PetscInt n, const PetscReal x[], PetscInt *idx)
 {
   PetscInt lo = 0, hi = n - 1;
 
-  PetscFunctionBeginUser;
   *idx = -1;
   while (lo <= hi) {
     const PetscInt mid = (lo + hi) / 2;
     const int      c   = CmpPoint(&SortX[perm[mid] * SortDim], x);
     if (!c) {
       *idx = perm[mid];
-      break;
+      return;
     }
     if (c < 0) lo = mid + 1;
     else hi = mid - 1;
   }
-  PetscFunctionReturn(0);
 }
 
-static PetscErrorCode LoadSeq(PetscViewer viewer, const char name[], PetscInt n, Vec *v)
+/* the file's coordinates (all finite) matched with the mesh's vertices: r->idx; every owned and every contact vertex
+   must be in the file */
+static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 {
-  PetscFunctionBeginUser;
-  PetscCall(VecCreate(PETSC_COMM_SELF, v));
-  PetscCall(PetscObjectSetName((PetscObject)*v, name));
-  if (n >= 0) PetscCall(VecSetSizes(*v, n, n));
-  PetscCall(VecSetType(*v, VECSEQ));
-  PetscCall(VecLoad(*v, viewer));
-  PetscFunctionReturn(0);
-}
-
-typedef struct {
-  PetscInt    nvert, dim, ints[6];
-  char       *type;
-  const char *what; /* what was being read, for the message */
-  const char *file;
-  PetscViewer viewer;
-  PetscBool   hasprint;
-  PetscReal   print[NPRINT];
-  char       *state_names;
-  Vec         X, U, L, R, S, G, H;
-  PetscBool   hasload; /* written by a run with load steps */
-  PetscReal   load;
-  PetscInt    nsteps, open, nkept;
-  Vec         LS;
-  Vec        *kept; /* 2 per kept step */
-  PetscInt    ndv;  /* Dirichlet values per finished step (0: none) */
-  Vec         DV;
-  PetscInt    friction; /* the friction law (0 in a file of a run without friction) and its parameters */
-  PetscReal   fparams[3];
-  Vec         FT, FY;   /* lamhat_T and the slip reference */
-  Vec         FYP;      /* the slip reference of the full displacement (NULL in a file without it) */
-  Vec         FS;       /* the finished steps' friction numbers */
-  PetscInt    nmom;     /* the problem's moments (0 in a file without them) */
-  Vec         MOM;
-} CkRead;
-
-/* Everything the checkpoint holds, into rd; an error (a damaged file) is caught by the caller. */
-static PetscErrorCode ReadBody(PetscViewer viewer, CkRead *rd)
-{
-  PetscBool   exists;
-  const char *names[6] = {"dim", "vertices", "outer", "ssn_iterations", "ksp_iterations", "best_step"};
-
-  PetscFunctionBeginUser;
-  rd->what = "the attribute cont_type";
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "cont_type", &exists));
-  if (!exists) PetscFunctionReturn(0);
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "cont_type", PETSC_STRING, NULL, &rd->type));
-  for (PetscInt i = 0; i < 6; i++) {
-    rd->what = names[i];
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", names[i], PETSC_INT, NULL, &rd->ints[i]));
-  }
-  rd->what = "the attribute state_names";
-  PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "state_names", PETSC_STRING, NULL, &rd->state_names));
-  rd->what = "the problem data";
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", PrintNames[0], &rd->hasprint));
-  for (PetscInt i = 0; rd->hasprint && i < NPRINT; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", PrintNames[i], PETSC_REAL, NULL, &rd->print[i]));
-  rd->what = "the load steps";
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "load_factor", &rd->hasload));
-  if (rd->hasload) {
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_factor", PETSC_REAL, NULL, &rd->load));
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_done", PETSC_INT, NULL, &rd->nsteps));
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_step_open", PETSC_INT, NULL, &rd->open));
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_steps_kept", PETSC_INT, NULL, &rd->nkept));
-    PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "load_dirichlet_count", &exists));
-    if (exists) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "load_dirichlet_count", PETSC_INT, NULL, &rd->ndv));
-  }
-  rd->what = "the attribute problem_moments";
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "problem_moments", &exists));
-  if (exists) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "problem_moments", PETSC_INT, NULL, &rd->nmom));
-  rd->what = "the friction law";
-  PetscCall(PetscViewerHDF5HasAttribute(viewer, "/checkpoint", "friction_type", &exists));
-  if (exists) {
-    PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", "friction_type", PETSC_INT, NULL, &rd->friction));
-    for (PetscInt i = 0; i < 3; i++) PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/checkpoint", FrictionParamNames[i], PETSC_REAL, NULL, &rd->fparams[i]));
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ReadMoments(PetscViewer viewer, CkRead *rd)
-{
-  PetscFunctionBeginUser;
-  rd->what = "problem_moments";
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  PetscCall(LoadSeq(viewer, "problem_moments", 2 * rd->nmom, &rd->MOM));
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ReadVectors(PetscViewer viewer, CkRead *rd)
-{
-  PetscBool full;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/checkpoint"));
-  rd->what = "coordinates";
-  PetscCall(LoadSeq(viewer, "coordinates", rd->nvert * rd->dim, &rd->X));
-  rd->what = "displacement";
-  PetscCall(LoadSeq(viewer, "displacement", rd->nvert * rd->dim, &rd->U));
-  rd->what = "lamhat";
-  PetscCall(LoadSeq(viewer, "lamhat", rd->nvert, &rd->L));
-  rd->what = "reals";
-  PetscCall(LoadSeq(viewer, "reals", NREAL, &rd->R));
-  rd->what = "state";
-  PetscCall(LoadSeq(viewer, "state", -1, &rd->S));
-  rd->what = "gammas";
-  PetscCall(LoadSeq(viewer, "gammas", -1, &rd->G));
-  rd->what = "history";
-  PetscCall(LoadSeq(viewer, "history", -1, &rd->H));
-  if (rd->hasload) {
-    rd->what = "load_steps";
-    PetscCall(LoadSeq(viewer, "load_steps", -1, &rd->LS));
-    rd->what = "the kept load steps";
-    PetscCheck(rd->nkept == 0 || rd->nkept == rd->nsteps, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "kept steps");
-    PetscCall(PetscCalloc1(2 * rd->nkept + 1, &rd->kept));
-    for (PetscInt i = 0; i < rd->nkept; i++) {
-      char name[64];
-      PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, i));
-      PetscCall(LoadSeq(viewer, name, rd->nvert * rd->dim, &rd->kept[2 * i]));
-      PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, i));
-      PetscCall(LoadSeq(viewer, name, rd->nvert, &rd->kept[2 * i + 1]));
-    }
-    rd->what = "load_dirichlet_values";
-    PetscCheck(rd->ndv >= 0 && rd->ndv <= 3 * SG_MAX_IDS, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "Dirichlet values");
-    if (rd->ndv > 0) PetscCall(LoadSeq(viewer, "load_dirichlet_values", rd->ndv * rd->nsteps, &rd->DV));
-  }
-  if (rd->friction && rd->hasload) {
-    rd->what = "load_steps_friction";
-    PetscCall(LoadSeq(viewer, "load_steps_friction", 4 * rd->nsteps, &rd->FS));
-  }
-  if (rd->friction) {
-    rd->what = "lamhat_t";
-    PetscCall(LoadSeq(viewer, "lamhat_t", rd->nvert * rd->dim, &rd->FT));
-    rd->what = "slip_reference";
-    PetscCall(LoadSeq(viewer, "slip_reference", rd->nvert * rd->dim, &rd->FY));
-    rd->what = "slip_reference_full";
-    PetscCall(PetscViewerHDF5HasDataset(viewer, "slip_reference_full", &full));
-    if (full) PetscCall(LoadSeq(viewer, "slip_reference_full", rd->nvert * rd->dim, &rd->FYP));
-  }
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscFunctionReturn(0);
-}
-
-/* Run a read step with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
-static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(PetscViewer, CkRead *), PetscViewer viewer, CkRead *rd, PetscErrorCode *ierr)
-{
-  H5E_auto2_t efunc;
-  void       *edata;
-  int         e;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
-  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  *ierr = f(viewer, rd); /* not PetscCall: a damaged file is reported by the caller, naming -restart_file */
-  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
-  PetscCall(PetscPopErrorHandler());
-  e = *ierr ? 1 : 0;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_INT, MPI_MAX, comm));
-  *ierr = e ? PETSC_ERR_FILE_READ : 0;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode DestroyViewer(PetscViewer unused, CkRead *rd)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerDestroy(&rd->viewer));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode OpenQuietly(PetscViewer unused, CkRead *rd)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, rd->file, FILE_MODE_READ, &rd->viewer));
-  PetscFunctionReturn(0);
-}
-
-/* all finite, and >= lo when check_lo; the index of the first bad one in *bad (-1: none) */
-static void CheckReals(const PetscScalar a[], PetscInt n, PetscBool check_lo, PetscReal lo, PetscInt *bad)
-{
-  *bad = -1;
-  for (PetscInt i = 0; i < n; i++)
-    if (!PetscIsNormalReal(PetscRealPart(a[i])) && PetscRealPart(a[i]) != 0) {
-      *bad = i;
-      return;
-    } else if (check_lo && !(PetscRealPart(a[i]) >= lo)) {
-      *bad = i;
-      return;
-    }
-}
-
-/* Close the viewer with error printing off (a damaged file can fail at H5Fclose); *ierr, if asked for, says whether it did. */
-static PetscErrorCode CloseQuietly(MPI_Comm comm, CkRead *rd, PetscViewer *viewer, PetscErrorCode *ierr)
-{
-  PetscErrorCode e = 0;
-
-  PetscFunctionBeginUser;
-  rd->viewer = *viewer;
-  *viewer    = NULL;
-  PetscCall(Quietly(comm, DestroyViewer, NULL, rd, &e));
-  if (ierr) *ierr = e;
-  PetscFunctionReturn(0);
-}
-
-/* Read the state of file into ck: ck->type, nstate and state_names say what this run's controller is and keeps;
-   ck->y and ck->lamhat (per contact vertex) receive the vertex data, gammas (allocated here) and hist the path.
-   Every refusal (another controller, problem or mesh, a damaged file) names -restart_file and the file. */
-PetscErrorCode SgCheckpointRead(SgElasticity el, SgContact c, const char f[], SgCheckpoint *ck)
-{
+  SgCheckpointReader r = *rp;
   const SgMesh      *m;
   SgContactView      cv = {0};
-  PetscInt           dim;
-  MPI_Comm           comm;
-  DM                 dmVert;
-  PetscViewer        viewer = NULL;
-  PetscInt           nvert = 0, *perm, nmiss = 0, nbadf = 0, nh, ng, ns, bad, *ints;
-  CkRead             rd;
-  const PetscScalar *xa, *ua, *la, *ra, *sa, *ga, *ha;
-  PetscScalar       *ya;
-  PetscBool          exists, same;
-  PetscErrorCode     ierr;
+  PetscReal         *x;
+  PetscInt          *perm, nmiss = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(SgElasticityGetMesh(el, &m));
-  PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
-  if (c) PetscCall(SgContactGetView(c, &cv));
-  PetscCall(PetscMemzero(&rd, sizeof(rd)));
-  PetscCall(PetscTestFile(f, 'r', &exists));
-  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", f);
-  /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
-  rd.file = f;
-  PetscCall(Quietly(comm, OpenQuietly, NULL, &rd, &ierr));
-  viewer = rd.viewer;
-  if (ierr && viewer) { /* a viewer whose file did not open fails its flush: forget that error too */
-    PetscErrorCode ierr2 = 0;
-    PetscCall(Quietly(comm, DestroyViewer, NULL, &rd, &ierr2));
-  }
-  PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
-  PetscCall(Quietly(comm, ReadBody, viewer, &rd, &ierr));
-  if (ierr) {
-    PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCall(PetscFree(rd.type));
-    PetscCall(PetscFree(rd.state_names));
-    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", f, rd.what);
-  }
-  if (!rd.type) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-  PetscCheck(rd.type, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
-  PetscCall(PetscStrcmp(rd.type, ck->type, &same));
-  if (!same) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-  PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written by -cont_type %s, this run has -cont_type %s", f, rd.type, ck->type);
-  PetscCall(PetscFree(rd.type));
-  {
-    /* the controller's own numbers, by name: a file of another version of the controller is not resumed */
-    char names[SG_STATE_MAX * 64];
-    PetscCall(StateNames(ck, names, sizeof(names)));
-    PetscCall(PetscStrcmp(rd.state_names, names, &same));
-    if (!same) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(same, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' holds the controller state (%s), -cont_type %s keeps (%s)", f, rd.state_names, ck->type, names);
-    PetscCall(PetscFree(rd.state_names));
-  }
-  ints = rd.ints;
-  {
-    PetscSection gs;
-    PetscCall(DMGetGlobalSection(dmVert, &gs));
-    for (PetscInt v = 0; v < m->nv; v++) {
-      PetscInt off;
-      PetscCall(PetscSectionGetOffset(gs, m->vStart + v, &off));
-      if (off >= 0) nvert++;
-    }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, comm));
-  }
-  if (!(ints[0] == dim && ints[1] == nvert)) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-  PetscCheck(ints[0] == dim && ints[1] == nvert, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, ints[0], ints[1], dim, nvert);
-  /* the counters: a checkpoint is written after an outer step */
-  {
-    const char *what = NULL;
-    PetscInt    val  = 0;
-    /* above a quarter of PetscInt's range a count is damage (HDF5 saturates larger stored values), and adding the
-       resumed run's iterations would overflow */
-    const PetscInt big = PETSC_MAX_INT / 4;
-    if (ints[2] < 1 || ints[2] > big) what = "outer", val = ints[2];
-    else if (ints[3] < 0 || ints[3] > big) what = "ssn_iterations", val = ints[3];
-    else if (ints[4] < 0 || ints[4] > big) what = "ksp_iterations", val = ints[4];
-    else if (ints[5] < 0 || ints[5] > ints[2]) what = "best_step", val = ints[5];
-    if (what) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(!what, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s = %" PetscInt_FMT " is impossible (outer step %" PetscInt_FMT ")", f, what, val, ints[2]);
-  }
-  /* a restart of another problem would continue a path that is not this problem's */
-  if (rd.hasprint) {
-    PetscReal now[NPRINT];
-    PetscCall(ProblemPrint(el, c, now));
-    for (PetscInt i = 0; i < NPRINT; i++) {
-      const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - rd.print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(rd.print[i]) : 0));
-      if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-      PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)rd.print[i], (double)now[i]);
-    }
-  }
-  /* the friction law and its parameters: the state of another law is no state of this problem */
-  {
-    const PetscInt  now_fr = c ? (PetscInt)cv.friction : 0;
-    const PetscReal now[3] = {cv.fbound, cv.fcoef, cv.fgfac};
-    PetscBool       ok     = (PetscBool)(now_fr == rd.friction);
-    if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, rd.friction >= 0 && rd.friction <= 2 ? SgFrictionTypes[rd.friction] : "(damaged)", SgFrictionTypes[now_fr]);
-    for (PetscInt i = 0; now_fr && i < 3; i++) {
-      ok = (PetscBool)(PetscAbsReal(now[i] - rd.fparams[i]) <= 1e-12 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(rd.fparams[i])));
-      if (!ok) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-      PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, FrictionParamNames[i], (double)rd.fparams[i], (double)now[i]);
-    }
-  }
-  /* the problem's moments: its data with their signs and directions (a file of an older version has none) */
-  if (rd.nmom) {
-    PetscReal          F[MOM_MAX], Sz[MOM_MAX], a = 0, b = 0;
-    PetscInt           n, group = -1;
-    char               desc[128];
-    const PetscScalar *ma;
-    PetscCall(ProblemMoments(el, c, &n, F, Sz));
-    if (rd.nmom != n) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(rd.nmom == n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: it holds %" PetscInt_FMT " moments of the problem, a %" PetscInt_FMT "D problem has %" PetscInt_FMT, f, rd.nmom, dim, n);
-    PetscCall(Quietly(comm, ReadMoments, viewer, &rd, &ierr));
-    if (ierr) {
-      PetscCall(VecDestroy(&rd.MOM));
-      PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
-    }
-    PetscCall(VecGetArrayRead(rd.MOM, &ma));
-    CheckReals(ma, 2 * n, PETSC_FALSE, 0, &bad);
-    if (bad < 0) {
-      PetscReal M[2 * MOM_MAX];
-      for (PetscInt i = 0; i < 2 * n; i++) M[i] = PetscRealPart(ma[i]);
-      MomentsCompare(dim, n, M, M + n, F, Sz, &group, desc, sizeof(desc), &a, &b);
-    } else a = PetscRealPart(ma[bad]);
-    PetscCall(VecRestoreArrayRead(rd.MOM, &ma));
-    PetscCall(VecDestroy(&rd.MOM));
-    if (bad >= 0) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(bad < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: a moment of the problem is %g", f, (double)a);
-    if (group >= 0) PetscCall(CloseQuietly(comm, &rd, &viewer, NULL));
-    PetscCheck(group < 0, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s (%s: %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, group >= 0 ? MomentGroups[group] : "", desc, (double)a, (double)b);
-  }
-  rd.nvert = nvert;
-  rd.dim   = dim;
-  PetscCall(Quietly(comm, ReadVectors, viewer, &rd, &ierr));
-  {
-    PetscErrorCode ierr2 = 0;
-    PetscCall(CloseQuietly(comm, &rd, &viewer, &ierr2));
-    if (ierr2 && !ierr) {
-      ierr    = ierr2;
-      rd.what = "the file's end (closing it failed)";
-    }
-  }
-  if (ierr) {
-    Vec *v[13] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS, &rd.FYP};
-    for (PetscInt i = 0; i < 13; i++) PetscCall(VecDestroy(v[i]));
-    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read the dataset %s (of the expected size)", f, rd.what);
-  }
-
-  /* every number read must be possible */
-  PetscCall(VecGetArrayRead(rd.X, &xa));
-  PetscCall(VecGetArrayRead(rd.U, &ua));
-  PetscCall(VecGetArrayRead(rd.L, &la));
-  PetscCall(VecGetArrayRead(rd.R, &ra));
-  PetscCall(VecGetSize(rd.S, &ns));
-  PetscCall(VecGetArrayRead(rd.S, &sa));
-  PetscCall(VecGetSize(rd.G, &ng));
-  PetscCall(VecGetArrayRead(rd.G, &ga));
-  PetscCall(VecGetSize(rd.H, &nh));
-  PetscCall(VecGetArrayRead(rd.H, &ha));
-  {
-    const char *what = NULL;
-    PetscReal   val  = 0;
-    char        statewhat[128];
-    CheckReals(xa, nvert * dim, PETSC_FALSE, 0, &bad);
-    if (bad >= 0) what = "a vertex coordinate", val = PetscRealPart(xa[bad]);
-    if (!what) CheckReals(ua, nvert * dim, PETSC_FALSE, 0, &bad);
-    if (!what && bad >= 0) what = "a displacement", val = PetscRealPart(ua[bad]);
-    if (!what) CheckReals(la, nvert, PETSC_TRUE, 0, &bad);
-    if (!what && bad >= 0) what = "a multiplier shift lamhat (must be >= 0)", val = PetscRealPart(la[bad]);
-    /* the end of a load step of a solver without gamma (pdas, vi) holds no gamma to check */
-    const PetscBool step_end = (PetscBool)(rd.hasload && !rd.open);
-    if (!what && !step_end && !(PetscIsNormalReal(PetscRealPart(ra[0])) && PetscRealPart(ra[0]) > 0)) what = "gamma (must be positive)", val = PetscRealPart(ra[0]);
-    if (!what && !PetscIsNormalReal(PetscRealPart(ra[1])) && PetscRealPart(ra[1]) != 0) what = "the unconstrained energy", val = PetscRealPart(ra[1]);
-    if (!what) CheckReals(&ra[2], 1, PETSC_TRUE, 0, &bad);
-    if (!what && bad >= 0) what = "the best KKT residual", val = PetscRealPart(ra[2]);
-    if (!what && ns != ck->nstate) what = "the number of controller state values", val = ns;
-    if (!what) CheckReals(sa, ns, PETSC_FALSE, 0, &bad);
-    if (!what && bad >= 0) {
-      PetscCall(PetscSNPrintf(statewhat, sizeof(statewhat), "the controller state %s", ck->state_names[bad]));
-      what = statewhat, val = PetscRealPart(sa[bad]);
-    }
-    if (!what && ng != ints[2]) what = "the number of gammas (must be the number of outer steps)", val = ng;
-    for (PetscInt i = 0; !what && !step_end && i < ng; i++)
-      if (!(PetscRealPart(ga[i]) > 0)) what = "a gamma of the path (must be positive)", val = PetscRealPart(ga[i]);
-    if (!what && nh % NHIST) what = "the length of the history", val = nh;
-    for (PetscInt i = 0; !what && i < nh / NHIST; i++) {
-      const PetscReal kind = PetscRealPart(ha[i * NHIST]), outer = PetscRealPart(ha[i * NHIST + 1]);
-      if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
-      else if (!(outer >= 0 && (outer <= ints[2] || rd.hasload) && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer; /* with load steps the history holds every step's rows */
-    }
-    if (what) {
-      PetscCall(VecRestoreArrayRead(rd.X, &xa));
-      PetscCall(VecRestoreArrayRead(rd.U, &ua));
-      PetscCall(VecRestoreArrayRead(rd.L, &la));
-      PetscCall(VecRestoreArrayRead(rd.R, &ra));
-      PetscCall(VecRestoreArrayRead(rd.S, &sa));
-      PetscCall(VecRestoreArrayRead(rd.G, &ga));
-      PetscCall(VecRestoreArrayRead(rd.H, &ha));
-      {
-        Vec *v[13] = {&rd.X, &rd.U, &rd.L, &rd.R, &rd.S, &rd.G, &rd.H, &rd.LS, &rd.DV, &rd.FT, &rd.FY, &rd.FS, &rd.FYP};
-        for (PetscInt i = 0; i < 13; i++) PetscCall(VecDestroy(v[i]));
-      }
-      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, what, (double)val);
-    }
-  }
-
-  PetscCall(PetscMalloc1(nvert, &perm));
-  for (PetscInt i = 0; i < nvert; i++) perm[i] = i;
-  SortX   = (const PetscReal *)xa;
-  SortDim = dim;
-  qsort(perm, nvert, sizeof(PetscInt), CmpIndex);
-  PetscCall(VecGetArray(ck->y, &ya));
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(rp, "coordinates", r->dim, PETSC_FALSE, "a vertex coordinate", &x));
+  PetscCall(PetscMalloc1(r->nvert + 1, &perm));
+  PetscCall(PetscMalloc1(m->nv + 1, &r->idx));
+  for (PetscInt i = 0; i < r->nvert; i++) perm[i] = i;
+  SortX   = x;
+  SortDim = r->dim;
+  qsort(perm, r->nvert, sizeof(PetscInt), CmpIndex);
   for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt idx;
-    if (m->goff[v] < 0) continue;
-    PetscCall(FindVertex(perm, nvert, &m->x[v * dim], &idx));
-    if (idx < 0) {
-      nmiss++;
-      continue;
-    }
-    /* the file holds the full displacement: a fixed component of a roller is data, its unknown stays 0 */
-    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : ua[idx * dim + d];
+    FindVertex(perm, r->nvert, &m->x[v * r->dim], &r->idx[v]);
+    if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
   }
-  PetscCall(VecRestoreArray(ck->y, &ya));
-  for (PetscInt i = 0; i < cv.n; i++) {
-    PetscInt idx;
-    PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
-    if (idx < 0) nmiss++;
-    else ck->lamhat[i] = PetscRealPart(la[idx]);
-  }
-  if (rd.friction) { /* lamhat_T and the slip reference, matched by the coordinates as lamhat */
-    const PetscScalar *fta, *fya, *fpa = NULL;
-    PetscCall(VecGetArrayRead(rd.FT, &fta));
-    PetscCall(VecGetArrayRead(rd.FY, &fya));
-    if (rd.FYP) PetscCall(VecGetArrayRead(rd.FYP, &fpa));
-    for (PetscInt i = 0; i < cv.n; i++) {
-      PetscInt idx;
-      PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
-      for (PetscInt d = 0; idx >= 0 && d < dim; d++) {
-        const PetscReal a = PetscRealPart(fta[idx * dim + d]), b = PetscRealPart(fya[idx * dim + d]);
-        if (!((PetscIsNormalReal(a) || a == 0) && (PetscIsNormalReal(b) || b == 0))) nbadf++;
-        if (ck->lamhatT) ck->lamhatT[i * dim + d] = a;
-        if (ck->yref) ck->yref[i * dim + d] = b;
-        if (ck->yref) { /* a file without the full displacement's reference: the unknowns' (exact without prescribed components) */
-          const PetscReal bp = fpa ? PetscRealPart(fpa[idx * dim + d]) : b;
-          if (!(PetscIsNormalReal(bp) || bp == 0)) nbadf++;
-          ck->yref[(cv.n + i) * dim + d] = bp;
-        }
-      }
-    }
-    PetscCall(VecRestoreArrayRead(rd.FT, &fta));
-    PetscCall(VecRestoreArrayRead(rd.FY, &fya));
-    if (rd.FYP) PetscCall(VecRestoreArrayRead(rd.FYP, &fpa));
-    ck->yref_full = (PetscBool)(rd.FYP != NULL);
-    PetscCall(VecDestroy(&rd.FT));
-    PetscCall(VecDestroy(&rd.FY));
-    PetscCall(VecDestroy(&rd.FYP));
-  }
-  /* the kept load steps' displacements and multipliers, matched by the coordinates as y and lamhat */
-  ck->kept     = (PetscBool)(rd.nkept > 0);
-  ck->ysteps   = NULL;
-  ck->lamsteps = NULL;
-  if (ck->kept) {
-    PetscCall(PetscCalloc2(rd.nkept, &ck->ysteps, rd.nkept, &ck->lamsteps));
-    for (PetscInt j = 0; j < rd.nkept; j++) {
-      const PetscScalar *sua, *sla;
-      PetscCall(VecDuplicate(ck->y, &ck->ysteps[j]));
-      PetscCall(PetscMalloc1(cv.n + 1, &ck->lamsteps[j]));
-      PetscCall(VecGetArrayRead(rd.kept[2 * j], &sua));
-      PetscCall(VecGetArrayRead(rd.kept[2 * j + 1], &sla));
-      PetscCall(VecGetArray(ck->ysteps[j], &ya));
-      for (PetscInt v = 0; v < m->nv; v++) {
-        PetscInt idx;
-        if (m->goff[v] < 0) continue;
-        PetscCall(FindVertex(perm, nvert, &m->x[v * dim], &idx));
-        if (idx >= 0)
-          for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = sua[idx * dim + d];
-      }
-      PetscCall(VecRestoreArray(ck->ysteps[j], &ya));
-      for (PetscInt i = 0; i < cv.n; i++) {
-        PetscInt idx;
-        PetscCall(FindVertex(perm, nvert, &m->x[cv.vert[i] * dim], &idx));
-        ck->lamsteps[j][i] = idx >= 0 ? PetscRealPart(sla[idx]) : 0;
-      }
-      PetscCall(VecRestoreArrayRead(rd.kept[2 * j], &sua));
-      PetscCall(VecRestoreArrayRead(rd.kept[2 * j + 1], &sla));
-    }
-  }
-  for (PetscInt i = 0; i < 2 * rd.nkept && rd.kept; i++) PetscCall(VecDestroy(&rd.kept[i]));
-  PetscCall(PetscFree(rd.kept));
+  for (PetscInt i = 0; i < cv.n; i++)
+    if (r->idx[cv.vert[i]] < 0) nmiss++;
+  SortX = NULL;
   PetscCall(PetscFree(perm));
-  PetscCall(VecRestoreArrayRead(rd.X, &xa));
-  PetscCall(VecRestoreArrayRead(rd.U, &ua));
-  PetscCall(VecRestoreArrayRead(rd.L, &la));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nbadf, 1, MPIU_INT, MPI_SUM, comm));
-  if (nmiss || nbadf) { /* released before either error below */
-    PetscCall(VecRestoreArrayRead(rd.R, &ra));
-    PetscCall(VecRestoreArrayRead(rd.S, &sa));
-    PetscCall(VecRestoreArrayRead(rd.G, &ga));
-    PetscCall(VecRestoreArrayRead(rd.H, &ha));
+  PetscCall(PetscFree(x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (nmiss) {
+    char     f[PETSC_MAX_PATH_LEN];
+    MPI_Comm comm = r->comm;
+    PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
   }
-  PetscCheck(!nmiss, comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
-  PetscCheck(!nbadf, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %" PetscInt_FMT " values of lamhat_t or slip_reference are not finite", f, nbadf);
+  PetscFunctionReturn(0);
+}
 
-  ck->gamma    = PetscRealPart(ra[0]);
-  ck->V0       = PetscRealPart(ra[1]);
-  ck->best_kkt = PetscRealPart(ra[2]);
-  for (PetscInt i = 0; i < ns; i++) ck->state[i] = PetscRealPart(sa[i]);
-  PetscCall(VecRestoreArrayRead(rd.R, &ra));
-  PetscCall(VecRestoreArrayRead(rd.S, &sa));
-  ck->outer     = ints[2];
-  ck->ssn_its   = ints[3];
-  ck->ksp_its   = ints[4];
-  ck->best_step = ints[5];
-  ck->ngammas   = ng;
-  PetscCall(PetscMalloc1(ng + 1, &ck->gammas));
-  for (PetscInt i = 0; i < ng; i++) ck->gammas[i] = PetscRealPart(ga[i]);
-  PetscCall(VecRestoreArrayRead(rd.G, &ga));
-  PetscCall(SgHistoryReset(ck->hist));
-  for (PetscInt i = 0; i < nh / NHIST; i++) {
-    SgHistoryRow r;
-    PetscReal    a[NHIST];
-    for (PetscInt k = 0; k < NHIST; k++) a[k] = PetscRealPart(ha[i * NHIST + k]);
-    RealsToRow(a, &r);
-    PetscCall(SgHistoryAdd(ck->hist, &r));
+/* the problem's numbers (E, nu, load and Dirichlet scales, gap sum; a file of an older version may lack them) and
+   moments (the data with their signs and directions; an older file may lack them) against this run's */
+static PetscErrorCode ReaderCheckProblem(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  PetscBool          has;
+  PetscInt           nmom = 0, n, group = -1, bad = -1;
+  PetscReal          print[NPRINT], now[NPRINT], F[MOM_MAX], Sz[MOM_MAX], *ma, a = 0, b = 0;
+  char               f[PETSC_MAX_PATH_LEN], desc[128];
+  MPI_Comm           comm = r->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+  PetscCall(SgCheckpointReaderHasAttribute(r, PrintNames[0], &has));
+  for (PetscInt i = 0; has && i < NPRINT; i++) PetscCall(SgCheckpointReaderAttribute(r, PrintNames[i], PETSC_REAL, &print[i]));
+  if (has) PetscCall(ProblemPrint(r->el, r->c, now));
+  for (PetscInt i = 0; has && i < NPRINT; i++) {
+    const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(print[i]) : 0));
+    if (!ok) PetscCall(SgCheckpointReaderAbandon(rp));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)print[i], (double)now[i]);
   }
-  PetscCall(VecRestoreArrayRead(rd.H, &ha));
-  /* the load steps: a file of a run without them is the full load, inside its only step */
-  ck->load      = rd.hasload ? rd.load : 1;
-  ck->nsteps    = 0;
-  ck->step_open = PETSC_TRUE;
-  ck->steps     = NULL;
-  if (rd.hasload) {
-    PetscInt           nls;
-    const PetscScalar *lsa;
-    PetscCall(VecGetSize(rd.LS, &nls));
-    PetscCheck(PetscIsNormalReal(rd.load) && rd.load > 0 && rd.nsteps >= 0 && nls == SG_LOADSTEP_NREAL * rd.nsteps && (rd.open == 0 || rd.open == 1), comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: its load steps (factor %g, %" PetscInt_FMT " steps done, %" PetscInt_FMT " numbers) are impossible", f, (double)rd.load, rd.nsteps, nls);
-    ck->nsteps    = rd.nsteps;
-    ck->step_open = (PetscBool)rd.open;
-    PetscCall(PetscMalloc1(rd.nsteps + 1, &ck->steps));
-    PetscCall(VecGetArrayRead(rd.LS, &lsa));
-    for (PetscInt i = 0; i < rd.nsteps; i++) {
-      PetscReal a[SG_LOADSTEP_NREAL];
-      for (PetscInt k = 0; k < SG_LOADSTEP_NREAL; k++) a[k] = PetscRealPart(lsa[i * SG_LOADSTEP_NREAL + k]);
-      RealsToStep(a, &ck->steps[i]);
-    }
-    PetscCall(VecRestoreArrayRead(rd.LS, &lsa));
-    PetscCall(VecDestroy(&rd.LS));
-    if (rd.FS) {
-      const PetscScalar *fsa;
-      PetscCall(VecGetArrayRead(rd.FS, &fsa));
-      for (PetscInt i = 0; i < rd.nsteps; i++) {
-        ck->steps[i].nstick            = (PetscInt)PetscRealPart(fsa[4 * i]);
-        ck->steps[i].nslip             = (PetscInt)PetscRealPart(fsa[4 * i + 1]);
-        ck->steps[i].friction_force    = PetscRealPart(fsa[4 * i + 2]);
-        ck->steps[i].friction_traction = PetscRealPart(fsa[4 * i + 3]);
-      }
-      PetscCall(VecRestoreArrayRead(rd.FS, &fsa));
-    }
+  PetscCall(SgCheckpointReaderHasAttribute(r, "problem_moments", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(SgCheckpointReaderAttribute(r, "problem_moments", PETSC_INT, &nmom));
+  PetscCall(ProblemMoments(r->el, r->c, &n, F, Sz));
+  if (nmom != n) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(nmom == n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: it holds %" PetscInt_FMT " moments of the problem, a %" PetscInt_FMT "D problem has %" PetscInt_FMT, f, nmom, r->dim, n);
+  PetscCall(SgCheckpointReaderReals(r, "problem_moments", 2 * n, NULL, &ma));
+  for (PetscInt i = 0; bad < 0 && i < 2 * n; i++)
+    if (!PetscIsNormalReal(ma[i]) && ma[i] != 0) bad = i;
+  if (bad < 0) MomentsCompare(r->dim, n, ma, ma + n, F, Sz, &group, desc, sizeof(desc), &a, &b);
+  else a = ma[bad];
+  PetscCall(PetscFree(ma));
+  if (bad >= 0) PetscCall(SgCheckpointReaderDamaged(rp, "a moment of the problem", a));
+  if (group >= 0) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(group < 0, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s (%s: %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, group >= 0 ? MomentGroups[group] : "", desc, (double)a, (double)b);
+  PetscFunctionReturn(0);
+}
+
+/* Open file for a restart of this problem (el, c): a checkpoint of it, of this mesh (its vertices matched by their
+   coordinates, on any partition). Refusals (no such file, not HDF5, another mesh or problem, damage) name
+   -restart_file and the file. */
+PetscErrorCode SgCheckpointReaderOpen(SgElasticity el, SgContact c, const char file[], SgCheckpointReader *rp)
+{
+  SgCheckpointReader r;
+  PetscBool          exists;
+  PetscErrorCode     ierr;
+  PetscInt           dim, nvert;
+  char               f[PETSC_MAX_PATH_LEN];
+  MPI_Comm           comm0;
+
+  PetscFunctionBeginUser;
+  *rp = NULL;
+  PetscCall(PetscStrncpy(f, file, sizeof(f)));
+  PetscCall(SgElasticityGetComm(el, &comm0));
+  PetscCall(PetscTestFile(file, 'r', &exists));
+  PetscCheck(exists, comm0, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", f);
+  PetscCall(PetscNew(&r));
+  r->el   = el;
+  r->c    = c;
+  r->comm = comm0;
+  PetscCall(PetscStrncpy(r->file, file, sizeof(r->file)));
+  {
+    /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
+    CkItem   it   = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+    MPI_Comm comm = r->comm;
+    PetscCall(Quietly(r->comm, ItemOpen, &it, &ierr));
+    if (ierr) PetscCall(SgCheckpointReaderAbandon(&r)); /* a viewer whose file did not open fails its flush: quietly */
+    PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
   }
-  PetscCall(VecDestroy(&rd.FS));
-  ck->ndv     = 0;
-  ck->dvsteps = NULL;
-  if (rd.DV) { /* the finished steps' Dirichlet values (non-proportional loading) */
-    const PetscScalar *dva;
-    ck->ndv = rd.ndv;
-    PetscCall(PetscMalloc1(rd.ndv * rd.nsteps + 1, &ck->dvsteps));
-    PetscCall(VecGetArrayRead(rd.DV, &dva));
-    for (PetscInt i = 0; i < rd.ndv * rd.nsteps; i++) ck->dvsteps[i] = PetscRealPart(dva[i]);
-    PetscCall(VecRestoreArrayRead(rd.DV, &dva));
-    PetscCall(VecDestroy(&rd.DV));
+  PetscCall(SgCheckpointReaderHasAttribute(r, "vertices", &exists));
+  if (!exists) {
+    MPI_Comm comm = r->comm;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
   }
-  PetscCall(VecDestroy(&rd.X));
-  PetscCall(VecDestroy(&rd.U));
-  PetscCall(VecDestroy(&rd.L));
-  PetscCall(VecDestroy(&rd.R));
-  PetscCall(VecDestroy(&rd.S));
-  PetscCall(VecDestroy(&rd.G));
-  PetscCall(VecDestroy(&rd.H));
-  PetscCall(PetscInfo(NULL, "restarted from %s after outer step %" PetscInt_FMT " (gamma %g)\n", f, ck->outer, (double)ck->gamma));
+  PetscCall(SgCheckpointReaderAttribute(r, "dim", PETSC_INT, &r->dim));
+  PetscCall(SgCheckpointReaderAttribute(r, "vertices", PETSC_INT, &r->nvert));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(OwnedVertices(el, &nvert));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (!(r->dim == dim && r->nvert == nvert)) {
+    MPI_Comm       comm = r->comm;
+    const PetscInt fd = r->dim, fn = r->nvert;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, fd, fn, dim, nvert);
+  }
+  PetscCall(ReaderCheckProblem(&r));
+  PetscCall(ReaderMatchVertices(&r));
+  *rp = r;
+  PetscFunctionReturn(0);
+}
+
+/* Close the file (a failure there: the file is damaged) and free the reader. */
+PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  it = (CkItem){r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  if (r->viewer) PetscCall(ReaderRun(rp, ItemClose, &it, "the file's end (closing it failed)"));
+  PetscCall(SgCheckpointReaderAbandon(rp));
   PetscFunctionReturn(0);
 }
