@@ -48,9 +48,8 @@ def main():
 
     reader = pv.XDMFReader(FileNames=[os.path.abspath(opt.xmf)])
     reader.UpdatePipelineInformation()
-    times = list(reader.TimestepValues) if reader.TimestepValues else []
-    if not isinstance(reader.TimestepValues, (list, tuple)) and reader.TimestepValues:
-        times = [reader.TimestepValues]
+    tv = reader.TimestepValues  # a load-step collection: its load factors (one float for a single step)
+    times = [float(tv)] if isinstance(tv, (int, float)) else [float(x) for x in tv] if tv else []
     t = None
     if times:
         if opt.step == "last":
@@ -70,6 +69,11 @@ def main():
         print("cell fields: %s" % ", ".join(cells))
         print("load steps: %s" % (", ".join("%g" % x for x in times) if times else "none"))
         return 0
+    if not points and not cells and ":" in os.path.basename(opt.xmf):
+        print("render.py: %s: ParaView read no fields: its XDMF reader cuts the HDF5 reference FILE:/dataset at the "
+              "first ':', and this file name has one; rename the .h5 and .xmf without ':' (and the reference inside "
+              "the .xmf)" % opt.xmf)
+        return 1
     if opt.field in points:
         assoc = "POINTS"
     elif opt.field in cells:
@@ -89,6 +93,8 @@ def main():
     warp.ScaleFactor = scale
     view = pv.CreateView("RenderView")
     view.ViewSize = list(opt.size)
+    if hasattr(view, "UseColorPaletteForBackground"):
+        view.UseColorPaletteForBackground = 0
     view.Background = [1, 1, 1]
     view.OrientationAxesVisibility = 0
     if t is not None:
@@ -122,4 +128,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    code = main()
+    sys.stdout.flush()
+    # leave without ParaView's teardown: under Xvfb it can fail on the GL context after the picture is written
+    # (GLXBadContext), which would turn a good run into a failed one
+    os._exit(code)
