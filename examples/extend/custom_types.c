@@ -40,9 +40,9 @@ static PetscErrorCode Distance_Ramp(SgObstacle o, const PetscReal x[], PetscReal
 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < o->dim; k++) n[k] = 0;
-  n[0] = -s / len;
+  n[0]  = -s / len;
   n[up] = 1 / len;
-  *g = (x[up] - h - s * x[0]) / len;
+  *g    = (x[up] - h - s * x[0]) / len;
   PetscFunctionReturn(0);
 }
 
@@ -210,9 +210,20 @@ int main(int argc, char **argv)
 
   /* the same body under each prefix: the box [0,4]x[0,1], top pushed down by 0.01, bottom on the obstacle */
   for (PetscInt i = 0; i < 3; i++) {
-    char name[64];
-    const char *opts[][2] = {{"box_upper", "4,1"}, {"dirichlet_ids", "3"}, {"dirichlet_values", "0,-0.01"}, {"contact_ids", "1"}, {"E", "1000"}, {"nu", "0.3"},
-                             {"ksp_type", "preonly"}, {"pc_type", "cholesky"}, {"pc_factor_mat_solver_type", "mumps"}, {"cont_kkt_tol", "1e-10"}, {"cont_monitor", "false"}};
+    char        name[64];
+    const char *opts[][2] = {
+        {                "box_upper",      "4,1"},
+        {            "dirichlet_ids",        "3"},
+        {         "dirichlet_values",  "0,-0.01"},
+        {              "contact_ids",        "1"},
+        {                        "E",     "1000"},
+        {                       "nu",      "0.3"},
+        {                 "ksp_type",  "preonly"},
+        {                  "pc_type", "cholesky"},
+        {"pc_factor_mat_solver_type",    "mumps"},
+        {             "cont_kkt_tol",    "1e-10"},
+        {             "cont_monitor",    "false"}
+    };
     PetscCall(PetscSNPrintf(value, sizeof(value), "%" PetscInt_FMT ",%" PetscInt_FMT, nx, ny));
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%sbox_faces", prefixes[i]));
     PetscCall(SetDefault(name, value));
