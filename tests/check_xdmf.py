@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Check the XDMF files bin/signorini writes for awkward file names, and render them with ParaView when it is there.
 
-For each name (spaces, several dots, a subdirectory, an '&', a name without .h5) a small problem is solved with
+For each name (spaces, several dots, a subdirectory, XML's special characters & " < >, a name without .h5) a small problem is solved with
 -output_file NAME (once with load steps: a temporal collection), then the .xmf beside it is checked:
   - it is well-formed XML with the XDMF structure (Xdmf/Domain/Grid, Topology, Geometry, Attributes);
   - every HDF DataItem names the HDF5 file beside it by its base name, unambiguously ("FILE:/dataset", no ':' in
     FILE), the file exists, holds the dataset, and its shape is the DataItem's Dimensions;
   - the number of cells and vertices agrees with the run's summary.
+(A ':' in the name is not among them: ParaView's XDMF reader cuts FILE:/dataset at the first ':', see doc/paraview.md.)
 Then, if pvpython is installed, scripts/render.py draws three of them (a plain result, load steps, friction) (xvfb-run -a pvpython ...) and the PNG must exist
 and not be blank; otherwise a line "skip: pvpython not installed ..." says so and the rest still counts.
 
@@ -29,6 +30,7 @@ BOX = ["-box_faces", "8,3", "-box_upper", "3,1", "-dirichlet_ids", "3", "-dirich
 NAMES = [("spaces", "with spaces/my result.h5", []),
          ("dots", "a.b.c/res.v1.2.h5", []),
          ("amp", "x&y/r&s.h5", []),
+         ("xmlchars", 'q"<d/a"b<c>#%.h5', []),
          ("noext", "plain/result", []),
          ("steps", "load steps/ex 1.steps.h5", ["-load_steps", "3"]),
          ("friction", "fr/fr.h5", ["-friction_type", "coulomb", "-friction_coefficient", "0.3"])]
