@@ -9,6 +9,9 @@ when the object reading it is created, so -help is run on several small problems
 then a 2D and a 3D box with each obstacle type that `-obstacle_type` lists, each friction law, an iterative linear
 solver; the union of their options is compared with the documented ones.
 
+Defaults: where a row's default is a plain number, a list of numbers or true/false, it must be the default -help prints
+("formerly"); defaults in words or formulas are not compared.
+
 A documented option is an `-option` in backquotes in the first cell of a table row of doc/options.md (the tables
 have four columns: option, default, meaning, bad values; a row with another count fails). Options named elsewhere
 (prose, bullet lists: PETSc's options, the old names) are not counted.
@@ -94,6 +97,41 @@ def our_options(text):
     return names
 
 
+def defaults(text):
+    """{option: its default} as -help prints it ("<now X : formerly D>": D, the value before the command line)."""
+    d = {}
+    for line in text.splitlines():
+        m = re.match(r"^\s+-([A-Za-z][A-Za-z0-9_]*) <now .*? : formerly (.*?)>", line)
+        if m:
+            d.setdefault(m.group(1), m.group(2).strip())
+    return d
+
+
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$", re.I)
+
+
+def comparable(doc):
+    doc = doc.strip()
+    return doc in ("true", "false") or all(NUMBER.match(x) for x in doc.split(","))
+
+
+def default_differs(doc, helpval):
+    """True when the documented default (a plain number, a comma list of numbers, true or false) is not -help's; other
+    documented defaults (words, formulas, "none") are not compared, nor an empty one of -help."""
+    doc = doc.strip()
+    if not helpval or not comparable(doc):
+        return False
+    if doc in ("true", "false"):
+        return doc != helpval
+    h = [x for x in helpval.split(",") if x]
+    if not all(NUMBER.match(x) for x in h):
+        return True
+    dv, hv = [float(x) for x in doc.split(",")], [float(x) for x in h]
+    if len(dv) == 1 and len(hv) > 1:  # "0" documents the list 0,0
+        dv = dv * len(hv)
+    return dv != hv
+
+
 def choices(text, option):
     """The choice list PETSc prints for an FList option: '(one of) a b c'."""
     for line in text.splitlines():
@@ -106,7 +144,7 @@ def choices(text, option):
 
 def documented(path):
     """{option: line number} of the first cells of doc/options.md's tables, and the rows with a wrong cell count."""
-    docs, bad = {}, []
+    docs, bad, cells_default = {}, [], {}
     with open(path, encoding="utf-8") as f:
         for n, line in enumerate(f, 1):
             if not line.startswith("|") or re.match(r"^\|[\s:|-]+\|\s*$", line):
@@ -120,10 +158,12 @@ def documented(path):
                            "found %d: %s" % (os.path.relpath(path, ROOT), n, len(cells), line.strip()[:100]))
             for name in names:
                 docs.setdefault(name, n)
-    return docs, bad
+            if len(names) == 1 and len(cells) == 4:
+                cells_default[names[0]] = cells[1]
+    return docs, bad, cells_default
 
 
-def collect(exe, listed, problems):
+def collect(exe, listed, problems, helpdefaults):
     """Run -help on every configuration; fill listed {option: configuration}; (exit of -help alone, its options,
     the runs, the obstacle types)."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -140,6 +180,8 @@ def collect(exe, listed, problems):
                 problems.append("-help (%s) did not list the controller's options (exit %d): %s" % (name, code, text[-300:]))
             for o in sorted(our_options(text)):
                 listed.setdefault(o, name)
+            for o, v in defaults(text).items():
+                helpdefaults.setdefault(o, v)
     if rc != 0:
         problems.append("bin/signorini -help alone exited %d, not 0" % rc)
     return rc, our_options(alone), runs, obstacle_types
@@ -156,16 +198,18 @@ def main():
 
     problems = []
     listed = {}  # option -> the first configuration that listed it
+    helpdefaults = {}  # option -> its default as -help prints it
     rc, alone_options, runs, obstacle_types = 0, set(), [], ["(from --listed)"]
     if opt.listed:
         with open(opt.listed) as f:
             old = json.load(f)
         listed = old["listed_options"]
+        helpdefaults = old.get("help_defaults", {})
         rc, alone_options, runs = old["help_alone_exit"], set(o[1:] for o in old["help_alone_list"]), [(n, None) for n in old["configurations"]]
     else:
-        rc, alone_options, runs, obstacle_types = collect(opt.bin, listed, problems)
+        rc, alone_options, runs, obstacle_types = collect(opt.bin, listed, problems, helpdefaults)
     doc = os.path.relpath(opt.doc, ROOT)
-    docs, bad = documented(opt.doc)
+    docs, bad, docdefaults = documented(opt.doc)
     problems += bad
     add = sorted(set(listed) - set(docs))
     remove = sorted(set(docs) - set(listed))
@@ -175,12 +219,20 @@ def main():
     for o in remove:
         problems.append("option -%s is documented (%s:%d) but bin/signorini -help does not list it: remove "
                         "its row, or register the option" % (o, doc, docs[o]))
+    compared = 0
+    for o in sorted(set(docdefaults) & set(listed)):
+        if o in helpdefaults and helpdefaults[o]:
+            compared += comparable(docdefaults[o])
+            if default_differs(docdefaults[o], helpdefaults[o]):
+                problems.append("option -%s: %s gives the default '%s', bin/signorini -help says '%s': correct the row"
+                                % (o, doc, docdefaults[o], helpdefaults[o]))
     for p in problems:
         print("not ok " + p)
     summary = {"listed": len(listed), "documented": len(docs), "add": ["-" + o for o in add],
                "remove": ["-" + o for o in remove], "problems": len(problems), "help_alone_exit": rc,
                "help_alone_options": len(alone_options), "help_alone_list": ["-" + o for o in sorted(alone_options)],
-               "listed_options": listed,
+               "listed_options": listed, "help_defaults": {o: helpdefaults[o] for o in listed if o in helpdefaults},
+               "defaults_compared": compared,
                "not_listed_by_help_alone": ["-" + o for o in sorted(set(listed) - alone_options)],
                "configurations": [n for n, _ in runs] if obstacle_types else []}
     print("%d options of ours listed by -help over %d runs, %d documented, %d to add, %d to remove, %d problems"
