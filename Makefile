@@ -189,6 +189,13 @@ bin/unit_tests: build/unit_tests.o $(LIBA) | bin
 # the public functions called wrongly (tests/*/library.ini)
 bin/misuse_tests: build/misuse.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
+# the developer guide's worked example (doc/developer-guide.md): an obstacle and a controller type of a program's own,
+# built against the private headers; not part of `all` (tests/manual.ini builds and runs it)
+build/examples/%.o: examples/extend/%.c | build
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+bin/custom_types: build/examples/custom_types.o $(LIBA) | bin
+	$(CC) -o $@ $^ $(LDLIBS)
 build bin lib:
 	mkdir -p $@
 

@@ -7,9 +7,10 @@
 #include <stdlib.h>
 #include <strings.h>
 
-static const char help[] = "Frictionless contact of a linear elastic body with a rigid obstacle, solved with the semismooth Newton,\n"
-                           "augmented Lagrangian and path-following methods of G. Stadler (J. Comput. Appl. Math. 203, 2007).\n"
-                           "See README.md for the options; options/ holds ready-made option files.\n\n";
+static const char help[] = "Contact of a linear elastic body with a rigid obstacle, frictionless or with Tresca or Coulomb friction, solved\n"
+                           "with the semismooth Newton, augmented Lagrangian and path-following methods of G. Stadler (J. Comput. Appl.\n"
+                           "Math. 203, 2007). README.md is the entry point, doc/options.md describes every option; options/ holds\n"
+                           "ready-made option files.\n\n";
 
 typedef struct {
   char      outfile[PETSC_MAX_PATH_LEN], sumfile[PETSC_MAX_PATH_LEN], histfile[PETSC_MAX_PATH_LEN], curvefile[PETSC_MAX_PATH_LEN];
