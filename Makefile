@@ -173,16 +173,12 @@ meshes/cv_halfdisc_s%.msh: meshes/cv_halfdisc.geo
 	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
 meshes/cv_halfdisc_full.msh: meshes/cv_halfdisc.geo
 	gmsh -2 -setnumber full 1 $< -o $@ > /dev/null
-meshes/cv_halfdisc_full_s%.msh: meshes/cv_halfdisc.geo
-	gmsh -2 -setnumber full 1 -setnumber scale $* $< -o $@ > /dev/null
 meshes/cv_block2d.msh: meshes/cv_tilt2d.geo
 	gmsh -2 -setnumber angle 0 $< -o $@ > /dev/null
 # rigidly turned copies (the rotation-invariance checks and bench/perf_curved.py): 2D about z, Example 2 by 30 degrees
 # about (1,1,1) and by 75 degrees about (1,-2,0.5) (options/cv_ex2_r30.opts, options/cv_ex2_r75.opts turn its data)
 meshes/cv_halfdisc_full_r%.msh: meshes/cv_halfdisc_full.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
-meshes/cv_halfdisc_full_s%_r30.msh: meshes/cv_halfdisc_full_s%.msh tests/rotate_msh.py
-	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle 30 $< $@
 meshes/cv_block2d_r%.msh: meshes/cv_block2d.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
 meshes/cv_ex2_%_r30.msh: meshes/ex2_%.msh tests/rotate_msh.py
