@@ -43,7 +43,14 @@ PETSC_MINOR := $(shell sed -n 's/^.define PETSC_VERSION_MINOR *//p' $(PETSC_VERS
 PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
-MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh
+MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh \
+          $(CURVED_MESHES)
+# Curved and tilted bodies (tests/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
+# a mesh (tests/rotate_msh.py: the same elements, nodes turned by NN degrees; see the rules below)
+CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
+          meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
+          meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
+          meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -156,6 +163,28 @@ meshes/ex2_s%.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 meshes/punch_block.msh: meshes/punch_block.geo
 	gmsh -3 $< -o $@ > /dev/null
+meshes/cv_tilt2d_s%.msh: meshes/cv_tilt2d.geo
+	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
+meshes/cv_tilt3d_s%.msh: meshes/cv_tilt3d.geo
+	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
+meshes/cv_hemisphere_s%.msh: meshes/cv_hemisphere.geo
+	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
+meshes/cv_halfdisc_s%.msh: meshes/cv_halfdisc.geo
+	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
+meshes/cv_halfdisc_full.msh: meshes/cv_halfdisc.geo
+	gmsh -2 -setnumber full 1 $< -o $@ > /dev/null
+meshes/cv_block2d.msh: meshes/cv_tilt2d.geo
+	gmsh -2 -setnumber angle 0 $< -o $@ > /dev/null
+# rigidly turned copies (the rotation-invariance checks and bench/perf_curved.py): 2D about z, Example 2 by 30 degrees
+# about (1,1,1) and by 75 degrees about (1,-2,0.5) (options/cv_ex2_r30.opts, options/cv_ex2_r75.opts turn its data)
+meshes/cv_halfdisc_full_r%.msh: meshes/cv_halfdisc_full.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
+meshes/cv_block2d_r%.msh: meshes/cv_block2d.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
+meshes/cv_ex2_%_r30.msh: meshes/ex2_%.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 1,1,1 --angle 30 $< $@
+meshes/cv_ex2_%_r75.msh: meshes/ex2_%.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 1,-2,0.5 --angle 75 $< $@
 
 # The library's objects are position independent, for the shared library; the static one holds the same objects.
 # -fno-semantic-interposition: calls inside the library stay direct and inlinable (no LD_PRELOAD of our own symbols);

@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""The curved family of issue 30 (curved and tilted bodies): the default contact solve (the problem's options alone:
+the default controller and linear solver choose themselves) on
+  hemi   the quarter elastic hemisphere on a rigid plane (options/cv_hemisphere.opts, meshes/cv_hemisphere.geo) at
+         about 1e4, 1.2e5 and 1e6 unknowns (mesh scales --hemi-scales, default 4,8.5,18; measured 14,730 unknowns at 4
+         and 100,761 at 8: the graded mesh grows about 7x per doubling of the scale, so 18 is an estimate: check the
+         unknowns printed);
+  ex2    Example 2 turned rigidly by 30 degrees about (1,1,1) (options/cv_ex2_r30.opts, meshes/cv_ex2_sS_r30.msh made by
+         tests/rotate_msh.py from meshes/ex2_sS.msh) against the unturned mesh, at scales --ex2-scales (default 2,4.2:
+         124,128 and 1,074,513 unknowns);
+  cyl    the 2D half disc on a plane (plane strain, options/cv_halfdisc.opts, meshes/cv_halfdisc.geo) on 2 ranks at
+         mesh scale --cyl-scale (default 60, an estimate of 5e5 unknowns from 2,338 at scale 4 and about 3.6x per doubling:
+         check the unknowns printed).
+Each contact solve is set against the yardstick of scripts/bench.py: the fastest configured linear solve of the same
+mesh (the same body and Dirichlet data without contact, each of bench.py's YARDSTICK_3D configurations at its
+YARD_RTOL), one rank, minimum over --repeat runs made in rounds (so that every case sees the same load of a shared
+machine). Writes into --json (default bench/results.json; its other keys are kept):
+  cost_ratio_3d_curved  {unknowns: the default contact solve's time / the yardstick's time}  (hemi and the turned ex2)
+  turned_vs_flat        {unknowns: the turned Example 2's contact solve time / the unturned one's}
+  curved                the runs (unknowns, SSN, KSP, times, converged) and the yardsticks
+and prints a markdown section for bench/results.md. Goals of issue 30: the default converges everywhere; its cost
+against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 within 20 % of the unturned; at most 8
+SSN steps. A benchmark, not a test: never run by make test.
+
+usage: perf_curved.py [--only hemi,ex2,cyl] [--hemi-scales 4,8.5,18] [--ex2-scales 2,4.2] [--cyl-scale 60] [--repeat N]
+                      [--json FILE|none] [--out DIR]
+The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import sgrun  # noqa: E402
+from bench import YARDSTICK_3D, YARD_RTOL  # noqa: E402
+
+sgrun.ENV["OMP_NUM_THREADS"] = "1"  # hypre links libgomp: no spinning second thread
+
+HEMI = "-options_file options/cv_hemisphere.opts"
+HEMI_ELASTIC = "-E 1 -nu 0.3 -dirichlet_ids 2,6,3 -dirichlet_components xyz,x,y -dirichlet_values 0,0,-0.01,0,0,0,0,0,0"
+EX2P = "-options_file options/ex2_problem.opts"
+EX2_ELASTIC = "-dm_plex_gmsh_use_regions -E 1e6 -nu 0.45 -dirichlet_label top"
+EX2_VALUES = "-dirichlet_values 0,0,-0.2"
+EX2_VALUES_R30 = "-dirichlet_values -0.06666666666666667,0.04880338717125848,-0.18213672050459184"  # options/cv_ex2_r30.opts
+CYL = "-options_file options/cv_halfdisc.opts"
+FIELDS = ("dofs", "cont_type", "linear_solver", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time",
+          "linear_solve_time", "solve_time", "peak_rss_mb", "converged", "reason", "energy", "contact_force")
+
+
+def mesh(path):
+    """make the mesh if it is missing (the Makefile's rules)"""
+    if not os.path.exists(os.path.join(ROOT, path)):
+        subprocess.run(["make", "--no-print-directory", path], cwd=ROOT, check=True)
+    return path
+
+
+def best_of(runs):
+    ok = [s for s in runs if s.get("converged") and s.get("solve_time")]
+    return min(ok, key=lambda s: s["solve_time"]) if ok else (runs[-1] if runs else {})
+
+
+def yardstick(args, tag, repeat, out):
+    """the fastest configured linear solve of the body without contact (minimum of repeat runs, in rounds)"""
+    best = {}
+    for r in range(repeat):
+        for name, opts in YARDSTICK_3D:
+            s, _ = sgrun.run("%s %s %s" % (args, opts, YARD_RTOL), "Y_%s_%s_%d" % (tag, "".join(c for c in name if c.isalnum())[:40], r), out, check=False)
+            if s.get("converged") and s.get("linear_solve_time") and (name not in best or s["linear_solve_time"] < best[name]["linear_solve_time"]):
+                best[name] = s
+    if not best:
+        return {"name": None, "time": None, "dofs": None}
+    name = min(best, key=lambda n: best[n]["linear_solve_time"])
+    return {"name": name, "time": best[name]["linear_solve_time"], "dofs": best[name]["dofs"], "ksp_iterations": best[name]["ksp_iterations"],
+            "candidates": {n: {"time": v["linear_solve_time"], "ksp_iterations": v["ksp_iterations"]} for n, v in best.items()}}
+
+
+def fmt(x, f="%.3g"):
+    return "-" if x is None else f % x
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--only", default="hemi,ex2,cyl")
+    ap.add_argument("--hemi-scales", default="4,8.5,18")
+    ap.add_argument("--ex2-scales", default="2,4.2")
+    ap.add_argument("--cyl-scale", default="60")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--json", default=os.path.join(HERE, "results.json"))
+    ap.add_argument("--out", default=os.path.join(HERE, "runs", "curved"))
+    opt = ap.parse_args()
+    only = set(opt.only.split(","))
+    cases = []  # (key, contact args, yardstick args or None, ranks)
+    if "hemi" in only:
+        for sc in opt.hemi_scales.split(","):
+            m = mesh("meshes/cv_hemisphere_s%s.msh" % sc)
+            cases.append(("hemi_s%s" % sc, "%s -dm_plex_filename %s" % (HEMI, m), "-dm_plex_filename %s %s" % (m, HEMI_ELASTIC), 1))
+    if "ex2" in only:
+        for sc in opt.ex2_scales.split(","):
+            flat = mesh("meshes/ex2_s%s.msh" % sc)  # scale 1: the mesh of meshes/ex2.msh
+            turned = mesh("meshes/cv_ex2_s%s_r30.msh" % sc)
+            cases.append(("ex2_s%s_flat" % sc, "%s -dm_plex_filename %s" % (EX2P, flat), None, 1))
+            cases.append(("ex2_s%s_r30" % sc, "%s -dm_plex_filename %s -options_file options/cv_ex2_r30.opts" % (EX2P, turned),
+                          "-dm_plex_filename %s %s %s" % (turned, EX2_ELASTIC, EX2_VALUES_R30), 1))
+    if "cyl" in only:
+        m = mesh("meshes/cv_halfdisc_s%s.msh" % opt.cyl_scale)
+        cases.append(("cyl_s%s_np2" % opt.cyl_scale, "%s -dm_plex_filename %s" % (CYL, m), None, 2))
+    runs = {k: [] for k, _, _, _ in cases}
+    for r in range(opt.repeat):  # rounds: every case once per round
+        for key, args, _, np in cases:
+            s, _ = sgrun.run(args, "%s_%d" % (key, r), opt.out, np=np, check=False)
+            runs[key].append(s)
+            sys.stderr.write("%s round %d: %s s, %s\n" % (key, r, s.get("solve_time"), "converged" if s.get("converged") else s.get("reason", "no summary")))
+    res = {k: {f: best_of(v).get(f) for f in FIELDS} for k, v in runs.items()}
+    yards, cost, turned = {}, {}, {}
+    for key, _, yargs, _ in cases:
+        if yargs is None:
+            continue
+        y = yardstick(yargs, key, opt.repeat, opt.out)
+        yards[key] = y
+        s = res[key]
+        if y["time"] and s.get("converged") and s.get("dofs"):
+            cost[str(s["dofs"])] = s["solve_time"] / y["time"]
+    for key in res:
+        if key.endswith("_r30"):
+            flat, tr = res[key.replace("_r30", "_flat")], res[key]
+            if flat.get("converged") and tr.get("converged") and tr.get("dofs"):
+                turned[str(tr["dofs"])] = tr["solve_time"] / flat["solve_time"]
+    # the markdown section
+    lines = ["## Curved and tilted bodies (issue 30, bench/perf_curved.py)", "",
+             "The default configuration (the problem's options alone) on the curved family; the yardstick is the fastest "
+             "configured linear solve of the same mesh without contact (scripts/bench.py's YARDSTICK_3D at %s). Minimum of %d "
+             "runs made in rounds; times in seconds." % (YARD_RTOL, opt.repeat), "",
+             "| case | ranks | unknowns | controller | linear solver | outer | SSN | KSP | contact solve | yardstick | cost ratio | converged |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for key, _, _, np in cases:
+        s, y = res[key], yards.get(key, {})
+        ratio = s["solve_time"] / y["time"] if y.get("time") and s.get("converged") else None
+        lines.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            key, np, s.get("dofs"), s.get("cont_type"), s.get("linear_solver"), s.get("outer_iterations"), s.get("ssn_iterations"),
+            s.get("ksp_iterations"), fmt(s.get("solve_time")), fmt(y.get("time")) + (" (%s)" % y["name"] if y.get("name") else ""),
+            fmt(ratio, "%.2f"), "yes" if s.get("converged") else "NO: %s" % str(s.get("reason"))[:60]))
+    lines += ["", "Turned Example 2 against the unturned, contact solve time ratio: %s (goal: within 20 %%)." %
+              (", ".join("%s unknowns %.2f" % (d, v) for d, v in turned.items()) or "-"), ""]
+    print("\n".join(lines))
+    if opt.json != "none":
+        js = {}
+        if os.path.exists(opt.json):
+            with open(opt.json) as f:
+                js = json.load(f)
+        js["cost_ratio_3d_curved"] = cost
+        js["turned_vs_flat"] = turned
+        js["curved"] = {"runs": res, "yardsticks": yards, "repeat": opt.repeat}
+        sgrun.write_atomic(opt.json, json.dumps(js, indent=1, sort_keys=False) + "\n")
+
+
+if __name__ == "__main__":
+    main()
