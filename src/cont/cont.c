@@ -417,23 +417,25 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
 PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
 {
   const SgContactView *c = &ct->cv;
-  PetscInt            dim;
+  PetscInt            dim, rstart;
   Mat                 K;
-  Vec                 diag;
-  const PetscScalar  *da;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
-  PetscCall(MatCreateVecs(K, &diag, NULL));
-  PetscCall(MatGetDiagonal(K, diag));
-  PetscCall(VecGetArrayRead(diag, &da));
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  /* n^T K_ii n with the vertex's whole diagonal block: the same for the problem turned rigidly (with only the
+     diagonal entries, sum_k n_k^2 K_kk, it was not: a turned problem got another gamma) */
   for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal *n = &c->normal[i * dim];
+    PetscInt         idx[3];
+    PetscScalar      B[9];
+    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + c->off[i] + a;
+    PetscCall(MatGetValues(K, dim, idx, dim, idx, B));
     kn[i] = 0;
-    for (PetscInt k = 0; k < dim; k++) kn[i] += PetscSqr(c->normal[i * dim + k]) * PetscRealPart(da[c->off[i] + k]);
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt b = 0; b < dim; b++) kn[i] += n[a] * PetscRealPart(B[a * dim + b]) * n[b];
   }
-  PetscCall(VecRestoreArrayRead(diag, &da));
-  PetscCall(VecDestroy(&diag));
   PetscFunctionReturn(0);
 }
 
