@@ -59,10 +59,18 @@ PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], SgFrame *f, PetscIn
     PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
     PetscCall(PetscArraycpy(axis, fa, ct->cv.n));
     PetscCall(PetscArraycpy(sign, fs, ct->cv.n));
-  } else {
-    char msg[256];
-    PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s%s", who, frame ? "" : " with the contact frames turned off (-ssn_frame false)"));
-    PetscCall(SgContactAxisAligned(ct->c, msg, axis, sign));
+  } else if (aligned) PetscCall(SgContactAxisAligned(ct->c, who, axis, sign));
+  else { /* refused on every rank (aligned is global), naming the vertex on the rank that has it */
+    char           msg[256], why[1024] = "";
+    const char    *emsg = NULL;
+    PetscErrorCode ierr;
+    PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s with the contact frames turned off (-ssn_frame false)", who));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SgContactAxisAligned(ct->c, msg, axis, sign);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) PetscErrorMessage(ierr, NULL, (char **)&emsg);
+    if (emsg) PetscCall(PetscStrncpy(why, emsg, sizeof(why)));
+    SETERRQ(ct->comm, PETSC_ERR_USER_INPUT, "%s", why[0] ? why : "the contact frames are turned off (-ssn_frame false), and a contact vertex of another rank has a normal off the coordinate axes, which the bound-constrained solvers then cannot take");
   }
   PetscFunctionReturn(0);
 }
