@@ -95,8 +95,8 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 
 /* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
    normal set act (all in the working coordinates: the frames' where the normals are not axes; nax the normal's
-   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T (y - yref) (the
-   load step's slip; yref = 0 at the first step); free (g = 0),
+   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s
+   or F lam_N; z = lam_T + c T (y - yref) (the load step's slip; yref = 0 at the first step); free (g = 0),
    stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
    or bound moved by more than 1e-12 (relative) since the last call. */
 static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], const PetscReal nax[], const PetscReal yref[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
