@@ -130,6 +130,7 @@ PetscErrorCode SgContFail(SgCont, const char[], ...);
 PetscErrorCode SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
 PetscErrorCode SgContCheck(SgCont, PetscBool *);
 PetscErrorCode SgContCheckBaseline(SgCont);
+PetscErrorCode SgContBoundFrame(SgCont, const char[], SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
 PetscErrorCode SgContCheckpointWrite(SgCont);
 PetscErrorCode SgContCheckpointWriteStepEnd(SgCont);
 PetscErrorCode SgContCheckpointRead(SgCont);

@@ -1,5 +1,8 @@
 /* cont_pdas.c: baseline: the unregularized primal-dual active set method (Hintermueller-Ito-Kunisch, Hueber-Wohlmuth,
-   deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Needs axis-aligned normals.
+   deal.II step-41): active vertices get tau_N y = d exactly, inactive ones lam = 0. Where a contact normal is not a
+   coordinate axis (a tilted or curved contact) the solves run in each contact vertex's frame (solver/frame.c): in
+   y_f = Q^T y the condition is the bound sign y_f[axis] <= d on one dof, K becomes Q^T K Q and b Q^T b, and the
+   tangential dofs of a vertex are its other frame dofs (SgContBoundFrame).
    With friction (in the manner of Hueber-Stadler-Wohlmuth): stick vertices get T y = T yref exactly (no slip in the
    load step; yref = 0 at the first), their tangential components eliminated like the active normal ones; slip
    vertices the force lam_T = g t of the last iterate's direction t and bound g (Coulomb: g = F lam_N of the last
@@ -37,6 +40,41 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
   PetscFunctionReturn(0);
 }
 
+/* The frames of the bound-constrained baselines (pdas, vi): per contact vertex the dof of its normal (axis) and the
+   sign with n = sign Q_i e_axis. *f is NULL where every normal is a coordinate axis (axis and sign as ever: nothing
+   changes), else each vertex's dofs are rotated into its frame (n, t1, t2) where the normal is not an axis. With
+   -ssn_frame false (the frames turned off) every normal must be an axis: the error names the option. */
+PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], SgFrame *f, PetscInt axis[], PetscReal sign[])
+{
+  PetscBool aligned, frame = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  *f = NULL;
+  PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame", &frame, NULL));
+  PetscCall(SgContactNormalsAxisAligned(ct->c, &aligned));
+  if (!aligned && frame) {
+    const PetscInt  *fa;
+    const PetscReal *fs;
+    PetscCall(SgFrameCreate(ct->prob, ct->c, f));
+    PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
+    PetscCall(PetscArraycpy(axis, fa, ct->cv.n));
+    PetscCall(PetscArraycpy(sign, fs, ct->cv.n));
+  } else if (aligned) PetscCall(SgContactAxisAligned(ct->c, who, axis, sign));
+  else { /* refused on every rank (aligned is global), naming the vertex on the rank that has it */
+    char           msg[256], why[1024] = "";
+    const char    *emsg = NULL;
+    PetscErrorCode ierr;
+    PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s with the contact frames turned off (-ssn_frame false)", who));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SgContactAxisAligned(ct->c, msg, axis, sign);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) PetscErrorMessage(ierr, NULL, (char **)&emsg);
+    if (emsg) PetscCall(PetscStrncpy(why, emsg, sizeof(why)));
+    SETERRQ(ct->comm, PETSC_ERR_USER_INPUT, "%s", why[0] ? why : "the contact frames are turned off (-ssn_frame false), and a contact vertex of another rank has a normal off the coordinate axes, which the bound-constrained solvers then cannot take");
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Size of set a and (globally) the vertices entering and leaving from set a to set b. */
 static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], PetscInt *na, PetscInt *entered, PetscInt *left)
 {
@@ -56,11 +94,12 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 }
 
 /* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
-   normal set act: lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s or F lam_N; z = lam_T + c T (y - yref) (the
-   load step's slip; yref = 0 at the first step); free (g = 0),
+   normal set act (all in the working coordinates: the frames' where the normals are not axes; nax the normal's
+   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s
+   or F lam_N; z = lam_T + c T (y - yref) (the load step's slip; yref = 0 at the first step); free (g = 0),
    stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
    or bound moved by more than 1e-12 (relative) since the last call. */
-static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
+static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], const PetscReal nax[], const PetscReal yref[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
 {
   const SgContactView *c = &ct->cv;
   const PetscScalar   *ya, *ra = NULL;
@@ -74,13 +113,13 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
   for (PetscInt i = 0; i < c->n; i++) gmax = PetscMax(gmax, gb[i]);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
   for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * c->normal[i * dim + axis[i]] / c->w[i] : 0;
+    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * nax[i] / c->w[i] : 0;
     const PetscReal g    = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
     PetscReal       z[3] = {0, 0, 0}, nz = 0, dt = 0;
     char            s;
     for (PetscInt j = 0; j < dim; j++) {
       if (j == axis[i]) continue;
-      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * (PetscRealPart(ya[c->off[i] + j]) - c->yref[i * dim + j]);
+      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * (PetscRealPart(ya[c->off[i] + j]) - yref[i * dim + j]);
       nz += z[j] * z[j];
     }
     nz = PetscSqrtReal(nz);
@@ -137,6 +176,36 @@ static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next
   return PETSC_TRUE;
 }
 
+/* g_i = tau_N y - d of the iterate y in the working coordinates: in the frames the bound's own dof, sign y_axis - d
+   (exactly 0 where the solve fixed it), else the contact layer's */
+static PetscErrorCode Gap(SgCont ct, SgFrame f, const PetscInt axis[], const PetscReal sign[], Vec y, PetscReal g[])
+{
+  const PetscScalar *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(y, &ya));
+  if (f)
+    for (PetscInt i = 0; i < ct->cv.n; i++) g[i] = sign[i] * PetscRealPart(ya[ct->cv.off[i] + axis[i]]) - ct->cv.d[i];
+  else PetscCall(SgContactGap(ct->c, ya, g));
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  PetscFunctionReturn(0);
+}
+
+/* what the frames of Solve_PDAS allocated (b: the problem's load, not freed) */
+static PetscErrorCode PdasFrameFree(SgFrame *f, Mat *Af, Vec b, Vec *bw, Vec *yw, PetscReal **nax, PetscReal **yrf)
+{
+  PetscFunctionBeginUser;
+  if (*f) {
+    PetscCall(VecDestroy(yw));
+    if (*bw != b) PetscCall(VecDestroy(bw));
+  }
+  PetscCall(SgFrameDestroy(f));
+  PetscCall(MatDestroy(Af));
+  PetscCall(PetscFree(*nax));
+  PetscCall(PetscFree(*yrf));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
   PDAS              *pd = (PDAS *)ct->data;
@@ -159,6 +228,13 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
   PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
   Vec                R = NULL;
+  /* the working coordinates: the contact frames where a normal is not an axis (SgContBoundFrame), else the original
+     ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component on the axis dof */
+  SgFrame            f = NULL;
+  Mat                Kw, Af = NULL;
+  Vec                bw, yw;
+  PetscReal         *nax, *yrf = NULL;
+  const PetscReal   *yref;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
@@ -166,7 +242,35 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
   PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n * dim, &rows)); /* rows: the stick vertices' tangential ones too */
   PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
-  PetscCall(SgContactAxisAligned(ct->c, "-cont_type pdas", axis, sign));
+  PetscCall(PetscMalloc1(c->n, &nax));
+  PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &f, axis, sign));
+  Kw   = K;
+  bw   = b;
+  yw   = ct->y;
+  yref = c->yref;
+  if (f) {
+    const PetscBool *rot;
+    MatNullSpace     nsp;
+    PetscCall(SgFrameGetStiffness(f, &Kw));
+    PetscCall(SgFrameGetAxes(f, NULL, NULL, &rot));
+    for (PetscInt i = 0; i < c->n; i++) nax[i] = rot[i] ? sign[i] : c->normal[i * dim + axis[i]];
+    PetscCall(MatDuplicate(Kw, MAT_COPY_VALUES, &Af));
+    PetscCall(MatPropagateSymmetryOptions(K, Af));
+    PetscCall(MatGetNearNullSpace(Kw, &nsp));
+    if (nsp) PetscCall(MatSetNearNullSpace(Af, nsp));
+    PetscCall(MatSetOption(Af, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+    A = Af;
+    PetscCall(VecDuplicate(b, &bw));
+    PetscCall(VecCopy(b, bw));
+    PetscCall(SgFrameToLocal(f, bw));
+    PetscCall(VecDuplicate(b, &yw));
+    if (fr) {
+      PetscCall(PetscMalloc1(c->n * dim, &yrf));
+      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(f, i, &c->yref[i * dim], &yrf[i * dim]);
+      yref = yrf;
+    }
+  } else
+    for (PetscInt i = 0; i < c->n; i++) nax[i] = c->normal[i * dim + axis[i]];
   for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
   hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
@@ -174,6 +278,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
 
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
+    PetscCall(PdasFrameFree(&f, &Af, b, &bw, &yw, &nax, &yrf));
     PetscCall(PetscFree6(axis, sign, g, act, next, rows));
     PetscCall(PetscFree(hash));
     PetscFunctionReturn(0);
@@ -181,7 +286,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(VecDuplicate(b, &rhs));
   PetscCall(VecDuplicate(b, &x));
   PetscCall(VecDuplicate(b, &diag));
-  PetscCall(MatGetDiagonal(K, diag));
+  PetscCall(MatGetDiagonal(Kw, diag));
   PetscCall(VecGetSize(diag, &N));
   PetscCall(VecSum(diag, &dmean));
   dmean /= N;
@@ -193,35 +298,33 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(PetscCalloc2(c->n, &zn, c->n * dim * dim, &blk));
     PetscCall(VecDuplicate(b, &R));
   }
-  {
-    const PetscScalar *ya;
-    PetscCall(VecGetArrayRead(ct->y, &ya));
-    PetscCall(SgContactGap(ct->c, ya, g));
-    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+  if (f) { /* the start in the frames */
+    PetscCall(VecCopy(ct->y, yw));
+    PetscCall(SgFrameToLocal(f, yw));
   }
+  PetscCall(Gap(ct, f, axis, sign, yw, g));
   for (PetscInt i = 0; i < c->n; i++) {
     /* a load step starts from the last step's active set test (its multiplier and the gap at the new load) */
     act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
     ct->lam[i] = 0;
   }
   if (fr && ct->warm) { /* a load step: the states from the last step's solution under the new load */
-    PetscCall(MatMult(K, ct->y, R));
-    PetscCall(VecAXPY(R, -1.0, b));
-    PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, act, gb, tdir, zn, fst, NULL));
-  } else if (fr) PetscCall(FrictionStates(ct, pd->c, axis, ct->y, NULL, act, gb, tdir, zn, fst, NULL));
+    PetscCall(MatMult(Kw, yw, R));
+    PetscCall(VecAXPY(R, -1.0, bw));
+    PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, act, gb, tdir, zn, fst, NULL));
+  } else if (fr) PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, NULL, act, gb, tdir, zn, fst, NULL));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
     PetscInt           nrows = 0, nact = 0, entered = 0, left = 0, kits, ncoupled = 0;
     KSPConvergedReason kr;
     PetscScalar       *xa;
-    const PetscScalar *ya;
     SgHistoryRow       row;
     PetscLogDouble     t;
 
     PetscCall(SgContactActiveSetHash(ct->c, act, &hash[nhash++]));
     /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
-    PetscCall(MatCopy(K, A, SAME_NONZERO_PATTERN));
+    PetscCall(MatCopy(Kw, A, SAME_NONZERO_PATTERN));
     if (fr && dim == 3) {
       /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
          along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
@@ -242,7 +345,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
       PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     }
-    PetscCall(VecCopy(b, rhs));
+    PetscCall(VecCopy(bw, rhs));
     PetscCall(VecGetArray(x, &xa));
     for (PetscInt i = 0; i < c->n; i++)
       if (act[i]) {
@@ -257,29 +360,29 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
           if (j == axis[i]) continue;
           if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
             rows[nrows++]       = rstart + c->off[i] + j;
-            xa[c->off[i] + j] = c->yref[i * dim + j];
+            xa[c->off[i] + j] = yref[i * dim + j];
           } else if (fst[i] == 2) {
             if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
               const PetscInt     ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
-              const PetscReal    f   = c->fcoef * tdir[i * dim + j] * c->normal[i * dim + axis[i]];
+              const PetscReal    fc  = c->fcoef * tdir[i * dim + j] * nax[i];
               const PetscScalar *va;
               const PetscInt    *ca;
               PetscInt           nc;
               PetscScalar       *vv;
               const PetscScalar *ba;
-              PetscCall(MatGetRow(K, ra_, &nc, &ca, &va));
+              PetscCall(MatGetRow(Kw, ra_, &nc, &ca, &va));
               PetscCall(PetscMalloc1(nc, &vv));
-              for (PetscInt q = 0; q < nc; q++) vv[q] = -f * va[q];
+              for (PetscInt q = 0; q < nc; q++) vv[q] = -fc * va[q];
               PetscCall(MatSetValues(A, 1, &rj, nc, ca, vv, ADD_VALUES));
               PetscCall(PetscFree(vv));
-              PetscCall(MatRestoreRow(K, ra_, &nc, &ca, &va));
-              PetscCall(VecGetArrayRead(b, &ba));
-              ra[c->off[i] + j] -= f * ba[c->off[i] + axis[i]];
-              PetscCall(VecRestoreArrayRead(b, &ba));
+              PetscCall(MatRestoreRow(Kw, ra_, &nc, &ca, &va));
+              PetscCall(VecGetArrayRead(bw, &ba));
+              ra[c->off[i] + j] -= fc * ba[c->off[i] + axis[i]];
+              PetscCall(VecRestoreArrayRead(bw, &ba));
               ncoupled++;
             } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
             if (dim == 3) /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
-              for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * c->yref[i * dim + q];
+              for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
           }
         }
       PetscCall(VecRestoreArray(rhs, &ra));
@@ -295,8 +398,12 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
     PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
     PetscCall(KSPSetOperators(ksp, A, A));
-    PetscCall(KSPSolve(ksp, rhs, ct->y));
+    PetscCall(KSPSolve(ksp, rhs, yw));
     PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
+    if (f) { /* the iterate in the original coordinates (the contact layer's, the energy, the measures) */
+      PetscCall(VecCopy(yw, ct->y));
+      PetscCall(SgFrameToGlobal(f, ct->y));
+    }
     PetscCall(KSPGetIterationNumber(ksp, &kits));
     PetscCall(KSPGetConvergedReason(ksp, &kr));
     ct->ssn_its++;
@@ -307,9 +414,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     }
     /* multiplier from the equilibrium on the active set, then the next active set */
     PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
-    PetscCall(VecGetArrayRead(ct->y, &ya));
-    PetscCall(SgContactGap(ct->c, ya, g));
-    PetscCall(VecRestoreArrayRead(ct->y, &ya));
+    PetscCall(Gap(ct, f, axis, sign, yw, g));
     for (PetscInt i = 0; i < c->n; i++) {
       if (!act[i]) ct->lam[i] = 0;
       next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
@@ -317,9 +422,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
     if (fr) {
       PetscInt fchanged;
-      PetscCall(MatMult(K, ct->y, R));
-      PetscCall(VecAXPY(R, -1.0, b));
-      PetscCall(FrictionStates(ct, pd->c, axis, ct->y, R, next, gb, tdir, zn, fnext, &fchanged));
+      PetscCall(MatMult(Kw, yw, R));
+      PetscCall(VecAXPY(R, -1.0, bw));
+      PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, next, gb, tdir, zn, fnext, &fchanged));
       PetscCall(PetscArraycpy(fst, fnext, c->n));
       if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
       entered += fchanged; /* counted as changes of the sets */
@@ -377,6 +482,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(VecDestroy(&R));
   PetscCall(PetscFree4(fst, fnext, tdir, gb));
   PetscCall(PetscFree2(zn, blk));
+  PetscCall(PdasFrameFree(&f, &Af, b, &bw, &yw, &nax, &yrf));
   PetscCall(PetscFree6(axis, sign, g, act, next, rows));
   PetscCall(PetscFree(hash));
   PetscFunctionReturn(0);

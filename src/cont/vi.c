@@ -1,11 +1,13 @@
 /* cont_vi.c: baseline: PETSc's own variational-inequality Newton solvers (SNESVINEWTONRSLS / SNESVINEWTONSSLS) on the
-   same discrete problem, as bounds on the normal displacement component (axis-aligned normals only). Options: -vi_snes_*, -vi_ksp_*. */
+   same discrete problem, as bounds on the normal displacement component. Where a contact normal is not a coordinate
+   axis the problem is posed in each contact vertex's frame (SgContBoundFrame, solver/frame.c): y_f = Q^T y, the
+   stiffness Q^T K Q, the load Q^T b, the bound on the frame's normal dof. Options: -vi_snes_*, -vi_ksp_*. */
 #include "cont/contimpl.h"
 
 typedef struct {
   SNES snes;
   Mat  J; /* SNESVINEWTONSSLS scales its Jacobian in place: never hand it the stiffness itself */
-  Mat  K;
+  Mat  K; /* the stiffness and load of the bound-constrained problem: K and b, or Q^T K Q and Q^T b in the frames */
   Vec  b;
 } VI;
 
@@ -38,6 +40,8 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscInt           *axis, its, kits;
   PetscReal          *sign;
   PetscScalar        *la, *ua;
+  SgFrame             f = NULL;
+  Vec                 yw, bf = NULL; /* the iterate and the load in the frames (ct->y and b without) */
   SNESConvergedReason reason;
   PetscBool           ok;
   SgHistoryRow        row;
@@ -48,11 +52,23 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : ""));
   PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
-  PetscCall(SgContactAxisAligned(ct->c, "-cont_type vi", axis, sign));
+  PetscCall(SgContBoundFrame(ct, "-cont_type vi", &f, axis, sign));
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
+    PetscCall(SgFrameDestroy(&f));
     PetscCall(PetscFree2(axis, sign));
     PetscFunctionReturn(0);
+  }
+  yw = ct->y;
+  if (f) { /* the problem in the frames: bounds on single dofs */
+    PetscCall(SgFrameGetStiffness(f, &vi->K));
+    PetscCall(VecDuplicate(vi->b, &bf));
+    PetscCall(VecCopy(vi->b, bf));
+    PetscCall(SgFrameToLocal(f, bf));
+    vi->b = bf;
+    PetscCall(VecDuplicate(ct->y, &yw));
+    PetscCall(VecCopy(ct->y, yw));
+    PetscCall(SgFrameToLocal(f, yw));
   }
   PetscCall(VecDuplicate(vi->b, &xl));
   PetscCall(VecDuplicate(vi->b, &xu));
@@ -95,13 +111,17 @@ static PetscErrorCode Solve_VI(SgCont ct)
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   PetscCall(PetscLogEventBegin(SG_ContStep, 0, 0, 0, 0));
-  PetscCall(SNESSolve(vi->snes, NULL, ct->y));
+  PetscCall(SNESSolve(vi->snes, NULL, yw));
   PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
   PetscCall(SNESGetIterationNumber(vi->snes, &its));
   PetscCall(SNESGetLinearSolveIterations(vi->snes, &kits));
   PetscCall(SNESGetConvergedReason(vi->snes, &reason));
   ct->ssn_its += its;
   ct->ksp_its += kits;
+  if (f) {
+    PetscCall(VecCopy(yw, ct->y));
+    PetscCall(SgFrameToGlobal(f, ct->y));
+  }
   /* the multiplier balances the normal residual at the contact vertices */
   PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
   PetscCall(SgContMeasure(ct));
@@ -129,6 +149,11 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(VecDestroy(&xl));
   PetscCall(VecDestroy(&xu));
   PetscCall(VecDestroy(&r));
+  if (f) PetscCall(VecDestroy(&yw));
+  PetscCall(VecDestroy(&bf));
+  vi->b = NULL;
+  vi->K = NULL;
+  PetscCall(SgFrameDestroy(&f));
   PetscCall(PetscFree2(axis, sign));
   PetscFunctionReturn(0);
 }
