@@ -542,31 +542,10 @@ typedef struct {
   PetscBool zero;
 } KKTScales;
 
-/* max over the vertices of |y_v| (the Euclidean length of a vertex's displacement: unlike the largest component, the
-   same for a problem turned rigidly) */
-static PetscErrorCode VertexNormMax(SgContact c, Vec y, PetscReal *nrm)
-{
-  const PetscScalar *ya;
-  PetscInt           n;
-
-  PetscFunctionBeginUser;
-  *nrm = 0;
-  PetscCall(VecGetLocalSize(y, &n));
-  PetscCall(VecGetArrayRead(y, &ya));
-  for (PetscInt j = 0; j + c->dim <= n; j += c->dim) {
-    PetscReal a = 0;
-    for (PetscInt k = 0; k < c->dim; k++) a += PetscSqr(PetscRealPart(ya[j + k]));
-    *nrm = PetscMax(*nrm, PetscSqrtReal(a));
-  }
-  PetscCall(VecRestoreArrayRead(y, &ya));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, nrm, 1, MPIU_REAL, MPI_MAX, c->comm));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
 {
   const PetscInt dim = c->dim;
-  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, yvert, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
@@ -586,14 +565,13 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
   sc->l1 += cs[3];
   PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
-  PetscCall(VertexNormMax(c, y, &yvert));
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
   PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
   PetscCall(SgLame(E, nu, &lambda, &mu));
   sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm_inf);
   sc->F      = PetscMax(PetscMax(fmax, smax), PetscMax(cm, 2 * mu / (lambda + 2 * mu) * Knorm * ynorm));
-  sc->Y      = PetscMax(PetscMax(yvert, PetscMax(pen, 0)), ucur); /* the largest displacement of a vertex: the same for the problem turned */
+  sc->Y      = PetscMax(PetscMax(ynorm, PetscMax(pen, 0)), ucur);
   sc->zero   = (PetscBool)(fmax == 0 && ucur == 0 && !(pen > 0));
   if (sc->zero) {
     /* the full load's: its Dirichlet values, obstacle translation, and the displacement its total load ||f||_1 makes
