@@ -35,14 +35,6 @@ static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, 
   PetscFunctionReturn(0);
 }
 
-/* the default of -contact_normal: obstacle for a plane obstacle whose normal is a coordinate axis */
-static PetscBool ObstacleAlongAxis(SgObstacle o)
-{
-  if (strcmp(o->type, "plane")) return PETSC_FALSE;
-  for (PetscInt k = 0; k < o->dim; k++)
-    if (PetscAbsReal(o->p[3 + k]) == 1) return PETSC_TRUE;
-  return PETSC_FALSE;
-}
 
 /* The contact condition of vertex v at x with -contact_normal obstacle and the obstacle at its current placement: the
    normal -n_o and the gap d = g (the obstacle's signed distance and normal at the closest point: g + n_o.u >= 0). At a
@@ -97,7 +89,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
   PetscCall(FrictionFromOptions(PetscOptionsObject, c));
-  PetscCall(PetscOptionsString("-contact_normal", "Direction of the contact condition: obstacle (g(x) + n_o.u >= 0, the obstacle's signed distance g and unit normal n_o at the closest point to the vertex; right at edges and corners of the contact boundary and on curved bodies) or body (the paper's tau_N: the body's vertex normal, averaged over the facets; at a corner of Gamma_c a vertex may move into the obstacle). Default: obstacle for a plane obstacle along a coordinate plane (the same answer as body on a face along it, every solver path keeps its coordinate-axis normals), body for any other obstacle (its normals are not coordinate axes, which the truncated multigrid, PDAS and SNESVI need, and the paper's Examples keep their numbers)", NULL, nmode, nmode, sizeof(nmode), &nset));
+  PetscCall(PetscOptionsString("-contact_normal", "Direction of the contact condition: obstacle (g(x) + n_o.u >= 0, the obstacle's signed distance g and unit normal n_o at the closest point to the vertex; right at edges and corners of the contact boundary and on curved bodies) or body (the paper's tau_N: the body's vertex normal, averaged over the facets; at a corner of Gamma_c a vertex may move into the obstacle). Default: obstacle for a plane in any orientation (exact there: no vertex ends inside it, right at corners and on curved bodies; normals off the coordinate axes are solved in the contact frames, -ssn_frame), body for the curved obstacle types (ball, parabola, CAD, meshed: with body a deformed body can end inside them, with obstacle it cannot for a convex one, see doc/method.md; choose it there)", NULL, nmode, nmode, sizeof(nmode), &nset));
   PetscOptionsEnd();
   PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
   PetscCheck(c->bnd.active || c->friction == SG_FRICTION_NONE, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", SgFrictionTypes[c->friction]);
@@ -107,12 +99,11 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
     PetscFunctionReturn(0);
   }
   PetscCall(SgObstacleCreate(c->comm, prefix, c->dim, c->obstype, &c->obs));
-  if (nset) c->obsnormal = (PetscBool)!strcmp(nmode, "obstacle");
-  else c->obsnormal = ObstacleAlongAxis(c->obs);
-  if (c->obsnormal) {
+  {
     PetscBool has;
     PetscCall(SgObstacleHasDistance(c->obs, &has));
-    PetscCheck(has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
+    c->obsnormal = nset ? (PetscBool)!strcmp(nmode, "obstacle") : (PetscBool)(has && !strcmp(c->obs->type, "plane"));
+    PetscCheck(!c->obsnormal || has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
   }
   *contact = c;
   PetscFunctionReturn(0);
