@@ -60,3 +60,13 @@ typedef struct {
 PetscErrorCode SgBoxFromOptions(MPI_Comm, const char[], SgBox *);
 PetscErrorCode SgBoxCreateDM(MPI_Comm, const SgBox *, DM *);
 PetscErrorCode SgBoundaryMarkVertices(DM, const SgBoundary *, SgMesh *);
+
+/* What the files of the elasticity share (element.c, mms.c, assembly.c, loading.c, rigid.c, elasticity.c) */
+PetscErrorCode SgSimplexQuadrature(PetscInt, PetscInt *, PetscReal **, PetscReal **);
+void           SgMMSExact(PetscInt, const PetscReal[], PetscReal[], PetscReal[]);
+void           SgMMSForce(PetscInt, PetscReal, PetscReal, const PetscReal[], PetscReal[]);
+PetscErrorCode SgElasticityFillDirichletValues(SgElasticity, const PetscReal[]);
+void           SgMeshZeroFixedComponents(const SgMesh *, PetscInt, PetscScalar[]);
+PetscErrorCode SgElasticityAssemble(SgElasticity);
+PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity);
+PetscErrorCode SgElasticityCreateNearNullSpace(SgElasticity);
