@@ -1,5 +1,5 @@
-/* file.c: result files written atomically: the ".part" protocol (begin, open, close, commit, abandon) and its
-   clean-up on a signal or an error exit. */
+/* file.c: result files written atomically: the ".part" protocol (begin, open, close, commit, abandon), its clean-up on
+   a signal or an error exit, and the check before any work that each file of a run can be written. */
 #include "io/ioimpl.h"
 #include <errno.h>
 #include <pthread.h>
@@ -10,8 +10,8 @@
 
 /* Every result file is written to "<name>.part" and renamed once complete: a failed or killed run leaves
    the previous result intact and never a half-written file under the final name.
-   The files of a run are registered before any work (filecheck.c): a registered name may be written elsewhere
-   (SgFileResolve: the target of a symbolic link, or a device written directly). */
+   The files of a run are registered before any work (registry.c, SgFileCheckWritable): a registered name may be
+   written elsewhere (SgFileResolve: the target of a symbolic link, or a device written directly). */
 
 /* ".part" files being written: removed by SgFileCleanup on a signal or an error exit (async-signal-safe: static
    storage, unlink only). */
@@ -240,5 +240,45 @@ PetscErrorCode SgFileClose(MPI_Comm comm, const char name[], FILE **fp)
 {
   PetscFunctionBeginUser;
   PetscCall(SgFileFinish(comm, name, fp, SG_FILE_COMMIT));
+  PetscFunctionReturn(0);
+}
+
+static PetscBool OptionIsHDF5(const char option[])
+{
+  return (PetscBool)(!strcmp(option, "-output_file") || !strcmp(option, "-checkpoint_file") || !strcmp(option, "-restart_file"));
+}
+
+/* Fail early (before any solve) if an output location cannot be written, is not ours to replace, or is named twice. */
+PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const char name[])
+{
+  FILE     *fp;
+  PetscBool direct;
+  const char *path;
+
+  PetscFunctionBeginUser;
+  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckWritable: the communicator is MPI_COMM_NULL");
+  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckWritable: argument 2 (the option naming the file) is NULL or empty");
+  if (!name) name = ""; /* no file */
+  PetscCall(SgFileRegister(comm, option, name, PETSC_FALSE, OptionIsHDF5(option)));
+  if (!strcmp(option, "-output_file")) {
+    char xname[PETSC_MAX_PATH_LEN + 8];
+    PetscCall(SgOutputXdmfName(name, xname, sizeof(xname)));
+    PetscCall(SgFileRegister(comm, "-output_file (its .xmf file)", name[0] ? xname : NULL, PETSC_FALSE, PETSC_FALSE));
+  }
+  if (!name[0]) PetscFunctionReturn(0);
+  SgFileResolve(name, &path, &direct);
+  if (direct) PetscFunctionReturn(0); /* opening a FIFO would wait for its reader; access() was checked */
+  PetscCall(SgFileOpen(comm, option, name, &fp));
+  PetscCall(SgFileFinish(comm, name, &fp, SG_FILE_ABANDON));
+  PetscFunctionReturn(0);
+}
+
+/* Register an input file (read by the run), so that no result names it. */
+PetscErrorCode SgFileCheckInput(MPI_Comm comm, const char option[], const char name[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckInput: the communicator is MPI_COMM_NULL");
+  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckInput: argument 2 (the option naming the file) is NULL or empty");
+  PetscCall(SgFileRegister(comm, option, name, PETSC_TRUE, OptionIsHDF5(option)));
   PetscFunctionReturn(0);
 }

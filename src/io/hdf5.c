@@ -1,25 +1,9 @@
-/* hdf5.c: an HDF5 result file: the longest name HDF5 may be given, and its atomic write that reports a full disk with
-   its cause. */
+/* hdf5.c: an HDF5 result file written atomically; a failed write (a full disk) reported with its cause. */
 #include "io/ioimpl.h"
 #include <petscviewerhdf5.h>
 #include <errno.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
-
-/* OpenMPI's OMPIO (sharedfp/lockedfile) formats "<name>.locktest.<rank>" into a 256-byte buffer when HDF5 opens a
-   file through MPI-IO and aborts the process beyond ("buffer overflow detected"): the longest file name HDF5 may be
-   given on a communicator of size ranks. */
-PetscErrorCode SgFileHDF5NameMax(MPI_Comm comm, size_t *len)
-{
-  PetscMPIInt size;
-  size_t      digits = 1;
-
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  for (PetscMPIInt r = size - 1; r >= 10; r /= 10) digits++;
-  *len = 255 - strlen(".locktest.") - digits;
-  PetscFunctionReturn(0);
-}
 
 /* errno values a failed write sets (HDF5 leaves errno stale otherwise) */
 static PetscBool WriteErrno(int e)

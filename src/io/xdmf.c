@@ -2,19 +2,6 @@
    grid or a temporal collection of load steps. */
 #include "io/ioimpl.h"
 
-/* The XDMF file written beside an HDF5 result: F.h5 -> F.xmf, else F + ".xmf". */
-PetscErrorCode SgOutputXdmfName(const char h5name[], char xname[], size_t len)
-{
-  size_t n;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscStrncpy(xname, h5name, len));
-  PetscCall(PetscStrlen(xname, &n));
-  if (n > 3 && !strcmp(xname + n - 3, ".h5")) xname[n - 3] = 0;
-  PetscCall(PetscStrlcat(xname, ".xmf", len));
-  PetscFunctionReturn(0);
-}
-
 /* PETSc stores a field of vector "v" whose section field is "f" as <group>/v_f */
 static PetscErrorCode DatasetName(Vec v, const char suffix[], char name[], size_t len)
 {

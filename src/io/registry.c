@@ -1,5 +1,5 @@
-/* filecheck.c: the files of a run, registered before any work: names too long, links, devices, directories, and two
-   options naming the same file. */
+/* registry.c: the files of a run, registered before any work: the file written for each name (the target of a link,
+   a device written directly), names too long for HDF5, the .xmf beside an .h5, and two options naming one file. */
 #include "io/ioimpl.h"
 #include <errno.h>
 #include <limits.h>
@@ -39,6 +39,34 @@ void SgFileResolve(const char name[], const char **path, PetscBool *direct)
   const SgFileEntry *e = FileFind(name);
   *path                = e ? e->path : name;
   *direct              = e ? e->direct : PETSC_FALSE;
+}
+
+/* OpenMPI's OMPIO (sharedfp/lockedfile) formats "<name>.locktest.<rank>" into a 256-byte buffer when HDF5 opens a
+   file through MPI-IO and aborts the process beyond ("buffer overflow detected"): the longest file name HDF5 may be
+   given on a communicator of size ranks. */
+PetscErrorCode SgFileHDF5NameMax(MPI_Comm comm, size_t *len)
+{
+  PetscMPIInt size;
+  size_t      digits = 1;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  for (PetscMPIInt r = size - 1; r >= 10; r /= 10) digits++;
+  *len = 255 - strlen(".locktest.") - digits;
+  PetscFunctionReturn(0);
+}
+
+/* The XDMF file written beside an HDF5 result: F.h5 -> F.xmf, else F + ".xmf". */
+PetscErrorCode SgOutputXdmfName(const char h5name[], char xname[], size_t len)
+{
+  size_t n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(xname, h5name, len));
+  PetscCall(PetscStrlen(xname, &n));
+  if (n > 3 && !strcmp(xname + n - 3, ".h5")) xname[n - 3] = 0;
+  PetscCall(PetscStrlcat(xname, ".xmf", len));
+  PetscFunctionReturn(0);
 }
 
 static const char *FileTypeName(mode_t m)
@@ -131,7 +159,7 @@ static PetscBool FileSame(const SgFileEntry *a, const SgFileEntry *b)
 
 /* Register the file of an option (replacing an earlier registration of the same option) and check it against the
    others. hdf5: written by HDF5 (the length limit, regular files only). */
-static PetscErrorCode FileRegister(MPI_Comm comm, const char option[], const char name[], PetscBool input, PetscBool hdf5)
+PetscErrorCode SgFileRegister(MPI_Comm comm, const char option[], const char name[], PetscBool input, PetscBool hdf5)
 {
   SgFileEntry *e = NULL;
   PetscMPIInt  rank;
@@ -173,45 +201,5 @@ static PetscErrorCode FileRegister(MPI_Comm comm, const char option[], const cha
     *e = FileTable[--FileCount];
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", msg);
   }
-  PetscFunctionReturn(0);
-}
-
-static PetscBool OptionIsHDF5(const char option[])
-{
-  return (PetscBool)(!strcmp(option, "-output_file") || !strcmp(option, "-checkpoint_file") || !strcmp(option, "-restart_file"));
-}
-
-/* Fail early (before any solve) if an output location cannot be written, is not ours to replace, or is named twice. */
-PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const char name[])
-{
-  FILE     *fp;
-  PetscBool direct;
-  const char *path;
-
-  PetscFunctionBeginUser;
-  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckWritable: the communicator is MPI_COMM_NULL");
-  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckWritable: argument 2 (the option naming the file) is NULL or empty");
-  if (!name) name = ""; /* no file */
-  PetscCall(FileRegister(comm, option, name, PETSC_FALSE, OptionIsHDF5(option)));
-  if (!strcmp(option, "-output_file")) {
-    char xname[PETSC_MAX_PATH_LEN + 8];
-    PetscCall(SgOutputXdmfName(name, xname, sizeof(xname)));
-    PetscCall(FileRegister(comm, "-output_file (its .xmf file)", name[0] ? xname : NULL, PETSC_FALSE, PETSC_FALSE));
-  }
-  if (!name[0]) PetscFunctionReturn(0);
-  SgFileResolve(name, &path, &direct);
-  if (direct) PetscFunctionReturn(0); /* opening a FIFO would wait for its reader; access() was checked */
-  PetscCall(SgFileOpen(comm, option, name, &fp));
-  PetscCall(SgFileFinish(comm, name, &fp, SG_FILE_ABANDON));
-  PetscFunctionReturn(0);
-}
-
-/* Register an input file (read by the run), so that no result names it. */
-PetscErrorCode SgFileCheckInput(MPI_Comm comm, const char option[], const char name[])
-{
-  PetscFunctionBeginUser;
-  PetscCheck(comm != MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgFileCheckInput: the communicator is MPI_COMM_NULL");
-  PetscCheck(option && option[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgFileCheckInput: argument 2 (the option naming the file) is NULL or empty");
-  PetscCall(FileRegister(comm, option, name, PETSC_TRUE, OptionIsHDF5(option)));
   PetscFunctionReturn(0);
 }
