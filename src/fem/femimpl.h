@@ -1,4 +1,4 @@
-/* fem/femimpl.h: the elasticity object of the fem layer; included by the files of src/fem only */
+/* fem/femimpl.h: the elasticity object of the fem layer and what its files share; included by the files of src/fem only */
 #pragma once
 
 #include "sg.h"
@@ -46,3 +46,27 @@ struct _n_SgElasticity {
   PetscReal    dvals[3 * SG_MAX_IDS];
   Vec          bload1;
 };
+/* What the files of the mesh share (box.c, mesh.c, boundary.c, layout.c) */
+/* mirror: left in the lower half of x, right in the upper half, so that the mesh is symmetric about the box's middle
+   x = (lower + upper) / 2 and its upper half is the -box_diagonal right mesh of that half (half models) */
+typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT, SG_BOX_MIRROR } SgBoxDiagonal;
+/* the structured simplex box of the -box_* options: the entries given of each list (nfaces, nlo, nhi) are checked
+   against the dimension when the box is made */
+typedef struct {
+  PetscInt      dim, nfaces, nlo, nhi, faces[SG_OPT_MAX];
+  PetscReal     lo[SG_OPT_MAX], hi[SG_OPT_MAX];
+  SgBoxDiagonal diag;
+} SgBox;
+PetscErrorCode SgBoxFromOptions(MPI_Comm, const char[], SgBox *);
+PetscErrorCode SgBoxCreateDM(MPI_Comm, const SgBox *, DM *);
+PetscErrorCode SgBoundaryMarkVertices(DM, const SgBoundary *, SgMesh *);
+
+/* What the files of the elasticity share (element.c, mms.c, assembly.c, loading.c, rigid.c, elasticity.c) */
+PetscErrorCode SgSimplexQuadrature(PetscInt, PetscInt *, PetscReal **, PetscReal **);
+void           SgMMSExact(PetscInt, const PetscReal[], PetscReal[], PetscReal[]);
+void           SgMMSForce(PetscInt, PetscReal, PetscReal, const PetscReal[], PetscReal[]);
+PetscErrorCode SgElasticityFillDirichletValues(SgElasticity, const PetscReal[]);
+void           SgMeshZeroFixedComponents(const SgMesh *, PetscInt, PetscScalar[]);
+PetscErrorCode SgElasticityAssemble(SgElasticity);
+PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity);
+PetscErrorCode SgElasticityCreateNearNullSpace(SgElasticity);

@@ -1,4 +1,4 @@
-/* io/ioimpl.h: the summary and the history; included by the files of src/io only */
+/* io/ioimpl.h: the summary, the history and what the files of results share; included by the files of src/io only */
 #pragma once
 
 #include "sg.h"
@@ -14,3 +14,12 @@ struct _n_SgHistory {
   PetscInt      n, cap;
   SgHistoryRow *rows;
 };
+
+/* The files of a result (registry.c, file.c, hdf5.c, xdmf.c, output.c) */
+/* how SgFileFinish ends a file after closing it: remove its .part, rename it, or keep it for a later SgFileCommit */
+typedef enum { SG_FILE_ABANDON, SG_FILE_COMMIT, SG_FILE_KEEP } SgFileEnd;
+PetscErrorCode SgFileFinish(MPI_Comm, const char[], FILE **, SgFileEnd);
+void           SgFileResolve(const char[], const char **, PetscBool *);
+PetscErrorCode SgFileRegister(MPI_Comm, const char[], const char[], PetscBool, PetscBool);
+void           SgFileDirectory(const char[], char[PETSC_MAX_PATH_LEN]);
+PetscErrorCode SgOutputWriteXDMF(SgElasticity, const char[], const char[], PetscInt, const PetscInt[], const PetscReal[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
