@@ -158,6 +158,7 @@ PetscErrorCode SgOutputWriteSteps(SgElasticity, const char[], PetscInt, const Pe
 /* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
 extern PetscFunctionList SgObstacleList; /* SgObstacle and SgObstacleRegister: include/signorini.h */
 PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
+PetscErrorCode SgObstaclePrintHelp(MPI_Comm, const char[], PetscInt); /* -help: every type's options */
 PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
 PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
 PetscErrorCode SgObstacleDistance(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]); /* signed distance g (> 0 outside) and the unit outward normal n at the closest point */
@@ -319,6 +320,7 @@ typedef struct _n_SgFrame    *SgFrame;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]); /* -help: the default solver's option */
 PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
@@ -343,6 +345,7 @@ PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
+PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]); /* -help without a problem: the SSN's options */
 PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec); /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *); /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */

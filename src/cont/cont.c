@@ -253,8 +253,21 @@ PetscErrorCode SgContPrintHelp(SgCont ct)
   PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Contact solver (SgCont) options", "SgCont"); /* PetscObjectOptionsBegin's title: listed once */
   PetscCall(CommonOptions(tmp, PetscOptionsObject));
   PetscCall(HelpTypes(tmp, "", PetscOptionsObject));
+  {
+    PetscBool view = PETSC_FALSE;
+    PetscCall(PetscOptionsName("-cont_view", "View the controller (its type and parameters) after its set-up", "SgContSetUp", &view));
+  }
   PetscOptionsEnd();
   PetscCall(PetscFree(tmp));
+  /* and those of the objects the controller makes or reads later, which a run without a problem never reaches (each
+     section is printed once: the real reading later does not repeat it) */
+  PetscCall(SgLinearSolverPrintHelp(ct->comm, ((PetscObject)ct)->prefix));
+  PetscCall(SgSSNPrintHelp(ct->comm, ((PetscObject)ct)->prefix));
+  { /* the mesh is not read yet: the box's dimension if given, else 2 (the default box) for the vectors' defaults */
+    PetscInt dim = 2;
+    PetscCall(PetscOptionsGetInt(NULL, ((PetscObject)ct->problem_obj)->prefix, "-box_dim", &dim, NULL));
+    PetscCall(SgObstaclePrintHelp(ct->comm, ((PetscObject)ct->problem_obj)->prefix, dim == 3 ? 3 : 2));
+  }
   PetscFunctionReturn(0);
 }
 

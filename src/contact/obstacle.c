@@ -282,6 +282,48 @@ PetscErrorCode SgObstacleCreate(MPI_Comm comm, const char prefix[], PetscInt dim
   PetscFunctionReturn(0);
 }
 
+/* -help without a problem (bin/signorini -help): every registered obstacle type's options and their defaults (a type
+   whose options cannot be read without more input lists what it has read until then) */
+PetscErrorCode SgObstaclePrintHelp(MPI_Comm comm, const char prefix[], PetscInt dim)
+{
+  PetscBool    help;
+  int          n;
+  const char **names;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListGet(SgObstacleList, &names, &n));
+  PetscOptionsBegin(comm, prefix, "Rigid obstacle", NULL);
+  {
+    char type[64] = "plane";
+    PetscCall(PetscOptionsFList("-obstacle_type", "Obstacle shape", NULL, SgObstacleList, type, type, sizeof(type), NULL));
+  }
+  for (int i = 0; i < n && names[i]; i++) {
+    PetscErrorCode (*create)(SgObstacle) = NULL;
+    SgObstacle     o;
+    PetscErrorCode ierr;
+    PetscCall(PetscFunctionListFind(SgObstacleList, names[i], &create));
+    if (!create) continue;
+    PetscCall(PetscNew(&o));
+    o->comm = comm;
+    o->dim  = dim;
+    PetscCall(PetscStrncpy(o->type, names[i], sizeof(o->type)));
+    PetscCall(create(o));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = o->setfromoptions(o, PetscOptionsObject);
+    PetscCall(PetscPopErrorHandler());
+    (void)ierr; /* the listing is what counts here; a real run reads the options again and reports */
+    PetscCall(SgObstacleDestroy(&o));
+  }
+  {
+    PetscReal t[3] = {0, 0, 0};
+    PetscCall(ReadVector(PetscOptionsObject, comm, "-obstacle_translation", "Rigid translation of the obstacle (any type); with -load_steps it is applied in proportion to the load factor", dim, t));
+  }
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 /* The gap of every type at its placement: the obstacle moved by s = placement * translation has at x the gap the
    unmoved one has at x - s (the ray's direction n is unchanged by a translation). */
 PetscErrorCode SgObstacleGap(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)

@@ -641,7 +641,6 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &set));
-  PetscCheck(set && cad->file[0], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_type cad: needs -obstacle_cad_file");
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-obstacle_cad_translation", "Translation of the CAD model, x,y[,z]", 3, cad->shift, &n, &set));
   PetscCheck(!set || n == o->dim, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, n, o->dim);
   for (PetscInt k = 0; k < o->dim; k++) PetscCheck(PetscIsNormalReal(cad->shift[k]) || cad->shift[k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: entry %" PetscInt_FMT " is %g, must be finite", k, (double)cad->shift[k]);
@@ -650,6 +649,12 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_cad_mesh_size", "Largest element of the tessellation the rays are cast against (CAD units; default the model's diagonal / 20)", &cad->msize, NULL));
   PetscCheck((PetscIsNormalReal(cad->msize) || cad->msize == 0) && cad->msize >= 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_mesh_size: must be >= 0 and finite, got %g", (double)cad->msize);
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-obstacle_cad_verbose", "Let gmsh print its messages", &verbose, NULL));
+  {
+    PetscBool help;
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help && !(set && cad->file[0])) PetscFunctionReturn(0); /* -help lists the options (SgObstaclePrintHelp) */
+  }
+  PetscCheck(set && cad->file[0], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_type cad: needs -obstacle_cad_file");
   PetscCall(PetscTestFile(cad->file, 'r', &exists));
   PetscCheck(exists, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: no such file, or not readable", cad->file);
   PetscCall(SgObstacleMeshFileIs(cad->file, &ismesh));

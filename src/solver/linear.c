@@ -16,6 +16,13 @@
 /* condensation keeps a dense Schur complement on the contact dofs: not beyond this many of them */
 #define SG_CONDENSE_MAX_DOFS 4000
 
+static PetscErrorCode DirectMaxOption(PetscOptionItems *PetscOptionsObject, PetscInt *maxdirect)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: 2D: all on one rank, 20000 on several; 3D: 5000)", maxdirect, NULL));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetDefault(const char prefix[], const char name[], const char value[])
 {
   char      opt[256];
@@ -25,6 +32,21 @@ static PetscErrorCode SetDefault(const char prefix[], const char name[], const c
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", name));
   PetscCall(PetscOptionsHasName(NULL, NULL, opt, &set));
   if (!set) PetscCall(PetscOptionsSetValue(NULL, opt, value));
+  PetscFunctionReturn(0);
+}
+
+/* -help without a problem: the option of the default linear solver (SgLinearSolverDefaults reads it) */
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
+{
+  PetscBool help;
+  PetscInt  maxdirect = 5000;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscFunctionReturn(0);
+  PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
+  PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
+  PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 
@@ -46,7 +68,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   PetscCall(SgElasticityGetInfo(el, &dofs, NULL, NULL, NULL));
   maxdirect = dim == 2 ? (size == 1 ? PETSC_MAX_INT : 20000) : 5000;
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: 2D: all on one rank, 20000 on several; 3D: 5000)", &maxdirect, NULL));
+  PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
   PetscOptionsEnd();
   PetscCheck(maxdirect >= 0, comm, PETSC_ERR_USER_INPUT, "-%scont_direct_max_unknowns: must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", maxdirect);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sksp_type", prefix ? prefix : ""));

@@ -702,6 +702,42 @@ static PetscErrorCode ReasonView(SNES snes, void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* The SSN's options, their defaults in s, condense, tmg and frame (also listed by SgSSNPrintHelp) */
+static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, PetscBool *condense, PetscBool *tmg, PetscBool *frame)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", condense, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", tmg, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_max_it", "Coulomb: when the Newton iteration on the coupled law fails, at most this many steps of a fixed point on the Tresca bound s = F lam_N (0: none)", &s->fp_max_it, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_rtol", "Coulomb: that fixed point ends when |F lam_N - s| <= rtol max F lam_N", &s->fp_rtol, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame", "Solve the linear systems in each contact vertex's frame (n, t1, t2) where its normal is not a coordinate axis (curved or tilted contact): the contact term becomes a diagonal entry, which AMG, the truncated multigrid, condensation and the bound-constrained solvers need", frame, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* -help without a problem (bin/signorini -help): the SSN's options and their defaults, as SgSSNCreate reads them */
+PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
+{
+  struct _n_SgSSN s;
+  PetscBool       help, condense = PETSC_FALSE, tmg = PETSC_FALSE, frame = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscFunctionReturn(0);
+  PetscCall(PetscMemzero(&s, sizeof(s)));
+  s.fp_max_it = 50;
+  s.fp_omega  = 1;
+  s.fp_m      = 8;
+  s.fp_rtol   = 1e-13;
+  PetscOptionsBegin(comm, prefix, "Semismooth Newton (active set) solver", NULL);
+  PetscCall(SSNOptions(PetscOptionsObject, &s, &condense, &tmg, &frame));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 /* -ssn_frame: the Jacobians are assembled in the contact frames into Pf (a copy of Q^T K Q) and the KSP solves with
    it in the frames (SgFrameAttachKSP); the elasticity solve without contact takes Q^T K Q (SgLinearSolveUnconstrained
    finds both on the KSP) */
@@ -781,20 +817,12 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   if (s->cv.friction) PetscCall(SNESLineSearchSetPreCheck(ls, PreCheck, s));
   PetscCall(SNESMonitorSet(s->snes, Monitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
-  PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", &condense, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", &tmg, NULL));
   s->fp_max_it = 50;
   s->fp_omega  = 1;
   s->fp_m      = 8;
   s->fp_rtol   = 1e-13;
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_max_it", "Coulomb: when the Newton iteration on the coupled law fails, at most this many steps of a fixed point on the Tresca bound s = F lam_N (0: none)", &s->fp_max_it, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_rtol", "Coulomb: that fixed point ends when |F lam_N - s| <= rtol max F lam_N", &s->fp_rtol, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame", "Solve the linear systems in each contact vertex's frame (n, t1, t2) where its normal is not a coordinate axis (curved or tilted contact): the contact term becomes a diagonal entry, which AMG, the truncated multigrid, condensation and the bound-constrained solvers need", &frame, NULL));
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
+  PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
+  PetscCall(SSNOptions(PetscOptionsObject, s, &condense, &tmg, &frame));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
   {
