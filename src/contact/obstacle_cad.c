@@ -636,11 +636,11 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
 static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOptionsObject)
 {
   Obstacle_CAD *cad = (Obstacle_CAD *)o->data;
-  PetscBool     set, verbose = PETSC_FALSE, exists, ismesh;
+  PetscBool     set, fileset, verbose = PETSC_FALSE, exists, ismesh;
   PetscInt      n = o->dim;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &set));
+  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &fileset));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-obstacle_cad_translation", "Translation of the CAD model, x,y[,z]", 3, cad->shift, &n, &set));
   PetscCheck(!set || n == o->dim, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, n, o->dim);
   for (PetscInt k = 0; k < o->dim; k++) PetscCheck(PetscIsNormalReal(cad->shift[k]) || cad->shift[k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: entry %" PetscInt_FMT " is %g, must be finite", k, (double)cad->shift[k]);
@@ -652,9 +652,9 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   {
     PetscBool help;
     PetscCall(PetscOptionsHasHelp(NULL, &help));
-    if (help && !(set && cad->file[0])) PetscFunctionReturn(0); /* -help lists the options (SgObstaclePrintHelp) */
+    if (help && !(fileset && cad->file[0])) PetscFunctionReturn(0); /* -help lists the options (SgObstaclePrintHelp) */
   }
-  PetscCheck(set && cad->file[0], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_type cad: needs -obstacle_cad_file");
+  PetscCheck(fileset && cad->file[0], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_type cad: needs -obstacle_cad_file");
   PetscCall(PetscTestFile(cad->file, 'r', &exists));
   PetscCheck(exists, o->comm, PETSC_ERR_FILE_OPEN, "-obstacle_cad_file %s: no such file, or not readable", cad->file);
   PetscCall(SgObstacleMeshFileIs(cad->file, &ismesh));
