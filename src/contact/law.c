@@ -16,137 +16,115 @@ static PetscErrorCode LawCreate_None(SgContactLaw law)
   PetscFunctionReturn(0);
 }
 
-/* ---- tresca: g = s, a given traction */
+/* ---- tresca and coulomb: a law of one parameter p (its option, summary name, check and the bound from p) */
 typedef struct {
-  PetscReal s;
+  const char *option, *help, *name; /* "-friction_bound", its help, "friction_bound" (summary, checkpoint) */
+  const char *bad, *missing, *desc; /* the messages for a bad value (%g) and a missing one; the description (%g) */
+  PetscBool (*valid)(PetscReal);
+  PetscReal p;
   PetscBool set;
-} Law_Tresca;
+} Law_One;
 
-static const char *const TrescaNames[] = {"friction_bound"};
+static PetscBool PositiveFinite(PetscReal v)
+{
+  return (PetscBool)(PetscIsNormalReal(v) && v > 0);
+}
 
+static PetscBool NonnegativeFinite(PetscReal v)
+{
+  return (PetscBool)((PetscIsNormalReal(v) || v == 0) && v >= 0);
+}
+
+/* tresca: g = s, a given traction */
 static void Bound_Tresca(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
 {
   (void)i;
   (void)lamN;
-  *g = ((Law_Tresca *)law->data)->s;
+  *g = ((Law_One *)law->data)->p;
   if (dg) *dg = 0;
 }
 
-static PetscErrorCode SetFromOptions_Tresca(SgContactLaw law, PetscOptionItems *PetscOptionsObject)
-{
-  Law_Tresca *tr = (Law_Tresca *)law->data;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", &tr->s, &tr->set));
-  PetscCheck(!tr->set || (PetscIsNormalReal(tr->s) && tr->s > 0), law->comm, PETSC_ERR_USER_INPUT, "-friction_bound: the Tresca bound must be positive and finite, got %g", (double)tr->s);
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode SetUp_Tresca(SgContactLaw law)
-{
-  PetscFunctionBeginUser;
-  PetscCheck(((Law_Tresca *)law->data)->set, law->comm, PETSC_ERR_USER_INPUT, "-friction_type tresca needs the bound: give -friction_bound s > 0");
-  PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), "Tresca s = %g", (double)((Law_Tresca *)law->data)->s));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode GetParameters_Tresca(SgContactLaw law, PetscInt *n, const char *const **names, const PetscReal **values)
-{
-  PetscFunctionBeginUser;
-  *n      = 1;
-  *names  = TrescaNames;
-  *values = &((Law_Tresca *)law->data)->s;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode View_Tresca(SgContactLaw law, PetscViewer v)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "Tresca friction: |lam_T| <= s = %g, gamma_T = %g gamma\n", (double)((Law_Tresca *)law->data)->s, (double)law->gfac));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode LawCreate_Tresca(SgContactLaw law)
-{
-  Law_Tresca *tr;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscNew(&tr));
-  law->data               = tr;
-  law->friction           = PETSC_TRUE;
-  law->ops.bound          = Bound_Tresca;
-  law->ops.setfromoptions = SetFromOptions_Tresca;
-  law->ops.setup          = SetUp_Tresca;
-  law->ops.getparameters  = GetParameters_Tresca;
-  law->ops.view           = View_Tresca;
-  PetscFunctionReturn(0);
-}
-
-/* ---- coulomb: g = F max(0, lam_N), dg/dlam_N = F (the Jacobian's coupling t n^T: nonsymmetric) */
-typedef struct {
-  PetscReal F;
-  PetscBool set;
-} Law_Coulomb;
-
-static const char *const CoulombNames[] = {"friction_coefficient"};
-
+/* coulomb: g = F max(0, lam_N), dg/dlam_N = F (the Jacobian's coupling t n^T: nonsymmetric) */
 static void Bound_Coulomb(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
 {
-  const PetscReal F = ((Law_Coulomb *)law->data)->F;
+  const PetscReal F = ((Law_One *)law->data)->p;
 
   (void)i;
   *g = F * PetscMax(0, lamN);
   if (dg) *dg = F;
 }
 
-static PetscErrorCode SetFromOptions_Coulomb(SgContactLaw law, PetscOptionItems *PetscOptionsObject)
+static PetscErrorCode SetFromOptions_One(SgContactLaw law, PetscOptionItems *PetscOptionsObject)
 {
-  Law_Coulomb *co = (Law_Coulomb *)law->data;
+  Law_One *o = (Law_One *)law->data;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", &co->F, &co->set));
-  PetscCheck(!co->set || ((PetscIsNormalReal(co->F) || co->F == 0) && co->F >= 0), law->comm, PETSC_ERR_USER_INPUT, "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", (double)co->F);
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, o->option, o->help, &o->p, &o->set));
+  PetscCheck(!o->set || o->valid(o->p), law->comm, PETSC_ERR_USER_INPUT, o->bad, (double)o->p);
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetUp_Coulomb(SgContactLaw law)
+static PetscErrorCode SetUp_One(SgContactLaw law)
 {
+  Law_One *o = (Law_One *)law->data;
+
   PetscFunctionBeginUser;
-  PetscCheck(((Law_Coulomb *)law->data)->set, law->comm, PETSC_ERR_USER_INPUT, "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0");
-  PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), "Coulomb F = %g", (double)((Law_Coulomb *)law->data)->F));
+  PetscCheck(o->set, law->comm, PETSC_ERR_USER_INPUT, "%s", o->missing);
+  PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), o->desc, (double)o->p));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode GetParameters_Coulomb(SgContactLaw law, PetscInt *n, const char *const **names, const PetscReal **values)
+static PetscErrorCode GetParameters_One(SgContactLaw law, PetscInt *n, const char *const **names, const PetscReal **values)
 {
+  Law_One *o = (Law_One *)law->data;
+
   PetscFunctionBeginUser;
   *n      = 1;
-  *names  = CoulombNames;
-  *values = &((Law_Coulomb *)law->data)->F;
+  *names  = &o->name;
+  *values = &o->p;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode View_Coulomb(SgContactLaw law, PetscViewer v)
+static PetscErrorCode View_One(SgContactLaw law, PetscViewer v)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(v, "Coulomb friction: |lam_T| <= F lam_N, F = %g, gamma_T = %g gamma\n", (double)((Law_Coulomb *)law->data)->F, (double)law->gfac));
+  PetscCall(PetscViewerASCIIPrintf(v, "%s friction: %s, gamma_T = %g gamma\n", law->type, law->desc, (double)law->gfac));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_One(SgContactLaw law, const Law_One *def, void (*bound)(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *), PetscBool coupled)
+{
+  Law_One *o;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&o));
+  *o                      = *def;
+  law->data               = o;
+  law->friction           = PETSC_TRUE;
+  law->coupled            = coupled;
+  law->ops.bound          = bound;
+  law->ops.setfromoptions = SetFromOptions_One;
+  law->ops.setup          = SetUp_One;
+  law->ops.getparameters  = GetParameters_One;
+  law->ops.view           = View_One;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_Tresca(SgContactLaw law)
+{
+  const Law_One def = {"-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", "friction_bound", "-friction_bound: the Tresca bound must be positive and finite, got %g", "-friction_type tresca needs the bound: give -friction_bound s > 0", "Tresca s = %g", PositiveFinite, 0, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(LawCreate_One(law, &def, Bound_Tresca, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode LawCreate_Coulomb(SgContactLaw law)
 {
-  Law_Coulomb *co;
+  const Law_One def = {"-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", "friction_coefficient", "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0", "Coulomb F = %g", NonnegativeFinite, 0, PETSC_FALSE};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&co));
-  law->data               = co;
-  law->friction           = PETSC_TRUE;
-  law->coupled            = PETSC_TRUE;
-  law->ops.bound          = Bound_Coulomb;
-  law->ops.setfromoptions = SetFromOptions_Coulomb;
-  law->ops.setup          = SetUp_Coulomb;
-  law->ops.getparameters  = GetParameters_Coulomb;
-  law->ops.view           = View_Coulomb;
+  PetscCall(LawCreate_One(law, &def, Bound_Coulomb, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
