@@ -9,10 +9,20 @@
 PetscFunctionList SgContactLawList = NULL;
 
 /* ---- none: frictionless (no tangential term; the solvers keep their frictionless paths) */
+static void Bound_None(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  (void)law;
+  (void)i;
+  (void)lamN;
+  *g = 0;
+  if (dg) *dg = 0;
+}
+
 static PetscErrorCode LawCreate_None(SgContactLaw law)
 {
   PetscFunctionBeginUser;
-  law->friction = PETSC_FALSE;
+  law->friction  = PETSC_FALSE;
+  law->ops.bound = Bound_None; /* not asked (no tangential part), but defined */
   PetscFunctionReturn(0);
 }
 
@@ -216,6 +226,7 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
   }
   *out = law; /* freed by SgContactLawDestroy also when a check below fails */
   PetscCall(create(law));
+  PetscCheck(law->ops.bound, comm, PETSC_ERR_PLIB, "friction law %s: its create function set no bound op", type);
   if (law->ops.setfromoptions) PetscCall(law->ops.setfromoptions(law, PetscOptionsObject));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_gamma_factor", "gamma_T = c gamma: the tangential regularization parameter against the normal one (c > 0)", &law->gfac, NULL));
   PetscCheck(PetscIsNormalReal(law->gfac) && law->gfac > 0, comm, PETSC_ERR_USER_INPUT, "-friction_gamma_factor: must be positive and finite, got %g", (double)law->gfac);
