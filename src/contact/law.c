@@ -194,7 +194,8 @@ static PetscErrorCode LawNames(char buf[], size_t len)
 }
 
 /* The law from the options (between the contact object's PetscOptionsBegin and End): -friction_type (default none),
-   the common -friction_gamma_factor, then the type's own options. */
+   the type's own options, the common -friction_gamma_factor, the other types' options (read and checked, not kept),
+   then the type's setup (what it needs). */
 PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PetscInt dim, SgContactLaw *out)
 {
   SgContactLaw law;
@@ -224,7 +225,7 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
       if (!strcmp(all[k], type)) law->id = k;
     PetscCall(PetscFree(all));
   }
-  *out = law; /* freed by SgContactLawDestroy also when a check below fails */
+  *out = law; /* the contact object's (SgContactDestroy) */
   PetscCall(create(law));
   PetscCheck(law->ops.bound, comm, PETSC_ERR_PLIB, "friction law %s: its create function set no bound op", type);
   if (law->ops.setfromoptions) PetscCall(law->ops.setfromoptions(law, PetscOptionsObject));
