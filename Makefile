@@ -225,6 +225,8 @@ build/examples/%.o: examples/extend/%.c | build
 	$(CC) $(CFLAGS) -c $< -o $@
 bin/custom_types: build/examples/custom_types.o $(LIBA) | bin
 	$(CC) -o $@ $^ $(LDLIBS)
+bin/custom_law: build/examples/custom_law.o $(LIBA) | bin
+	$(CC) -o $@ $^ $(LDLIBS)
 build bin lib:
 	mkdir -p $@
 

@@ -21,6 +21,7 @@ extern "C" {
 typedef struct _n_SgProblem  *SgProblem;
 typedef struct _n_SgObstacle *SgObstacle; /* a rigid obstacle type (SgObstacleRegister) */
 typedef struct _n_SgCont     *SgCont;
+typedef struct _n_SgContactLaw *SgContactLaw; /* a contact (friction) law type (SgContactLawRegister) */
 
 /* Registers the log events, obstacle and controller types; called by the Create functions (PetscFinalize undoes it). */
 PetscErrorCode SgInitializePackage(void);
@@ -63,6 +64,7 @@ PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], Pet
 #define SG_COMPONENT_Z 4
 PetscErrorCode SgProblemSetDirichletComponents(SgProblem, PetscInt, const PetscInt[]);
 PetscErrorCode SgProblemSetObstacleType(SgProblem, const char[]); /* plane, parabola, ball or cad (default of -obstacle_type), or one of SgObstacleRegister */
+PetscErrorCode SgContactLawRegister(const char[], PetscErrorCode (*)(SgContactLaw)); /* a new friction law for -friction_type (none, tresca, coulomb are ours; its implementation fills the ops of src/contact/contactimpl.h) */
 PetscErrorCode SgObstacleRegister(const char[], PetscErrorCode (*)(SgObstacle)); /* a new obstacle type for -obstacle_type / SgProblemSetObstacleType (its implementation fills the gap function of src/contact/contactimpl.h) */
 PetscErrorCode SgProblemSetFromOptions(SgProblem); /* read the options, make (or check) the mesh */
 PetscErrorCode SgProblemSetUp(SgProblem); /* layout, assembly of K and b, contact geometry */

@@ -178,9 +178,27 @@ typedef struct _n_SgContact *SgContact;
 
 PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const char[], SgContact *);
 PetscErrorCode SgContactSetUp(SgContact);
-/* friction laws (-friction_type); SG_FRICTION_NONE leaves the frictionless code paths untouched */
-typedef enum { SG_FRICTION_NONE, SG_FRICTION_TRESCA, SG_FRICTION_COULOMB } SgFrictionType;
-extern const char *const SgFrictionTypes[];
+/* the contact law (law.c; -friction_type, SgContactLawRegister in include/signorini.h): the bound of |lam_T| and its
+   derivative in lam_N at a contact vertex; "none" leaves the frictionless code paths untouched */
+#define SGLAWNONE             "none"
+#define SGLAWTRESCA           "tresca"
+#define SGLAWCOULOMB          "coulomb"
+#define SG_LAW_MAX_PARAMETERS 8
+extern PetscFunctionList SgContactLawList;
+PetscErrorCode SgContactLawRegisterAll(void);
+PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *, MPI_Comm, PetscInt, SgContactLaw *);
+PetscErrorCode SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
+void           SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
+PetscErrorCode SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                    /* max_i g_i(lam_N) over all ranks */
+PetscErrorCode SgContactLawGetType(SgContactLaw, const char *[]);
+const char    *SgLawName(SgContactLaw); /* its type name, for messages */
+PetscErrorCode SgContactLawGetId(SgContactLaw, PetscInt *);
+PetscErrorCode SgContactLawGetTypeName(PetscInt, const char **);
+PetscErrorCode SgContactLawGetInfo(SgContactLaw, PetscBool *, PetscBool *, PetscReal *); /* friction, coupled (the bound depends on lam_N), gamma_T / gamma */
+PetscErrorCode SgContactLawGetParameters(SgContactLaw, PetscInt *, const char *[], PetscReal[]); /* names (summary, checkpoint) and values, at most SG_LAW_MAX_PARAMETERS */
+PetscErrorCode SgContactLawGetDescription(SgContactLaw, const char **); /* "Coulomb F = 0.3", for messages */
+PetscErrorCode SgContactLawView(SgContactLaw, PetscViewer);
+PetscErrorCode SgContactLawDestroy(SgContactLaw *);
 enum { SG_FRICTION_FREE = 0, SG_FRICTION_STICK = 1, SG_FRICTION_SLIP = 2 }; /* the state of a contact vertex */
 /* friction at a displacement y (SgContactKKT): the tangential multiplier lam_T,i = -T_i (K y - b)_i / w_i balancing the
    tangential residual, its states, and its resultant sum_i w_i lam_T,i (the friction force on the obstacle) */
@@ -205,10 +223,10 @@ typedef struct {
   const PetscReal *normal;     /* outward unit normals, n*dim */
   const PetscReal *d;          /* initial gap to the obstacle along the normal */
   PetscReal        area;       /* |Gamma_c| */
-  /* friction on Gamma_c (-friction_type): the bound of |lam_T| is s (Tresca) or F lam_N (Coulomb) */
-  SgFrictionType   friction;
-  PetscReal        fbound;     /* s: -friction_bound (Tresca) */
-  PetscReal        fcoef;      /* F: -friction_coefficient (Coulomb) */
+  /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
+  SgContactLaw     law;
+  PetscBool        friction;   /* the law has a tangential part */
+  PetscBool        coupled;    /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
   PetscReal        fgfac;      /* gamma_T = fgfac * gamma: -friction_gamma_factor */
   const PetscReal *yref;       /* friction: the displacement at the start of the load step, n*dim (zeros at the
                                   first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference) */

@@ -296,7 +296,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
      fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
      can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
-  PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
@@ -318,7 +318,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
   if (ct->c && ct->cv.friction) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
-    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgFrictionTypes[ct->cv.friction]);
+    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgLawName(ct->cv.law));
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
@@ -716,7 +716,9 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
     /* the largest bound: s (Tresca) or F max lam (Coulomb); a state decided on round-off changes a friction force by
        at most its bound, so a bound below 1e-2 of the largest multiplier (Coulomb with F = 1e-12) is held to the
        normal multipliers' margin instead: otherwise the cap would stop a path whose friction cannot matter */
-    const PetscReal gb = PetscMax(c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * v[0], 1e-2 * v[0]);
+    PetscReal gb;
+    PetscCall(SgContactLawBoundMax(c->law, v[0], &gb)); /* max_i g_i(max lam) */
+    gb = PetscMax(gb, 1e-2 * v[0]);
     if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (c->fgfac * PETSC_MACHINE_EPSILON * v[2]));
   }
   PetscFunctionReturn(0);
@@ -893,11 +895,13 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
   } else {
     /* neither path: say that the shifted one failed too, and what is known of such problems, not only the last
        SSN's advice (more iterations, smaller steps), which the fallbacks have tried */
-    char  now[sizeof(ct->reason)], *advice;
+    char        now[sizeof(ct->reason)], *advice;
+    const char *desc;
+    PetscCall(SgContactLawGetDescription(ct->cv.law, &desc));
     PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));
     PetscCall(PetscStrstr(now, ": raise -snes_max_it", &advice));
     if (advice) *advice = 0; /* tried */
-    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.150s on the shifted path, after %.60s...; Coulomb F = %g: above a mesh-dependent F the discrete problem can have several solutions or none (a smaller F, a coarser mesh or Tresca can be solved)", now, was, (double)ct->cv.fcoef));
+    PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "%.150s on the shifted path, after %.60s...; %s: above a mesh-dependent F the discrete problem can have several solutions or none (a smaller F, a coarser mesh or Tresca can be solved)", now, was, desc));
   }
   PetscFunctionReturn(0);
 }
@@ -906,7 +910,7 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
 static PetscErrorCode SolveContinuation(SgCont ct)
 {
   PetscBool stop = PETSC_FALSE, ok, ssnfail = PETSC_FALSE;
-  const PetscBool shifted = (PetscBool)(ct->c && ct->cv.friction == SG_FRICTION_COULOMB && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
+  const PetscBool shifted = (PetscBool)(ct->c && ct->cv.coupled && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
 
   PetscFunctionBeginUser;
   if (!ct->restarted && !ct->warm) PetscCall(ct->ops.start(ct));

@@ -114,7 +114,8 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * nax[i] / c->w[i] : 0;
-    const PetscReal g    = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+    PetscReal       g;
+    SgContactLawBound(c->law, i, lamN, &g, NULL);
     PetscReal       z[3] = {0, 0, 0}, nz = 0, dt = 0;
     char            s;
     for (PetscInt j = 0; j < dim; j++) {
@@ -222,8 +223,8 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   char              *act, *next;
   PetscBool          done = PETSC_FALSE, ok;
   PetscReal          kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
-  const PetscBool    fr = (PetscBool)(c->friction != SG_FRICTION_NONE);
-  const PetscBool    coupled = (PetscBool)(c->friction == SG_FRICTION_COULOMB && pd->coupled);
+  const PetscBool    fr = c->friction;
+  const PetscBool    coupled = (PetscBool)(c->coupled && pd->coupled); /* a bound linear in lam_N: dg lam_N */
   char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
   PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
   PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
@@ -364,7 +365,9 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
           } else if (fst[i] == 2) {
             if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
               const PetscInt     ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
-              const PetscReal    fc  = c->fcoef * tdir[i * dim + j] * nax[i];
+              PetscReal          gi, dg;
+              SgContactLawBound(c->law, i, 0, &gi, &dg);
+              const PetscReal    fc  = dg * tdir[i * dim + j] * nax[i];
               const PetscScalar *va;
               const PetscInt    *ca;
               PetscInt           nc;

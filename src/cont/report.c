@@ -121,13 +121,15 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
     PetscCall(SgContactGetNormalType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "contact_normal", obstype));
-    PetscCall(SgSummarySetString(sum, "friction_type", SgFrictionTypes[ct->cv.friction]));
+    PetscCall(SgSummarySetString(sum, "friction_type", SgLawName(ct->cv.law)));
     if (ct->cv.friction) {
       /* of this controller's last KKT measures (SgContMeasure): lam_T from the tangential residual */
       const SgFrictionSummary fs = ct->fsum;
-      PetscCall(SgSummarySetReal(sum, "friction_bound", ct->cv.fbound));
-      PetscCall(SgSummarySetReal(sum, "friction_coefficient", ct->cv.fcoef));
-      PetscCall(SgSummarySetReal(sum, "friction_gamma_factor", ct->cv.fgfac));
+      const char             *pn[SG_LAW_MAX_PARAMETERS];
+      PetscReal               pv[SG_LAW_MAX_PARAMETERS];
+      PetscInt                np;
+      PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv)); /* the law's, by its names */
+      for (PetscInt k = 0; k < np; k++) PetscCall(SgSummarySetReal(sum, pn[k], pv[k]));
       PetscCall(SgSummarySetInt(sum, "stick_size", fs.nstick));
       PetscCall(SgSummarySetInt(sum, "slip_size", fs.nslip));
       PetscCall(SgSummarySetReal(sum, "friction_force", fs.force_norm));

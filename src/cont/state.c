@@ -175,17 +175,17 @@ static PetscErrorCode LoadBase(SgCont ct, SgCheckpointReader r, PetscBool step_e
    the full displacement (2 dim per contact vertex). At a load step's end the next step's reference, with the data of
    the step solved: prescribed components of the contact vertices take the next step's data once the problem changes,
    so a restart could not recompute it. */
-static const char *FrictionParamNames[3] = {"friction_bound", "friction_coefficient", "friction_gamma_factor"};
-
 static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool step_open)
 {
-  const PetscInt  law       = ct->c ? (PetscInt)ct->cv.friction : 0;
-  const PetscReal params[3] = {ct->cv.fbound, ct->cv.fcoef, ct->cv.fgfac};
-  PetscReal      *lhT = NULL, *yref = ct->yref, *next = NULL;
-  PetscInt        dim;
+  PetscInt    law = 0, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS];
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS], *lhT = NULL, *yref = ct->yref, *next = NULL;
+  PetscInt    dim;
 
   PetscFunctionBeginUser;
-  if (!law) PetscFunctionReturn(0);
+  if (!ct->c || !ct->cv.friction) PetscFunctionReturn(0);
+  PetscCall(SgContactLawGetId(ct->cv.law, &law)); /* the law's number in the registry, its parameters by their names */
+  PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv));
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
   if (!step_open && yref) {
@@ -198,36 +198,43 @@ static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool st
   PetscCall(SgCheckpointWriterContact(w, "slip_reference_full", dim, yref ? yref + ct->cv.n * dim : NULL));
   PetscCall(PetscFree(next));
   PetscCall(SgCheckpointWriterAttribute(w, "friction_type", PETSC_INT, &law));
-  for (PetscInt i = 0; i < 3; i++) PetscCall(SgCheckpointWriterAttribute(w, FrictionParamNames[i], PETSC_REAL, &params[i]));
+  for (PetscInt i = 0; i < np; i++) PetscCall(SgCheckpointWriterAttribute(w, pn[i], PETSC_REAL, &pv[i]));
   PetscFunctionReturn(0);
 }
 
 /* *full: the file held the full displacement's slip reference (older files did not: then a copy of the unknowns') */
 static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *full)
 {
-  const PetscInt  now       = ct->c ? (PetscInt)ct->cv.friction : 0;
-  const PetscReal params[3] = {ct->cv.fbound, ct->cv.fcoef, ct->cv.fgfac};
-  PetscInt        law       = 0, dim;
-  PetscReal       fp[3];
-  PetscBool       has, ok;
-  PetscReal      *lhT = NULL;
-  const char     *file;
-  char            f[PETSC_MAX_PATH_LEN];
+  PetscInt    now = 0, law = 0, dim, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS], *lawname = NULL, *nowname = "none";
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS], fp;
+  PetscBool   has, ok;
+  PetscReal  *lhT = NULL;
+  const char *file;
+  char        f[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
   *full = PETSC_FALSE;
+  if (ct->c) {
+    PetscCall(SgContactLawGetType(ct->cv.law, &nowname));
+    if (ct->cv.friction) PetscCall(SgContactLawGetId(ct->cv.law, &now));
+    PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv));
+  }
   PetscCall(SgCheckpointReaderGetFile(r, &file));
   PetscCall(PetscStrncpy(f, file, sizeof(f)));
   PetscCall(SgCheckpointReaderHasAttribute(r, "friction_type", &has));
   if (has) PetscCall(SgCheckpointReaderAttribute(r, "friction_type", PETSC_INT, &law));
-  for (PetscInt i = 0; has && i < 3; i++) PetscCall(SgCheckpointReaderAttribute(r, FrictionParamNames[i], PETSC_REAL, &fp[i]));
   ok = (PetscBool)(law == now);
-  if (!ok) PetscCall(SgCheckpointReaderAbandon(&r));
-  PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, law >= 0 && law <= 2 ? SgFrictionTypes[law] : "(damaged)", SgFrictionTypes[now]);
-  for (PetscInt i = 0; now && i < 3; i++) {
-    ok = (PetscBool)(PetscAbsReal(params[i] - fp[i]) <= 1e-12 * PetscMax(PetscAbsReal(params[i]), PetscAbsReal(fp[i])));
+  if (!ok) {
+    PetscCall(SgContactLawGetTypeName(law, &lawname));
+    PetscCall(SgCheckpointReaderAbandon(&r));
+  }
+  PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, lawname ? lawname : "(damaged)", nowname);
+  for (PetscInt i = 0; now && i < np; i++) { /* the law's parameters, by the names it gives them */
+    PetscCall(SgCheckpointReaderAttribute(r, pn[i], PETSC_REAL, &fp));
+    ok = (PetscBool)(PetscAbsReal(pv[i] - fp) <= 1e-12 * PetscMax(PetscAbsReal(pv[i]), PetscAbsReal(fp)));
     if (!ok) PetscCall(SgCheckpointReaderAbandon(&r));
-    PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, FrictionParamNames[i], (double)fp[i], (double)params[i]);
+    PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, pn[i], (double)fp, (double)pv[i]);
   }
   if (!now) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));

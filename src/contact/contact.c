@@ -1,37 +1,13 @@
 /* contact.c: contact geometry on Gamma_c (vertex normals, lumped weights, gaps) and the discrete contact terms. */
 #include "contact/contactimpl.h"
 
-const char *const SgFrictionTypes[] = {"none", "tresca", "coulomb"};
-
-/* The friction law and its parameters: -friction_type none|tresca|coulomb, -friction_bound s > 0 (Tresca: |lam_T| <= s),
-   -friction_coefficient F >= 0 (Coulomb: |lam_T| <= F lam_N), -friction_gamma_factor c > 0 (gamma_T = c gamma).
-   Each value is checked when it is given, whatever the law, so that a typo is never silently ignored; the law's own
-   parameter must be given. */
+/* The friction law (law.c): -friction_type none|tresca|coulomb|(a registered type) with the options of that type and
+   -friction_gamma_factor c > 0 (gamma_T = c gamma). */
 static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
 {
-  char      type[64] = "none";
-  PetscBool set, bset, fset;
-  PetscInt  k;
-
   PetscFunctionBeginUser;
-  c->friction = SG_FRICTION_NONE;
-  c->fbound   = 0;
-  c->fcoef    = 0;
-  c->fgfac    = 1;
-  PetscCall(PetscOptionsString("-friction_type", "Friction law on the contact boundary: none, tresca (|lam_T| <= -friction_bound), coulomb (|lam_T| <= -friction_coefficient lam_N)", NULL, type, type, sizeof(type), &set));
-  PetscCheck(!set || type[0], c->comm, PETSC_ERR_USER_INPUT, "-friction_type is given without a value (none, tresca, coulomb)");
-  for (k = 0; k < 3; k++)
-    if (!strcmp(type, SgFrictionTypes[k])) break;
-  PetscCheck(k < 3, c->comm, PETSC_ERR_USER_INPUT, "-friction_type: unknown friction law '%s' (none, tresca, coulomb)", type);
-  c->friction = (SgFrictionType)k;
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", &c->fbound, &bset));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", &c->fcoef, &fset));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_gamma_factor", "gamma_T = c gamma: the tangential regularization parameter against the normal one (c > 0)", &c->fgfac, NULL));
-  PetscCheck(!bset || (PetscIsNormalReal(c->fbound) && c->fbound > 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_bound: the Tresca bound must be positive and finite, got %g", (double)c->fbound);
-  PetscCheck(!fset || ((PetscIsNormalReal(c->fcoef) || c->fcoef == 0) && c->fcoef >= 0), c->comm, PETSC_ERR_USER_INPUT, "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", (double)c->fcoef);
-  PetscCheck(PetscIsNormalReal(c->fgfac) && c->fgfac > 0, c->comm, PETSC_ERR_USER_INPUT, "-friction_gamma_factor: must be positive and finite, got %g", (double)c->fgfac);
-  PetscCheck(c->friction != SG_FRICTION_TRESCA || bset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type tresca needs the bound: give -friction_bound s > 0");
-  PetscCheck(c->friction != SG_FRICTION_COULOMB || fset, c->comm, PETSC_ERR_USER_INPUT, "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0");
+  PetscCall(SgContactLawCreateFromOptions(PetscOptionsObject, c->comm, c->dim, &c->law));
+  PetscCall(SgContactLawGetInfo(c->law, &c->friction, NULL, &c->fgfac));
   PetscFunctionReturn(0);
 }
 
@@ -92,8 +68,9 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscCall(PetscOptionsString("-contact_normal", "Direction of the contact condition: obstacle (g(x) + n_o.u >= 0, the obstacle's signed distance g and unit normal n_o at the closest point to the vertex; right at edges and corners of the contact boundary and on curved bodies) or body (the paper's tau_N: the body's vertex normal, averaged over the facets; at a corner of Gamma_c a vertex may move into the obstacle). Default: obstacle for a plane in any orientation (exact there: no vertex ends inside it, right at corners and on curved bodies; normals off the coordinate axes are solved in the contact frames, -ssn_frame), body for the curved obstacle types (ball, parabola, CAD, meshed: with body a deformed body can end inside them, with obstacle it cannot for a convex one, see doc/method.md; choose it there)", NULL, nmode, nmode, sizeof(nmode), &nset));
   PetscOptionsEnd();
   PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
-  PetscCheck(c->bnd.active || c->friction == SG_FRICTION_NONE, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", SgFrictionTypes[c->friction]);
+  PetscCheck(c->bnd.active || !c->friction, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", c->law->type);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
+    PetscCall(SgContactLawDestroy(&c->law));
     PetscCall(PetscFree(c->prefix));
     PetscCall(PetscFree(c));
     PetscFunctionReturn(0);
@@ -284,6 +261,10 @@ PetscErrorCode SgContactSetUp(SgContact c)
         nloc++;
   }
   c->n = nloc;
+  PetscCall(PetscMalloc1(nloc * dim + 1, &c->xc)); /* the law's vertices */
+  for (PetscInt i = 0; i < nloc; i++)
+    for (PetscInt k = 0; k < dim; k++) c->xc[i * dim + k] = m->x[c->vert[i] * dim + k];
+  PetscCall(SgContactLawSetVertices(c->law, nloc, c->xc));
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
   PetscCall(DMRestoreLocalVector(c->dmVert, &wl));
@@ -308,9 +289,9 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->normal  = c->normal;
   v->d       = c->d;
   v->area    = c->area;
+  v->law      = c->law;
   v->friction = c->friction;
-  v->fbound   = c->fbound;
-  v->fcoef    = c->fcoef;
+  v->coupled  = c->law->coupled;
   v->fgfac    = c->fgfac;
   v->yref     = c->yref;
   PetscFunctionReturn(0);
@@ -346,6 +327,8 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscCall(PetscFree4((*c)->klt, (*c)->kslip, (*c)->kst, (*c)->dmask));
   PetscCall(PetscFree((*c)->ypfull));
   PetscCall(PetscFree((*c)->yref));
+  PetscCall(PetscFree((*c)->xc));
+  PetscCall(SgContactLawDestroy(&(*c)->law));
   PetscCall(PetscFree((*c)->prefix));
   PetscCall(SgObstacleDestroy(&(*c)->obs));
   PetscCall(PetscFree(*c));
@@ -473,7 +456,7 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], c
   }
   nt      = PetscSqrtReal(nt);
   nu      = PetscSqrtReal(nu);
-  *gb     = c->friction == SG_FRICTION_TRESCA ? c->fbound : c->fcoef * PetscMax(0, lamN);
+  SgContactLawBound(c->law, i, lamN, gb, NULL);
   partial = (PetscBool)(c->haspartial && SgMeshPartial(c->mesh, v));
   *ntfree = nt; /* the part the solution must keep within the bound: that of the free components */
   if (partial) {
@@ -484,7 +467,7 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], c
     }
     *ntfree = PetscSqrtReal(*ntfree);
   }
-  if (c->friction == SG_FRICTION_COULOMB ? !act : *gb <= noise) return SG_FRICTION_FREE;
+  if (c->law->coupled ? !act : *gb <= noise) return SG_FRICTION_FREE; /* a bound from lam_N: free out of contact */
   if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) { /* prescribed sliding */
     for (PetscInt k = 0; k < dim; k++) lt[k] = *gb * u[k] / nu;
     return SG_FRICTION_SLIP;

@@ -26,6 +26,34 @@ PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
 PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
 PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
 
+/* law.c: the contact law, a type of the registry SgContactLawList (-friction_type, SgContactLawRegister). A type's
+   create function sets its ops, data and the flags friction and coupled; the bound op is a pointwise kernel. */
+typedef struct {
+  /* the bound g of |lam_T| at owned contact vertex i (coordinates law->x + i dim) for the normal multiplier lamN, and
+     if dg is not NULL its derivative dg/dlamN (the Jacobian's coupling t n^T; 0 where g does not depend on lamN) */
+  void (*bound)(SgContactLaw, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg);
+  PetscErrorCode (*setfromoptions)(SgContactLaw, PetscOptionItems *); /* its own options (also called under -help for every type) */
+  PetscErrorCode (*setup)(SgContactLaw);                              /* after the options: what must have been given */
+  /* its parameters by their summary and checkpoint names (the law keeps both arrays) */
+  PetscErrorCode (*getparameters)(SgContactLaw, PetscInt *, const char *const **, const PetscReal **);
+  PetscErrorCode (*view)(SgContactLaw, PetscViewer);
+  PetscErrorCode (*destroy)(SgContactLaw); /* NULL, or frees what data holds (data itself is freed after it) */
+} SgContactLawOps;
+
+struct _n_SgContactLaw {
+  MPI_Comm         comm;
+  char             type[64];
+  char             desc[96]; /* for messages: "Coulomb F = 0.3" (the type's setup may write it) */
+  PetscInt         id;       /* its number in the registry (0 none, 1 tresca, 2 coulomb, ...): checkpoints */
+  PetscInt         dim, n;   /* the owned contact vertices */
+  const PetscReal *x;        /* their coordinates, n dim (SgContactLawSetVertices, kept by the contact object) */
+  PetscReal        gfac;     /* -friction_gamma_factor c: gamma_T = c gamma (every law) */
+  PetscBool        friction; /* a tangential part (false: frictionless, the solvers' frictionless paths) */
+  PetscBool        coupled;  /* the bound depends on lam_N: nonsymmetric Jacobians, Coulomb's fallbacks */
+  SgContactLawOps  ops;
+  void            *data;     /* the type's parameters */
+};
+
 struct _n_SgContact {
   SgElasticity prob;
   /* read once from the elasticity object */
@@ -48,10 +76,10 @@ struct _n_SgContact {
                             normal at the closest point (SgObstacleDistance); body: the facets' normal, d along it */
   PetscReal  area;
   char      *prefix;
-  SgFrictionType friction;   /* -friction_type */
-  PetscReal      fbound;     /* -friction_bound s (Tresca) */
-  PetscReal      fcoef;      /* -friction_coefficient F (Coulomb) */
-  PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma */
+  SgContactLaw   law;        /* -friction_type and its parameters */
+  PetscBool      friction;   /* the law has a tangential part */
+  PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma (the law's) */
+  PetscReal     *xc;         /* the coordinates of the contact vertices, n dim (for the law) */
   SgFrictionSummary fsum;    /* of the last SgContactKKT */
   PetscReal     *yref;       /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
                                 tangential law acts on the slip increment T_i (y_i - yref_i) */

@@ -31,7 +31,8 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
   }
   nz  = PetscSqrtReal(nz);
   *zn = nz;
-  *gb = c->friction == SG_FRICTION_TRESCA ? c->fbound : (s->gfix ? s->gfix[i] : c->fcoef * mN);
+  if (s->gfix) *gb = s->gfix[i]; /* Coulomb's fixed point: the bound frozen */
+  else SgContactLawBound(c->law, i, mN, gb, NULL);
   for (PetscInt k = 0; k < dim; k++) t[k] = nz > 0 ? z[k] / nz : 0;
   if (!(*gb > 0)) {
     for (PetscInt k = 0; k < dim; k++) lamT[k] = 0;
@@ -88,7 +89,9 @@ static void FrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN
           lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
         }
         const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i];
-        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->friction == SG_FRICTION_COULOMB ? c->fcoef * roN : 0);
+        PetscReal gi, dg;
+        SgContactLawBound(c->law, i, mN[i], &gi, &dg); /* the bound's round-off from lam_N's */
+        ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->coupled ? dg * roN : 0);
         if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
         else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
         else loc[5] += (zn > ro);                                              /* a slip that reversed */
@@ -176,7 +179,11 @@ static PetscErrorCode Residual(SNES snes, Vec y, Vec F, void *ctx)
     PetscCall(VecGetArrayRead(y, &ya));
     for (PetscInt i = 0; i < c->n; i++) {
       PetscReal t = 0, ymax = 0;
-      if (s->lamhat[i] + s->gamma * s->g[i] > 0) t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata) * (1 + (c->friction == SG_FRICTION_COULOMB ? c->fcoef : 0));
+      if (s->lamhat[i] + s->gamma * s->g[i] > 0) {
+        PetscReal gi, dg = 0;
+        if (c->coupled) SgContactLawBound(c->law, i, s->m[i], &gi, &dg); /* the bound dg lam_N */
+        t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata) * (1 + (c->coupled ? dg : 0));
+      }
       /* at stick lam_T = z; at slip g z/|z| is well-conditioned, except for the landing of a Newton step from another
          state on |z| = g (a stick linearization that lands at the slip bound) */
       if (c->friction && (s->fst[i] == SG_FRICTION_STICK || (s->havejac && s->fst[i] == SG_FRICTION_SLIP && s->fstjac[i] != SG_FRICTION_SLIP))) {
@@ -279,7 +286,8 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
     if (st == SG_FRICTION_FREE) continue;
     {
       /* in the vertex's frame (-ssn_frame) the block Q^T B Q is made from n = e_axis and t in the frame */
-      PetscReal        nf[3] = {0, 0, 0}, tf[3];
+      PetscReal        nf[3] = {0, 0, 0}, tf[3], gi, dg = 0;
+      if (c->coupled) SgContactLawBound(c->law, i, mN, &gi, &dg); /* the bound's derivative in lam_N */
       const PetscReal *nb = n, *tb = t;
       if (frot && frot[i]) {
         nf[faxis[i]] = fsign[i]; /* n = sign Q e_axis */
@@ -294,7 +302,7 @@ static PetscErrorCode FrictionJacobian(SgSSN s, Vec y, Mat P)
           if (st == SG_FRICTION_STICK) B[a * dim + b] = c->w[i] * gT * T;
           else {
             B[a * dim + b] = c->w[i] * (gb / zn) * gT * (T - tb[a] * tb[b]);
-            if (c->friction == SG_FRICTION_COULOMB && s->actjac[i] && !s->gfix) B[a * dim + b] += c->w[i] * c->fcoef * s->gamma * tb[a] * nb[b];
+            if (c->coupled && s->actjac[i] && !s->gfix) B[a * dim + b] += c->w[i] * dg * s->gamma * tb[a] * nb[b];
           }
         }
     }
@@ -751,7 +759,7 @@ static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
   PetscCall(MatGetNearNullSpace(s->Klin, &nsp));
   if (nsp) PetscCall(MatSetNearNullSpace(s->Pf, nsp));
   PetscCall(MatSetOption(s->Pf, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  if (s->cv.friction == SG_FRICTION_COULOMB) {
+  if (s->cv.coupled) {
     PetscCall(MatSetOption(s->Pf, MAT_SPD, PETSC_FALSE));
     PetscCall(MatSetOption(s->Pf, MAT_SYMMETRIC, PETSC_FALSE));
   }
@@ -794,7 +802,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(PetscTime(&s->t0));
   PetscCall(PetscObjectReference((PetscObject)J));
   s->J = J;
-  if (s->cv.friction == SG_FRICTION_COULOMB) { /* the coupling t n^T of the slip set */
+  if (s->cv.coupled) { /* the coupling t n^T of the slip set */
     PetscCall(MatSetOption(J, MAT_SPD, PETSC_FALSE));
     PetscCall(MatSetOption(J, MAT_SYMMETRIC, PETSC_FALSE));
   }
@@ -836,8 +844,8 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCheck(s->fp_m >= 1 && s->fp_m <= 100, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_m: must be in [1, 100], got %" PetscInt_FMT, s->fp_m);
   PetscCheck(s->fp_omega > 0 && s->fp_omega <= 1, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_omega: must be in (0, 1], got %g", (double)s->fp_omega);
   PetscCheck(PetscIsNormalReal(s->fp_rtol) && s->fp_rtol > 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_rtol: must be positive and finite, got %g", (double)s->fp_rtol);
-  PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
-  PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgFrictionTypes[s->cv.friction]);
+  PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
+  PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   s->Klin = s->K;
   if (frame && c) PetscCall(SgFrameCreate(p, c, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
@@ -1087,7 +1095,7 @@ static PetscErrorCode CoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt 
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  for (PetscInt i = 0; i < n; i++) s->gfixw[i] = c->fcoef * PetscMax(0, s->lamhat[i] + s->gamma * s->g[i]);
+  for (PetscInt i = 0; i < n; i++) SgContactLawBound(c->law, i, s->lamhat[i] + s->gamma * s->g[i], &s->gfixw[i], NULL);
   for (k = 0; k < s->fp_max_it; k++) {
     PetscInt  it2, jc;
     PetscReal d = 0, mx = 0;
@@ -1101,7 +1109,9 @@ static PetscErrorCode CoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt 
     /* the residual f = G(s) - s; the history columns are differences to the previous step */
     jc = k > 0 ? (k - 1) % m : 0;
     for (PetscInt i = 0; i < n; i++) {
-      const PetscReal gi = c->fcoef * PetscMax(0, s->lamhat[i] + s->gamma * s->g[i]), fi = gi - s->gfixw[i];
+      PetscReal gi;
+      SgContactLawBound(c->law, i, s->lamhat[i] + s->gamma * s->g[i], &gi, NULL);
+      const PetscReal fi = gi - s->gfixw[i];
       d  = PetscMax(d, PetscAbsReal(fi));
       mx = PetscMax(mx, gi);
       if (k > 0) {
@@ -1175,7 +1185,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash   = 0;
   s->stagnant = PETSC_FALSE;
-  if (s->cv.friction && (s->iterative || s->cv.friction == SG_FRICTION_COULOMB)) {
+  if (s->cv.friction && (s->iterative || s->cv.coupled)) {
     if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
     PetscCall(VecCopy(y, s->y0));
   }
@@ -1227,8 +1237,8 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     *its += its2;
     *kits += kits2;
   }
-  /* Coulomb: a failure of the coupled Newton iteration (cycling states) gets the fixed point on the Tresca bound */
-  if (s->cv.friction == SG_FRICTION_COULOMB && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(CoulombFixedPoint(s, y, its, kits, reason));
+  /* a bound from lam_N (Coulomb): a failure of the coupled Newton iteration (cycling states) gets the fixed point on the frozen bound */
+  if (s->cv.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(CoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }

@@ -54,7 +54,7 @@ struct _n_SgSSN {
   void         *stop_ctx;
   PetscBool     pc_same_set;  /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
   PetscReal    *gy;           /* gaps of a prospective iterate (SgSSNCountSetChanges) */
-  /* friction (cv.friction != SG_FRICTION_NONE): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
+  /* friction (cv.friction: the law has a tangential part): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
   PetscReal    *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
   char         *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
   PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */

@@ -1,0 +1,382 @@
+/* law.c: the contact law (registry: -friction_type, SgContactLawRegister). A law is the tangential part of the contact
+   condition: none (frictionless), tresca (|lam_T| <= s), coulomb (|lam_T| <= F lam_N), or a caller's type. Each type
+   owns its parameters (its options, its checks, its summary and checkpoint names) and supplies through its ops the
+   bound g_i(lam_N) of |lam_T| at a contact vertex and its derivative in lam_N; the SSN, PDAS, the controllers and the
+   output ask the law for them. What the law shares with every type: -friction_gamma_factor c (gamma_T = c gamma, the
+   regularization of the tangential term in the SSN). */
+#include "contact/contactimpl.h"
+
+PetscFunctionList SgContactLawList = NULL;
+
+/* ---- none: frictionless (no tangential term; the solvers keep their frictionless paths) */
+static void Bound_None(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  (void)law;
+  (void)i;
+  (void)lamN;
+  *g = 0;
+  if (dg) *dg = 0;
+}
+
+static PetscErrorCode LawCreate_None(SgContactLaw law)
+{
+  PetscFunctionBeginUser;
+  law->friction  = PETSC_FALSE;
+  law->ops.bound = Bound_None; /* not asked (no tangential part), but defined */
+  PetscFunctionReturn(0);
+}
+
+/* ---- tresca and coulomb: a law of one parameter p (its option, summary name, check and the bound from p) */
+typedef struct {
+  const char *option, *help, *name; /* "-friction_bound", its help, "friction_bound" (summary, checkpoint) */
+  const char *bad, *missing, *desc; /* the messages for a bad value (%g) and a missing one; the description (%g) */
+  PetscBool (*valid)(PetscReal);
+  PetscReal p;
+  PetscBool set;
+} Law_One;
+
+static PetscBool PositiveFinite(PetscReal v)
+{
+  return (PetscBool)(PetscIsNormalReal(v) && v > 0);
+}
+
+static PetscBool NonnegativeFinite(PetscReal v)
+{
+  return (PetscBool)((PetscIsNormalReal(v) || v == 0) && v >= 0);
+}
+
+/* tresca: g = s, a given traction */
+static void Bound_Tresca(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  (void)i;
+  (void)lamN;
+  *g = ((Law_One *)law->data)->p;
+  if (dg) *dg = 0;
+}
+
+/* coulomb: g = F max(0, lam_N), dg/dlam_N = F (the Jacobian's coupling t n^T: nonsymmetric) */
+static void Bound_Coulomb(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  const PetscReal F = ((Law_One *)law->data)->p;
+
+  (void)i;
+  *g = F * PetscMax(0, lamN);
+  if (dg) *dg = F;
+}
+
+static PetscErrorCode SetFromOptions_One(SgContactLaw law, PetscOptionItems *PetscOptionsObject)
+{
+  Law_One *o = (Law_One *)law->data;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, o->option, o->help, &o->p, &o->set));
+  PetscCheck(!o->set || o->valid(o->p), law->comm, PETSC_ERR_USER_INPUT, o->bad, (double)o->p);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUp_One(SgContactLaw law)
+{
+  Law_One *o = (Law_One *)law->data;
+
+  PetscFunctionBeginUser;
+  PetscCheck(o->set, law->comm, PETSC_ERR_USER_INPUT, "%s", o->missing);
+  PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), o->desc, (double)o->p));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GetParameters_One(SgContactLaw law, PetscInt *n, const char *const **names, const PetscReal **values)
+{
+  Law_One *o = (Law_One *)law->data;
+
+  PetscFunctionBeginUser;
+  *n      = 1;
+  *names  = &o->name;
+  *values = &o->p;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode View_One(SgContactLaw law, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "%s friction: %s, gamma_T = %g gamma\n", law->type, law->desc, (double)law->gfac));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_One(SgContactLaw law, const Law_One *def, void (*bound)(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *), PetscBool coupled)
+{
+  Law_One *o;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&o));
+  *o                      = *def;
+  law->data               = o;
+  law->friction           = PETSC_TRUE;
+  law->coupled            = coupled;
+  law->ops.bound          = bound;
+  law->ops.setfromoptions = SetFromOptions_One;
+  law->ops.setup          = SetUp_One;
+  law->ops.getparameters  = GetParameters_One;
+  law->ops.view           = View_One;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_Tresca(SgContactLaw law)
+{
+  const Law_One def = {"-friction_bound", "Tresca friction bound s > 0: |lam_T| <= s (a traction)", "friction_bound", "-friction_bound: the Tresca bound must be positive and finite, got %g", "-friction_type tresca needs the bound: give -friction_bound s > 0", "Tresca s = %g", PositiveFinite, 0, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(LawCreate_One(law, &def, Bound_Tresca, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_Coulomb(SgContactLaw law)
+{
+  const Law_One def = {"-friction_coefficient", "Coulomb friction coefficient F >= 0: |lam_T| <= F lam_N", "friction_coefficient", "-friction_coefficient: the Coulomb coefficient must be finite and >= 0, got %g", "-friction_type coulomb needs the coefficient: give -friction_coefficient F >= 0", "Coulomb F = %g", NonnegativeFinite, 0, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(LawCreate_One(law, &def, Bound_Coulomb, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+/* ---- the registry */
+static PetscErrorCode SgContactLawFinalizePackage(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListDestroy(&SgContactLawList));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawRegisterAll(void)
+{
+  static PetscBool done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (done) PetscFunctionReturn(0);
+  done = PETSC_TRUE;
+  PetscCall(PetscRegisterFinalize(SgContactLawFinalizePackage));
+  /* the order gives the built-in laws their numbers in checkpoints (0 none, 1 tresca, 2 coulomb) */
+  PetscCall(SgContactLawRegister(SGLAWNONE, LawCreate_None));
+  PetscCall(SgContactLawRegister(SGLAWTRESCA, LawCreate_Tresca));
+  PetscCall(SgContactLawRegister(SGLAWCOULOMB, LawCreate_Coulomb));
+  PetscFunctionReturn(0);
+}
+
+/* A law type of the caller's: create sets the ops and the flags of struct _n_SgContactLaw (contact/contactimpl.h). */
+PetscErrorCode SgContactLawRegister(const char name[], PetscErrorCode (*create)(SgContactLaw))
+{
+  size_t len;
+
+  PetscFunctionBeginUser;
+  PetscCheck(name && name[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgContactLawRegister: a type name is needed");
+  SgValidPointer(create, 2);
+  PetscCall(PetscStrlen(name, &len));
+  PetscCheck(len < sizeof(((SgContactLaw)0)->type), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgContactLawRegister: the type name has %zu characters, at most %zu", len, sizeof(((SgContactLaw)0)->type) - 1);
+  PetscCall(SgContactLawRegisterAll()); /* ours first, so that a caller's type of the same name replaces ours */
+  PetscCall(PetscFunctionListAdd(&SgContactLawList, name, create));
+  PetscFunctionReturn(0);
+}
+
+/* The names of the registered laws as "none, tresca, coulomb, ..." for messages. */
+static PetscErrorCode LawNames(char buf[], size_t len)
+{
+  const char       **names;
+  int                n;
+
+  PetscFunctionBeginUser;
+  buf[0] = 0;
+  PetscCall(PetscFunctionListGet(SgContactLawList, &names, &n));
+  for (int k = 0; k < n && names[k]; k++) { /* (PETSc counts the closing NULL in n) */
+    if (k) PetscCall(PetscStrlcat(buf, ", ", len));
+    PetscCall(PetscStrlcat(buf, names[k], len));
+  }
+  PetscCall(PetscFree(names));
+  PetscFunctionReturn(0);
+}
+
+/* The law from the options (between the contact object's PetscOptionsBegin and End): -friction_type (default none),
+   the type's own options, the common -friction_gamma_factor, the other types' options (read and checked, not kept),
+   then the type's setup (what it needs). */
+PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PetscInt dim, SgContactLaw *out)
+{
+  SgContactLaw law;
+  char         type[64] = SGLAWNONE, names[256];
+  PetscBool    set;
+  PetscErrorCode (*create)(SgContactLaw) = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContactLawRegisterAll());
+  PetscCall(LawNames(names, sizeof(names)));
+  PetscCall(PetscOptionsFList("-friction_type", "Friction law on the contact boundary: none, tresca (|lam_T| <= -friction_bound), coulomb (|lam_T| <= -friction_coefficient lam_N), or one of SgContactLawRegister", NULL, SgContactLawList, type, type, sizeof(type), &set));
+  PetscCheck(!set || type[0], comm, PETSC_ERR_USER_INPUT, "-friction_type is given without a value (%s)", names);
+  PetscCall(PetscFunctionListFind(SgContactLawList, type, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "-friction_type: unknown friction law '%s' (%s)", type, names);
+  PetscCall(PetscNew(&law));
+  law->comm = comm;
+  law->dim  = dim;
+  law->gfac = 1;
+  PetscCall(PetscStrncpy(law->type, type, sizeof(law->type)));
+  PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), "friction law %s", type));
+  {
+    const char       **all;
+    int                n;
+    PetscCall(PetscFunctionListGet(SgContactLawList, &all, &n));
+    law->id = n;
+    for (int k = 0; k < n && all[k]; k++)
+      if (!strcmp(all[k], type)) law->id = k;
+    PetscCall(PetscFree(all));
+  }
+  *out = law; /* the contact object's (SgContactDestroy) */
+  PetscCall(create(law));
+  PetscCheck(law->ops.bound, comm, PETSC_ERR_PLIB, "friction law %s: its create function set no bound op", type);
+  if (law->ops.setfromoptions) PetscCall(law->ops.setfromoptions(law, PetscOptionsObject));
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-friction_gamma_factor", "gamma_T = c gamma: the tangential regularization parameter against the normal one (c > 0)", &law->gfac, NULL));
+  PetscCheck(PetscIsNormalReal(law->gfac) && law->gfac > 0, comm, PETSC_ERR_USER_INPUT, "-friction_gamma_factor: must be positive and finite, got %g", (double)law->gfac);
+  /* the other types' options too, read into scratch laws and checked there: an option file of today (e.g. one with
+     -friction_coefficient, run with -friction_type tresca) keeps working, a bad value is never silently ignored, and
+     -help lists every type's options */
+  {
+    const char       **all;
+    int                n;
+    PetscCall(PetscFunctionListGet(SgContactLawList, &all, &n));
+    for (int k = 0; k < n && all[k]; k++) {
+      SgContactLaw o;
+      if (!strcmp(all[k], type)) continue;
+      PetscCall(PetscNew(&o));
+      o->comm = comm;
+      o->dim  = dim;
+      PetscCall(PetscStrncpy(o->type, all[k], sizeof(o->type)));
+      PetscCall(PetscFunctionListFind(SgContactLawList, all[k], &create));
+      PetscCall(create(o));
+      if (o->ops.setfromoptions) PetscCall(o->ops.setfromoptions(o, PetscOptionsObject));
+      PetscCall(SgContactLawDestroy(&o));
+    }
+    PetscCall(PetscFree(all));
+  }
+  if (law->ops.setup) PetscCall(law->ops.setup(law));
+  PetscFunctionReturn(0);
+}
+
+/* the owned contact vertices (n) and their coordinates (n dim, kept by the contact object): a law may depend on x */
+PetscErrorCode SgContactLawSetVertices(SgContactLaw law, PetscInt n, const PetscReal x[])
+{
+  PetscFunctionBeginUser;
+  law->n = n;
+  law->x = x;
+  PetscFunctionReturn(0);
+}
+
+/* The bound g of |lam_T| at owned contact vertex i for the normal multiplier lamN and, if dg is not NULL, dg/dlam_N
+   (0 for a law whose bound does not depend on lam_N). A pointwise kernel: no errors. */
+void SgContactLawBound(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  law->ops.bound(law, i, lamN, g, dg);
+}
+
+/* The largest bound over all contact vertices (collective) with the normal multiplier lamN at each */
+PetscErrorCode SgContactLawBoundMax(SgContactLaw law, PetscReal lamN, PetscReal *gmax)
+{
+  PetscReal g = 0, gi;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < law->n; i++) {
+    law->ops.bound(law, i, lamN, &gi, NULL);
+    g = PetscMax(g, gi);
+  }
+  PetscCallMPI(MPI_Allreduce(&g, gmax, 1, MPIU_REAL, MPIU_MAX, law->comm));
+  PetscFunctionReturn(0);
+}
+
+const char *SgLawName(SgContactLaw law)
+{
+  return law->type;
+}
+
+PetscErrorCode SgContactLawGetType(SgContactLaw law, const char *type[])
+{
+  PetscFunctionBeginUser;
+  *type = law->type;
+  PetscFunctionReturn(0);
+}
+
+/* the number of the type in the registry (0 none, 1 tresca, 2 coulomb, then the caller's in the order registered) */
+PetscErrorCode SgContactLawGetId(SgContactLaw law, PetscInt *id)
+{
+  PetscFunctionBeginUser;
+  *id = law->id;
+  PetscFunctionReturn(0);
+}
+
+/* the name of the law of number id (NULL if there is none) */
+PetscErrorCode SgContactLawGetTypeName(PetscInt id, const char **name)
+{
+  const char       **all;
+  int                n;
+
+  PetscFunctionBeginUser;
+  *name = NULL;
+  PetscCall(SgContactLawRegisterAll());
+  PetscCall(PetscFunctionListGet(SgContactLawList, &all, &n));
+  for (int k = 0; k < n && all[k]; k++)
+    if (k == id) *name = all[k]; /* the list's strings live as long as the registry */
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+/* friction: the law has a tangential part; coupled: its bound depends on the normal multiplier (nonsymmetric
+   Jacobians); gfac: gamma_T / gamma */
+PetscErrorCode SgContactLawGetInfo(SgContactLaw law, PetscBool *friction, PetscBool *coupled, PetscReal *gfac)
+{
+  PetscFunctionBeginUser;
+  if (friction) *friction = law->friction;
+  if (coupled) *coupled = law->coupled;
+  if (gfac) *gfac = law->gfac;
+  PetscFunctionReturn(0);
+}
+
+/* the law's own parameters, by their summary and checkpoint names (friction_bound, friction_coefficient, ...), then
+   friction_gamma_factor: at most SG_LAW_MAX_PARAMETERS */
+PetscErrorCode SgContactLawGetParameters(SgContactLaw law, PetscInt *n, const char *names[], PetscReal values[])
+{
+  PetscInt           m = 0;
+  const char *const *nm;
+  const PetscReal   *v;
+
+  PetscFunctionBeginUser;
+  if (law->ops.getparameters) PetscCall(law->ops.getparameters(law, &m, &nm, &v));
+  PetscCheck(m < SG_LAW_MAX_PARAMETERS, law->comm, PETSC_ERR_SUP, "friction law %s: %" PetscInt_FMT " parameters, at most %d", law->type, m, SG_LAW_MAX_PARAMETERS - 1);
+  for (PetscInt k = 0; k < m; k++) {
+    names[k]  = nm[k];
+    values[k] = v[k];
+  }
+  names[m]  = "friction_gamma_factor";
+  values[m] = law->gfac;
+  *n        = m + 1;
+  PetscFunctionReturn(0);
+}
+
+/* a short description with the parameters for messages ("Coulomb F = 0.3") */
+PetscErrorCode SgContactLawGetDescription(SgContactLaw law, const char **desc)
+{
+  PetscFunctionBeginUser;
+  *desc = law->desc;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawView(SgContactLaw law, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  if (law->ops.view) PetscCall(law->ops.view(law, v));
+  else if (law->friction) PetscCall(PetscViewerASCIIPrintf(v, "friction law %s, gamma_T = %g gamma\n", law->type, (double)law->gfac));
+  else PetscCall(PetscViewerASCIIPrintf(v, "frictionless (friction law %s)\n", law->type));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawDestroy(SgContactLaw *law)
+{
+  PetscFunctionBeginUser;
+  if (!*law) PetscFunctionReturn(0);
+  if ((*law)->ops.destroy) PetscCall((*law)->ops.destroy(*law));
+  PetscCall(PetscFree((*law)->data));
+  PetscCall(PetscFree(*law));
+  PetscFunctionReturn(0);
+}
