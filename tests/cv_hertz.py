@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Hertz with a curved elastic body (tests/curved.ini): results of the quarter hemisphere (meshes/cv_hemisphere.geo,
+"""Hertz with a curved elastic body (tests/verification/curved.ini): results of the quarter hemisphere (meshes/cv_hemisphere.geo,
 3D) or the half of the half disc (meshes/cv_halfdisc.geo, 2D plane strain) of radius R pressed by d onto the rigid plane
 through the origin normal to the last axis, against the Hertz formulas of an elastic sphere / cylinder on a rigid
 plane (E* = E / (1 - nu^2)):

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Contact patch test on an inclined rigid plane (tests/curved.ini, options/cv_tilt2d.opts, options/cv_tilt3d.opts),
+"""Contact patch test on an inclined rigid plane (tests/verification/curved.ini, options/cv_tilt2d.opts, options/cv_tilt3d.opts),
 checked from the output fields alone: a block resting with its bottom face on the plane through X0 with unit normal n,
 a uniform pressure p on its top face, frictionless contact, pins holding the rigid motions at their exact
 displacements. The exact solution is uniaxial stress -p n n^T: the contact pressure is p at every contact vertex and

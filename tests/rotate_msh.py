@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A rigidly turned copy of a gmsh mesh (ASCII format 4.1) for the rotation-invariance checks of tests/curved.ini and
+"""A rigidly turned copy of a gmsh mesh (ASCII format 4.1) for the rotation-invariance checks of tests/verification/curved.ini and
 bench/perf_curved.py: every node x becomes R x (R the rotation by ANGLE degrees about the axis AXIS through the
 origin, right-handed); the elements, their numbering and the physical groups stay as they are, so the turned problem
 is the same discrete problem in other coordinates. (gmsh 4.8 cannot transform a mesh it has read, and meshing a
