@@ -45,7 +45,7 @@ endif
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh \
           $(CURVED_MESHES)
-# Curved and tilted bodies (tests/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
+# Curved and tilted bodies (tests/verification/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
 # a mesh (tests/rotate_msh.py: the same elements, nodes turned by NN degrees; see the rules below)
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \

@@ -1,7 +1,7 @@
-// Elastic half disc of radius 1, plane strain (tests/curved.ini, bench/perf_curved.py): the disc of radius 1 centred at
+// Elastic half disc of radius 1, plane strain (tests/verification/curved.ini, bench/perf_curved.py): the disc of radius 1 centred at
 // (0,1) cut by y <= 1, its arc down, touching the plane y = 0 at the origin, its flat side up (y = 1). By default the
 // half x >= 0 of it (a roller u_x = 0 on x = 0); with -setnumber full 1 the whole half disc (no roller: the rigidly
-// turned copies of tests/curved.ini need Dirichlet data along the axes only). Triangles refined towards the origin
+// turned copies of tests/verification/curved.ini need Dirichlet data along the axes only). Triangles refined towards the origin
 // (h_min 0.01, h_max 0.2 at scale 1); `scale` divides every size:
 //   gmsh -2 -setnumber scale 2 cv_halfdisc.geo -o cv_halfdisc_s2.msh
 // Physical tags, "Face Sets" values: 1 arc (contact), 2 top (y = 1), 6 left (x = 0, the roller; absent when full).

@@ -1,4 +1,4 @@
-// Quarter of an elastic hemisphere of radius 1 (tests/curved.ini, bench/perf_curved.py): the ball of radius 1 centred
+// Quarter of an elastic hemisphere of radius 1 (tests/verification/curved.ini, bench/perf_curved.py): the ball of radius 1 centred
 // at (0,0,1) cut by z <= 1, x >= 0, y >= 0; its curved face down, touching the plane z = 0 at the origin; its flat face
 // up (z = 1). Tetrahedra refined towards the origin: the size grows linearly with the distance from it (h_min 0.02,
 // h_max 0.25 at scale 1). `scale` divides every size:

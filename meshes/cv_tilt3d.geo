@@ -1,4 +1,4 @@
-// Contact patch test on an inclined rigid plane, 3D (tests/curved.ini): the block [0,1] x [0,1] x [0,0.5] turned by
+// Contact patch test on an inclined rigid plane, 3D (tests/verification/curved.ini): the block [0,1] x [0,1] x [0,0.5] turned by
 // `angle` degrees (default 25) about the axis (1,2,0) through the origin, so that its bottom face lies on the plane
 // through the origin with normal R e_z. Unstructured tetrahedra of size h = 0.2 / scale:
 //   gmsh -3 -setnumber scale 1 cv_tilt3d.geo -o cv_tilt3d_s1.msh
