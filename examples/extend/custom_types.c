@@ -222,7 +222,8 @@ int main(int argc, char **argv)
         {                  "pc_type", "cholesky"},
         {"pc_factor_mat_solver_type",    "mumps"},
         {             "cont_kkt_tol",    "1e-10"},
-        {             "cont_monitor",    "false"}
+        {             "cont_monitor",    "false"},
+        {           "contact_normal", "obstacle"}  /* the plane's default: the ramp takes it through its distance op */
     };
     PetscCall(PetscSNPrintf(value, sizeof(value), "%" PetscInt_FMT ",%" PetscInt_FMT, nx, ny));
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%sbox_faces", prefixes[i]));

@@ -12,9 +12,9 @@ static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptio
   const char *o1, *o2;
 
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-alm_gamma", "gamma of the first step (0: 100 E / h_c, h_c the contact mesh size; the paper's Examples set 1e3 in options/cont/alm.opts)", &alm->gamma, &o1));
+  PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_gamma", "-alm_gamma", "gamma of the first step", &alm->gamma, &o1));
   PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_alm_gamma_factor", "-alm_gamma_factor", "gamma_{l+1} = factor * gamma_l (1: gamma fixed)", &alm->factor, &o2));
-  PetscCheck(alm->gamma == 0 || (PetscIsNormalReal(alm->gamma) && alm->gamma > 0), ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite (0: 100 E / h_c), got %g", o1, (double)alm->gamma);
+  PetscCheck(PetscIsNormalReal(alm->gamma) && alm->gamma > 0, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be positive and finite, got %g", o1, (double)alm->gamma);
   PetscCheck(PetscIsNormalReal(alm->factor) && alm->factor >= 1, ct->comm, PETSC_ERR_USER_INPUT, "%s: must be >= 1 (gamma may not decrease), got %g", o2, (double)alm->factor);
   PetscFunctionReturn(0);
 }
@@ -24,12 +24,6 @@ static PetscErrorCode Start_ALM(SgCont ct)
   ALM *alm = (ALM *)ct->data;
 
   PetscFunctionBeginUser;
-  if (alm->gamma == 0) { /* from the problem: an absolute number suits one unit system only (1e3, the paper's, left
-                            a 1 mm hemisphere with E = 1000 stalled at KKT 1e-3; 100 E / h_c: 8 steps there, 3 on
-                            Example 1) */
-    PetscCall(SgContGammaScale(ct, &alm->gamma));
-    alm->gamma *= 100;
-  }
   ct->gamma = alm->gamma;
   for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0; /* lam^0 = 0 */
   if (ct->cv.friction) {
@@ -66,8 +60,7 @@ static PetscErrorCode View_ALM(SgCont ct, PetscViewer viewer)
   ALM *alm = (ALM *)ct->data;
 
   PetscFunctionBeginUser;
-  if (alm->gamma > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma %g (-cont_gamma), gamma growth factor %g (-cont_alm_gamma_factor)", (double)alm->gamma, (double)alm->factor));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma 100 E / h_c (-cont_gamma 0), gamma growth factor %g (-cont_alm_gamma_factor)", (double)alm->factor));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "; first gamma %g (-cont_gamma), gamma growth factor %g (-cont_alm_gamma_factor)", (double)alm->gamma, (double)alm->factor));
   PetscFunctionReturn(0);
 }
 
@@ -77,7 +70,7 @@ PetscErrorCode SgContCreate_ALM(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&alm));
-  alm->gamma             = 0; /* 100 E / h_c */
+  alm->gamma             = 1e3;
   alm->factor            = 1;
   ct->data               = alm;
   ct->ops.setfromoptions = SetFromOptions_ALM;

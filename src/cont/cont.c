@@ -656,24 +656,6 @@ PetscBool SgModelFit(PetscReal V0, PetscReal g, PetscReal V, PetscReal dV, Petsc
   return PETSC_TRUE;
 }
 
-/* E / h_c, the stiffness scale of a contact vertex per unit area and length (h_c the contact mesh size, from the mean
-   lumped weight): the unit of gamma (a pressure per length) the problem itself sets */
-PetscErrorCode SgContGammaScale(SgCont ct, PetscReal *scale)
-{
-  const SgContactView *c = &ct->cv;
-  PetscReal            hc = 0, E;
-  PetscInt             dim;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
-  hc     = c->nglobal ? (dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal)) : 0;
-  *scale = hc > 0 ? E / hc : E;
-  PetscFunctionReturn(0);
-}
-
 /* The gamma where the path meets the KKT tolerance with a margin: on the path the infeasibility is ||lam|| / gamma, so
    gamma = 10 ||lam||_L2 / (tol Y sqrt|Gamma_c|), Y sqrt|Gamma_c| the length scale of the KKT measures (ct->kkt must
    be measured). PETSC_FALSE when there is no length scale yet (nothing to measure against). */

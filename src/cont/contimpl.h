@@ -139,7 +139,6 @@ PetscErrorCode SgContLoadState(SgCont, SgCheckpointReader, PetscInt, const char 
 const char    *SgContVerdict(SgCont);
 PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
 PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);
-PetscErrorCode SgContGammaScale(SgCont, PetscReal *); /* E / h_c */
 #define ValidCont(ct, arg) PetscCall(SgValidCont(ct, PETSC_FUNCTION_NAME, arg))
 PetscErrorCode SgContGammaPrecision(SgCont, PetscReal *);
 PetscErrorCode SgContCreate_None(SgCont);

@@ -164,8 +164,8 @@ def gen_options(rng, T, base):
         # the same problem in other units: E, loads and the gamma parameters x 10^k; the verdict must not change
         twin = True
         scaled = list(args)
-        if gammaopt and ct != "alm":  # alm's default gamma, 100 E / h_c, scales with E by itself
-            defaults = {"none": 1e10, "pf": 1e2, "ipf": 1e2}
+        if gammaopt:
+            defaults = {"none": 1e10, "alm": 1e3, "pf": 1e2, "ipf": 1e2}
             scaled += [gammaopt, num(defaults[ct] * gscale)]
         unscaled = [a for a in args]
         # the twin at k = 0: undo the scaling of E and the loads
