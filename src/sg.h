@@ -382,7 +382,6 @@ PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */
 void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
 PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
-PetscErrorCode SgFrameGetRotatedCount(SgFrame, PetscInt *);
 PetscErrorCode SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
 PetscErrorCode SgFrameDetachKSP(SgFrame, KSP);
 

@@ -254,13 +254,6 @@ PetscErrorCode SgFrameGetAxes(SgFrame f, const PetscInt *axis[], const PetscReal
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgFrameGetRotatedCount(SgFrame f, PetscInt *nrot)
-{
-  PetscFunctionBeginUser;
-  *nrot = f->nrot_global;
-  PetscFunctionReturn(0);
-}
-
 /* --- a KSP solving in the frames: J x = b becomes (Q^T J Q) z = Q^T b, x = Q z; its matrices are the frame's --- */
 static PetscErrorCode PreSolve_Frame(KSP ksp, Vec b, Vec x, void *ctx)
 {
