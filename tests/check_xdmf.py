@@ -16,13 +16,14 @@ usage: check_xdmf.py OUTDIR [--out FILE.json]
 import argparse
 import json
 import os
-import re
 import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
 import h5py
+
+import pvrender
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BOX = ["-box_faces", "8,3", "-box_upper", "3,1", "-dirichlet_ids", "3", "-dirichlet_values", "0,-0.01",
@@ -87,17 +88,6 @@ def check_xmf(xmf, h5, summary):
     return bad
 
 
-def blank(png):
-    """True when the picture has a single colour (nothing drawn); without an image library: its size is tiny."""
-    try:
-        import matplotlib.image as mpimg
-        import numpy as np
-        a = mpimg.imread(png)
-        return bool(np.all(a == a[0, 0]))
-    except ImportError:
-        return os.path.getsize(png) < 2000
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("outdir")
@@ -105,7 +95,7 @@ def main():
     opt = ap.parse_args()
     shutil.rmtree(opt.outdir, ignore_errors=True)
     os.makedirs(opt.outdir)
-    pvpython, xvfb = shutil.which("pvpython"), shutil.which("xvfb-run")
+    pvpython, xvfb = pvrender.available()
     problems, checked, rendered, glfail = [], 0, 0, 0
     if not (pvpython and xvfb):
         print("skip: pvpython not installed (apt-get install paraview python3-paraview xvfb): the .xmf files are "
@@ -132,22 +122,14 @@ def main():
         if pvpython and xvfb and not bad and key in RENDER:
             png = os.path.join(opt.outdir, key + ".png")
             field = "friction_state" if key == "friction" else "contact_pressure" if key == "steps" else "von_mises"
-            # Xvfb's GLX sometimes refuses the window (vtkXOpenGLRenderWindow aborts in SupportsOpenGL, or
-            # GLXBadContext), more often when several X servers start at once: such a start is tried again, twice
-            for attempt in range(3):
-                r = subprocess.run([xvfb, "-a", "-s", "-screen 0 1280x1024x24", pvpython, os.path.join(ROOT, "scripts", "render.py"), xmf, png, "--field", field],
-                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=300)
-                out = r.stdout.decode(errors="replace")
-                if r.returncode == 0 or not re.search(r"SupportsOpenGL|GLXBad|X Error|Could not find a decent|bad X server connection", out):
-                    break
-                print("render.py: the X server's GL failed (attempt %d): trying again" % (attempt + 1))
+            verdict, out = pvrender.render([xmf, png, "--field", field], png)
             print(out.strip().splitlines()[-1] if out.strip() else "(no output)")
-            if r.returncode != 0 and re.search(r"SupportsOpenGL|GLXBad|X Error|Could not find a decent|bad X server connection", out):
+            if verdict == "gl":
                 print("skip: %s not rendered: the X server's GL failed three times (an environment problem, not the "
                       "script's)" % xmf)
                 glfail += 1
-            elif r.returncode != 0 or not os.path.isfile(png) or blank(png):
-                problems.append("%s: render.py failed (exit %d): %s" % (xmf, r.returncode, out[-600:]))
+            elif verdict == "failed":
+                problems.append("%s: render.py failed: %s" % (xmf, out[-600:]))
             else:
                 rendered += 1
     for q in problems:
