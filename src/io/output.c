@@ -62,9 +62,9 @@ static PetscErrorCode OutputWrite(SgElasticity p, const char h5name[], FieldsCtx
   PetscCall(SgElasticityGetComm(p, &comm));
   PetscCall(SgElasticityGetDMs(p, &ctx->dm, NULL, NULL, NULL));
   PetscCall(PetscLogEventBegin(SG_Output, 0, 0, 0, 0));
+  PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname))); /* refuses a name ParaView could not read, before writing */
   PetscCall(SgFileWriteHDF5(comm, "-output_file", h5name, WriteFieldsH5, ctx, PETSC_FALSE, &ok, msg, sizeof(msg)));
   PetscCheck(ok, comm, PETSC_ERR_FILE_WRITE, "%s", msg);
-  PetscCall(SgOutputXdmfName(h5name, xname, sizeof(xname)));
   ierr = SgOutputWriteXDMF(p, h5name, xname, ctx->nsteps, ctx->steps, times, ctx->nv, ctx->vf, ctx->nc, ctx->cf, ctx->magnification);
   if (ierr) PetscCall(SgFileAbandon(comm, h5name)); /* the .xmf.part is gone already */
   PetscCall(ierr);

@@ -56,12 +56,17 @@ PetscErrorCode SgFileHDF5NameMax(MPI_Comm comm, size_t *len)
   PetscFunctionReturn(0);
 }
 
-/* The XDMF file written beside an HDF5 result: F.h5 -> F.xmf, else F + ".xmf". */
+/* The XDMF file written beside an HDF5 result: F.h5 -> F.xmf, else F + ".xmf". The .xmf names its datasets FILE:/path
+   with FILE the .h5 file's base name, and ParaView's XDMF reader cuts that reference at the first ':': a base name
+   with ':' would give a result ParaView reads without fields, so it is refused (a directory with ':' is fine). */
 PetscErrorCode SgOutputXdmfName(const char h5name[], char xname[], size_t len)
 {
-  size_t n;
+  size_t      n;
+  const char *base = strrchr(h5name, '/') ? strrchr(h5name, '/') + 1 : h5name;
 
   PetscFunctionBeginUser;
+  PetscCheck(!strchr(base, ':'), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "-output_file '%s': the file name has a ':', and the .xmf file beside it references its datasets as FILE:/dataset, which ParaView's XDMF reader cuts at the first ':' (no fields would be read); choose a file name without ':' (a directory with ':' is fine)", h5name);
   PetscCall(PetscStrncpy(xname, h5name, len));
   PetscCall(PetscStrlen(xname, &n));
   if (n > 3 && !strcmp(xname + n - 3, ".h5")) xname[n - 3] = 0;
