@@ -4,8 +4,9 @@
 #include "fem/femimpl.h"
 #include "cont/contimpl.h"
 #include "contact/contactimpl.h"
+#include "contact/mortar.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -556,6 +557,219 @@ static PetscErrorCode TestMeshTree(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* ---- mortar integrals (src/contact/mortar.c) ---- */
+
+/* A structured surface: 2D, nx segments along x over [x0, x1] at height y = z0 + sx x; 3D, nx x ny cells (two
+   triangles each) over [x0, x1] x [y0, y1], z = z0 + sx x + sy y, turned by angle rot about the z axis around the
+   square's centre. Interior vertices are moved by up to jit of a cell (deterministic). Facet normals: (0, ..., up ? 1 :
+   -1) up to the tilt (computed). */
+typedef struct {
+  PetscInt   dim, nv, nf;
+  PetscReal *x, *nrm;
+  PetscInt  *facets;
+} TestSurface;
+
+static PetscErrorCode TestSurfaceCreate(PetscInt dim, PetscInt nx, PetscInt ny, const PetscReal box[4], PetscReal z0, PetscReal sx, PetscReal sy, PetscReal rot, PetscReal jit, PetscBool up, TestSurface *t)
+{
+  PetscFunctionBeginUser;
+  t->dim = dim;
+  t->nv  = dim == 2 ? nx + 1 : (nx + 1) * (ny + 1);
+  t->nf  = dim == 2 ? nx : 2 * nx * ny;
+  PetscCall(PetscMalloc3(dim * t->nv, &t->x, dim * t->nf, &t->nrm, dim * t->nf, &t->facets));
+  for (PetscInt j = 0; j <= (dim == 2 ? 0 : ny); j++)
+    for (PetscInt i = 0; i <= nx; i++) {
+      PetscInt  v  = j * (nx + 1) + i;
+      PetscReal dx = (box[1] - box[0]) / nx, dy = dim == 3 ? (box[3] - box[2]) / ny : 0;
+      PetscReal px = box[0] + i * dx, py = dim == 3 ? box[2] + j * dy : 0;
+      if (i > 0 && i < nx && (dim == 2 || (j > 0 && j < ny))) {
+        px += jit * dx * PetscSinReal(3.1 * v + 0.7);
+        if (dim == 3) py += jit * dy * PetscCosReal(2.3 * v + 0.4);
+      }
+      if (dim == 3 && rot != 0) {
+        PetscReal cx = 0.5 * (box[0] + box[1]), cy = 0.5 * (box[2] + box[3]), qx = px - cx, qy = py - cy;
+        px = cx + PetscCosReal(rot) * qx - PetscSinReal(rot) * qy;
+        py = cy + PetscSinReal(rot) * qx + PetscCosReal(rot) * qy;
+      }
+      t->x[dim * v] = px;
+      if (dim == 2) t->x[2 * v + 1] = z0 + sx * px;
+      else t->x[3 * v + 1] = py, t->x[3 * v + 2] = z0 + sx * px + sy * py;
+    }
+  for (PetscInt f = 0; f < t->nf; f++) {
+    PetscReal *n = t->nrm + dim * f, len = 0;
+    if (dim == 2) {
+      t->facets[2 * f] = f, t->facets[2 * f + 1] = f + 1;
+      n[0] = -sx, n[1] = 1; /* the upward normal of y = z0 + sx x */
+    } else {
+      PetscInt c = f / 2, i = c % nx, j = c / nx, v = j * (nx + 1) + i;
+      PetscInt *F = t->facets + 3 * f;
+      if (f % 2 == 0) F[0] = v, F[1] = v + 1, F[2] = v + nx + 2;
+      else F[0] = v, F[1] = v + nx + 2, F[2] = v + nx + 1;
+      n[0] = -sx, n[1] = -sy, n[2] = 1;
+    }
+    for (PetscInt c = 0; c < dim; c++) len += n[c] * n[c];
+    for (PetscInt c = 0; c < dim; c++) n[c] *= (up ? 1 : -1) / PetscSqrtReal(len);
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestSurfaceDestroy(TestSurface *t)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree3(t->x, t->nrm, t->facets));
+  PetscFunctionReturn(0);
+}
+
+/* The lumped weights int phi_j of a surface (facet measure / number of its vertices, summed) */
+static void TestLumped(const TestSurface *t, PetscReal w[])
+{
+  for (PetscInt v = 0; v < t->nv; v++) w[v] = 0;
+  for (PetscInt f = 0; f < t->nf; f++) {
+    const PetscInt *F = t->facets + t->dim * f;
+    PetscReal       meas;
+    if (t->dim == 2) meas = PetscSqrtReal(PetscSqr(t->x[2 * F[1]] - t->x[2 * F[0]]) + PetscSqr(t->x[2 * F[1] + 1] - t->x[2 * F[0] + 1]));
+    else {
+      PetscReal a[3], b[3], c[3];
+      for (PetscInt k = 0; k < 3; k++) a[k] = t->x[3 * F[1] + k] - t->x[3 * F[0] + k], b[k] = t->x[3 * F[2] + k] - t->x[3 * F[0] + k];
+      c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
+      meas = 0.5 * PetscSqrtReal(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    }
+    for (PetscInt k = 0; k < t->dim; k++) w[F[k]] += meas / t->dim;
+  }
+}
+
+/* One case: the slave surface below a master surface, or the master below; prefix names the summary keys:
+   PREFIX_area                covered measure (expected: given)
+   PREFIX_rowsum_error        max_j |sum_k M_jk - D_j|                 (rigid translations have no jump)
+   PREFIX_linear_error        max_j, c |sum_k M_jk x^m_kc - D_j x_jc|  (linear fields along the surface: covered vertices)
+   PREFIX_lumped_error        max_j |D_j - int phi_j|                  (fully covered slave facets: biorthogonality)
+   PREFIX_gap_error           max_j |g0_j - D_j g(x_j)|                (g affine: the weighted gap is exact)
+   PREFIX_diagonal_error      max |M_jk - delta_jk D_j| (matching meshes only: the projection is the identity) */
+static PetscErrorCode TestMortarCase(SgSummary sum, const char prefix[], const TestSurface *ts, const TestSurface *tm, PetscReal dmax, PetscBool covered, PetscBool matching, const PetscReal gcoef[3])
+{
+  SgMortarSurface s = {ts->dim, ts->nv, ts->nf, ts->x, ts->facets, ts->nrm}, m = {tm->dim, tm->nv, tm->nf, tm->x, tm->facets, tm->nrm};
+  PetscInt        dim = ts->dim, nM, *Mr, *Mc;
+  PetscReal      *D, *g0, *Mv, *w, *rs, *lin, area, erow = 0, elin = 0, elump = 0, egap = 0, ediag = 0;
+  char            key[128];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc5(ts->nv, &D, ts->nv, &g0, ts->nv, &w, ts->nv, &rs, dim * ts->nv, &lin));
+  PetscCall(SgMortarIntegrals(&s, &m, dmax, D, g0, &nM, &Mr, &Mc, &Mv, &area));
+  TestLumped(ts, w);
+  PetscCall(PetscArrayzero(rs, ts->nv));
+  PetscCall(PetscArrayzero(lin, dim * ts->nv));
+  for (PetscInt k = 0; k < nM; k++) {
+    rs[Mr[k]] += Mv[k];
+    for (PetscInt c = 0; c < dim - 1; c++) lin[dim * Mr[k] + c] += Mv[k] * tm->x[dim * Mc[k] + c];
+  }
+  if (matching) { /* M summed per (j, k) must be diag(D) */
+    PetscReal *Md;
+    PetscCall(PetscCalloc1(ts->nv * tm->nv, &Md));
+    for (PetscInt k = 0; k < nM; k++) Md[tm->nv * Mr[k] + Mc[k]] += Mv[k];
+    for (PetscInt j = 0; j < ts->nv; j++)
+      for (PetscInt k = 0; k < tm->nv; k++) ediag = PetscMax(ediag, PetscAbsReal(Md[tm->nv * j + k] - (j == k ? D[j] : 0)));
+    PetscCall(PetscFree(Md));
+  }
+  for (PetscInt j = 0; j < ts->nv; j++) {
+    PetscReal gx = gcoef[0] + gcoef[1] * ts->x[dim * j] + (dim == 3 ? gcoef[2] * ts->x[dim * j + 1] : 0);
+    erow = PetscMax(erow, PetscAbsReal(rs[j] - D[j]));
+    if (covered) {
+      elump = PetscMax(elump, PetscAbsReal(D[j] - w[j]));
+      egap  = PetscMax(egap, PetscAbsReal(g0[j] - D[j] * gx));
+      for (PetscInt c = 0; c < dim - 1; c++) elin = PetscMax(elin, PetscAbsReal(lin[dim * j + c] - D[j] * ts->x[dim * j + c]));
+    }
+  }
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_area", prefix));
+  PetscCall(SgSummarySetReal(sum, key, area));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_rowsum_error", prefix));
+  PetscCall(SgSummarySetReal(sum, key, erow));
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_pairs", prefix));
+  PetscCall(SgSummarySetInt(sum, key, nM));
+  if (covered) {
+    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_lumped_error", prefix));
+    PetscCall(SgSummarySetReal(sum, key, elump));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_linear_error", prefix));
+    PetscCall(SgSummarySetReal(sum, key, elin));
+    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_gap_error", prefix));
+    PetscCall(SgSummarySetReal(sum, key, egap));
+  }
+  if (matching) {
+    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_diagonal_error", prefix));
+    PetscCall(SgSummarySetReal(sum, key, ediag));
+  }
+  PetscCall(PetscFree(Mr));
+  PetscCall(PetscFree(Mc));
+  PetscCall(PetscFree(Mv));
+  PetscCall(PetscFree5(D, g0, w, rs, lin));
+  PetscFunctionReturn(0);
+}
+
+/* The slave surface is y = 0 (2D) or z = 0 (3D) over the unit interval/square, its body above (outward normal down);
+   the master surfaces lie below, facing up. Distances along the slave normal: g = -(z_master) at the slave point. */
+static PetscErrorCode TestMortar(SgSummary sum)
+{
+  const PetscReal unit[4] = {0, 1, 0, 1}, wide[4] = {-0.2, 1.3, -0.15, 1.2}, part[4] = {0.25, 0.75, 0.25, 0.75}, far[4] = {-1, 2, -1, 2};
+  TestSurface     s2, s2j, m2, m2t, m2p, m2far, s3, s3j, m3, m3t, m3p;
+
+  PetscFunctionBeginUser;
+  /* 2D */
+  PetscCall(TestSurfaceCreate(2, 5, 0, unit, 0, 0, 0, 0, 0, PETSC_FALSE, &s2));
+  PetscCall(TestSurfaceCreate(2, 5, 0, unit, -0.1, 0, 0, 0, 0, PETSC_TRUE, &m2));
+  {
+    const PetscReal g[3] = {0.1, 0, 0};
+    PetscCall(TestMortarCase(sum, "matching2d", &s2, &m2, 1.0, PETSC_TRUE, PETSC_TRUE, g));
+  }
+  PetscCall(TestSurfaceCreate(2, 7, 0, unit, 0, 0, 0, 0, 0.3, PETSC_FALSE, &s2j));
+  PetscCall(TestSurfaceCreate(2, 5, 0, wide, -0.1, -0.05, 0, 0, 0.3, PETSC_TRUE, &m2t));
+  {
+    const PetscReal g[3] = {0.1, 0.05, 0};
+    PetscCall(TestMortarCase(sum, "nonmatching2d", &s2j, &m2t, 1.0, PETSC_TRUE, PETSC_FALSE, g));
+  }
+  PetscCall(TestSurfaceCreate(2, 3, 0, part, -0.1, 0, 0, 0, 0.2, PETSC_TRUE, &m2p));
+  {
+    const PetscReal g[3] = {0.1, 0, 0};
+    PetscCall(TestMortarCase(sum, "partial2d", &s2j, &m2p, 1.0, PETSC_FALSE, PETSC_FALSE, g));
+  }
+  /* a second master surface far below (a closed body's inner face or another part) and one facing down: neither pairs */
+  {
+    TestSurface down;
+    PetscCall(TestSurfaceCreate(2, 4, 0, far, -5, 0, 0, 0, 0, PETSC_TRUE, &m2far));
+    PetscCall(TestSurfaceCreate(2, 4, 0, far, -0.05, 0, 0, 0, 0, PETSC_FALSE, &down));
+    PetscCall(TestMortarCase(sum, "far2d", &s2j, &m2far, 1.0, PETSC_FALSE, PETSC_FALSE, (PetscReal[3]){0, 0, 0}));
+    PetscCall(TestMortarCase(sum, "facing2d", &s2j, &down, 1.0, PETSC_FALSE, PETSC_FALSE, (PetscReal[3]){0, 0, 0}));
+    PetscCall(TestSurfaceDestroy(&down));
+  }
+  /* 3D */
+  PetscCall(TestSurfaceCreate(3, 3, 3, unit, 0, 0, 0, 0, 0, PETSC_FALSE, &s3));
+  PetscCall(TestSurfaceCreate(3, 3, 3, unit, -0.1, 0, 0, 0, 0, PETSC_TRUE, &m3));
+  {
+    const PetscReal g[3] = {0.1, 0, 0};
+    PetscCall(TestMortarCase(sum, "matching3d", &s3, &m3, 1.0, PETSC_TRUE, PETSC_TRUE, g));
+  }
+  PetscCall(TestSurfaceCreate(3, 4, 4, unit, 0, 0, 0, 0, 0.25, PETSC_FALSE, &s3j));
+  PetscCall(TestSurfaceCreate(3, 3, 5, wide, -0.1, -0.02, -0.03, 0.3, 0.25, PETSC_TRUE, &m3t));
+  {
+    const PetscReal g[3] = {0.1, 0.02, 0.03};
+    PetscCall(TestMortarCase(sum, "nonmatching3d", &s3j, &m3t, 1.0, PETSC_TRUE, PETSC_FALSE, g));
+  }
+  PetscCall(TestSurfaceCreate(3, 2, 3, part, -0.1, 0, 0, 0, 0.2, PETSC_TRUE, &m3p));
+  {
+    const PetscReal g[3] = {0.1, 0, 0};
+    PetscCall(TestMortarCase(sum, "partial3d", &s3j, &m3p, 1.0, PETSC_FALSE, PETSC_FALSE, g));
+  }
+  PetscCall(TestSurfaceDestroy(&s2));
+  PetscCall(TestSurfaceDestroy(&s2j));
+  PetscCall(TestSurfaceDestroy(&m2));
+  PetscCall(TestSurfaceDestroy(&m2t));
+  PetscCall(TestSurfaceDestroy(&m2p));
+  PetscCall(TestSurfaceDestroy(&m2far));
+  PetscCall(TestSurfaceDestroy(&s3));
+  PetscCall(TestSurfaceDestroy(&s3j));
+  PetscCall(TestSurfaceDestroy(&m3));
+  PetscCall(TestSurfaceDestroy(&m3t));
+  PetscCall(TestSurfaceDestroy(&m3p));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -580,6 +794,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "resolve", &eq) == 0 && eq) PetscCall(TestResolve(s));
   else if (PetscStrcmp(test, "loadpath", &eq) == 0 && eq) PetscCall(TestLoadPath(s));
   else if (PetscStrcmp(test, "meshtree", &eq) == 0 && eq) PetscCall(TestMeshTree(s));
+  else if (PetscStrcmp(test, "mortar", &eq) == 0 && eq) PetscCall(TestMortar(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

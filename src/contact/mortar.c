@@ -1,0 +1,216 @@
+/* Dual mortar integrals between a slave and a master surface (mortar.h): segment-to-segment in 2D, clipped triangles
+   in 3D, projected along each slave facet's normal in the reference configuration. */
+#include "contact/mortar.h"
+
+/* growing triplet list */
+typedef struct {
+  PetscInt   n, cap;
+  PetscInt  *row, *col;
+  PetscReal *val;
+} Triplets;
+
+static PetscErrorCode TripletsAdd(Triplets *t, PetscInt r, PetscInt c, PetscReal v)
+{
+  PetscFunctionBeginUser;
+  if (t->n == t->cap) {
+    PetscInt   cap = t->cap ? 2 * t->cap : 64, *row, *col;
+    PetscReal *val;
+    PetscCall(PetscMalloc1(cap, &row));
+    PetscCall(PetscMalloc1(cap, &col));
+    PetscCall(PetscMalloc1(cap, &val));
+    if (t->n) {
+      PetscCall(PetscArraycpy(row, t->row, t->n));
+      PetscCall(PetscArraycpy(col, t->col, t->n));
+      PetscCall(PetscArraycpy(val, t->val, t->n));
+    }
+    PetscCall(PetscFree(t->row));
+    PetscCall(PetscFree(t->col));
+    PetscCall(PetscFree(t->val));
+    t->row = row, t->col = col, t->val = val, t->cap = cap;
+  }
+  t->row[t->n] = r, t->col[t->n] = c, t->val[t->n] = v, t->n++;
+  PetscFunctionReturn(0);
+}
+
+static PetscReal Dot(PetscInt dim, const PetscReal a[], const PetscReal b[])
+{
+  PetscReal d = 0;
+  for (PetscInt c = 0; c < dim; c++) d += a[c] * b[c];
+  return d;
+}
+
+/* One quadrature point of the pair (slave facet sv[], nb vertices): weight w, slave basis phi[], master basis phim[],
+   distance g along the slave normal. Adds to D, g0 and the pair's block Mloc[nb * a + b]. */
+static void AddPoint(PetscInt nb, const PetscInt sv[], PetscReal w, const PetscReal phi[], const PetscReal phim[], PetscReal g, PetscReal D[], PetscReal g0[], PetscReal Mloc[])
+{
+  for (PetscInt a = 0; a < nb; a++) {
+    PetscReal psi = nb == 2 ? 2 * phi[a] - phi[1 - a] : 4 * phi[a] - 1; /* the dual basis: biorthogonal to phi */
+    D[sv[a]] += w * psi;
+    g0[sv[a]] += w * psi * g;
+    for (PetscInt b = 0; b < nb; b++) Mloc[nb * a + b] += w * psi * phim[b];
+  }
+}
+
+/* The pair's block of M as triplets */
+static PetscErrorCode AddBlock(PetscInt nb, const PetscInt sv[], const PetscInt mv[], const PetscReal Mloc[], Triplets *t)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < nb; a++)
+    for (PetscInt b = 0; b < nb; b++) PetscCall(TripletsAdd(t, sv[a], mv[b], Mloc[nb * a + b]));
+  PetscFunctionReturn(0);
+}
+
+/* 2D: slave segment (a, b) and master segment (p, q); the master points project orthogonally onto the slave line at
+   xi = (x - a).t / L, and on the overlap the master coordinate eta is affine in xi. Two Gauss points are exact. */
+static PetscErrorCode Pair2D(const SgMortarSurface *s, PetscInt f, const SgMortarSurface *m, PetscInt e, PetscReal dmax, PetscReal D[], PetscReal g0[], Triplets *t, PetscReal *area)
+{
+  const PetscInt  *sv = s->facets + 2 * f, *mv = m->facets + 2 * e;
+  const PetscReal *a = s->x + 2 * sv[0], *b = s->x + 2 * sv[1], *p = m->x + 2 * mv[0], *q = m->x + 2 * mv[1], *n = s->nrm + 2 * f;
+  PetscReal        tv[2] = {b[0] - a[0], b[1] - a[1]}, L = PetscSqrtReal(Dot(2, tv, tv)), xp, xq, lo, hi, Mloc[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  if (Dot(2, n, m->nrm + 2 * e) >= 0 || L == 0) PetscFunctionReturn(0); /* not facing the slave */
+  tv[0] /= L, tv[1] /= L;
+  xp = ((p[0] - a[0]) * tv[0] + (p[1] - a[1]) * tv[1]) / L;
+  xq = ((q[0] - a[0]) * tv[0] + (q[1] - a[1]) * tv[1]) / L;
+  if (PetscAbsReal(xq - xp) <= 1e-12) PetscFunctionReturn(0); /* the master segment stands along the normal */
+  lo = PetscMax(0, PetscMin(xp, xq)), hi = PetscMin(1, PetscMax(xp, xq));
+  if (hi - lo <= 1e-14) PetscFunctionReturn(0);
+  {
+    /* distance along n at the overlap's centre: the far side of a closed master body is not a partner */
+    PetscReal xi = 0.5 * (lo + hi), eta = (xi - xp) / (xq - xp), g = 0;
+    for (PetscInt c = 0; c < 2; c++) g += (p[c] + eta * (q[c] - p[c]) - (a[c] + xi * L * tv[c])) * n[c];
+    if (PetscAbsReal(g) > dmax) PetscFunctionReturn(0);
+  }
+  for (PetscInt k = 0; k < 2; k++) {
+    PetscReal xi = lo + (hi - lo) * 0.5 * (1 + (k ? 1 : -1) / PetscSqrtReal(3.0)), eta = (xi - xp) / (xq - xp), g = 0;
+    PetscReal phi[2] = {1 - xi, xi}, phim[2] = {1 - eta, eta};
+    for (PetscInt c = 0; c < 2; c++) g += (p[c] + eta * (q[c] - p[c]) - (a[c] + xi * L * tv[c])) * n[c];
+    AddPoint(2, sv, 0.5 * (hi - lo) * L, phi, phim, g, D, g0, Mloc);
+  }
+  PetscCall(AddBlock(2, sv, mv, Mloc, t));
+  *area += (hi - lo) * L;
+  PetscFunctionReturn(0);
+}
+
+static PetscReal Cross2(const PetscReal o[], const PetscReal a[], const PetscReal b[])
+{
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+/* Barycentric coordinates of X in the plane triangle T (counter-clockwise or not: any non-degenerate one) */
+static void Barycentric(const PetscReal T[3][2], const PetscReal X[2], PetscReal l[3])
+{
+  PetscReal A = Cross2(T[0], T[1], T[2]);
+  l[0]        = Cross2(X, T[1], T[2]) / A;
+  l[1]        = Cross2(T[0], X, T[2]) / A;
+  l[2]        = 1 - l[0] - l[1];
+}
+
+/* Sutherland-Hodgman: the convex polygon P (np vertices, counter-clockwise) clipped by the half plane left of the
+   directed edge (u, v); the result in Q (at most np + 1 vertices) */
+static PetscInt ClipEdge(PetscInt np, PetscReal P[][2], const PetscReal u[], const PetscReal v[], PetscReal Q[][2])
+{
+  PetscInt nq = 0;
+  for (PetscInt i = 0; i < np; i++) {
+    const PetscReal *c = P[i], *d = P[(i + 1) % np];
+    PetscReal        sc = Cross2(u, v, c), sd = Cross2(u, v, d);
+    if (sc >= 0) Q[nq][0] = c[0], Q[nq][1] = c[1], nq++;
+    if ((sc >= 0) != (sd >= 0)) {
+      PetscReal r = sc / (sc - sd);
+      Q[nq][0] = c[0] + r * (d[0] - c[0]), Q[nq][1] = c[1] + r * (d[1] - c[1]), nq++;
+    }
+  }
+  return nq;
+}
+
+/* At the point X of the slave plane (coordinates e1, e2 from the slave facet's first vertex): the slave and master
+   barycentric coordinates and the distance g from the slave point to the master triangle along the slave normal */
+static void Point3D(const SgMortarSurface *s, PetscInt f, const SgMortarSurface *m, PetscInt e, const PetscReal S[3][2], const PetscReal M[3][2], const PetscReal e1[], const PetscReal e2[], const PetscReal X[], PetscReal ls[], PetscReal lm[], PetscReal *g)
+{
+  const PetscInt  *sv = s->facets + 3 * f, *mv = m->facets + 3 * e;
+  const PetscReal *n = s->nrm + 3 * f, *a = s->x + 3 * sv[0];
+
+  Barycentric(S, X, ls);
+  Barycentric(M, X, lm);
+  *g = 0;
+  for (PetscInt c = 0; c < 3; c++) {
+    PetscReal xs = a[c] + X[0] * e1[c] + X[1] * e2[c], xm = 0;
+    for (PetscInt i = 0; i < 3; i++) xm += lm[i] * m->x[3 * mv[i] + c];
+    *g += (xm - xs) * n[c];
+  }
+}
+
+/* 3D: slave triangle and master triangle; both are written in the slave plane's coordinates (e1, e2, n), the master
+   one by orthogonal projection; the overlap polygon is cut into triangles (a fan) and each is integrated with the
+   edge-midpoint rule (exact for the degree-2 products psi_j phi^m_k and psi_j g). */
+static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMortarSurface *m, PetscInt e, PetscReal dmax, PetscReal D[], PetscReal g0[], Triplets *t, PetscReal *area)
+{
+  const PetscInt  *sv = s->facets + 3 * f, *mv = m->facets + 3 * e;
+  const PetscReal *n = s->nrm + 3 * f, *a = s->x + 3 * sv[0];
+  PetscReal        e1[3], e2[3], l, S[3][2], M[3][2], P[12][2], Q[12][2], A = 0, cen[2] = {0, 0}, Mloc[9] = {0};
+  PetscInt         np = 3, so[3] = {0, 1, 2}, mo[3] = {0, 1, 2};
+
+  PetscFunctionBeginUser;
+  if (Dot(3, n, m->nrm + 3 * e) >= 0) PetscFunctionReturn(0);
+  for (PetscInt c = 0; c < 3; c++) e1[c] = s->x[3 * sv[1] + c] - a[c];
+  l = PetscSqrtReal(Dot(3, e1, e1));
+  if (l == 0) PetscFunctionReturn(0);
+  for (PetscInt c = 0; c < 3; c++) e1[c] /= l;
+  e2[0] = n[1] * e1[2] - n[2] * e1[1], e2[1] = n[2] * e1[0] - n[0] * e1[2], e2[2] = n[0] * e1[1] - n[1] * e1[0];
+  for (PetscInt i = 0; i < 3; i++) {
+    PetscReal ds[3], dm[3];
+    for (PetscInt c = 0; c < 3; c++) ds[c] = s->x[3 * sv[i] + c] - a[c], dm[c] = m->x[3 * mv[i] + c] - a[c];
+    S[i][0] = Dot(3, ds, e1), S[i][1] = Dot(3, ds, e2);
+    M[i][0] = Dot(3, dm, e1), M[i][1] = Dot(3, dm, e2);
+  }
+  {
+    PetscReal as = Cross2(S[0], S[1], S[2]), am = Cross2(M[0], M[1], M[2]);
+    if (PetscAbsReal(as) <= 1e-14 * l * l || PetscAbsReal(am) <= 1e-12 * l * l) PetscFunctionReturn(0); /* degenerate or edge-on */
+    if (as < 0) so[1] = 2, so[2] = 1; /* walk both counter-clockwise */
+    if (am < 0) mo[1] = 2, mo[2] = 1;
+  }
+  for (PetscInt i = 0; i < 3; i++) P[i][0] = M[mo[i]][0], P[i][1] = M[mo[i]][1];
+  for (PetscInt i = 0; i < 3 && np > 2; i++) {
+    np = ClipEdge(np, P, S[so[i]], S[so[(i + 1) % 3]], Q);
+    for (PetscInt k = 0; k < np; k++) P[k][0] = Q[k][0], P[k][1] = Q[k][1];
+  }
+  if (np < 3) PetscFunctionReturn(0);
+  for (PetscInt k = 1; k + 1 < np; k++) A += 0.5 * Cross2(P[0], P[k], P[k + 1]);
+  if (A <= 1e-14 * l * l) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < np; k++) cen[0] += P[k][0] / np, cen[1] += P[k][1] / np;
+  {
+    PetscReal ls[3], lm[3], g;
+    Point3D(s, f, m, e, S, M, e1, e2, cen, ls, lm, &g);
+    if (PetscAbsReal(g) > dmax) PetscFunctionReturn(0); /* the far side of a closed master body is not a partner */
+  }
+  for (PetscInt k = 1; k + 1 < np; k++) {
+    const PetscReal *tri[3] = {P[0], P[k], P[k + 1]};
+    PetscReal        ta     = 0.5 * Cross2(P[0], P[k], P[k + 1]);
+    for (PetscInt qp = 0; qp < 3; qp++) {
+      PetscReal X[2] = {0.5 * (tri[qp][0] + tri[(qp + 1) % 3][0]), 0.5 * (tri[qp][1] + tri[(qp + 1) % 3][1])}, ls[3], lm[3], g;
+      Point3D(s, f, m, e, S, M, e1, e2, X, ls, lm, &g);
+      AddPoint(3, sv, ta / 3, ls, lm, g, D, g0, Mloc);
+    }
+  }
+  PetscCall(AddBlock(3, sv, mv, Mloc, t));
+  *area += A;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area)
+{
+  Triplets t = {0, 0, NULL, NULL, NULL};
+
+  PetscFunctionBeginUser;
+  PetscCheck(s && m && s->dim == m->dim && (s->dim == 2 || s->dim == 3), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgMortarIntegrals: the two surfaces must be given, of the same dimension 2 or 3");
+  PetscCheck(dmax > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SgMortarIntegrals: the pairing distance must be positive, not %g", (double)dmax);
+  PetscCall(PetscArrayzero(D, s->nv));
+  PetscCall(PetscArrayzero(g0, s->nv));
+  *area = 0;
+  /* every pair: the surfaces are one rank's contact zone; a bounding-box tree is the next step for large ones */
+  for (PetscInt f = 0; f < s->nf; f++)
+    for (PetscInt e = 0; e < m->nf; e++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, e, dmax, D, g0, &t, area));
+  *nM = t.n, *Mrow = t.row, *Mcol = t.col, *Mval = t.val;
+  PetscFunctionReturn(0);
+}
