@@ -637,6 +637,17 @@ static void TestLumped(const TestSurface *t, PetscReal w[])
   }
 }
 
+/* summary key PREFIX_NAME = v */
+static PetscErrorCode SetKeyed(SgSummary sum, const char prefix[], const char name[], PetscReal v)
+{
+  char key[128];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_%s", prefix, name));
+  PetscCall(SgSummarySetReal(sum, key, v));
+  PetscFunctionReturn(0);
+}
+
 /* One case: the slave surface below a master surface, or the master below; prefix names the summary keys:
    PREFIX_area                covered measure (expected: given)
    PREFIX_rowsum_error        max_j |sum_k M_jk - D_j|                 (rigid translations have no jump)
@@ -678,24 +689,16 @@ static PetscErrorCode TestMortarCase(SgSummary sum, const char prefix[], const T
       for (PetscInt c = 0; c < dim - 1; c++) elin = PetscMax(elin, PetscAbsReal(lin[dim * j + c] - D[j] * ts->x[dim * j + c]));
     }
   }
-  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_area", prefix));
-  PetscCall(SgSummarySetReal(sum, key, area));
-  PetscCall(PetscSNPrintf(key, sizeof(key), "%s_rowsum_error", prefix));
-  PetscCall(SgSummarySetReal(sum, key, erow));
+  PetscCall(SetKeyed(sum, prefix, "area", area));
+  PetscCall(SetKeyed(sum, prefix, "rowsum_error", erow));
   PetscCall(PetscSNPrintf(key, sizeof(key), "%s_pairs", prefix));
   PetscCall(SgSummarySetInt(sum, key, nM));
   if (covered) {
-    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_lumped_error", prefix));
-    PetscCall(SgSummarySetReal(sum, key, elump));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_linear_error", prefix));
-    PetscCall(SgSummarySetReal(sum, key, elin));
-    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_gap_error", prefix));
-    PetscCall(SgSummarySetReal(sum, key, egap));
+    PetscCall(SetKeyed(sum, prefix, "lumped_error", elump));
+    PetscCall(SetKeyed(sum, prefix, "linear_error", elin));
+    PetscCall(SetKeyed(sum, prefix, "gap_error", egap));
   }
-  if (matching) {
-    PetscCall(PetscSNPrintf(key, sizeof(key), "%s_diagonal_error", prefix));
-    PetscCall(SgSummarySetReal(sum, key, ediag));
-  }
+  if (matching) PetscCall(SetKeyed(sum, prefix, "diagonal_error", ediag));
   PetscCall(PetscFree(Mr));
   PetscCall(PetscFree(Mc));
   PetscCall(PetscFree(Mv));
