@@ -44,13 +44,15 @@ PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh \
-          $(CURVED_MESHES)
+          $(CURVED_MESHES) $(TWOBODY_MESHES)
 # Curved and tilted bodies (tests/verification/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
 # a mesh (tests/rotate_msh.py: the same elements, nodes turned by NN degrees; see the rules below)
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
+# Two bodies in one mesh (the contact pairs' tests in tests/unit/kernels.ini); _r25: turned by 25 degrees
+TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -175,6 +177,12 @@ meshes/cv_halfdisc_full.msh: meshes/cv_halfdisc.geo
 	gmsh -2 -setnumber full 1 $< -o $@ > /dev/null
 meshes/cv_block2d.msh: meshes/cv_tilt2d.geo
 	gmsh -2 -setnumber angle 0 $< -o $@ > /dev/null
+meshes/tb_blocks2d.msh: meshes/tb_blocks2d.geo
+	gmsh -2 $< -o $@ > /dev/null
+meshes/tb_blocks3d.msh: meshes/tb_blocks3d.geo
+	gmsh -3 $< -o $@ > /dev/null
+meshes/tb_blocks2d_r%.msh: meshes/tb_blocks2d.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
 # rigidly turned copies (the rotation-invariance checks and bench/perf_curved.py): 2D about z, Example 2 by 30 degrees
 # about (1,1,1) and by 75 degrees about (1,-2,0.5) (options/cv_ex2_r30.opts, options/cv_ex2_r75.opts turn its data)
 meshes/cv_halfdisc_full_r%.msh: meshes/cv_halfdisc_full.msh tests/rotate_msh.py

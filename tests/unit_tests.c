@@ -5,8 +5,9 @@
 #include "cont/contimpl.h"
 #include "contact/contactimpl.h"
 #include "contact/mortar.h"
+#include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -773,6 +774,109 @@ static PetscErrorCode TestMortar(SgSummary sum)
   PetscFunctionReturn(0);
 }
 
+/* A contact pair on a mesh of two bodies (src/contact/pair.c): the problem comes from the options (its mesh, labels and
+   Dirichlet data); -pair_slave_ids and -pair_master_ids name the two sides (values of -pair_label, "Face Sets"),
+   -pair_dmax the pairing distance. The sides must be parallel planes at distance -pair_gap, the slave fully covered.
+   Computed: the covered measure, the slave rows, and the errors of what the mortar operator must reproduce: no jump
+   for a rigid translation, -g D_j n^T A n for the linear field A x, g0_j = g D_j, unit normals. */
+static PetscErrorCode TestPair(SgSummary sum)
+{
+  SgProblem          prob;
+  SgElasticity       el;
+  SgContactPair      pair;
+  SgBoundary         sl, ms;
+  const SgMesh      *m;
+  Mat                K;
+  Vec                Y, T, BY, BT;
+  PetscInt           ns = SG_MAX_IDS, nm = SG_MAX_IDS, nloc, dim;
+  PetscReal          dmax = 0.2, gap = 0, A[9] = {0.3, -0.2, 0.1, 0.5, 0.7, -0.4, 0.2, 0.6, 0.9}, etr = 0, elin = 0, egap = 0, enrm = 0, Dsum = 0;
+  const PetscScalar *by, *bt, *Da, *ga, *Na;
+  PetscScalar       *ya, *ta;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&sl, sizeof(sl)));
+  PetscCall(PetscMemzero(&ms, sizeof(ms)));
+  PetscCall(PetscStrncpy(sl.label, "Face Sets", sizeof(sl.label)));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-pair_label", sl.label, sizeof(sl.label), NULL));
+  PetscCall(PetscStrncpy(ms.label, sl.label, sizeof(ms.label)));
+  PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-pair_slave_ids", sl.ids, &ns, NULL));
+  PetscCall(PetscOptionsGetIntArray(NULL, NULL, "-pair_master_ids", ms.ids, &nm, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-pair_dmax", &dmax, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-pair_gap", &gap, NULL));
+  sl.nids = ns, ms.nids = nm, sl.active = ms.active = PETSC_TRUE, sl.what = "pair_slave", ms.what = "pair_master";
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetFromOptions(prob));
+  PetscCall(SgProblemSetUp(prob));
+  PetscCall(SgProblemGetElasticity(prob, &el));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetOperators(el, &K, NULL));
+  dim = m->dim;
+  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, &pair));
+  /* Y = A x and T = a translation, in the free dofs */
+  PetscCall(MatCreateVecs(K, &Y, NULL));
+  PetscCall(VecDuplicate(Y, &T));
+  PetscCall(VecGetArray(Y, &ya));
+  PetscCall(VecGetArray(T, &ta));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (m->goff[v] < 0) continue;
+    for (PetscInt a = 0; a < dim; a++) {
+      ya[m->goff[v] + a] = 0;
+      for (PetscInt b = 0; b < dim; b++) ya[m->goff[v] + a] += A[3 * a + b] * m->x[v * dim + b];
+      ta[m->goff[v] + a] = 0.1 * (a + 1);
+    }
+  }
+  PetscCall(VecRestoreArray(Y, &ya));
+  PetscCall(VecRestoreArray(T, &ta));
+  PetscCall(MatCreateVecs(pair->B, NULL, &BY));
+  PetscCall(VecDuplicate(BY, &BT));
+  PetscCall(MatMult(pair->B, Y, BY));
+  PetscCall(MatMult(pair->B, T, BT));
+  PetscCall(VecGetLocalSize(BY, &nloc));
+  PetscCall(VecGetArrayRead(BY, &by));
+  PetscCall(VecGetArrayRead(BT, &bt));
+  PetscCall(VecGetArrayRead(pair->D, &Da));
+  PetscCall(VecGetArrayRead(pair->g0, &ga));
+  PetscCall(VecGetArrayRead(pair->N, &Na));
+  for (PetscInt j = 0; j < nloc; j++) {
+    const PetscScalar *n = Na + j * dim;
+    PetscReal          nAn = 0, nn = 0;
+    if (PetscRealPart(Da[j]) == 0) continue;
+    for (PetscInt a = 0; a < dim; a++) {
+      nn += PetscSqr(PetscRealPart(n[a]));
+      for (PetscInt b = 0; b < dim; b++) nAn += PetscRealPart(n[a]) * A[3 * a + b] * PetscRealPart(n[b]);
+    }
+    Dsum += PetscRealPart(Da[j]);
+    etr  = PetscMax(etr, PetscAbsScalar(bt[j]));
+    elin = PetscMax(elin, PetscAbsReal(PetscRealPart(by[j]) + gap * PetscRealPart(Da[j]) * nAn));
+    egap = PetscMax(egap, PetscAbsReal(PetscRealPart(ga[j]) - gap * PetscRealPart(Da[j])));
+    enrm = PetscMax(enrm, PetscAbsReal(nn - 1));
+  }
+  PetscCall(VecRestoreArrayRead(BY, &by));
+  PetscCall(VecRestoreArrayRead(BT, &bt));
+  PetscCall(VecRestoreArrayRead(pair->D, &Da));
+  PetscCall(VecRestoreArrayRead(pair->g0, &ga));
+  PetscCall(VecRestoreArrayRead(pair->N, &Na));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &Dsum, 1, MPIU_REAL, MPI_SUM, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &etr, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &elin, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &egap, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &enrm, 1, MPIU_REAL, MPI_MAX, PETSC_COMM_WORLD));
+  PetscCall(SgSummarySetReal(sum, "area", pair->area));
+  PetscCall(SgSummarySetReal(sum, "D_sum", Dsum));
+  PetscCall(SgSummarySetInt(sum, "slave_rows", pair->nslave));
+  PetscCall(SgSummarySetReal(sum, "translation_error", etr));
+  PetscCall(SgSummarySetReal(sum, "linear_error", elin));
+  PetscCall(SgSummarySetReal(sum, "gap_error", egap));
+  PetscCall(SgSummarySetReal(sum, "normal_error", enrm));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(VecDestroy(&T));
+  PetscCall(VecDestroy(&BY));
+  PetscCall(VecDestroy(&BT));
+  PetscCall(SgContactPairDestroy(&pair));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -798,6 +902,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "loadpath", &eq) == 0 && eq) PetscCall(TestLoadPath(s));
   else if (PetscStrcmp(test, "meshtree", &eq) == 0 && eq) PetscCall(TestMeshTree(s));
   else if (PetscStrcmp(test, "mortar", &eq) == 0 && eq) PetscCall(TestMortar(s));
+  else if (PetscStrcmp(test, "pair", &eq) == 0 && eq) PetscCall(TestPair(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

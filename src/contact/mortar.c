@@ -2,6 +2,10 @@
    in 3D, projected along each slave facet's normal in the reference configuration. */
 #include "contact/mortar.h"
 
+/* An overlap below this part of the slave facet is no overlap: mesh generators place the vertices of two sides that
+   end at one point 1e-12 apart (gmsh), and such a sliver would give a slave vertex a row of rounding errors. */
+#define SG_MORTAR_SLIVER 1e-9
+
 /* growing triplet list */
 typedef struct {
   PetscInt   n, cap;
@@ -75,7 +79,7 @@ static PetscErrorCode Pair2D(const SgMortarSurface *s, PetscInt f, const SgMorta
   xq = ((q[0] - a[0]) * tv[0] + (q[1] - a[1]) * tv[1]) / L;
   if (PetscAbsReal(xq - xp) <= 1e-12) PetscFunctionReturn(0); /* the master segment stands along the normal */
   lo = PetscMax(0, PetscMin(xp, xq)), hi = PetscMin(1, PetscMax(xp, xq));
-  if (hi - lo <= 1e-14) PetscFunctionReturn(0);
+  if (hi - lo <= SG_MORTAR_SLIVER) PetscFunctionReturn(0); /* a point, or rounding of the mesh generator's coordinates */
   {
     /* distance along n at the overlap's centre: the far side of a closed master body is not a partner */
     PetscReal xi = 0.5 * (lo + hi), eta = (xi - xp) / (xq - xp), g = 0;
@@ -177,7 +181,7 @@ static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMorta
   }
   if (np < 3) PetscFunctionReturn(0);
   for (PetscInt k = 1; k + 1 < np; k++) A += 0.5 * Cross2(P[0], P[k], P[k + 1]);
-  if (A <= 1e-14 * l * l) PetscFunctionReturn(0);
+  if (A <= SG_MORTAR_SLIVER * 0.5 * PetscAbsReal(Cross2(S[0], S[1], S[2]))) PetscFunctionReturn(0); /* an edge, a point or rounding */
   for (PetscInt k = 0; k < np; k++) cen[0] += P[k][0] / np, cen[1] += P[k][1] / np;
   {
     PetscReal ls[3], lm[3], g;

@@ -1,0 +1,249 @@
+/* A contact pair between two elastic bodies of one mesh (pair.h): the slave surface stays on its ranks, the master
+   surface is gathered on every rank (it is a surface: small against the volume), the mortar integrals are computed
+   per rank for its slave facets and assembled into the free displacement's numbering. */
+#include "contact/pair.h"
+
+/* The facets of one side on this rank: per facet its dim vertices' coordinates (x: dim * dim reals), its outward unit
+   normal (nrm: dim), measure (meas) and the vertices' free blocks (blk: dim, -1 for a vertex without dofs). */
+typedef struct {
+  PetscInt   nf;
+  PetscReal *x, *nrm, *meas;
+  PetscInt  *blk;
+} Side;
+
+static PetscErrorCode SideDestroy(Side *s)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree4(s->x, s->nrm, s->meas, s->blk));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SideCollect(DM dm, const SgMesh *m, const SgBoundary *bnd, Side *s)
+{
+  const PetscInt dim = m->dim;
+  PetscInt      *facets, *part;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgBoundaryGetFacets(dm, bnd, &s->nf, &facets, &part));
+  PetscCall(PetscMalloc4(s->nf * dim * dim + 1, &s->x, s->nf * dim + 1, &s->nrm, s->nf + 1, &s->meas, s->nf * dim + 1, &s->blk));
+  for (PetscInt f = 0; f < s->nf; f++) {
+    PetscInt fv[3], nfv;
+    PetscCall(SgFacetGeometry(dm, m, facets[f], &nfv, fv, &s->meas[f], &s->nrm[f * dim]));
+    for (PetscInt a = 0; a < dim; a++) {
+      for (PetscInt c = 0; c < dim; c++) s->x[(f * dim + a) * dim + c] = m->x[fv[a] * dim + c];
+      s->blk[f * dim + a] = m->gblock[fv[a]];
+    }
+  }
+  PetscCall(PetscFree2(facets, part));
+  PetscFunctionReturn(0);
+}
+
+/* counts and displacements of per entries per facet */
+static PetscErrorCode Counts(PetscMPIInt size, const PetscMPIInt cnt[], const PetscMPIInt dsp[], PetscInt per, PetscMPIInt c2[], PetscMPIInt d2[])
+{
+  PetscFunctionBeginUser;
+  for (PetscMPIInt r = 0; r < size; r++) {
+    PetscCall(PetscMPIIntCast(cnt[r] * per, &c2[r]));
+    PetscCall(PetscMPIIntCast(dsp[r] * per, &d2[r]));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Every rank's facets of the side on every rank */
+static PetscErrorCode SideGather(MPI_Comm comm, PetscInt dim, const Side *loc, Side *all)
+{
+  PetscMPIInt size, *cnt, *dsp, n = (PetscMPIInt)loc->nf;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscMalloc2(size, &cnt, size + 1, &dsp));
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) dsp[r + 1] = dsp[r] + cnt[r];
+  all->nf = dsp[size];
+  PetscCall(PetscMalloc4(all->nf * dim * dim + 1, &all->x, all->nf * dim + 1, &all->nrm, all->nf + 1, &all->meas, all->nf * dim + 1, &all->blk));
+  /* the four arrays have dim * dim, dim, 1 and dim entries per facet */
+  {
+    PetscMPIInt *c2, *d2;
+    PetscCall(PetscMalloc2(size, &c2, size, &d2));
+    PetscCall(Counts(size, cnt, dsp, dim * dim, c2, d2));
+    PetscCallMPI(MPI_Allgatherv(loc->x, n * dim * dim, MPIU_REAL, all->x, c2, d2, MPIU_REAL, comm));
+    PetscCall(Counts(size, cnt, dsp, dim, c2, d2));
+    PetscCallMPI(MPI_Allgatherv(loc->nrm, n * dim, MPIU_REAL, all->nrm, c2, d2, MPIU_REAL, comm));
+    PetscCallMPI(MPI_Allgatherv(loc->blk, n * dim, MPIU_INT, all->blk, c2, d2, MPIU_INT, comm));
+    PetscCallMPI(MPI_Allgatherv(loc->meas, n, MPIU_REAL, all->meas, cnt, dsp, MPIU_REAL, comm));
+    PetscCall(PetscFree2(c2, d2));
+  }
+  PetscCall(PetscFree2(cnt, dsp));
+  PetscFunctionReturn(0);
+}
+
+/* The side as a mortar surface: each facet with vertices of its own (facet f, vertex a: f dim + a) */
+static PetscErrorCode SideSurface(PetscInt dim, const Side *s, SgMortarSurface *ms, PetscInt **fac)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(s->nf * dim + 1, fac));
+  for (PetscInt i = 0; i < s->nf * dim; i++) (*fac)[i] = i;
+  ms->dim = dim, ms->nv = s->nf * dim, ms->nf = s->nf, ms->x = s->x, ms->facets = *fac, ms->nrm = s->nrm;
+  PetscFunctionReturn(0);
+}
+
+/* B from the assembled scalar mortar matrix Ms (free vertex x free vertex), D and the normals N: row j (owned) =
+   n_j^T (D_j e_j - sum_k M_jk e_k) in the free dofs */
+static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc)
+{
+  const PetscInt     dim = p->dim;
+  PetscInt           rstart, maxc = 0;
+  const PetscScalar *Da, *Na;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(Ms, &rstart, NULL));
+  for (PetscInt j = rstart; j < rstart + nloc; j++) {
+    PetscInt nc;
+    PetscCall(MatGetRow(Ms, j, &nc, NULL, NULL));
+    maxc = PetscMax(maxc, nc);
+    PetscCall(MatRestoreRow(Ms, j, &nc, NULL, NULL));
+  }
+  PetscCall(MatCreate(p->comm, &p->B));
+  PetscCall(MatSetSizes(p->B, nloc, nloc * dim, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(p->B, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL));
+  PetscCall(MatMPIAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL, (maxc + 1) * dim, NULL));
+  PetscCall(VecGetArrayRead(p->D, &Da));
+  PetscCall(VecGetArrayRead(p->N, &Na));
+  for (PetscInt j = 0; j < nloc; j++) {
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    const PetscScalar *n = Na + j * dim;
+    PetscInt           nc, row = rstart + j;
+    PetscCall(MatGetRow(Ms, row, &nc, &cols, &vals));
+    if (nc > 0 || PetscRealPart(Da[j]) != 0) { /* a slave vertex opposite the master (uncovered ones have no row) */
+      p->nslave++;
+      for (PetscInt c = 0; c < dim; c++) {
+        PetscInt    col = row * dim + c;
+        PetscScalar v   = Da[j] * n[c];
+        PetscCall(MatSetValues(p->B, 1, &row, 1, &col, &v, ADD_VALUES));
+      }
+      for (PetscInt k = 0; k < nc; k++)
+        for (PetscInt c = 0; c < dim; c++) {
+          PetscInt    col = cols[k] * dim + c;
+          PetscScalar v   = -vals[k] * n[c];
+          PetscCall(MatSetValues(p->B, 1, &row, 1, &col, &v, ADD_VALUES));
+        }
+    }
+    PetscCall(MatRestoreRow(Ms, row, &nc, &cols, &vals));
+  }
+  PetscCall(VecRestoreArrayRead(p->D, &Da));
+  PetscCall(VecRestoreArrayRead(p->N, &Na));
+  PetscCall(MatAssemblyBegin(p->B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(p->B, MAT_FINAL_ASSEMBLY));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->nslave, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscFunctionReturn(0);
+}
+
+/* Normalize the owned slave normals (area-weighted sums of facet normals) */
+static PetscErrorCode NormalizeNormals(SgContactPair p)
+{
+  PetscScalar *Na;
+  PetscInt     n;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->N, &n));
+  PetscCall(VecGetArray(p->N, &Na));
+  for (PetscInt j = 0; j < n / p->dim; j++) {
+    PetscReal len = 0;
+    for (PetscInt c = 0; c < p->dim; c++) len += PetscSqr(PetscRealPart(Na[j * p->dim + c]));
+    len = PetscSqrtReal(len);
+    if (len > 0)
+      for (PetscInt c = 0; c < p->dim; c++) Na[j * p->dim + c] /= len;
+  }
+  PetscCall(VecRestoreArray(p->N, &Na));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, SgContactPair *pair)
+{
+  SgContactPair   p;
+  DM              dm;
+  const SgMesh   *m;
+  Mat             K, Ms;
+  Side            sl, ml, mall;
+  SgMortarSurface ss, ms;
+  PetscInt        dim, nloc, *sfac, *mfac, nM, *Mr, *Mc;
+  PetscReal      *Dl, *gl, *Mv;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&p));
+  PetscCall(SgElasticityGetComm(el, &p->comm));
+  PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetOperators(el, &K, NULL));
+  dim = p->dim = m->dim;
+  PetscCall(MatGetLocalSize(K, &nloc, NULL));
+  nloc /= dim;
+  PetscCall(SideCollect(dm, m, slave, &sl));
+  PetscCall(SideCollect(dm, m, master, &ml));
+  PetscCall(SideGather(p->comm, dim, &ml, &mall));
+  PetscCall(SideSurface(dim, &sl, &ss, &sfac));
+  PetscCall(SideSurface(dim, &mall, &ms, &mfac));
+  PetscCall(PetscMalloc2(ss.nv + 1, &Dl, ss.nv + 1, &gl));
+  PetscCall(SgMortarIntegrals(&ss, &ms, dmax, Dl, gl, &nM, &Mr, &Mc, &Mv, &p->area));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->area, 1, MPIU_REAL, MPI_SUM, p->comm));
+
+  PetscCall(VecCreateMPI(p->comm, nloc, PETSC_DETERMINE, &p->D));
+  PetscCall(VecDuplicate(p->D, &p->g0));
+  PetscCall(VecCreateMPI(p->comm, nloc * dim, PETSC_DETERMINE, &p->N));
+  PetscCall(MatCreateAIJ(p->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, 16, NULL, 16, NULL, &Ms));
+  PetscCall(MatSetOption(Ms, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  for (PetscInt v = 0; v < ss.nv; v++) {
+    PetscInt  b = sl.blk[v], f = v / dim;
+    PetscReal wn[3];
+    if (b < 0) continue; /* a slave vertex without dofs has no row */
+    PetscCall(VecSetValue(p->D, b, Dl[v], ADD_VALUES));
+    PetscCall(VecSetValue(p->g0, b, gl[v], ADD_VALUES));
+    for (PetscInt c = 0; c < dim; c++) {
+      wn[c] = sl.meas[f] / dim * sl.nrm[f * dim + c];
+      PetscCall(VecSetValue(p->N, b * dim + c, wn[c], ADD_VALUES));
+    }
+  }
+  for (PetscInt k = 0; k < nM; k++) {
+    PetscInt r = sl.blk[Mr[k]], c = mall.blk[Mc[k]];
+    if (r < 0 || c < 0) continue; /* a fixed master vertex does not move */
+    PetscCall(MatSetValue(Ms, r, c, Mv[k], ADD_VALUES));
+  }
+  PetscCall(VecAssemblyBegin(p->D));
+  PetscCall(VecAssemblyEnd(p->D));
+  PetscCall(VecAssemblyBegin(p->g0));
+  PetscCall(VecAssemblyEnd(p->g0));
+  PetscCall(VecAssemblyBegin(p->N));
+  PetscCall(VecAssemblyEnd(p->N));
+  PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
+  PetscCall(NormalizeNormals(p));
+  PetscCall(BuildB(p, Ms, nloc));
+
+  PetscCall(MatDestroy(&Ms));
+  PetscCall(PetscFree(Mr));
+  PetscCall(PetscFree(Mc));
+  PetscCall(PetscFree(Mv));
+  PetscCall(PetscFree2(Dl, gl));
+  PetscCall(PetscFree(sfac));
+  PetscCall(PetscFree(mfac));
+  PetscCall(SideDestroy(&sl));
+  PetscCall(SideDestroy(&ml));
+  PetscCall(SideDestroy(&mall));
+  *pair = p;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactPairDestroy(SgContactPair *pair)
+{
+  PetscFunctionBeginUser;
+  if (!*pair) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&(*pair)->D));
+  PetscCall(VecDestroy(&(*pair)->g0));
+  PetscCall(VecDestroy(&(*pair)->N));
+  PetscCall(MatDestroy(&(*pair)->B));
+  PetscCall(PetscFree(*pair));
+  PetscFunctionReturn(0);
+}

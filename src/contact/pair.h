@@ -1,0 +1,33 @@
+#pragma once
+/* A contact pair between two elastic bodies of one mesh (the two-body issue): the slave surface (facets of label
+   values) and the master surface (facets of other values of the same label), coupled by the dual mortar integrals of
+   mortar.h. Private to the library. */
+#include "sg.h"
+#include "contact/mortar.h"
+
+typedef struct _n_SgContactPair *SgContactPair;
+
+/* The pair's operators, in the free displacement's numbering (the global vector of SgElasticity: vertex blocks
+   gblock, Dirichlet vertices left out):
+     D, g0     Vecs of one entry per free vertex: int psi_j over the covered slave surface and the weighted initial gap
+               int psi_j g (mortar.h); 0 off the slave surface
+     N         Vec of dim entries per free vertex: the slave vertex's unit normal (facet normals averaged by area,
+               outward of the slave body), 0 off the slave surface
+     B         Mat, one row per free vertex and one column per free dof: row j = n_j^T (D_j e_j - sum_k M_jk e_k), so
+               that (B y)_j - g0_j ... is the weighted normal jump: (B y)_j = n_j . (D_j y_j - sum_k M_jk y_k), < 0 when
+               the slave moves toward the master
+   Master vertices of a Dirichlet part that fixes all their components have no dof: their columns are left out (they
+   do not move). */
+struct _n_SgContactPair {
+  MPI_Comm  comm;
+  PetscInt  dim;
+  PetscInt  nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
+  PetscReal area;    /* covered measure of the slave surface */
+  Vec       D, g0, N;
+  Mat       B;
+};
+
+/* slave, master: the two sides (label and values); dmax: the largest distance along the slave normal at which a
+   master facet is a partner (larger than the initial gap, smaller than the bodies' thickness) */
+PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, SgContactPair *);
+PetscErrorCode SgContactPairDestroy(SgContactPair *);
