@@ -262,6 +262,7 @@ PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i lam_i n_i with SgContactKKT's multiplier */
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
+PetscErrorCode SgContactIsPair(SgContact, PetscBool *); /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
 PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */

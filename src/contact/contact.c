@@ -43,6 +43,28 @@ static PetscErrorCode ObstacleCondition(SgContact c, PetscInt v, PetscReal nrm[]
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: -contact_master_ids (values of -contact_label: the master side; the -contact_ids are the slave side)
+   and -contact_pair_distance (how far along the slave normal a master facet may be to face a slave facet) */
+static PetscErrorCode PairFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
+{
+  PetscInt  n = 0;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  c->master.what = "contact_master";
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
+  if (set) c->master.nids = n, c->master.active = PETSC_TRUE;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_pair_distance", "Two bodies: the largest distance along the slave normal at which a master facet faces a slave facet (default: a tenth of the mesh's diameter; larger than the initial gap, smaller than a body's thickness)", &c->pairdist, &set));
+  PetscCheck(!set || c->pairdist > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance: must be positive, got %g", (double)c->pairdist);
+  PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance is given without -contact_master_ids (two-body contact)");
+  if (!c->master.nids) PetscFunctionReturn(0);
+  PetscCheck(c->bnd.nids > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids needs -contact_ids (the slave side): without it every value of '%s' would be the slave side, the master's too", c->bnd.label);
+  for (PetscInt a = 0; a < c->master.nids; a++)
+    for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
+  PetscCheck(!c->friction, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: two-body contact is frictionless for now (-friction_type %s is not available with it)", c->law->type);
+  PetscFunctionReturn(0);
+}
+
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
 PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
@@ -66,6 +88,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
   PetscCall(FrictionFromOptions(PetscOptionsObject, c));
   PetscCall(PetscOptionsString("-contact_normal", "Direction of the contact condition: obstacle (g(x) + n_o.u >= 0, the obstacle's signed distance g and unit normal n_o at the closest point to the vertex; right at edges and corners of the contact boundary and on curved bodies) or body (the paper's tau_N: the body's vertex normal, averaged over the facets; at a corner of Gamma_c a vertex may move into the obstacle). Default: obstacle for a plane in any orientation (exact there: no vertex ends inside it, right at corners and on curved bodies; normals off the coordinate axes are solved in the contact frames, -ssn_frame), body for the curved obstacle types (ball, parabola, CAD, meshed: with body a deformed body can end inside them, with obstacle it cannot for a convex one, see doc/method.md; choose it there)", NULL, nmode, nmode, sizeof(nmode), &nset));
+  PetscCall(PairFromOptions(PetscOptionsObject, c));
   PetscOptionsEnd();
   PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
   PetscCheck(c->bnd.active || !c->friction, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", c->law->type);
@@ -79,7 +102,8 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   {
     PetscBool has;
     PetscCall(SgObstacleHasDistance(c->obs, &has));
-    c->obsnormal = nset ? (PetscBool)!strcmp(nmode, "obstacle") : (PetscBool)(has && !strcmp(c->obs->type, "plane"));
+    c->obsnormal = nset ? (PetscBool)!strcmp(nmode, "obstacle") : (PetscBool)(has && !strcmp(c->obs->type, "plane") && !c->master.nids);
+    PetscCheck(!c->master.nids || !c->obsnormal, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: two-body contact (-contact_master_ids) takes the slave side's normals (-contact_normal body)");
     PetscCheck(!c->obsnormal || has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
   }
   *contact = c;
@@ -153,11 +177,109 @@ static PetscErrorCode PrescribedSetUp(SgContact c)
 
 /* Contact vertices are the owned, free vertices of the contact facets. Weights w_i = int_Gamma_c phi_i and
    area-weighted normals are summed over the facets of every rank, then read by the owner. */
+/* The contact vertices are known (n, vert, off, normal, w, d): the law's coordinates, the global count, the arrays of
+   the KKT measures */
+static PetscErrorCode VerticesDone(SgContact c)
+{
+  const PetscInt dim = c->dim;
+  PetscInt       nglob;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(c->n * dim + 1, &c->xc)); /* the law's vertices */
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < dim; k++) c->xc[i * dim + k] = c->mesh->x[c->vert[i] * dim + k];
+  PetscCall(SgContactLawSetVertices(c->law, c->n, c->xc));
+  nglob = c->n;
+  PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
+  PetscCheck(c->nglobal > 0 || c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
+  PetscCheck(c->nglobal > 0 || !c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave vertex of '%s' faces the master side within -contact_pair_distance %g (the sides do not face each other, or they are farther apart)", c->bnd.label, (double)c->pairdist);
+  PetscCall(PetscCalloc2(c->n + 1, &c->klam, c->n + 1, &c->kact));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
+   owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
+   from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
+   zeros), so that the Jacobians K + gamma B^T diag(act / D) B keep one pattern (factorizations keep their symbolic
+   phase; the preconditioners and the SSN's copies of K are made after this). */
+static PetscErrorCode PairSetUp(SgContact c)
+{
+  const PetscInt     dim = c->dim;
+  const SgMesh      *m   = c->mesh;
+  PetscInt           rstart, rend, nrow, *vof;
+  const PetscScalar *Da, *ga, *Na;
+  Mat                BtB;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(c->master.label, c->bnd.label, sizeof(c->master.label)));
+  if (!(c->pairdist > 0)) {
+    PetscReal diam;
+    PetscCall(SgElasticityGetDataScales(c->prob, NULL, NULL, NULL, NULL, &diam));
+    c->pairdist = 0.1 * diam;
+  }
+  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, &c->pair));
+  c->area = c->pair->area;
+  PetscCall(MatGetOwnershipRange(c->pair->B, &rstart, &rend));
+  nrow = rend - rstart;
+  /* the owned vertex of each local row (free block rstart + j: the vertex with goff = j dim) */
+  PetscCall(PetscMalloc1(nrow + 1, &vof));
+  for (PetscInt j = 0; j < nrow; j++) vof[j] = -1;
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (m->goff[v] >= 0) vof[m->goff[v] / dim] = v;
+  PetscCall(VecGetArrayRead(c->pair->D, &Da));
+  PetscCall(VecGetArrayRead(c->pair->g0, &ga));
+  PetscCall(VecGetArrayRead(c->pair->N, &Na));
+  c->n = 0;
+  for (PetscInt j = 0; j < nrow; j++) c->n += (PetscRealPart(Da[j]) > 0);
+  PetscCall(PetscMalloc5(c->n, &c->vert, c->n, &c->off, c->n * dim, &c->normal, c->n, &c->w, c->n, &c->d));
+  PetscCall(PetscMalloc1(c->n + 1, &c->prow));
+  c->n = 0;
+  for (PetscInt j = 0; j < nrow; j++) {
+    if (!(PetscRealPart(Da[j]) > 0)) continue;
+    PetscCheck(vof[j] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "free block %" PetscInt_FMT " has no owned vertex", rstart + j);
+    c->prow[c->n] = j;
+    c->vert[c->n] = vof[j];
+    c->off[c->n]  = j * dim;
+    c->w[c->n]    = PetscRealPart(Da[j]);
+    c->d[c->n]    = PetscRealPart(ga[j]) / c->w[c->n];
+    for (PetscInt k = 0; k < dim; k++) c->normal[c->n * dim + k] = PetscRealPart(Na[j * dim + k]);
+    c->n++;
+  }
+  PetscCall(VecRestoreArrayRead(c->pair->D, &Da));
+  PetscCall(VecRestoreArrayRead(c->pair->g0, &ga));
+  PetscCall(VecRestoreArrayRead(c->pair->N, &Na));
+  PetscCall(PetscFree(vof));
+  /* the Jacobian's pattern: K's and B^T B's */
+  PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
+  PetscCall(MatZeroEntries(BtB));
+  {
+    /* MatAXPY with a new pattern replaces K's data and header, and PETSc 3.18 loses (leaks) the near null space
+       attached to it: it is taken off and put back around */
+    MatNullSpace nsp, sp;
+    PetscCall(MatGetNearNullSpace(c->K, &nsp));
+    PetscCall(MatGetNullSpace(c->K, &sp));
+    PetscCall(PetscObjectReference((PetscObject)nsp));
+    PetscCall(PetscObjectReference((PetscObject)sp));
+    PetscCall(MatSetNearNullSpace(c->K, NULL));
+    PetscCall(MatSetNullSpace(c->K, NULL));
+    PetscCall(MatAXPY(c->K, 1.0, BtB, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatSetNearNullSpace(c->K, nsp));
+    PetscCall(MatSetNullSpace(c->K, sp));
+    PetscCall(MatNullSpaceDestroy(&nsp));
+    PetscCall(MatNullSpaceDestroy(&sp));
+  }
+  PetscCall(MatDestroy(&BtB));
+  PetscCall(VecCreateMPIWithArray(c->comm, 1, nrow * dim, PETSC_DETERMINE, NULL, &c->pw));
+  PetscCall(VecDuplicate(c->pw, &c->pf));
+  PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContactSetUp(SgContact c)
 {
   const SgMesh    *m;
   PetscInt         dim = c->dim;
-  PetscInt         nfac, *facets, *part, nloc = 0, nglob, nfglob;
+  PetscInt         nfac, *facets, *part, nloc = 0, nfglob;
   Vec              wl, nl, wg, ng;
   PetscScalar     *wa, *na;
   PetscSection     ws, ns;
@@ -168,6 +290,12 @@ PetscErrorCode SgContactSetUp(SgContact c)
   PetscCall(SgElasticityGetOperators(c->prob, &c->K, &c->b));
   m = c->mesh;
   PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
+  if (c->master.nids) { /* two bodies: the pair's rows */
+    PetscCall(PairSetUp(c));
+    PetscCall(VerticesDone(c));
+    PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
   PetscCall(SgBoundaryGetFacets(c->dm, &c->bnd, &nfac, &facets, &part));
   nfglob = nfac;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, c->comm));
@@ -261,18 +389,11 @@ PetscErrorCode SgContactSetUp(SgContact c)
         nloc++;
   }
   c->n = nloc;
-  PetscCall(PetscMalloc1(nloc * dim + 1, &c->xc)); /* the law's vertices */
-  for (PetscInt i = 0; i < nloc; i++)
-    for (PetscInt k = 0; k < dim; k++) c->xc[i * dim + k] = m->x[c->vert[i] * dim + k];
-  PetscCall(SgContactLawSetVertices(c->law, nloc, c->xc));
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
   PetscCall(DMRestoreLocalVector(c->dmVert, &wl));
   PetscCall(DMRestoreLocalVector(c->dmVec, &nl));
-  nglob = c->n;
-  PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
-  PetscCheck(c->nglobal > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
-  PetscCall(PetscCalloc2(c->n + 1, &c->klam, c->n + 1, &c->kact));
+  PetscCall(VerticesDone(c));
   if (c->friction) PetscCall(PrescribedSetUp(c));
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -300,7 +421,8 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
 PetscErrorCode SgContactGetObstacleType(SgContact c, const char *type[])
 {
   PetscFunctionBeginUser;
-  PetscCall(SgObstacleGetType(c->obs, type));
+  if (c->master.nids) *type = "none: two bodies (-contact_master_ids, mortar)";
+  else PetscCall(SgObstacleGetType(c->obs, type));
   PetscFunctionReturn(0);
 }
 
@@ -328,6 +450,11 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscCall(PetscFree((*c)->ypfull));
   PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->xc));
+  PetscCall(PetscFree((*c)->prow));
+  PetscCall(VecDestroy(&(*c)->pw));
+  PetscCall(VecDestroy(&(*c)->pf));
+  PetscCall(VecDestroy(&(*c)->pl));
+  PetscCall(SgContactPairDestroy(&(*c)->pair));
   PetscCall(SgContactLawDestroy(&(*c)->law));
   PetscCall(PetscFree((*c)->prefix));
   PetscCall(SgObstacleDestroy(&(*c)->obs));
@@ -341,6 +468,16 @@ PetscErrorCode SgContactGap(SgContact c, const PetscScalar ya[], PetscReal g[])
   const PetscInt dim = c->dim;
 
   PetscFunctionBeginUser;
+  if (c->pair) { /* two bodies: g_i = (B y)_i / D_i - d_i */
+    const PetscScalar *la;
+    PetscCall(VecPlaceArray(c->pw, ya));
+    PetscCall(MatMult(c->pair->B, c->pw, c->pl));
+    PetscCall(VecResetArray(c->pw));
+    PetscCall(VecGetArrayRead(c->pl, &la));
+    for (PetscInt i = 0; i < c->n; i++) g[i] = PetscRealPart(la[c->prow[i]]) / c->w[i] - c->d[i];
+    PetscCall(VecRestoreArrayRead(c->pl, &la));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal un = 0;
     for (PetscInt k = 0; k < dim; k++) un += c->normal[i * dim + k] * PetscRealPart(ya[c->off[i] + k]);
@@ -355,6 +492,17 @@ PetscErrorCode SgContactAddForce(SgContact c, const PetscReal lam[], PetscScalar
   const PetscInt dim = c->dim;
 
   PetscFunctionBeginUser;
+  if (c->pair) { /* two bodies: F += B^T lam (both sides) */
+    PetscScalar *la;
+    PetscCall(VecZeroEntries(c->pl));
+    PetscCall(VecGetArray(c->pl, &la));
+    for (PetscInt i = 0; i < c->n; i++) la[c->prow[i]] = lam[i];
+    PetscCall(VecRestoreArray(c->pl, &la));
+    PetscCall(VecPlaceArray(c->pf, Fa));
+    PetscCall(MatMultTransposeAdd(c->pair->B, c->pl, c->pf, c->pf));
+    PetscCall(VecResetArray(c->pf));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < c->n; i++)
     for (PetscInt k = 0; k < dim; k++) Fa[c->off[i] + k] += c->w[i] * lam[i] * c->normal[i * dim + k];
   PetscFunctionReturn(0);
@@ -370,6 +518,32 @@ static PetscErrorCode AddVertexBlock(SgContact c, Mat J, PetscInt rstart, PetscI
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: J += gamma B^T diag(act_i / D_i) B (J has the pattern of B^T B: PairSetUp). J is assembled here: the
+   caller's assembly after it is a no-op. */
+static PetscErrorCode PairJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
+{
+  Mat          Bs, C;
+  Vec          sc;
+  PetscScalar *sa;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(c->pair->B, MAT_COPY_VALUES, &Bs));
+  PetscCall(VecDuplicate(c->pl, &sc));
+  PetscCall(VecZeroEntries(sc));
+  PetscCall(VecGetArray(sc, &sa));
+  for (PetscInt i = 0; i < c->n; i++) sa[c->prow[i]] = active[i] ? PetscSqrtReal(gamma / c->w[i]) : 0;
+  PetscCall(VecRestoreArray(sc, &sa));
+  PetscCall(MatDiagonalScale(Bs, sc, NULL));
+  PetscCall(MatTransposeMatMult(Bs, Bs, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAXPY(J, 1.0, C, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&C));
+  PetscCall(MatDestroy(&Bs));
+  PetscCall(VecDestroy(&sc));
+  PetscFunctionReturn(0);
+}
+
 /* J += gamma w_i n_i n_i^T on the active vertices (J assembled afterwards by the caller). */
 PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
 {
@@ -377,6 +551,8 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
   PetscInt       rstart;
 
   PetscFunctionBeginUser;
+  if (c->pair) PetscCall(PairJacobian(c, active, gamma, J));
+  if (c->pair) PetscFunctionReturn(0);
   PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscScalar blk[9];
@@ -970,6 +1146,7 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
   PetscInt       bad = -1;
 
   PetscFunctionBeginUser;
+  PetscCheck(!c->pair, c->comm, PETSC_ERR_SUP, "%s is not available for two-body contact (-contact_master_ids): its conditions couple the two sides; use an SSN-based controller (fast, ipf, pf, alm) with the default linear solver or MUMPS", who);
   for (PetscInt i = 0; i < c->n && bad < 0; i++) {
     axis[i] = NormalAxis(c, i, &sign[i]);
     if (axis[i] < 0) bad = i;
@@ -988,10 +1165,21 @@ PetscErrorCode SgContactNormalsAxisAligned(SgContact c, PetscBool *aligned)
   PetscReal sign;
 
   PetscFunctionBeginUser;
+  if (c->pair) { /* two bodies: no contact frames (a row couples both sides); the bound solvers refuse in SgContactAxisAligned */
+    *aligned = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < c->n && ok; i++)
     if (NormalAxis(c, i, &sign) < 0) ok = 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_INT, MPI_MIN, c->comm));
   *aligned = (PetscBool)ok;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactIsPair(SgContact c, PetscBool *pair)
+{
+  PetscFunctionBeginUser;
+  *pair = (PetscBool)(c && c->pair);
   PetscFunctionReturn(0);
 }
 
@@ -1026,6 +1214,10 @@ static PetscErrorCode VertexGap(SgContact c, PetscInt i, PetscReal *d)
   const PetscReal *x = &c->mesh->x[c->vert[i] * dim], *n = &c->normal[i * dim];
 
   PetscFunctionBeginUser;
+  if (c->pair) { /* two bodies: the weighted gap of the reference configuration, at every placement */
+    *d = c->d[i];
+    PetscFunctionReturn(0);
+  }
   if (c->obsnormal) {
     PetscReal nrm[3], dd, dot = 0;
     PetscBool keep;
@@ -1048,8 +1240,8 @@ PetscErrorCode SgContactSetLoadFactor(SgContact c, PetscReal t)
   PetscCall(SgObstacleGetTranslation(c->obs, T));
   moves = (PetscBool)(T[0] != 0 || T[1] != 0 || T[2] != 0);
   PetscCall(SgObstacleSetPlacement(c->obs, t));
-  /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex) */
-  if (moves)
+  /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex); a pair's do not */
+  if (moves && !c->pair)
     for (PetscInt i = 0; i < c->n; i++) PetscCall(VertexGap(c, i, &c->d[i]));
   PetscFunctionReturn(0);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sg.h"
+#include "contact/pair.h"
 #include <petsc/private/petscimpl.h> /* PetscHeaderCreate: SgProblem is a PetscObject */
 
 
@@ -99,6 +100,15 @@ struct _n_SgContact {
      and the state (the fields and the summary's vectors are these numbers) */
   PetscReal *klam, *klt, *kslip;
   char      *kact, *kst;
+  /* two bodies (-contact_master_ids): the contact boundary is the slave side of a pair with the master side of the
+     same label; its conditions are the rows of the pair's mortar operator B (pair.h): contact vertex i is the slave
+     vertex of row prow[i] (local), w_i = D_i, d_i = g0_i / D_i, the gap (B y)_i / D_i - d_i, the force B^T lam and
+     the Jacobian's term gamma B^T diag(act / D) B. NULL pair: the obstacle's nodal conditions. */
+  SgBoundary    master;
+  PetscReal     pairdist;
+  SgContactPair pair;
+  PetscInt     *prow;
+  Vec           pw, pf, pl; /* work: displacement and force wrappers (no array), B's row vector */
 };
 
 /* A PetscObject (class SG_PROBLEM_CLASSID): its header holds the reference count (the caller's handle and each

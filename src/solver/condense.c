@@ -105,6 +105,9 @@ PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCheck(size == 1, s->comm, PETSC_ERR_SUP, "-ssn_condense runs on one rank (PETSc's MUMPS interface has no distributed Schur complements); got %d ranks", size);
   PetscCheck(s->c, s->comm, PETSC_ERR_USER_INPUT, "-ssn_condense needs a contact boundary");
+  PetscCall(SgContactIsPair(s->c, &aligned));
+  PetscCheck(!aligned, s->comm, PETSC_ERR_SUP, "-ssn_condense is not available for two-body contact (-contact_master_ids): its conditions couple the two sides; leave it out (MUMPS without it, or the iterative default)");
+  aligned = PETSC_TRUE;
   PetscCall(PetscNew(&cd));
   cd->ssn = s;
   PetscCall(PetscMalloc1(s->cv.n, &cd->axis));

@@ -161,6 +161,8 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   if (!c) PetscFunctionReturn(0);
   PetscCall(SgContactGetView(c, &cv));
   if (cv.friction) PetscFunctionReturn(0); /* neither condensation nor the truncated multigrid is built for friction */
+  PetscCall(SgContactIsPair(c, &on));
+  if (on) PetscFunctionReturn(0); /* nor for two bodies (a condition couples both sides) */
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
