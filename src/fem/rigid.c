@@ -57,7 +57,7 @@ static PetscErrorCode FarthestConstrained(MPI_Comm comm, const SgMesh *m, PointD
    p0: a Dirichlet vertex; dir: the direction of the line when adim = 1; diam: the diameter of the mesh's bounding box. */
 PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscInt *adim, PetscReal p0[3], PetscReal dir[3], PetscReal *diam)
 {
-  const PetscInt dim = m->dim;
+  const PetscInt dim    = m->dim;
   PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, d1, d2, p1[3], p2[3], tol;
   PetscMPIInt    rank, size, first;
   PetscInt       v0 = -1;
@@ -147,7 +147,7 @@ static PetscErrorCode GramNullModes(PetscInt dim, PetscScalar G[], PetscReal L, 
 
 PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm comm, const SgMesh *m, PetscInt *nfree, PetscReal modes[], PetscReal c[3])
 {
-  const PetscInt dim = m->dim;
+  const PetscInt dim    = m->dim;
   PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, L = 0;
   PetscScalar    G[36] = {0};
 
@@ -347,7 +347,7 @@ static PetscErrorCode MeshBodies(DM dm, const SgMesh *m, PetscInt *ncomp, PetscI
    body that is not, by a vertex of it and its materials, and its free rigid motions. */
 static PetscErrorCode CheckBodies(SgElasticity p)
 {
-  const SgMesh  *m = &p->mesh;
+  const SgMesh  *m   = &p->mesh;
   const PetscInt dim = p->dim, nr = dim == 2 ? 3 : 6, nv = dim + 1;
   PetscInt       ncomp = 0, *comp;
   PetscInt64    *mats; /* bit j: the body has cells of material j */
@@ -376,7 +376,7 @@ static PetscErrorCode CheckBodies(SgElasticity p)
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, xr, 3 * ncomp, MPIU_REAL, MPIU_SUM, p->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mats, ncomp, MPIU_INT64, MPI_BOR, p->comm));
   for (PetscInt v = 0; v < m->nv; v++) {
-    const PetscReal *bx = &box[6 * comp[v]];
+    const PetscReal *bx   = &box[6 * comp[v]];
     PetscReal        x[3] = {0, 0, 0}, L = 0;
     if (!m->bcmask[v] || (m->goff[v] < 0 && m->gblock[v] >= 0)) continue; /* as SgMeshFreeRigidMotions */
     for (PetscInt d = 0; d < dim; d++) L += PetscSqr(-bx[3 + d] - bx[d]);
