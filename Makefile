@@ -52,7 +52,7 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
 # Several materials and bodies in one mesh (tests/materials.ini)
-MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh
+MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
