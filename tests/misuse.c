@@ -818,6 +818,21 @@ static PetscErrorCode CasesMaterials(PetscReal res[4])
   PetscCall(SgProblemCreateFromDM(dm, &pE));
   PetscCall(SgProblemSetMaterials(pE, "mat", 2, bad, E2, nu2));
   WRONG(SgProblemSetUp(pE), PETSC_ERR_USER_INPUT, "-material_label 'mat': cells have the value 2, which is not among -material_ids");
+  { /* a label on some cells only: the others have no material */
+    DMLabel   half;
+    SgProblem pF;
+    PetscCall(DMCreateLabel(dm, "half"));
+    PetscCall(DMGetLabel(dm, "half", &half));
+    for (PetscInt c = cStart; c < cEnd; c++) {
+      PetscReal x[3];
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, c, NULL, x, NULL));
+      if (x[0] < 1) PetscCall(DMLabelSetValue(half, c, 1));
+    }
+    PetscCall(SgProblemCreateFromDM(dm, &pF));
+    PetscCall(SgProblemSetMaterials(pF, "half", 2, ids, E2, nu2));
+    WRONG(SgProblemSetUp(pF), PETSC_ERR_USER_INPUT, "has no value of the label, so no material of -material_ids");
+    PetscCall(SgProblemDestroy(&pF));
+  }
   res[0] = VA;
   res[1] = VB;
   res[2] = VC;

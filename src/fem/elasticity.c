@@ -224,6 +224,7 @@ PetscErrorCode SgElasticitySetUpMaterials(SgElasticity p)
       r = bad[1] < PETSC_MAX_INT ? rank : PETSC_MPI_INT_MAX;
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &r, 1, MPI_INT, MPI_MIN, p->comm));
       PetscCallMPI(MPI_Bcast(xb, 3, MPIU_REAL, r, p->comm));
+      if (p->dim == 2) SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': the cell with centroid (%g, %g) has no value of the label, so no material of -material_ids (every cell needs one)", p->matlabel, (double)xb[0], (double)xb[1]);
       SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': the cell with centroid (%g, %g, %g) has no value of the label, so no material of -material_ids (every cell needs one)", p->matlabel, (double)xb[0], (double)xb[1], (double)xb[2]);
     }
   }
