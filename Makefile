@@ -44,7 +44,7 @@ PETSC_NEXT_MINOR := $(shell echo $$(( $(PETSC_MINOR) + 1 )))
 endif
 
 MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.msh meshes/hertz_s2.msh meshes/hertz_s4.msh meshes/cattaneo_s1.msh meshes/cattaneo_s2.msh meshes/cattaneo_s4.msh meshes/punch_block.msh \
-          $(CURVED_MESHES) $(TWOBODY_MESHES)
+          $(CURVED_MESHES) $(TWOBODY_MESHES) $(MATERIAL_MESHES)
 # Curved and tilted bodies (tests/verification/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
 # a mesh (tests/rotate_msh.py: the same elements, nodes turned by NN degrees; see the rules below)
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
@@ -53,6 +53,8 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/features/twobody.ini); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh
+# Several materials and bodies in one mesh (tests/materials.ini)
+MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -175,6 +177,10 @@ meshes/cv_halfdisc_s%.msh: meshes/cv_halfdisc.geo
 	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
 meshes/cv_halfdisc_full.msh: meshes/cv_halfdisc.geo
 	gmsh -2 -setnumber full 1 $< -o $@ > /dev/null
+meshes/mat_%2d.msh: meshes/mat_%2d.geo
+	gmsh -2 $< -o $@ > /dev/null
+meshes/mat_%3d.msh: meshes/mat_%3d.geo
+	gmsh -3 $< -o $@ > /dev/null
 meshes/cv_block2d.msh: meshes/cv_tilt2d.geo
 	gmsh -2 -setnumber angle 0 $< -o $@ > /dev/null
 meshes/tb_blocks2d.msh: meshes/tb_blocks2d.geo

@@ -55,6 +55,7 @@ PetscErrorCode SgProblemSetDM(SgProblem, DM); /* use the caller's mesh (a DMPLEX
 PetscErrorCode SgProblemSetOptionsPrefix(SgProblem, const char[]); /* prefix of the problem's options (-<prefix>E, -<prefix>contact_ids, ...) */
 PetscErrorCode SgProblemGetOptionsPrefix(SgProblem, const char *[]);
 PetscErrorCode SgProblemSetMaterial(SgProblem, PetscReal, PetscReal); /* Young's modulus E and Poisson's ratio nu (defaults of -E, -nu) */
+PetscErrorCode SgProblemSetMaterials(SgProblem, const char[], PetscInt, const PetscInt[], const PetscReal[], const PetscReal[]); /* several materials: cell label (NULL: "Cell Sets", gmsh's physical volumes), n ids of it, E and nu of each (defaults of -material_label, -material_ids, -E, -nu; every cell needs one of the ids, n = 1: every cell has it) */
 PetscErrorCode SgProblemSetBoundary(SgProblem, SgBoundaryType, const char[], PetscInt, const PetscInt[], const PetscReal[]); /* a boundary part: label name, n ids (0: every value), values (dim per id, or NULL; before SgProblemSetDM the dimension is -box_dim's, 2 with a mesh file: call SgProblemSetDM first for a 3D file) */
 /* Components fixed by the Dirichlet part (rollers, symmetry planes): one bit mask per id of SgProblemSetBoundary (one
    if it gave no ids), SG_COMPONENT_X | SG_COMPONENT_Y ...; the values of the free components are ignored. Without this

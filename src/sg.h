@@ -87,6 +87,10 @@ typedef struct _n_SgElasticity *SgElasticity;
 typedef struct {
   PetscBool  material_set;
   PetscReal  E, nu;
+  /* several materials (SgProblemSetMaterials): nmat > 0 values of the cell label matlabel, E and nu of each */
+  PetscInt   nmat, matids[SG_MAX_IDS];
+  PetscReal  matE[SG_MAX_IDS], matnu[SG_MAX_IDS];
+  char       matlabel[256];
   SgBoundary dirichlet, neumann;
 } SgElasticitySettings;
 PetscErrorCode SgElasticityCreate(MPI_Comm, const char[], SgElasticity *);
@@ -104,7 +108,8 @@ PetscErrorCode SgElasticityGetMass(SgElasticity, Vec *);
 PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *); /* NULL when not attached */
 PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||K||_inf, ||b||_2, ||b||_inf */
 PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
-PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);
+PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *); /* the one material, or of several the stiffest (largest E, the first of equals) */
+PetscErrorCode SgElasticityGetMaterials(SgElasticity, const char **, PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **); /* -material_label, number of -material_ids (0: one material for every cell), the ids, E and nu of each */
 PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBool *, PetscLogDouble *); /* dofs, cells, mms, assembly time */
 PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticitySetLoadFactor(SgElasticity, PetscReal); /* loads and Dirichlet values times the factor */

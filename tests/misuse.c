@@ -3,7 +3,7 @@
    is used, the caller's DM changed after it was handed over. Each wrong call must return an error code (with a message
    naming what is wrong), never crash or touch freed memory; each right call around them must still work.
 
-   -case NAME runs one group of cases (problem, cont, options, files, order, refcount, dm_copy), without it all of
+   -case NAME runs one group of cases (problem, cont, options, files, order, refcount, dm_copy, materials), without it all of
    them in sequence. PETSc's errors return to us meanwhile (an error handler that records the message). The JSON
    summary (-summary_file) holds the number of cases checked ("cases") and of cases that misbehaved ("bad"), and what
    the right calls computed; the program exits nonzero if any case misbehaved. */
@@ -192,6 +192,21 @@ static PetscErrorCode CasesProblem(void)
   WRONG(SgProblemSetMaterial(p, 1, 0.7), PETSC_ERR_ARG_OUTOFRANGE, "Poisson");
   WRONG(SgProblemSetMaterial(p, 1, -1.5), PETSC_ERR_ARG_OUTOFRANGE, "Poisson");
   WRONG(SgProblemSetMaterial(p, 1, nanv), PETSC_ERR_ARG_OUTOFRANGE, "Poisson");
+  {
+    const PetscInt  mids[2] = {1, 2}, dup[2] = {1, 1}, neg[1] = {-1};
+    const PetscReal mE[2] = {1, 2}, mnu[2] = {0.3, 0.2}, bE[2] = {1, -2}, bnu[2] = {0.3, 0.5};
+    WRONG(SgProblemSetMaterials(NULL, NULL, 2, mids, mE, mnu), PETSC_ERR_ARG_NULL, "SgProblem");
+    WRONG(SgProblemSetMaterials(p, NULL, 0, mids, mE, mnu), PETSC_ERR_ARG_OUTOFRANGE, "0 materials");
+    WRONG(SgProblemSetMaterials(p, NULL, 33, mids, mE, mnu), PETSC_ERR_ARG_OUTOFRANGE, "33 materials");
+    WRONG(SgProblemSetMaterials(p, NULL, 2, NULL, mE, mnu), PETSC_ERR_ARG_NULL, "arrays");
+    WRONG(SgProblemSetMaterials(p, NULL, 2, mids, mE, NULL), PETSC_ERR_ARG_NULL, "arrays");
+    WRONG(SgProblemSetMaterials(p, NULL, 2, dup, mE, mnu), PETSC_ERR_ARG_WRONG, "id 1 is given twice");
+    WRONG(SgProblemSetMaterials(p, NULL, 1, neg, mE, mnu), PETSC_ERR_ARG_OUTOFRANGE, ">= 0");
+    WRONG(SgProblemSetMaterials(p, NULL, 2, mids, bE, mnu), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus of id 2");
+    WRONG(SgProblemSetMaterials(p, NULL, 2, mids, mE, bnu), PETSC_ERR_ARG_OUTOFRANGE, "Poisson's ratio of id 2");
+    RIGHT(SgProblemSetMaterials(p, "Cell Sets", 2, mids, mE, mnu));
+    RIGHT(SgProblemSetMaterial(p, 1, 0.3)); /* one material again (the box below has no cell label) */
+  }
   WRONG(SgProblemSetBoundary(NULL, SG_BOUNDARY_CONTACT, "Face Sets", 0, NULL, NULL), PETSC_ERR_ARG_NULL, "SgProblem");
   WRONG(SgProblemSetBoundary(p, SG_BOUNDARY_DIRICHLET, "Face Sets", -1, ids, NULL), PETSC_ERR_ARG_OUTOFRANGE, "ids");
   WRONG(SgProblemSetBoundary(p, SG_BOUNDARY_DIRICHLET, "Face Sets", 33, ids, NULL), PETSC_ERR_ARG_OUTOFRANGE, "ids");
@@ -733,6 +748,104 @@ static PetscErrorCode CasesDMCopy(PetscReal res[6])
   PetscFunctionReturn(0);
 }
 
+/* SolveOn without its material: the one the problem was given */
+static PetscErrorCode SolveMaterials(SgProblem p, PetscReal *V, PetscReal *force)
+{
+  const PetscInt  top = 3, bottom = 1;
+  const PetscReal u[2] = {0.002, -0.01};
+  SgCont          c;
+  SgKKT           kkt;
+  PetscBool       conv;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemSetBoundary(p, SG_BOUNDARY_DIRICHLET, "sides", 1, &top, u));
+  PetscCall(SgProblemSetBoundary(p, SG_BOUNDARY_CONTACT, "sides", 1, &bottom, NULL));
+  PetscCall(SgContCreate(p, &c));
+  PetscCall(SgContSetType(c, SGCONTPDAS));
+  PetscCall(SgContSolve(c));
+  PetscCall(SgContGetConvergedReason(c, &conv, NULL));
+  PetscCall(SgContGetEnergy(c, V));
+  PetscCall(SgContGetKKT(c, &kkt));
+  *force = kkt.force;
+  PetscCall(Check("the solve converges", conv));
+  PetscCall(SgContDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
+/* SgProblemSetMaterials on the caller's DM with a cell label of its own ("mat": 1 for x < 1, 2 beyond): the same
+   problem as the options (-m_material_*), equal materials the single material bit for bit, two materials another
+   problem; an id the mesh lacks is refused at the set-up. */
+static PetscErrorCode CasesMaterials(PetscReal res[4])
+{
+  const PetscInt  ids[2] = {1, 2}, bad[2] = {1, 5};
+  const PetscReal E2[2] = {1000, 4000}, nu2[2] = {0.3, 0.2}, E1[2] = {1000, 1000}, nu1[2] = {0.3, 0.3};
+  DM              dm;
+  DMLabel         mat;
+  PetscInt        cStart, cEnd;
+  SgProblem       pA, pB, pC, pD, pE;
+  PetscReal       VA, VB, VC, VD, fA, fB, fC, fD;
+
+  PetscFunctionBeginUser;
+  PetscCall(MakeBox(8, 4, &dm));
+  PetscCall(DMCreateLabel(dm, "mat"));
+  PetscCall(DMGetLabel(dm, "mat", &mat));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  for (PetscInt c = cStart; c < cEnd; c++) {
+    PetscReal x[3];
+    PetscCall(DMPlexComputeCellGeometryFVM(dm, c, NULL, x, NULL));
+    PetscCall(DMLabelSetValue(mat, c, x[0] < 1 ? 1 : 2));
+  }
+  PetscCall(SgProblemCreateFromDM(dm, &pA));
+  PetscCall(SgProblemSetMaterials(pA, "mat", 2, ids, E2, nu2));
+  PetscCall(SolveMaterials(pA, &VA, &fA));
+  PetscCall(SgProblemCreateFromDM(dm, &pB));
+  PetscCall(SgProblemSetOptionsPrefix(pB, "m_"));
+  PetscCall(PetscOptionsSetValue(NULL, "-m_material_label", "mat"));
+  PetscCall(PetscOptionsSetValue(NULL, "-m_material_ids", "1,2"));
+  PetscCall(PetscOptionsSetValue(NULL, "-m_E", "1000,4000"));
+  PetscCall(PetscOptionsSetValue(NULL, "-m_nu", "0.3,0.2"));
+  PetscCall(SolveMaterials(pB, &VB, &fB));
+  PetscCall(SgProblemCreateFromDM(dm, &pC));
+  PetscCall(SgProblemSetMaterials(pC, "mat", 2, ids, E1, nu1));
+  PetscCall(SolveMaterials(pC, &VC, &fC));
+  PetscCall(SgProblemCreateFromDM(dm, &pD));
+  PetscCall(SgProblemSetMaterial(pD, 1000, 0.3));
+  PetscCall(SolveMaterials(pD, &VD, &fD));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "energies: materials %.15g (options %.15g), equal materials %.15g, one material %.15g\n", (double)VA, (double)VB, (double)VC, (double)VD));
+  PetscCall(Check("SgProblemSetMaterials solves as the options -material_*", (PetscBool)(VA == VB && fA == fB)));
+  PetscCall(Check("equal materials are the single material", (PetscBool)(VC == VD && fC == fD)));
+  PetscCall(Check("two materials are another problem", (PetscBool)(PetscAbsReal(VA - VD) > 1e-2 * PetscAbsReal(VD))));
+  PetscCall(SgProblemCreateFromDM(dm, &pE));
+  PetscCall(SgProblemSetMaterials(pE, "mat", 2, bad, E2, nu2));
+  WRONG(SgProblemSetUp(pE), PETSC_ERR_USER_INPUT, "-material_label 'mat': cells have the value 2, which is not among -material_ids");
+  { /* a label on some cells only: the others have no material */
+    DMLabel   half;
+    SgProblem pF;
+    PetscCall(DMCreateLabel(dm, "half"));
+    PetscCall(DMGetLabel(dm, "half", &half));
+    for (PetscInt c = cStart; c < cEnd; c++) {
+      PetscReal x[3];
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, c, NULL, x, NULL));
+      if (x[0] < 1) PetscCall(DMLabelSetValue(half, c, 1));
+    }
+    PetscCall(SgProblemCreateFromDM(dm, &pF));
+    PetscCall(SgProblemSetMaterials(pF, "half", 2, ids, E2, nu2));
+    WRONG(SgProblemSetUp(pF), PETSC_ERR_USER_INPUT, "has no value of the label, so no material of -material_ids");
+    PetscCall(SgProblemDestroy(&pF));
+  }
+  res[0] = VA;
+  res[1] = VB;
+  res[2] = VC;
+  res[3] = VD;
+  PetscCall(SgProblemDestroy(&pA));
+  PetscCall(SgProblemDestroy(&pB));
+  PetscCall(SgProblemDestroy(&pC));
+  PetscCall(SgProblemDestroy(&pD));
+  PetscCall(SgProblemDestroy(&pE));
+  PetscCall(DMDestroy(&dm));
+  PetscFunctionReturn(0);
+}
+
 /* a JSON number, or null for NaN */
 static PetscErrorCode JSONReal(FILE *fp, const char key[], PetscReal v, const char end[])
 {
@@ -746,7 +859,7 @@ int main(int argc, char **argv)
 {
   char      which[64] = "", file[PETSC_MAX_PATH_LEN] = "";
   PetscBool all, is;
-  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN};
+  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN}, matres[4] = {NAN, NAN, NAN, NAN};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-case", which, sizeof(which), NULL));
@@ -759,7 +872,8 @@ int main(int argc, char **argv)
   if (PetscStrcmp(which, "order", &is) == 0 && (all || is)) PetscCall(CasesOrder(&e_order));
   if (PetscStrcmp(which, "refcount", &is) == 0 && (all || is)) PetscCall(CasesRefcount(&e_ref, &e_ref2));
   if (PetscStrcmp(which, "dm_copy", &is) == 0 && (all || is)) PetscCall(CasesDMCopy(dmres));
-  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy)", which);
+  if (PetscStrcmp(which, "materials", &is) == 0 && (all || is)) PetscCall(CasesMaterials(matres));
+  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy, materials)", which);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " cases, %" PetscInt_FMT " misbehaved\n", Cases, Bad));
   if (file[0]) {
     FILE *fp;
@@ -773,7 +887,11 @@ int main(int argc, char **argv)
     PetscCall(JSONReal(fp, "energy_untouched", dmres[2], ", "));
     PetscCall(JSONReal(fp, "energy_from_changed", dmres[3], ", "));
     PetscCall(JSONReal(fp, "force_changed_dm", dmres[4], ", "));
-    PetscCall(JSONReal(fp, "force_untouched", dmres[5], "}\n"));
+    PetscCall(JSONReal(fp, "force_untouched", dmres[5], ", "));
+    PetscCall(JSONReal(fp, "energy_materials", matres[0], ", "));
+    PetscCall(JSONReal(fp, "energy_materials_options", matres[1], ", "));
+    PetscCall(JSONReal(fp, "energy_equal_materials", matres[2], ", "));
+    PetscCall(JSONReal(fp, "energy_one_material", matres[3], "}\n"));
     PetscCall(PetscFClose(PETSC_COMM_WORLD, fp));
   }
   PetscCall(PetscFinalize());

@@ -160,6 +160,19 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
   PetscCall(SgSummarySetInt(sum, "cells", ncells));
   PetscCall(SgSummarySetReal(sum, "E", E));
   PetscCall(SgSummarySetReal(sum, "nu", nu));
+  { /* several materials (E, nu above: the stiffest) */
+    const char      *label;
+    PetscInt         nmat;
+    const PetscInt  *ids;
+    const PetscReal *Em, *num;
+    PetscCall(SgElasticityGetMaterials(ct->prob, &label, &nmat, &ids, &Em, &num));
+    if (nmat > 0) {
+      PetscCall(SgSummarySetString(sum, "material_label", label));
+      PetscCall(SgSummarySetIntArray(sum, "material_ids", nmat, ids));
+      PetscCall(SgSummarySetRealArray(sum, "material_E", nmat, Em));
+      PetscCall(SgSummarySetRealArray(sum, "material_nu", nmat, num));
+    }
+  }
   PetscCall(SgSummarySetReal(sum, "assembly_time", t_assembly));
   /* one linear elasticity solve with the same solver, in this run: the yardstick of the contact solve's cost */
   PetscCall(SgSummarySetReal(sum, "linear_setup_time", ct->t_linear_setup));

@@ -144,8 +144,37 @@ PetscErrorCode SgProblemSetMaterial(SgProblem p, PetscReal E, PetscReal nu)
   PetscCheck(PetscIsNormalReal(E) && E > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterial: Young's modulus must be positive and finite, got %g", (double)E);
   PetscCheck(!PetscIsInfOrNanReal(nu) && nu >= 0 && nu < 0.5, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterial: Poisson's ratio must lie in [0, 0.5), got %g", (double)nu);
   p->settings.material_set = PETSC_TRUE;
+  p->settings.nmat         = 0; /* one material from now on */
   p->settings.E            = E;
   p->settings.nu           = nu;
+  PetscFunctionReturn(0);
+}
+
+/* Several materials (the defaults of -material_label, -material_ids, -E, -nu): cell c has E[k], nu[k] when its value of
+   the cell label `label` (NULL: "Cell Sets", gmsh's physical volumes) is ids[k]; n = 1: every cell has E[0], nu[0]. */
+PetscErrorCode SgProblemSetMaterials(SgProblem p, const char label[], PetscInt n, const PetscInt ids[], const PetscReal E[], const PetscReal nu[])
+{
+  size_t len = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(CheckNotSetUp(p, "SgProblemSetMaterials"));
+  PetscCheck(n >= 1 && n <= SG_MAX_IDS, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterials: %" PetscInt_FMT " materials, 1 to %d are supported", n, SG_MAX_IDS);
+  PetscCheck(ids && E && nu, p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetMaterials: the arrays of ids, E and nu are needed");
+  if (label) PetscCall(PetscStrlen(label, &len));
+  PetscCheck(len < sizeof(p->settings.matlabel), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetMaterials: the label name has %zu characters, at most %zu are supported", len, sizeof(p->settings.matlabel) - 1);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCheck(ids[k] >= 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterials: id %" PetscInt_FMT " is %" PetscInt_FMT ", label values of cells are >= 0", k, ids[k]);
+    for (PetscInt j = 0; j < k; j++) PetscCheck(ids[j] != ids[k], p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetMaterials: the id %" PetscInt_FMT " is given twice", ids[k]);
+    PetscCheck(PetscIsNormalReal(E[k]) && E[k] > 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterials: Young's modulus of id %" PetscInt_FMT " must be positive and finite, got %g", ids[k], (double)E[k]);
+    PetscCheck(!PetscIsInfOrNanReal(nu[k]) && nu[k] >= 0 && nu[k] < 0.5, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetMaterials: Poisson's ratio of id %" PetscInt_FMT " must lie in [0, 0.5), got %g", ids[k], (double)nu[k]);
+  }
+  PetscCall(PetscStrncpy(p->settings.matlabel, label && label[0] ? label : "Cell Sets", sizeof(p->settings.matlabel)));
+  for (PetscInt k = 0; k < n; k++) {
+    p->settings.matids[k] = ids[k];
+    p->settings.matE[k]   = E[k];
+    p->settings.matnu[k]  = nu[k];
+  }
+  p->settings.nmat = n;
   PetscFunctionReturn(0);
 }
 

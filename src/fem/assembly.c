@@ -144,7 +144,7 @@ static PetscErrorCode AssembleCells(SgElasticity p, const PetscScalar ua[], Pets
   if (p->mms) PetscCall(SgSimplexQuadrature(dim, &nq, &lq, &wq));
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], fe[12], ud[12], vol;
+    PetscReal       xe[12], Ke[144], fe[12], ud[12], vol, lambda, mu;
     PetscInt        gb[4];
     PetscBool       lift = PETSC_FALSE, partial = PETSC_FALSE;
 
@@ -157,7 +157,8 @@ static PetscErrorCode AssembleCells(SgElasticity p, const PetscScalar ua[], Pets
       if (m->bcmask[cv[a]]) lift = PETSC_TRUE;
       if (SgMeshPartial(m, cv[a])) partial = PETSC_TRUE;
     }
-    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    SgElasticityCellLame(p, c, &lambda, &mu);
+    PetscCall(SgElementStiffness(dim, xe, lambda, mu, Ke, &vol));
     PetscCall(AddElementStiffness(p, cv, gb, partial, Ke));
     PetscCall(ElementLoad(p, xe, vol, nq, lq, wq, fe));
     for (PetscInt a = 0; a < nv; a++)

@@ -2,14 +2,79 @@
    destruction. */
 #include "fem/femimpl.h"
 
+/* The checks of one material (the options' names in the messages: "-E", "-nu"; of several, their entry k too) */
+static PetscErrorCode CheckMaterial(SgElasticity p, PetscInt k, PetscReal E, PetscReal nu, PetscReal *lambda, PetscReal *mu)
+{
+  char which[128] = "";
+
+  PetscFunctionBeginUser;
+  if (k >= 0) PetscCall(PetscSNPrintf(which, sizeof(which), " entry %" PetscInt_FMT " (-material_ids %" PetscInt_FMT ")", k, p->matids[k]));
+  PetscCheck(PetscIsNormalReal(E) && E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E%s: Young's modulus must be positive and finite, got %g", which, (double)E);
+  /* nu = 0 (no lateral contraction) is a valid material; nu -> 1/2 is incompressible */
+  PetscCheck(!PetscIsInfOrNanReal(nu) && nu >= 0 && nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu%s: Poisson's ratio must lie in [0, 0.5), got %g", which, (double)nu);
+  PetscCall(SgLame(E, nu, lambda, mu));
+  /* nu -> 1/2: lambda / mu = 2 nu / (1 - 2 nu) grows without bound; once the shear part of K is below 1e3 rounding
+     units of the volumetric part, K is singular to working precision (a factorization meets zero pivots) and no
+     tolerance the KKT measures could certify is left (their round-off, SgKKT.roundoff, is larger still) */
+  PetscCheck((PetscIsNormalReal(*lambda) || *lambda == 0) && *lambda / *mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu%s %.16g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", which, (double)nu, (double)E, (double)(*lambda / *mu));
+  PetscFunctionReturn(0);
+}
+
+/* The material(s): one E and nu for every cell, or with -material_ids one of each per value of the cell label
+   -material_label. A list given (option or SgProblemSetMaterials) has one entry per id; a value not given at all (the
+   default, or SgProblemSetMaterial's) holds for every material. */
+static PetscErrorCode MaterialOptions(PetscOptionItems *PetscOptionsObject, SgElasticity p, const SgElasticitySettings *set)
+{
+  PetscInt  nE = 1, nnu = 1, nids = 0;
+  PetscBool Eset = PETSC_FALSE, nuset = PETSC_FALSE, idset;
+
+  PetscFunctionBeginUser;
+  p->matE[0]  = set && set->material_set ? set->E : 1.0;
+  p->matnu[0] = set && set->material_set ? set->nu : 0.3;
+  PetscCall(PetscStrcpy(p->matlabel, "Cell Sets"));
+  if (set && set->nmat > 0) {
+    nids = nE = nnu = set->nmat;
+    Eset = nuset = PETSC_TRUE;
+    for (PetscInt k = 0; k < nids; k++) {
+      p->matids[k] = set->matids[k];
+      p->matE[k]   = set->matE[k];
+      p->matnu[k]  = set->matnu[k];
+    }
+    PetscCall(PetscStrncpy(p->matlabel, set->matlabel, sizeof(p->matlabel)));
+  }
+  PetscCall(PetscOptionsString("-material_label", "Cell label whose values -material_ids name (gmsh's physical volumes, 2D: surfaces, arrive in 'Cell Sets')", NULL, p->matlabel, p->matlabel, sizeof(p->matlabel), NULL));
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-material_ids", "Values of -material_label, one per material (with -E, -nu of as many entries); every cell needs one of them", SG_MAX_IDS, p->matids, &nids, &idset));
+  {
+    PetscBool s;
+    PetscCall(SgOptionsRealList(PetscOptionsObject, "-E", "Young's modulus (one per -material_ids)", SG_MAX_IDS, p->matE, &nE, &s));
+    Eset = (PetscBool)(Eset || s);
+    PetscCall(SgOptionsRealList(PetscOptionsObject, "-nu", "Poisson's ratio in [0, 0.5) (plane strain in 2D; one per -material_ids)", SG_MAX_IDS, p->matnu, &nnu, &s));
+    nuset = (PetscBool)(nuset || s);
+  }
+  for (PetscInt k = 0; k < nids; k++) {
+    PetscCheck(p->matids[k] >= 0, p->comm, PETSC_ERR_USER_INPUT, "-material_ids: entry %" PetscInt_FMT " is %" PetscInt_FMT ", label values of cells are >= 0", k, p->matids[k]);
+    for (PetscInt j = 0; j < k; j++) PetscCheck(p->matids[j] != p->matids[k], p->comm, PETSC_ERR_USER_INPUT, "-material_ids: the id %" PetscInt_FMT " is given twice (entries %" PetscInt_FMT " and %" PetscInt_FMT ")", p->matids[k], j, k);
+  }
+  if (nids <= 1) { /* one material for every cell */
+    PetscCheck(nE == 1, p->comm, PETSC_ERR_USER_INPUT, "-E: %" PetscInt_FMT " values need as many -material_ids (%s given)", nE, nids ? "1 is" : "none are");
+    PetscCheck(nnu == 1, p->comm, PETSC_ERR_USER_INPUT, "-nu: %" PetscInt_FMT " values need as many -material_ids (%s given)", nnu, nids ? "1 is" : "none are");
+  } else {
+    if (!Eset && nE == 1)
+      for (PetscInt k = 1; k < nids; k++) p->matE[k] = p->matE[0];
+    else PetscCheck(nE == nids, p->comm, PETSC_ERR_USER_INPUT, "-E: %" PetscInt_FMT " values for %" PetscInt_FMT " -material_ids (one per id)", nE, nids);
+    if (!nuset && nnu == 1)
+      for (PetscInt k = 1; k < nids; k++) p->matnu[k] = p->matnu[0];
+    else PetscCheck(nnu == nids, p->comm, PETSC_ERR_USER_INPUT, "-nu: %" PetscInt_FMT " values for %" PetscInt_FMT " -material_ids (one per id)", nnu, nids);
+  }
+  p->nmat = nids;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings *set)
 {
   PetscFunctionBeginUser;
-  p->E  = set && set->material_set ? set->E : 1.0;
-  p->nu = set && set->material_set ? set->nu : 0.3;
   PetscOptionsBegin(p->comm, p->prefix, "Linear elasticity", NULL);
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-E", "Young's modulus", &p->E, NULL));
-  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-nu", "Poisson's ratio in [0, 0.5) (plane strain in 2D)", &p->nu, NULL));
+  PetscCall(MaterialOptions(PetscOptionsObject, p, set));
   p->nbody_force = 0;
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-body_force", "Constant body force f (dim numbers)", 3, p->body_force, &p->nbody_force, NULL));
   p->use_nearnull = PETSC_TRUE;
@@ -26,16 +91,23 @@ static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings 
   p->neumann.what   = "neumann";
   if (!p->dirichlet.label[0]) PetscCall(PetscStrcpy(p->dirichlet.label, "Face Sets"));
   if (!p->neumann.label[0]) PetscCall(PetscStrcpy(p->neumann.label, "Face Sets"));
-  PetscCheck(PetscIsNormalReal(p->E) && p->E > 0, p->comm, PETSC_ERR_USER_INPUT, "-E: Young's modulus must be positive and finite, got %g", (double)p->E);
-  /* nu = 0 (no lateral contraction) is a valid material; nu -> 1/2 is incompressible */
-  PetscCheck(!PetscIsInfOrNanReal(p->nu) && p->nu >= 0 && p->nu < 0.5, p->comm, PETSC_ERR_USER_INPUT, "-nu: Poisson's ratio must lie in [0, 0.5), got %g", (double)p->nu);
+  /* the materials: one (today's messages), or each with its entry; E, nu, lambda, mu: the one, or the stiffest */
+  if (p->nmat <= 1) {
+    PetscCall(CheckMaterial(p, -1, p->matE[0], p->matnu[0], &p->matlambda[0], &p->matmu[0]));
+  } else
+    for (PetscInt k = 0; k < p->nmat; k++) PetscCall(CheckMaterial(p, k, p->matE[k], p->matnu[k], &p->matlambda[k], &p->matmu[k]));
+  {
+    PetscInt s = 0;
+    for (PetscInt k = 1; k < p->nmat; k++)
+      if (p->matE[k] > p->matE[s]) s = k;
+    p->E      = p->matE[s];
+    p->nu     = p->matnu[s];
+    p->lambda = p->matlambda[s];
+    p->mu     = p->matmu[s];
+  }
+  PetscCheck(!p->mms || p->nmat <= 1, p->comm, PETSC_ERR_USER_INPUT, "-mms: the manufactured solution is for one material, not the %" PetscInt_FMT " of -material_ids", p->nmat);
   for (PetscInt d = 0; d < p->nbody_force; d++) PetscCheck(PetscIsNormalReal(p->body_force[d]) || p->body_force[d] == 0, p->comm, PETSC_ERR_USER_INPUT, "-body_force: entry %" PetscInt_FMT " is %g, must be finite", d, (double)p->body_force[d]);
   PetscCheck(!p->rigid_shift_set || (PetscIsNormalReal(p->rigid_shift) && p->rigid_shift > 0) || p->rigid_shift == 0, p->comm, PETSC_ERR_USER_INPUT, "-elasticity_rigid_shift: must be finite and >= 0, got %g", (double)p->rigid_shift);
-  PetscCall(SgLame(p->E, p->nu, &p->lambda, &p->mu));
-  /* nu -> 1/2: lambda / mu = 2 nu / (1 - 2 nu) grows without bound; once the shear part of K is below 1e3 rounding
-     units of the volumetric part, K is singular to working precision (a factorization meets zero pivots) and no
-     tolerance the KKT measures could certify is left (their round-off, SgKKT.roundoff, is larger still) */
-  PetscCheck((PetscIsNormalReal(p->lambda) || p->lambda == 0) && p->lambda / p->mu <= 1e-3 / PETSC_MACHINE_EPSILON, p->comm, PETSC_ERR_USER_INPUT, "-nu %.16g (E %g): lambda/mu = %.3g, too nearly incompressible for double precision (the shear stiffness is lost in the rounding of the volumetric one, K is singular to working precision); nu <= 0.4999999999 (lambda/mu 5e9) can be solved to tolerances that the run's KKT measures state", (double)p->nu, (double)p->E, (double)(p->lambda / p->mu));
   PetscFunctionReturn(0);
 }
 
@@ -109,6 +181,58 @@ PetscErrorCode SgElasticitySetFromOptions(SgElasticity p, DM dm, const SgElastic
   PetscFunctionReturn(0);
 }
 
+/* The material of each local cell from its value of -material_label: every cell needs one of -material_ids (with
+   one id, every cell has it), and every id has a cell somewhere. */
+PetscErrorCode SgElasticitySetUpMaterials(SgElasticity p)
+{
+  const SgMesh *m = &p->mesh;
+  DMLabel       lab;
+  PetscInt      cnt[SG_MAX_IDS], has, bad[2] = {PETSC_MAX_INT, PETSC_MAX_INT}; /* the smallest value not listed, the cell without a value (-1 none) */
+  PetscReal     xb[3] = {0, 0, 0};
+
+  PetscFunctionBeginUser;
+  if (p->nmat < 1) PetscFunctionReturn(0);
+  PetscCall(DMGetLabel(p->dm, p->matlabel, &lab));
+  has = lab ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &has, 1, MPIU_INT, MPI_MAX, p->comm));
+  PetscCheck(has, p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': the mesh has no such label (gmsh's physical volumes, in 2D surfaces, arrive in 'Cell Sets'; a mesh without physical groups of cells has none)", p->matlabel);
+  PetscCall(PetscMalloc1(m->nc, &p->cellmat));
+  for (PetscInt k = 0; k < SG_MAX_IDS; k++) cnt[k] = 0;
+  for (PetscInt c = 0; c < m->nc; c++) {
+    PetscInt val = -1, k;
+    if (lab) PetscCall(DMLabelGetValue(lab, m->cStart + c, &val));
+    for (k = 0; k < p->nmat; k++)
+      if (p->matids[k] == val) break;
+    if (k < p->nmat) cnt[k]++;
+    else if (p->nmat == 1) k = 0;
+    else if (val >= 0) bad[0] = PetscMin(bad[0], val);
+    else if (bad[1] == PETSC_MAX_INT) {
+      bad[1] = m->cStart + c;
+      for (PetscInt a = 0; a <= p->dim; a++)
+        for (PetscInt d = 0; d < p->dim; d++) xb[d] += m->x[m->cellv[c * (p->dim + 1) + a] * p->dim + d] / (p->dim + 1);
+    }
+    p->cellmat[c] = k < p->nmat ? k : 0;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cnt, (PetscMPIInt)p->nmat, MPIU_INT, MPI_SUM, p->comm));
+  {
+    PetscInt g[2];
+    PetscCallMPI(MPI_Allreduce(bad, g, 2, MPIU_INT, MPI_MIN, p->comm));
+    PetscCheck(g[0] == PETSC_MAX_INT, p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': cells have the value %" PetscInt_FMT ", which is not among -material_ids (every cell needs a material: add the id with its -E and -nu)", p->matlabel, g[0]);
+    if (g[1] < PETSC_MAX_INT) { /* the centroid of a cell without a value, from the rank that has one */
+      PetscMPIInt rank, r;
+      PetscCallMPI(MPI_Comm_rank(p->comm, &rank));
+      r = bad[1] < PETSC_MAX_INT ? rank : PETSC_MPI_INT_MAX;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &r, 1, MPI_INT, MPI_MIN, p->comm));
+      PetscCallMPI(MPI_Bcast(xb, 3, MPIU_REAL, r, p->comm));
+      if (p->dim == 2) SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': the cell with centroid (%g, %g) has no value of the label, so no material of -material_ids (every cell needs one)", p->matlabel, (double)xb[0], (double)xb[1]);
+      SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "-material_label '%s': the cell with centroid (%g, %g, %g) has no value of the label, so no material of -material_ids (every cell needs one)", p->matlabel, (double)xb[0], (double)xb[1], (double)xb[2]);
+    }
+  }
+  for (PetscInt k = 0; k < p->nmat; k++) PetscCheck(cnt[k] > 0, p->comm, PETSC_ERR_USER_INPUT, "-material_ids: no cell of the mesh has the value %" PetscInt_FMT " of -material_label '%s'", p->matids[k], p->matlabel);
+  if (p->nmat == 1) PetscCall(PetscFree(p->cellmat)); /* every cell: E, nu */
+  PetscFunctionReturn(0);
+}
+
 /* The P1 layout with the Dirichlet constraints, the auxiliary field layouts and the assembly. */
 PetscErrorCode SgElasticitySetUp(SgElasticity p)
 {
@@ -119,6 +243,7 @@ PetscErrorCode SgElasticitySetUp(SgElasticity p)
   if (p->setup) PetscFunctionReturn(0);
   PetscCheck(p->dm, comm, PETSC_ERR_ORDER, "SgElasticitySetUp: the mesh is missing (SgElasticitySetFromOptions first)");
   PetscCall(SgMeshSetUp(p->dm, &p->dirichlet, &p->mesh));
+  PetscCall(SgElasticitySetUpMaterials(p));
   PetscCall(SgElasticityCheckRigidMotions(p));
   for (PetscInt pass = 0; pass < 2; pass++) {
     p->npartial = 0;
@@ -148,7 +273,11 @@ PetscErrorCode SgElasticityView(SgElasticity p, PetscViewer viewer)
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, p->comm));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "linear elasticity (P1, %s): %" PetscInt_FMT "D, %" PetscInt_FMT " cells, %" PetscInt_FMT " unknowns, E %g, nu %g\n", p->dim == 2 ? "plane strain" : "3D", p->dim, nc, p->ndofs, (double)p->E, (double)p->nu));
+  if (p->nmat <= 1) PetscCall(PetscViewerASCIIPrintf(viewer, "linear elasticity (P1, %s): %" PetscInt_FMT "D, %" PetscInt_FMT " cells, %" PetscInt_FMT " unknowns, E %g, nu %g\n", p->dim == 2 ? "plane strain" : "3D", p->dim, nc, p->ndofs, (double)p->E, (double)p->nu));
+  else {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "linear elasticity (P1, %s): %" PetscInt_FMT "D, %" PetscInt_FMT " cells, %" PetscInt_FMT " unknowns, %" PetscInt_FMT " materials of label %s:\n", p->dim == 2 ? "plane strain" : "3D", p->dim, nc, p->ndofs, p->nmat, p->matlabel));
+    for (PetscInt k = 0; k < p->nmat; k++) PetscCall(PetscViewerASCIIPrintf(viewer, "  id %" PetscInt_FMT ": E %g, nu %g\n", p->matids[k], (double)p->matE[k], (double)p->matnu[k]));
+  }
   {
     char comps[SG_MAX_IDS * 5 + 32] = "";
     if (p->dirichlet.ncomps) {
@@ -241,6 +370,17 @@ PetscErrorCode SgElasticityGetMaterial(SgElasticity p, PetscReal *E, PetscReal *
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgElasticityGetMaterials(SgElasticity p, const char **label, PetscInt *n, const PetscInt **ids, const PetscReal **E, const PetscReal **nu)
+{
+  PetscFunctionBeginUser;
+  if (label) *label = p->matlabel;
+  if (n) *n = p->nmat;
+  if (ids) *ids = p->matids;
+  if (E) *E = p->matE;
+  if (nu) *nu = p->matnu;
+  PetscFunctionReturn(0);
+}
+
 /* unknowns (global), cells (global), manufactured solution, assembly time */
 PetscErrorCode SgElasticityGetInfo(SgElasticity p, PetscInt *ndofs, PetscInt *ncells, PetscBool *mms, PetscLogDouble *t_assembly)
 {
@@ -273,6 +413,7 @@ PetscErrorCode SgElasticityDestroy(SgElasticity *prob)
   PetscCall(MatNullSpaceDestroy(&p->nearnull));
   PetscCall(SgMeshDestroy(&p->mesh));
   PetscCall(PetscFree(p->partial));
+  PetscCall(PetscFree(p->cellmat));
   PetscCall(DMDestroy(&p->dmCell));
   PetscCall(DMDestroy(&p->dmVert));
   PetscCall(DMDestroy(&p->dmVec));

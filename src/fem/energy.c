@@ -43,6 +43,9 @@ static PetscErrorCode EnergyReference(SgElasticity p, const PetscScalar ya[], co
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
     long double     J[3][3], Ji[3][3], det, G[4][3], w[12], vol, e = 0;
+    PetscReal       lambda, mu;
+
+    SgElasticityCellLame(p, c, &lambda, &mu);
 
     for (PetscInt a = 0; a < dim; a++)
       for (PetscInt d = 0; d < dim; d++) J[d][a] = (long double)m->x[cv[a + 1] * dim + d] - (long double)m->x[cv[0] * dim + d];
@@ -74,7 +77,7 @@ static PetscErrorCode EnergyReference(SgElasticity p, const PetscScalar ya[], co
           for (PetscInt j = 0; j < dim; j++) {
             long double gg = 0, K;
             for (PetscInt k = 0; k < dim; k++) gg += G[a][k] * G[b][k];
-            K = vol * ((long double)p->lambda * G[a][i] * G[b][j] + (long double)p->mu * (G[a][j] * G[b][i] + (i == j ? gg : 0)));
+            K = vol * ((long double)lambda * G[a][i] * G[b][j] + (long double)mu * (G[a][j] * G[b][i] + (i == j ? gg : 0)));
             e += w[a * dim + i] * K * w[b * dim + j];
           }
     SumAddL(&el, e / 2);
@@ -138,7 +141,7 @@ PetscErrorCode SgElasticityEnergy(SgElasticity p, Vec y, PetscReal *V)
   /* every cell is on exactly one rank (no overlap), as in the assembly */
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], G[12], vol, H[3][3] = {{0}}, tr = 0, e2 = 0;
+    PetscReal       xe[12], G[12], vol, H[3][3] = {{0}}, tr = 0, e2 = 0, lambda, mu;
 
     for (PetscInt a = 0; a < nv; a++)
       for (PetscInt d = 0; d < dim; d++) xe[a * dim + d] = m->x[cv[a] * dim + d];
@@ -153,7 +156,8 @@ PetscErrorCode SgElasticityEnergy(SgElasticity p, Vec y, PetscReal *V)
       tr += H[i][i];
       for (PetscInt j = 0; j < dim; j++) e2 += PetscSqr(0.5 * (H[i][j] + H[j][i]));
     }
-    SumAdd(&el, vol * (0.5 * p->lambda * tr * tr + p->mu * e2));
+    SgElasticityCellLame(p, c, &lambda, &mu);
+    SumAdd(&el, vol * (0.5 * lambda * tr * tr + mu * e2));
   }
   PetscCall(VecGetLocalSize(p->fpart, &nloc));
   for (PetscInt i = 0; i < nloc; i++)

@@ -13,7 +13,12 @@ struct _n_SgElasticity {
   DM           dmVec;   /* dim values per vertex, no constraints (output of the full displacement) */
   SgMesh       mesh;
   PetscInt     dim;
-  PetscReal    E, nu, lambda, mu;
+  PetscReal    E, nu, lambda, mu; /* the material; of several (nmat > 0), the stiffest (largest E) */
+  /* several materials (-material_ids): cell c has material cellmat[c] of the ids matids[] of the cell label matlabel;
+     nmat = 0 (and cellmat NULL): E, nu above in every cell */
+  PetscInt     nmat, matids[SG_MAX_IDS], *cellmat;
+  PetscReal    matE[SG_MAX_IDS], matnu[SG_MAX_IDS], matlambda[SG_MAX_IDS], matmu[SG_MAX_IDS];
+  char         matlabel[256];
   PetscReal    body_force[3];
   PetscInt     nbody_force;  /* entries given with -body_force (must be dim) */
   SgBoundary   dirichlet, neumann;
@@ -70,3 +75,15 @@ void           SgMeshZeroFixedComponents(const SgMesh *, PetscInt, PetscScalar[]
 PetscErrorCode SgElasticityAssemble(SgElasticity);
 PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity);
 PetscErrorCode SgElasticityCreateNearNullSpace(SgElasticity);
+PetscErrorCode SgElasticitySetUpMaterials(SgElasticity);
+/* the Lame constants of local cell c */
+static inline void SgElasticityCellLame(SgElasticity p, PetscInt c, PetscReal *lambda, PetscReal *mu)
+{
+  if (p->cellmat) {
+    *lambda = p->matlambda[p->cellmat[c]];
+    *mu     = p->matmu[p->cellmat[c]];
+  } else {
+    *lambda = p->lambda;
+    *mu     = p->mu;
+  }
+}

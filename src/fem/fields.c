@@ -68,8 +68,10 @@ PetscErrorCode SgElasticityCellFields(SgElasticity p, Vec y, Vec vm, Vec wshear)
   PetscCall(VecGetArray(vml, &va));
   PetscCall(VecGetArray(wl, &wa));
   for (PetscInt c = 0; c < m->nc; c++) {
-    PetscReal xe[12], G[12], vol, eps[3][3] = {{0}}, sig[3][3], tr = 0, dev2 = 0;
+    PetscReal xe[12], G[12], vol, eps[3][3] = {{0}}, sig[3][3], tr = 0, dev2 = 0, lambda, mu;
     PetscInt  off;
+
+    SgElasticityCellLame(p, c, &lambda, &mu);
 
     for (PetscInt a = 0; a < nv; a++)
       for (PetscInt d = 0; d < dim; d++) xe[a * dim + d] = m->x[m->cellv[c * nv + a] * dim + d];
@@ -83,12 +85,12 @@ PetscErrorCode SgElasticityCellFields(SgElasticity p, Vec y, Vec vm, Vec wshear)
     for (PetscInt i = 0; i < 3; i++)
       for (PetscInt j = 0; j < 3; j++) {
         const PetscReal de = eps[i][j] - (i == j ? tr / 3 : 0);
-        sig[i][j]          = 2 * p->mu * eps[i][j] + (i == j ? p->lambda * tr : 0);
+        sig[i][j]          = 2 * mu * eps[i][j] + (i == j ? lambda * tr : 0);
         dev2 += de * de;
       }
     PetscCall(PetscSectionGetOffset(cs, m->cStart + c, &off));
     va[off] = PetscSqrtReal(0.5 * (PetscSqr(sig[0][0] - sig[1][1]) + PetscSqr(sig[1][1] - sig[2][2]) + PetscSqr(sig[2][2] - sig[0][0])) + 3 * (PetscSqr(sig[0][1]) + PetscSqr(sig[1][2]) + PetscSqr(sig[0][2])));
-    wa[off] = p->mu * dev2;
+    wa[off] = mu * dev2;
   }
   PetscCall(VecRestoreArrayRead(yloc, &ya));
   PetscCall(VecRestoreArray(vml, &va));

@@ -9,7 +9,7 @@ static PetscErrorCode CellForce(SgElasticity p, PetscInt c, const PetscScalar ya
   const SgMesh   *m = &p->mesh;
   const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
   const PetscInt *cv  = &m->cellv[c * nv];
-  PetscReal       xe[12], Ke[144], ue[12];
+  PetscReal       xe[12], Ke[144], ue[12], lambda, mu;
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < nv; a++)
@@ -17,7 +17,8 @@ static PetscErrorCode CellForce(SgElasticity p, PetscInt c, const PetscScalar ya
       xe[a * dim + d] = m->x[cv[a] * dim + d];
       ue[a * dim + d] = PetscRealPart(ya[m->loff[cv[a]] + d]);
     }
-  PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, vol));
+  SgElasticityCellLame(p, c, &lambda, &mu);
+  PetscCall(SgElementStiffness(dim, xe, lambda, mu, Ke, vol));
   for (PetscInt i = 0; i < ne; i++) {
     fe[i] = 0;
     for (PetscInt j = 0; j < ne; j++) fe[i] += Ke[i * ne + j] * ue[j];

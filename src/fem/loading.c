@@ -78,7 +78,7 @@ static PetscErrorCode Lifting(SgElasticity p, Vec ubc, Vec bl, PetscReal *uKu)
   PetscCall(VecGetArray(floc, &fa));
   for (PetscInt c = 0; c < m->nc; c++) {
     const PetscInt *cv = &m->cellv[c * nv];
-    PetscReal       xe[12], Ke[144], ud[12], vol;
+    PetscReal       xe[12], Ke[144], ud[12], vol, lambda, mu;
     PetscBool       lift = PETSC_FALSE;
 
     for (PetscInt a = 0; a < nv; a++) {
@@ -89,7 +89,8 @@ static PetscErrorCode Lifting(SgElasticity p, Vec ubc, Vec bl, PetscReal *uKu)
       if (m->bcmask[cv[a]]) lift = PETSC_TRUE;
     }
     if (!lift) continue;
-    PetscCall(SgElementStiffness(dim, xe, p->lambda, p->mu, Ke, &vol));
+    SgElasticityCellLame(p, c, &lambda, &mu);
+    PetscCall(SgElementStiffness(dim, xe, lambda, mu, Ke, &vol));
     for (PetscInt i = 0; i < ne; i++) {
       PetscReal Ku = 0;
       for (PetscInt j = 0; j < ne; j++) Ku += Ke[i * ne + j] * ud[j];

@@ -2,6 +2,7 @@
    its fixed components, the refusal of a floating body) and the rigid-body modes given to the solvers. */
 #include "fem/femimpl.h"
 #include <petscblaslapack.h>
+#include <petscsf.h>
 
 /* The farthest point of this rank's set from a reference (dist(x) >= 0), over all ranks: its distance and coordinates. */
 typedef PetscReal (*PointDist)(const PetscReal[], const PetscReal[], const PetscReal[], PetscInt);
@@ -56,7 +57,7 @@ static PetscErrorCode FarthestConstrained(MPI_Comm comm, const SgMesh *m, PointD
    p0: a Dirichlet vertex; dir: the direction of the line when adim = 1; diam: the diameter of the mesh's bounding box. */
 PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscInt *adim, PetscReal p0[3], PetscReal dir[3], PetscReal *diam)
 {
-  const PetscInt dim = m->dim;
+  const PetscInt dim    = m->dim;
   PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, d1, d2, p1[3], p2[3], tol;
   PetscMPIInt    rank, size, first;
   PetscInt       v0 = -1;
@@ -102,13 +103,53 @@ PetscErrorCode SgMeshConstrainedDimension(MPI_Comm comm, const SgMesh *m, PetscI
    of the Gram matrix of those linear functionals, in the coordinates of the bounding box's centre c scaled by its
    diameter. nfree modes of nr = 3 (2D: t_x, t_y, w) or 6 (3D: t, w) numbers each, translations in units of length,
    rotations per unit length (so that both move the body by about as much). */
-PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm comm, const SgMesh *m, PetscInt *nfree, PetscReal modes[], PetscReal c[3])
+/* Add to the Gram matrix G the functionals of the fixed components of vertex v at x (about the centre, per length) */
+static void AddFixedRows(const SgMesh *m, PetscInt v, const PetscReal x[3], PetscScalar G[])
 {
   const PetscInt dim = m->dim, nr = dim == 2 ? 3 : 6;
-  PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, L = 0;
-  PetscScalar    G[36] = {0}, work[64];
+
+  for (PetscInt d = 0; d < dim; d++) {
+    PetscReal r[6] = {0, 0, 0, 0, 0, 0};
+    if (!SgMeshFixed(m, v, d)) continue;
+    r[d] = 1;
+    if (dim == 2) r[2] = d == 0 ? -x[1] : x[0];
+    else { /* e_d . (w x x) = w . (x x e_d) */
+      const PetscInt d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+      r[3 + d1] = x[d2];
+      r[3 + d2] = -x[d1];
+    }
+    for (PetscInt a = 0; a < nr; a++)
+      for (PetscInt b = 0; b < nr; b++) G[a * nr + b] += r[a] * r[b];
+  }
+}
+
+/* The null space of the summed Gram matrix G (overwritten): the free motions, rotations per unit length (L) */
+static PetscErrorCode GramNullModes(PetscInt dim, PetscScalar G[], PetscReal L, PetscInt *nfree, PetscReal modes[])
+{
+  const PetscInt nr = dim == 2 ? 3 : 6;
+  PetscScalar    work[64];
   PetscReal      ev[6];
   PetscBLASInt   n, lwork = 64, info;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscBLASIntCast(nr, &n));
+  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, G, &n, ev, work, &lwork, &info));
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: %d", (int)info);
+  /* ascending eigenvalues: the ones below 1e-12 of the largest (round-off of the sums) span the free motions */
+  *nfree = 0;
+  for (PetscInt k = 0; k < nr; k++) {
+    if (ev[k] > 1e-12 * ev[nr - 1]) break;
+    for (PetscInt a = 0; a < nr; a++) modes[*nfree * nr + a] = PetscRealPart(G[k * nr + a]) * (a < dim ? 1 : 1 / L);
+    (*nfree)++;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm comm, const SgMesh *m, PetscInt *nfree, PetscReal modes[], PetscReal c[3])
+{
+  const PetscInt dim    = m->dim;
+  PetscReal      box[6] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, L = 0;
+  PetscScalar    G[36] = {0};
 
   PetscFunctionBeginUser;
   for (PetscInt v = 0; v < m->nv; v++)
@@ -124,33 +165,12 @@ PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm comm, const SgMesh *m, PetscInt *
     PetscReal x[3] = {0, 0, 0};
     if (!m->bcmask[v] || (m->goff[v] < 0 && m->gblock[v] >= 0)) continue; /* each owned vertex once (fixed ones: see below) */
     for (PetscInt d = 0; d < dim; d++) x[d] = (m->x[v * dim + d] - c[d]) / L;
-    for (PetscInt d = 0; d < dim; d++) {
-      PetscReal r[6] = {0, 0, 0, 0, 0, 0};
-      if (!SgMeshFixed(m, v, d)) continue;
-      r[d] = 1;
-      if (dim == 2) r[2] = d == 0 ? -x[1] : x[0];
-      else { /* e_d . (w x x) = w . (x x e_d) */
-        const PetscInt d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-        r[3 + d1] = x[d2];
-        r[3 + d2] = -x[d1];
-      }
-      for (PetscInt a = 0; a < nr; a++)
-        for (PetscInt b = 0; b < nr; b++) G[a * nr + b] += r[a] * r[b];
-    }
+    AddFixedRows(m, v, x, G);
   }
   /* a vertex shared by ranks counts on each of them for the fully fixed ones (they have no owner in goff): only the
      rank of the null space matters, not the weights */
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, G, 36, MPIU_SCALAR, MPIU_SUM, comm));
-  PetscCall(PetscBLASIntCast(nr, &n));
-  PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "U", &n, G, &n, ev, work, &lwork, &info));
-  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK syev failed: %d", (int)info);
-  /* ascending eigenvalues: the ones below 1e-12 of the largest (round-off of the sums) span the free motions */
-  *nfree = 0;
-  for (PetscInt k = 0; k < nr; k++) {
-    if (ev[k] > 1e-12 * ev[nr - 1]) break;
-    for (PetscInt a = 0; a < nr; a++) modes[*nfree * nr + a] = PetscRealPart(G[k * nr + a]) * (a < dim ? 1 : 1 / L);
-    (*nfree)++;
-  }
+  PetscCall(GramNullModes(dim, G, L, nfree, modes));
   PetscFunctionReturn(0);
 }
 
@@ -166,23 +186,14 @@ static PetscErrorCode DirichletIds(SgElasticity p, char ids[], size_t len)
   PetscFunctionReturn(0);
 }
 
-/* CheckRigidMotions for a Dirichlet part that fixes only some components (rollers): the rigid motions whose fixed
-   components vanish at every Dirichlet vertex are free; the message names them. */
-static PetscErrorCode CheckRigidMotionsPartial(SgElasticity p)
+/* The free rigid motions modes[] (SgMeshFreeRigidMotions' form, about c) as people picture them, "; "-separated, the
+   first three */
+static PetscErrorCode DescribeModes(PetscInt dim, PetscInt nfree, const PetscReal modes[], const PetscReal c[3], PetscReal diam, char what[], size_t len)
 {
-  const PetscInt dim = p->dim, nr = dim == 2 ? 3 : 6;
-  PetscInt       nfree;
-  PetscReal      modes[36], c[3];
-  char           ids[256] = "", what[1024] = "";
+  const PetscInt nr = dim == 2 ? 3 : 6;
 
   PetscFunctionBeginUser;
-  PetscCall(SgMeshFreeRigidMotions(p->comm, &p->mesh, &nfree, modes, c));
-  if (!nfree) PetscFunctionReturn(0);
-  if (p->rigid_shift_set) {
-    PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves %" PetscInt_FMT " rigid motions free: regularized with -elasticity_rigid_shift %g\n", nfree, (double)p->rigid_shift));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(DirichletIds(p, ids, sizeof(ids)));
+  what[0] = 0;
   for (PetscInt k = 0; k < nfree && k < 3; k++) {
     const PetscReal *q = &modes[k * nr];
     PetscReal        t[3] = {0, 0, 0}, w[3] = {0, 0, 0}, tn = 0, wn = 0, tw = 0, x0[3], ax[3];
@@ -200,7 +211,7 @@ static PetscErrorCode CheckRigidMotionsPartial(SgElasticity p)
     }
     /* as a motion people picture: a translation, or a rotation about an axis through x0 (with a slide along the axis
        in 3D): t + w x (x - c) = t_par + w x (x - x0), x0 = c + w x t / |w|^2 */
-    if (wn * PetscSqr(p->diam) <= 1e-16 * tn) {
+    if (wn * PetscSqr(diam) <= 1e-16 * tn) {
       tn = PetscSqrtReal(tn);
       for (PetscInt d = 0; d < 3; d++)
         if (PetscAbsReal(t[d]) < 1e-10 * tn) t[d] = 0;
@@ -211,14 +222,207 @@ static PetscErrorCode CheckRigidMotionsPartial(SgElasticity p)
       x0[2] = c[2] + (w[0] * t[1] - w[1] * t[0]) / wn;
       for (PetscInt d = 0; d < 3; d++) ax[d] = w[d] / PetscSqrtReal(wn);
       for (PetscInt d = 0; d < 3; d++)
-        if (PetscAbsReal(x0[d]) < 1e-10 * p->diam) x0[d] = 0;
+        if (PetscAbsReal(x0[d]) < 1e-10 * diam) x0[d] = 0;
       if (dim == 2) PetscCall(PetscSNPrintf(buf, sizeof(buf), "the rotation about (%.4g, %.4g)", (double)x0[0], (double)x0[1]));
       else PetscCall(PetscSNPrintf(buf, sizeof(buf), "the rotation about the axis along (%.4g, %.4g, %.4g) through (%.4g, %.4g, %.4g)%s", (double)ax[0], (double)ax[1], (double)ax[2], (double)x0[0], (double)x0[1], (double)x0[2], PetscAbsReal(tw) > 1e-8 * PetscSqrtReal(tn * wn) ? " with a slide along it" : ""));
     }
     PetscCall(PetscStrlen(what, &l));
-    PetscCall(PetscSNPrintf(what + l, sizeof(what) - l, "%s %s", k ? ";" : "", buf));
+    PetscCall(PetscSNPrintf(what + l, len - l, "%s %s", k ? ";" : "", buf));
   }
+  PetscFunctionReturn(0);
+}
+
+/* CheckRigidMotions for a Dirichlet part that fixes only some components (rollers): the rigid motions whose fixed
+   components vanish at every Dirichlet vertex are free; the message names them. */
+static PetscErrorCode CheckRigidMotionsPartial(SgElasticity p)
+{
+  const PetscInt dim = p->dim;
+  PetscInt       nfree;
+  PetscReal      modes[36], c[3];
+  char           ids[256] = "", what[1024] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(SgMeshFreeRigidMotions(p->comm, &p->mesh, &nfree, modes, c));
+  if (!nfree) PetscFunctionReturn(0);
+  if (p->rigid_shift_set) {
+    PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves %" PetscInt_FMT " rigid motions free: regularized with -elasticity_rigid_shift %g\n", nfree, (double)p->rigid_shift));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(DirichletIds(p, ids, sizeof(ids)));
+  PetscCall(DescribeModes(dim, nfree, modes, c, p->diam, what, sizeof(what)));
   SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "the Dirichlet part (-dirichlet_label '%s'%s%s with -dirichlet_components) leaves %" PetscInt_FMT " rigid motion%s free:%s%s, so the stiffness is singular and the body floats. Fix more components (e.g. a roller normal to a second face), or regularize on purpose with -elasticity_rigid_shift eps (adds eps E/L^2 times the lumped volumes to K)", p->dirichlet.label, p->dirichlet.nids ? " -dirichlet_ids " : "", ids, nfree, nfree > 1 ? "s" : "", what, nfree > 3 ? " and more" : "");
+}
+
+static PetscInt FindRoot(PetscInt par[], PetscInt v)
+{
+  while (par[v] != v) v = par[v] = par[par[v]];
+  return v;
+}
+
+/* The connected bodies of the mesh (cells joined through shared vertices), over all ranks: comp[v] in 0..ncomp-1 for
+   each local vertex, the bodies ordered by their smallest global vertex number; rep[v]: v is that vertex (owned). A
+   union-find on this rank's cells, then the ranks' smallest numbers exchanged at the shared vertices until no body
+   label changes. */
+static PetscErrorCode MeshBodies(DM dm, const SgMesh *m, PetscInt *ncomp, PetscInt comp[], PetscBool rep[])
+{
+  const PetscInt  nv = m->dim + 1, big = PETSC_MAX_INT;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dm);
+  IS              gis;
+  const PetscInt *gn;
+  PetscInt       *par, *lab, *a = NULL, *b = NULL, pStart, pEnd, np, nrep = 0, *reps, *all;
+  PetscMPIInt     size, nr, *cnt, *dsp;
+  PetscSF         sf;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(DMPlexGetVertexNumbering(dm, &gis));
+  PetscCall(ISGetIndices(gis, &gn));
+  PetscCall(PetscMalloc2(m->nv, &par, m->nv, &lab));
+  for (PetscInt v = 0; v < m->nv; v++) par[v] = v;
+  for (PetscInt c = 0; c < m->nc; c++) {
+    const PetscInt r0 = FindRoot(par, m->cellv[c * nv]);
+    for (PetscInt k = 1; k < nv; k++) {
+      const PetscInt r = FindRoot(par, m->cellv[c * nv + k]);
+      if (r != r0) par[r] = r0;
+    }
+  }
+  for (PetscInt v = 0; v < m->nv; v++) lab[v] = big;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt r = FindRoot(par, v), g = gn[v] < 0 ? -(gn[v] + 1) : gn[v];
+    lab[r] = PetscMin(lab[r], g);
+  }
+  if (size > 1) {
+    PetscCall(DMGetPointSF(dm, &sf));
+    PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
+    np = pEnd - pStart;
+    PetscCall(PetscMalloc2(np, &a, np, &b));
+    for (;;) {
+      PetscInt changed = 0;
+      for (PetscInt i = 0; i < np; i++) a[i] = big;
+      for (PetscInt v = 0; v < m->nv; v++) a[m->vStart + v - pStart] = lab[FindRoot(par, v)];
+      PetscCall(PetscArraycpy(b, a, np));
+      PetscCall(PetscSFReduceBegin(sf, MPIU_INT, a, b, MPI_MIN));
+      PetscCall(PetscSFReduceEnd(sf, MPIU_INT, a, b, MPI_MIN));
+      PetscCall(PetscSFBcastBegin(sf, MPIU_INT, b, b, MPI_REPLACE));
+      PetscCall(PetscSFBcastEnd(sf, MPIU_INT, b, b, MPI_REPLACE));
+      for (PetscInt v = 0; v < m->nv; v++) {
+        const PetscInt r = FindRoot(par, v), l = b[m->vStart + v - pStart];
+        if (l < lab[r]) {
+          lab[r] = l;
+          changed++;
+        }
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPIU_INT, MPI_SUM, comm));
+      if (!changed) break;
+    }
+    PetscCall(PetscFree2(a, b));
+  }
+  /* the bodies' numbers: the smallest vertex number of each, listed by the rank that owns that vertex */
+  for (PetscInt v = 0; v < m->nv; v++) {
+    rep[v] = (PetscBool)(gn[v] >= 0 && lab[FindRoot(par, v)] == gn[v]);
+    if (rep[v]) nrep++;
+  }
+  PetscCall(PetscMalloc3(nrep + 1, &reps, size, &cnt, size + 1, &dsp));
+  nrep = 0;
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (rep[v]) reps[nrep++] = gn[v];
+  PetscCall(PetscMPIIntCast(nrep, &nr));
+  PetscCallMPI(MPI_Allgather(&nr, 1, MPI_INT, cnt, 1, MPI_INT, comm));
+  dsp[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) dsp[r + 1] = dsp[r] + cnt[r];
+  PetscCall(PetscMalloc1(dsp[size] + 1, &all));
+  PetscCallMPI(MPI_Allgatherv(reps, nr, MPIU_INT, all, cnt, dsp, MPIU_INT, comm));
+  *ncomp = dsp[size];
+  PetscCall(PetscSortInt(*ncomp, all));
+  for (PetscInt v = 0; v < m->nv; v++) PetscCall(PetscFindInt(lab[FindRoot(par, v)], *ncomp, all, &comp[v]));
+  PetscCall(PetscFree(all));
+  PetscCall(PetscFree3(reps, cnt, dsp));
+  PetscCall(PetscFree2(par, lab));
+  PetscCall(ISRestoreIndices(gis, &gn));
+  PetscFunctionReturn(0);
+}
+
+/* A mesh of several bodies (connected parts: two materials glued at an interface are one body): each must be held by
+   the Dirichlet data on its own vertices, as the whole mesh is (contact does not count); the message names the first
+   body that is not, by a vertex of it and its materials, and its free rigid motions. */
+static PetscErrorCode CheckBodies(SgElasticity p)
+{
+  const SgMesh  *m   = &p->mesh;
+  const PetscInt dim = p->dim, nr = dim == 2 ? 3 : 6, nv = dim + 1;
+  PetscInt       ncomp = 0, *comp;
+  PetscInt64    *mats; /* bit j: the body has cells of material j */
+  PetscBool     *rep;
+  PetscReal     *box, *xr;
+  PetscScalar   *G;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(m->nv, &comp, m->nv, &rep));
+  PetscCall(MeshBodies(p->dm, m, &ncomp, comp, rep));
+  if (ncomp <= 1) {
+    PetscCall(PetscFree2(comp, rep));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscInfo(p->dm, "%" PetscInt_FMT " bodies (connected parts of the mesh)\n", ncomp));
+  PetscCall(PetscCalloc4(6 * ncomp, &box, 3 * ncomp, &xr, nr * nr * ncomp, &G, ncomp, &mats));
+  for (PetscInt i = 0; i < 6 * ncomp; i++) box[i] = PETSC_MAX_REAL;
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) {
+      box[6 * comp[v] + d]     = PetscMin(box[6 * comp[v] + d], m->x[v * dim + d]);
+      box[6 * comp[v] + 3 + d] = PetscMin(box[6 * comp[v] + 3 + d], -m->x[v * dim + d]);
+      if (rep[v]) xr[3 * comp[v] + d] = m->x[v * dim + d];
+    }
+  for (PetscInt c = 0; c < m->nc; c++) mats[comp[m->cellv[c * nv]]] |= (PetscInt64)1 << (p->cellmat ? p->cellmat[c] : 0);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, box, 6 * ncomp, MPIU_REAL, MPIU_MIN, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, xr, 3 * ncomp, MPIU_REAL, MPIU_SUM, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mats, ncomp, MPIU_INT64, MPI_BOR, p->comm));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscReal *bx   = &box[6 * comp[v]];
+    PetscReal        x[3] = {0, 0, 0}, L = 0;
+    if (!m->bcmask[v] || (m->goff[v] < 0 && m->gblock[v] >= 0)) continue; /* as SgMeshFreeRigidMotions */
+    for (PetscInt d = 0; d < dim; d++) L += PetscSqr(-bx[3 + d] - bx[d]);
+    L = PetscSqrtReal(L);
+    for (PetscInt d = 0; d < dim; d++) x[d] = (m->x[v * dim + d] - 0.5 * (bx[d] - bx[3 + d])) / L;
+    AddFixedRows(m, v, x, &G[nr * nr * comp[v]]);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, G, nr * nr * ncomp, MPIU_SCALAR, MPIU_SUM, p->comm));
+  for (PetscInt k = 0; k < ncomp; k++) {
+    const PetscReal *bx = &box[6 * k];
+    PetscReal        modes[36], c[3] = {0, 0, 0}, L = 0;
+    PetscInt         nfree;
+    char             what[1024], ids[256] = "", mat[512] = "";
+
+    for (PetscInt d = 0; d < dim; d++) {
+      c[d] = 0.5 * (bx[d] - bx[3 + d]);
+      L += PetscSqr(-bx[3 + d] - bx[d]);
+    }
+    L = PetscSqrtReal(L);
+    PetscCall(GramNullModes(dim, &G[nr * nr * k], L, &nfree, modes));
+    if (!nfree) continue;
+    PetscCall(DescribeModes(dim, nfree, modes, c, L, what, sizeof(what)));
+    PetscCall(DirichletIds(p, ids, sizeof(ids)));
+    if (p->nmat > 1) {
+      PetscCall(PetscSNPrintf(mat, sizeof(mat), ", of -material_label '%s' value%s", p->matlabel, (mats[k] & (mats[k] - 1)) ? "s" : ""));
+      for (PetscInt j = 0, first = 1; j < p->nmat; j++)
+        if (mats[k] >> j & 1) {
+          size_t l;
+          PetscCall(PetscStrlen(mat, &l));
+          PetscCall(PetscSNPrintf(mat + l, sizeof(mat) - l, "%s %" PetscInt_FMT, first ? "" : ",", p->matids[j]));
+          first = 0;
+        }
+    }
+    {
+      const PetscReal *x0 = &xr[3 * k];
+      char             at[128];
+      if (dim == 2) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)x0[0], (double)x0[1]));
+      else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)x0[0], (double)x0[1], (double)x0[2]));
+      PetscCall(PetscFree4(box, xr, G, mats));
+      PetscCall(PetscFree2(comp, rep));
+      SETERRQ(p->comm, PETSC_ERR_USER_INPUT, "the mesh has %" PetscInt_FMT " separate bodies, and the Dirichlet part (-dirichlet_label '%s'%s%s) does not hold body %" PetscInt_FMT " of %" PetscInt_FMT " (the cells connected to the vertex %s%s): %" PetscInt_FMT " rigid motion%s of it %s free:%s%s, so the stiffness is singular and that body floats (contact does not hold it). Give it Dirichlet data of its own, or regularize on purpose with -elasticity_rigid_shift eps (adds eps E/L^2 times the lumped volumes to K)", ncomp, p->dirichlet.label, p->dirichlet.nids ? " -dirichlet_ids " : "", ids, k + 1, ncomp, at, mat, nfree, nfree > 1 ? "s" : "", nfree > 1 ? "are" : "is", what, nfree > 3 ? " and more" : "");
+    }
+  }
+  PetscCall(PetscFree4(box, xr, G, mats));
+  PetscCall(PetscFree2(comp, rep));
+  PetscFunctionReturn(0);
 }
 
 /* The Dirichlet part must fix all rigid motions: otherwise K is singular and any solution is garbage. A part that fixes
@@ -238,9 +442,16 @@ PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity p)
   if (p->dirichlet.ncomps) {
     PetscBool partial = PETSC_FALSE;
     for (PetscInt i = 0; i < p->dirichlet.ncomps; i++) partial = (PetscBool)(partial || p->dirichlet.comps[i] != (1 << dim) - 1);
-    if (partial) PetscFunctionReturn(CheckRigidMotionsPartial(p));
+    if (partial) {
+      PetscCall(CheckRigidMotionsPartial(p));
+      if (!p->rigid_shift_set) PetscCall(CheckBodies(p));
+      PetscFunctionReturn(0);
+    }
   }
-  if (adim >= dim - 1) PetscFunctionReturn(0);
+  if (adim >= dim - 1) {
+    if (!p->rigid_shift_set) PetscCall(CheckBodies(p));
+    PetscFunctionReturn(0);
+  }
   if (p->rigid_shift_set) {
     PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves rigid motions free (affine dimension %" PetscInt_FMT "): regularized with -elasticity_rigid_shift %g\n", adim, (double)p->rigid_shift));
     PetscFunctionReturn(0);

@@ -75,13 +75,52 @@ static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print
   PetscFunctionReturn(0);
 }
 
+/* Several materials (-material_ids): their ids, E and nu (3 n numbers), named in a refusal (the stiffness moments
+   below tell that K differs, not how) */
+static PetscErrorCode MaterialTable(SgElasticity el, PetscInt *n, PetscReal t[3 * SG_MAX_IDS])
+{
+  const PetscInt  *ids;
+  const PetscReal *E, *nu;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMaterials(el, NULL, n, &ids, &E, &nu));
+  for (PetscInt k = 0; k < *n; k++) {
+    t[3 * k]     = (PetscReal)ids[k];
+    t[3 * k + 1] = E[k];
+    t[3 * k + 2] = nu[k];
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode MaterialText(PetscInt n, const PetscReal t[], PetscBool hasE, PetscReal E, PetscReal nu, char txt[], size_t len)
+{
+  PetscFunctionBeginUser;
+  if (!n) {
+    if (hasE) PetscCall(PetscSNPrintf(txt, len, "one material, -E %g -nu %g", (double)E, (double)nu));
+    else PetscCall(PetscSNPrintf(txt, len, "one material"));
+    PetscFunctionReturn(0);
+  }
+  txt[0] = 0;
+  for (PetscInt j = 0; j < 3; j++) {
+    size_t l;
+    PetscCall(PetscStrlen(txt, &l));
+    PetscCall(PetscSNPrintf(txt + l, len - l, "%s", j == 0 ? "-material_ids " : (j == 1 ? " -E " : " -nu ")));
+    for (PetscInt k = 0; k < n; k++) {
+      PetscCall(PetscStrlen(txt, &l));
+      if (j == 0) PetscCall(PetscSNPrintf(txt + l, len - l, "%s%" PetscInt_FMT, k ? "," : "", (PetscInt)t[3 * k]));
+      else PetscCall(PetscSNPrintf(txt + l, len - l, "%s%g", k ? "," : "", (double)t[3 * k + j]));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The problem's identity beyond those numbers, blind to no sign or direction: weighted sums ("moments") of its data
    with fixed weight fields w_k(x) of the vertex coordinates (scaled to the mesh's bounding box), each with the sum of
    the absolute values of its terms (its size). They do not depend on the partition (each vertex, cell or facet is
    summed once) up to the round-off of parallel sums, and are compared to 1e-10 of the size. The groups: */
 #define NMOM 6 /* weight fields */
 #define NGROUP 6
-static const char *MomentGroups[NGROUP] = {"the loads (-body_force, -neumann_traction, ...) differ", "the Dirichlet values (-dirichlet_values) differ", "the fixed components (-dirichlet_ids, -dirichlet_components) differ", "the stiffness (-E, -nu, -elasticity_rigid_shift) differs", "the contact boundary (-contact_ids, -contact_label) differs", "the obstacle (-obstacle_*) differs"};
+static const char *MomentGroups[NGROUP] = {"the loads (-body_force, -neumann_traction, ...) differ", "the Dirichlet values (-dirichlet_values) differ", "the fixed components (-dirichlet_ids, -dirichlet_components) differ", "the stiffness (-E, -nu, -material_ids, -material_label, -elasticity_rigid_shift) differs", "the contact boundary (-contact_ids, -contact_label) differs", "the obstacle (-obstacle_*) differs"};
 #define MOM_MAX (3 * NMOM * 3 + 2 + 2 * NMOM)
 
 /* numbers per group in a dim-dimensional problem: loads, Dirichlet values and fixed components per weight and
@@ -511,6 +550,15 @@ PetscErrorCode SgCheckpointWriterCreate(SgElasticity el, SgContact c, const char
   for (PetscInt i = 0; i < nmom; i++) a[i] = F[i], a[nmom + i] = Sz[i];
   PetscCall(SgCheckpointWriterReals(w, "problem_moments", 2 * nmom, a));
   PetscCall(SgCheckpointWriterAttribute(w, "problem_moments", PETSC_INT, &nmom));
+  {
+    PetscInt  nmat;
+    PetscReal t[3 * SG_MAX_IDS];
+    PetscCall(MaterialTable(el, &nmat, t));
+    if (nmat) { /* absent: one material (as in the files of earlier versions) */
+      PetscCall(SgCheckpointWriterReals(w, "materials", 3 * nmat, t));
+      PetscCall(SgCheckpointWriterAttribute(w, "materials", PETSC_INT, &nmat));
+    }
+  }
   *wp = w;
   PetscFunctionReturn(0);
 }
@@ -921,6 +969,29 @@ static PetscErrorCode ReaderCheckProblem(SgCheckpointReader *rp)
   PetscCall(SgCheckpointReaderHasAttribute(r, PrintNames[0], &has));
   for (PetscInt i = 0; has && i < NPRINT; i++) PetscCall(SgCheckpointReaderAttribute(r, PrintNames[i], PETSC_REAL, &print[i]));
   if (has) PetscCall(ProblemPrint(r->el, r->c, now));
+  { /* the materials first: another one changes the loads' lifting and the stiffness, and would be reported as those */
+    PetscInt  nck = 0, nnow, len;
+    PetscReal tnow[3 * SG_MAX_IDS], *tck = NULL;
+    PetscBool hm, same;
+    PetscCall(SgCheckpointReaderHasAttribute(r, "materials", &hm));
+    if (hm) PetscCall(SgCheckpointReaderAttribute(r, "materials", PETSC_INT, &nck));
+    if (hm && (nck < 1 || nck > SG_MAX_IDS)) PetscCall(SgCheckpointReaderDamaged(rp, "the number of materials", (PetscReal)nck));
+    if (nck) PetscCall(SgCheckpointReaderReals(r, "materials", 3 * nck, &len, &tck));
+    PetscCall(MaterialTable(r->el, &nnow, tnow));
+    same = (PetscBool)(nck == nnow);
+    for (PetscInt i = 0; same && i < 3 * nck; i++) same = (PetscBool)(tck[i] == tnow[i]);
+    if (!same) {
+      char a[1024], b[1024];
+      PetscCall(MaterialText(nck, tck, has, print[0], print[1], a, sizeof(a)));
+      PetscReal En, nun;
+      PetscCall(SgElasticityGetMaterial(r->el, &En, &nun));
+      PetscCall(MaterialText(nnow, tnow, PETSC_TRUE, En, nun, b, sizeof(b)));
+      PetscCall(PetscFree(tck));
+      PetscCall(SgCheckpointReaderAbandon(rp));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: the materials (-material_ids, -E, -nu) differ (%s in the checkpoint, %s in this run); a restart must solve the same problem", f, a, b);
+    }
+    PetscCall(PetscFree(tck));
+  }
   for (PetscInt i = 0; has && i < NPRINT; i++) {
     const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(print[i]) : 0));
     if (!ok) PetscCall(SgCheckpointReaderAbandon(rp));
