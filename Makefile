@@ -53,7 +53,7 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/features/twobody.ini); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh
-# Several materials and bodies in one mesh (tests/materials.ini)
+# Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))

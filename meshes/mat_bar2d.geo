@@ -1,4 +1,4 @@
-// Two materials in series (tests/materials.ini): the bar [0,2] x [0,0.5], cells of x < 1 in physical surface 1, of
+// Two materials in series (tests/*/materials.ini): the bar [0,2] x [0,0.5], cells of x < 1 in physical surface 1, of
 // x > 1 in 2 (one mesh, the interface x = 1 shared). Unstructured triangles.
 // gmsh -2 mat_bar2d.geo -o mat_bar2d.msh
 If (!Exists(lc)) lc = 0.125; EndIf

@@ -1,4 +1,4 @@
-// A layered block of two materials (tests/materials.ini): [0,1] x [0,1] x [0,1], cells of z < 0.4 in physical volume
+// A layered block of two materials (tests/*/materials.ini): [0,1] x [0,1] x [0,1], cells of z < 0.4 in physical volume
 // 1, of z > 0.4 in 2 (one mesh, the interface z = 0.4 shared). Unstructured tetrahedra.
 // gmsh -3 mat_layers3d.geo -o mat_layers3d.msh
 SetFactory("OpenCASCADE");

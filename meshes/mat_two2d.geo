@@ -1,4 +1,4 @@
-// Two separate bodies in one mesh (tests/materials.ini): the squares [0,1]^2 (physical surface 1) and
+// Two separate bodies in one mesh (tests/*/materials.ini): the squares [0,1]^2 (physical surface 1) and
 // [1.5,2.5] x [0,1] (physical surface 2), no shared vertex. Unstructured triangles.
 // gmsh -2 mat_two2d.geo -o mat_two2d.msh
 If (!Exists(lc)) lc = 0.25; EndIf

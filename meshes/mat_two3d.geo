@@ -1,4 +1,4 @@
-// Two separate bodies in one 3D mesh (tests/materials.ini): the cubes [0,1]^3 (physical volume 1) and
+// Two separate bodies in one 3D mesh (tests/*/materials.ini): the cubes [0,1]^3 (physical volume 1) and
 // [1.5,2.5] x [0,1] x [0,1] (physical volume 2), no shared vertex. Unstructured tetrahedra.
 // gmsh -3 mat_two3d.geo -o mat_two3d.msh
 SetFactory("OpenCASCADE");

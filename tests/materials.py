@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Two materials in series (tests/materials.ini): the displacement of a result against the exact piecewise-linear
+"""Two materials in series (tests/*/materials.ini): the displacement of a result against the exact piecewise-linear
 field of a bar or layered block loaded along one axis, with rollers on the lateral faces (uniaxial strain: the
 stress s is the same in both layers and the strain in layer i is s / M_i, M_i = E_i (1 - nu_i) / ((1 + nu_i)
 (1 - 2 nu_i)) the constrained modulus; with -free, lateral faces free and nu = 0: M_i = E_i). The layers are
