@@ -16,7 +16,10 @@ vertex at the origin. Writes a JSON summary {"rows": [per mesh: h_min, P, F_hert
 p0_hertz, err_F, err_a, err_a_P, err_p0, a_lo, a_hi, penetration]} (penetration: the largest depth of x + u below the plane,
 from the fields).
 
-usage: cv_hertz.py --out OUT.json -E E -nu NU -R R -d D RESULT.h5 ...
+Two elastic bodies (tests/verification/twobody.ini): the slave body is the one of radius R above; --Estar and --Rhertz
+give the pair's E* and curvature radius for the formulas (the field of the master side is not read).
+
+usage: cv_hertz.py --out OUT.json -E E -nu NU -R R -d D [--Estar E* --Rhertz R*] RESULT.h5 ...
 """
 import argparse
 import json
@@ -45,7 +48,7 @@ def boundary_facets(cells):
     return [f for f, n in count.items() if n == 1]
 
 
-def measure(path, E, nu, R, d):
+def measure(path, E, nu, R, d, Estar=None, Rhertz=None):
     with h5py.File(path, "r") as f:
         x = f["geometry/vertices"][()]
         cells = f["viz/topology/cells"][()].astype(int)
@@ -70,7 +73,7 @@ def measure(path, E, nu, R, d):
         else:
             size = np.linalg.norm(y[1] - y[0])
         w[fc] += size / dim
-    Es = E / (1 - nu * nu)
+    Es = Estar if Estar else E / (1 - nu * nu)
     origin = int(np.argmin(np.linalg.norm(x, axis=1)))
     p0 = float(p[origin])
     h = float(min(np.linalg.norm(x[c[i]] - x[c[j]]) for c in cells if on_arc[c].sum() == dim
@@ -80,6 +83,7 @@ def measure(path, E, nu, R, d):
     cand = w > 0
     a_lo = float(r[cand & act].max())  # the contact radius lies between the last active vertex
     a_hi = float(r[cand & ~act].min()) if (cand & ~act).any() else float("inf")  # and the first inactive one
+    R = Rhertz if Rhertz else R  # two bodies: the curvature radius of the pair, 1/R = 1/R1 + 1/R2
     if dim == 3:
         P = 4 * float(np.dot(w, p))
         a = math.sqrt(4 * float(w[act].sum()) / math.pi)
@@ -108,9 +112,11 @@ def main():
     ap.add_argument("-nu", type=float, required=True)
     ap.add_argument("-R", type=float, required=True)
     ap.add_argument("-d", type=float, required=True)
+    ap.add_argument("--Estar", type=float, help="two bodies: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (default E / (1 - nu^2))")
+    ap.add_argument("--Rhertz", type=float, help="two bodies: 1/R = 1/R1 + 1/R2 in the formulas (-R stays the slave arc's radius)")
     ap.add_argument("results", nargs="+")
     a = ap.parse_args()
-    rows = [measure(r, a.E, a.nu, a.R, a.d) for r in a.results]
+    rows = [measure(r, a.E, a.nu, a.R, a.d, a.Estar, a.Rhertz) for r in a.results]
     for r in rows:
         print(" ".join("%s %.6g" % (k, v) if isinstance(v, float) else "%s %s" % (k, v) for k, v in r.items()))
     tmp = a.out + ".tmp"

@@ -197,6 +197,12 @@ static PetscErrorCode VerticesDone(SgContact c)
   PetscFunctionReturn(0);
 }
 
+/* whether a row of the pair is a contact vertex: D_j > 0 and a normal (not all along fixed components) */
+static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
+{
+  return (PetscBool)(PetscRealPart(D) > 0 && (n[0] != 0 || n[1] != 0 || (dim == 3 && n[2] != 0)));
+}
+
 /* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
    owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
    from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
@@ -230,12 +236,12 @@ static PetscErrorCode PairSetUp(SgContact c)
   PetscCall(VecGetArrayRead(c->pair->g0, &ga));
   PetscCall(VecGetArrayRead(c->pair->N, &Na));
   c->n = 0;
-  for (PetscInt j = 0; j < nrow; j++) c->n += (PetscRealPart(Da[j]) > 0);
+  for (PetscInt j = 0; j < nrow; j++) c->n += PairRow(dim, Da[j], &Na[j * dim]);
   PetscCall(PetscMalloc5(c->n, &c->vert, c->n, &c->off, c->n * dim, &c->normal, c->n, &c->w, c->n, &c->d));
   PetscCall(PetscMalloc1(c->n + 1, &c->prow));
   c->n = 0;
   for (PetscInt j = 0; j < nrow; j++) {
-    if (!(PetscRealPart(Da[j]) > 0)) continue;
+    if (!PairRow(dim, Da[j], &Na[j * dim])) continue;
     PetscCheck(vof[j] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "free block %" PetscInt_FMT " has no owned vertex", rstart + j);
     c->prow[c->n] = j;
     c->vert[c->n] = vof[j];

@@ -89,8 +89,10 @@ static PetscErrorCode SideSurface(PetscInt dim, const Side *s, SgMortarSurface *
 }
 
 /* B from the assembled scalar mortar matrix Ms (free vertex x free vertex), D and the normals N: row j (owned) =
-   n_j^T (D_j e_j - sum_k M_jk e_k) in the free dofs */
-static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc)
+   n_j^T (D_j e_j - sum_k M_jk e_k) in the free dofs; its columns of the fixed components of partly fixed vertices
+   (rollers: decoupled unknowns that stay 0) are zeroed with the mask free (1 free, 0 fixed), so that the contact
+   terms leave them alone: the master's (the slave normals are projected onto the free components already) */
+static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
 {
   const PetscInt     dim = p->dim;
   PetscInt           rstart, maxc = 0;
@@ -117,7 +119,7 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc)
     const PetscScalar *n = Na + j * dim;
     PetscInt           nc, row = rstart + j;
     PetscCall(MatGetRow(Ms, row, &nc, &cols, &vals));
-    if (nc > 0 || PetscRealPart(Da[j]) != 0) { /* a slave vertex opposite the master (uncovered ones have no row) */
+    if ((nc > 0 || PetscRealPart(Da[j]) != 0) && (n[0] != 0 || n[1] != 0 || (dim == 3 && n[2] != 0))) { /* a slave vertex opposite the master (uncovered ones, and those whose normal is fixed, have no row) */
       p->nslave++;
       for (PetscInt c = 0; c < dim; c++) {
         PetscInt    col = row * dim + c;
@@ -137,26 +139,35 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc)
   PetscCall(VecRestoreArrayRead(p->N, &Na));
   PetscCall(MatAssemblyBegin(p->B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(p->B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatDiagonalScale(p->B, NULL, free));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->nslave, 1, MPIU_INT, MPI_SUM, p->comm));
   PetscFunctionReturn(0);
 }
 
-/* Normalize the owned slave normals (area-weighted sums of facet normals) */
-static PetscErrorCode NormalizeNormals(SgContactPair p)
+/* Normalize the owned slave normals (area-weighted sums of facet normals). At a partly fixed vertex (a roller) only
+   the free components move: the normal is its projection onto them, renormalized (as for the nodal conditions); a
+   normal with no free part leaves the vertex out (N = 0: no row). */
+static PetscErrorCode NormalizeNormals(SgContactPair p, Vec free)
 {
-  PetscScalar *Na;
-  PetscInt     n;
+  PetscScalar       *Na;
+  const PetscScalar *fa;
+  PetscInt           n;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(p->N, &n));
   PetscCall(VecGetArray(p->N, &Na));
+  PetscCall(VecGetArrayRead(free, &fa));
   for (PetscInt j = 0; j < n / p->dim; j++) {
-    PetscReal len = 0;
-    for (PetscInt c = 0; c < p->dim; c++) len += PetscSqr(PetscRealPart(Na[j * p->dim + c]));
+    PetscReal len = 0, len0 = 0;
+    for (PetscInt c = 0; c < p->dim; c++) {
+      len0 += PetscSqr(PetscRealPart(Na[j * p->dim + c]));
+      Na[j * p->dim + c] *= fa[j * p->dim + c];
+      len += PetscSqr(PetscRealPart(Na[j * p->dim + c]));
+    }
     len = PetscSqrtReal(len);
-    if (len > 0)
-      for (PetscInt c = 0; c < p->dim; c++) Na[j * p->dim + c] /= len;
+    for (PetscInt c = 0; c < p->dim; c++) Na[j * p->dim + c] = len > 1e-8 * PetscSqrtReal(len0) ? Na[j * p->dim + c] / len : 0;
   }
+  PetscCall(VecRestoreArrayRead(free, &fa));
   PetscCall(VecRestoreArray(p->N, &Na));
   PetscFunctionReturn(0);
 }
@@ -219,8 +230,21 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(VecAssemblyEnd(p->N));
   PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
-  PetscCall(NormalizeNormals(p));
-  PetscCall(BuildB(p, Ms, nloc));
+  {
+    Vec          free;
+    PetscScalar *fa;
+    PetscCall(MatCreateVecs(K, &free, NULL));
+    PetscCall(VecSet(free, 1.0));
+    PetscCall(VecGetArray(free, &fa));
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (m->goff[v] >= 0 && SgMeshPartial(m, v))
+        for (PetscInt c = 0; c < dim; c++)
+          if (SgMeshFixed(m, v, c)) fa[m->goff[v] + c] = 0;
+    PetscCall(VecRestoreArray(free, &fa));
+    PetscCall(NormalizeNormals(p, free));
+    PetscCall(BuildB(p, Ms, nloc, free));
+    PetscCall(VecDestroy(&free));
+  }
 
   PetscCall(MatDestroy(&Ms));
   PetscCall(PetscFree(Mr));
