@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -877,6 +877,40 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies through the library (SG_BOUNDARY_CONTACT_MASTER): the 2D patch test of tests/opts/tb_stack2d.opts with its
+   contact part and master side set by SgProblemSetBoundary (the mesh and the Dirichlet data from the options); the
+   energy and force against the exact uniform compression */
+static PetscErrorCode TestPairAPI(SgSummary s)
+{
+  SgProblem      prob;
+  SgCont         ct;
+  const PetscInt slave[1] = {20}, master[1] = {10};
+  PetscReal      V;
+  SgKKT          kkt;
+  PetscBool      conv;
+  const char    *reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_CONTACT, "Face Sets", 1, slave, NULL));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_CONTACT_MASTER, "Face Sets", 1, master, NULL));
+  PetscCall(SgProblemSetFromOptions(prob));
+  PetscCall(SgContCreate(prob, &ct));
+  PetscCall(SgContSetFromOptions(ct));
+  PetscCall(SgContSolve(ct));
+  PetscCall(SgContGetConvergedReason(ct, &conv, &reason));
+  PetscCall(SgContGetEnergy(ct, &V));
+  PetscCall(SgContGetKKT(ct, &kkt));
+  PetscCall(SgSummarySetBool(s, "converged", conv));
+  PetscCall(SgSummarySetReal(s, "energy", V));
+  PetscCall(SgSummarySetReal(s, "energy_exact", 0.5 * 0.04 * 0.04 / 0.91));
+  PetscCall(SgSummarySetReal(s, "force", kkt.force));
+  PetscCall(SgSummarySetReal(s, "force_exact", 0.04 / 0.91));
+  PetscCall(SgContDestroy(&ct));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -903,6 +937,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "meshtree", &eq) == 0 && eq) PetscCall(TestMeshTree(s));
   else if (PetscStrcmp(test, "mortar", &eq) == 0 && eq) PetscCall(TestMortar(s));
   else if (PetscStrcmp(test, "pair", &eq) == 0 && eq) PetscCall(TestPair(s));
+  else if (PetscStrcmp(test, "pairapi", &eq) == 0 && eq) PetscCall(TestPairAPI(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

@@ -47,7 +47,7 @@ static PetscErrorCode ObstacleCondition(SgContact c, PetscInt v, PetscReal nrm[]
    and -contact_pair_distance (how far along the slave normal a master facet may be to face a slave facet) */
 static PetscErrorCode PairFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
 {
-  PetscInt  n = 0;
+  PetscInt  n = c->master.nids; /* given through the interface (SG_BOUNDARY_CONTACT_MASTER), or 0 */
   PetscBool set;
 
   PetscFunctionBeginUser;
@@ -58,6 +58,7 @@ static PetscErrorCode PairFromOptions(PetscOptionItems *PetscOptionsObject, SgCo
   PetscCheck(!set || c->pairdist > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance: must be positive, got %g", (double)c->pairdist);
   PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance is given without -contact_master_ids (two-body contact)");
   if (!c->master.nids) PetscFunctionReturn(0);
+  PetscCheck(!c->master.label[0] || !strcmp(c->master.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the master side's label '%s' is not the contact part's '%s' (both sides are values of one label)", c->master.label, c->bnd.label);
   PetscCheck(c->bnd.nids > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids needs -contact_ids (the slave side): without it every value of '%s' would be the slave side, the master's too", c->bnd.label);
   for (PetscInt a = 0; a < c->master.nids; a++)
     for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
@@ -67,7 +68,7 @@ static PetscErrorCode PairFromOptions(PetscOptionItems *PetscOptionsObject, SgCo
 
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
-PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const char obstype[], SgContact *contact)
+PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const SgBoundary *master, const char obstype[], SgContact *contact)
 {
   SgContact c;
   char      nmode[64] = "";
@@ -83,6 +84,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscCall(PetscStrncpy(c->obstype, obstype ? obstype : "", sizeof(c->obstype)));
   if (bnd) c->bnd = *bnd;
   c->bnd.what = "contact";
+  if (master) c->master = *master;
   if (!c->bnd.label[0]) PetscCall(PetscStrcpy(c->bnd.label, "Face Sets"));
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));

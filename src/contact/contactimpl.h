@@ -120,6 +120,7 @@ struct _n_SgProblem {
   DM                   dm;          /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
   SgElasticitySettings settings;    /* material and boundary parts given through the interface */
   SgBoundary           contact;     /* the contact boundary given through the interface */
+  SgBoundary           master;      /* two bodies: the master side given through the interface (SG_BOUNDARY_CONTACT_MASTER) */
   char                 obstacle[64];/* obstacle type given through the interface ("" : from the options) */
   SgElasticity         el;
   SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
@@ -127,5 +128,5 @@ struct _n_SgProblem {
   PetscBool            setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
   PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble       t_create;
-  PetscInt             values_dim[3]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
+  PetscInt             values_dim[4]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
 };
