@@ -14,7 +14,8 @@ the default controller and linear solver choose themselves) on
 Each contact solve is set against the yardstick of scripts/bench.py: the fastest configured linear solve of the same
 mesh (the same body and Dirichlet data without contact, each of bench.py's YARDSTICK_3D configurations at its
 YARD_RTOL), one rank, minimum over --repeat runs made in rounds (so that every case sees the same load of a shared
-machine). Writes into --json (default bench/results.json; its other keys are kept):
+machine). Writes into --json (default bench/results.json; its other keys are kept, and the entries below are merged by unknowns
+and case, so that a run of some sizes keeps the numbers of the others):
   cost_ratio_3d_curved  {unknowns: the default contact solve's time / the yardstick's time}  (hemi and the turned ex2)
   turned_vs_flat        {unknowns: the turned Example 2's contact solve time / the unturned one's}
   curved                the runs (unknowns, SSN, KSP, times, converged) and the yardsticks
@@ -151,9 +152,13 @@ def main():
         if os.path.exists(opt.json):
             with open(opt.json) as f:
                 js = json.load(f)
-        js["cost_ratio_3d_curved"] = cost
-        js["turned_vs_flat"] = turned
-        js["curved"] = {"runs": res, "yardsticks": yards, "repeat": opt.repeat}
+        # merged by unknowns and case: a run of some sizes only (e.g. the 1e6 ones) keeps the others' numbers
+        js.setdefault("cost_ratio_3d_curved", {}).update(cost)
+        js.setdefault("turned_vs_flat", {}).update(turned)
+        cv = js.setdefault("curved", {})
+        cv.setdefault("runs", {}).update(res)
+        cv.setdefault("yardsticks", {}).update(yards)
+        cv["repeat"] = opt.repeat
         sgrun.write_atomic(opt.json, json.dumps(js, indent=1, sort_keys=False) + "\n")
 
 

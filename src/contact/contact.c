@@ -1147,23 +1147,35 @@ static PetscInt NormalAxis(SgContact c, PetscInt i, PetscReal *sign)
   return -1;
 }
 
-/* Every contact normal must be +-e_k (for the bound-constrained baselines); returns k and the sign per vertex. */
+/* Every contact normal must be +-e_k (for the bound-constrained baselines and the truncated multigrid without the
+   contact frames); returns k and the sign per vertex. Collective: the verdict is global, so every rank stops with the
+   same error (naming the first offending vertex of the lowest rank that has one), also a rank without such a vertex
+   or without any contact vertex, which would otherwise go on into the next collective call and wait there. */
 PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis[], PetscReal sign[])
 {
   const PetscInt dim = c->dim;
   PetscInt       bad = -1;
+  PetscMPIInt    rank, size, owner;
+  PetscReal      xn[6] = {0, 0, 0, 0, 0, 0}; /* the offending vertex and its normal */
 
   PetscFunctionBeginUser;
   PetscCheck(!c->pair, c->comm, PETSC_ERR_SUP, "%s is not available for two-body contact (-contact_master_ids): its conditions couple the two sides; use an SSN-based controller (fast, ipf, pf, alm) with the default linear solver or MUMPS", who);
-  for (PetscInt i = 0; i < c->n && bad < 0; i++) {
+  for (PetscInt i = 0; i < c->n; i++) {
     axis[i] = NormalAxis(c, i, &sign[i]);
-    if (axis[i] < 0) bad = i;
+    if (axis[i] < 0 && bad < 0) bad = i;
   }
-  if (bad >= 0) {
-    const PetscReal *x = &c->mesh->x[c->vert[bad] * dim], *n = &c->normal[bad * dim];
-    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_SUP, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)%s", who, (double)x[0], (double)x[1], (double)(dim == 3 ? x[2] : 0), (double)n[0], (double)n[1], (double)(dim == 3 ? n[2] : 0), c->obsnormal ? " (the obstacle's, -contact_normal obstacle)" : " (the body's, averaged over its contact facets: -contact_normal obstacle takes the obstacle's)");
-  }
-  PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(c->comm, &size));
+  owner = bad >= 0 ? rank : size;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &owner, 1, MPI_INT, MPI_MIN, c->comm));
+  if (owner == size) PetscFunctionReturn(0);
+  if (rank == owner)
+    for (PetscInt a = 0; a < dim; a++) {
+      xn[a]     = c->mesh->x[c->vert[bad] * dim + a];
+      xn[3 + a] = c->normal[bad * dim + a];
+    }
+  PetscCallMPI(MPI_Bcast(xn, 6, MPIU_REAL, owner, c->comm));
+  SETERRQ(c->comm, PETSC_ERR_USER_INPUT, "%s needs contact normals along a coordinate axis; the vertex at (%g, %g, %g) has normal (%g, %g, %g)%s", who, (double)xn[0], (double)xn[1], (double)xn[2], (double)xn[3], (double)xn[4], (double)xn[5], c->obsnormal ? " (the obstacle's, -contact_normal obstacle)" : " (the body's, averaged over its contact facets: -contact_normal obstacle takes the obstacle's)");
 }
 
 /* whether every contact normal, on every rank, is +-e_k (the question of SgContactAxisAligned, without the error) */
