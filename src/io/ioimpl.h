@@ -23,3 +23,8 @@ void           SgFileResolve(const char[], const char **, PetscBool *);
 PetscErrorCode SgFileRegister(MPI_Comm, const char[], const char[], PetscBool, PetscBool);
 void           SgFileDirectory(const char[], char[PETSC_MAX_PATH_LEN]);
 PetscErrorCode SgOutputWriteXDMF(SgElasticity, const char[], const char[], PetscInt, const PetscInt[], const PetscReal[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+
+/* What the files of the checkpoint share (checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c) */
+PetscErrorCode SgCheckpointOwnedVertices(SgElasticity, PetscInt *);
+PetscErrorCode SgCheckpointWriteProblem(SgCheckpointWriter, SgElasticity, SgContact);   /* the problem's fingerprint into the file */
+PetscErrorCode SgCheckpointCheckProblem(SgCheckpointReader *, SgElasticity, SgContact); /* the file's against this run's; a refusal frees the reader */

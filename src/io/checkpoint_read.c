@@ -1,0 +1,415 @@
+/* checkpoint_read.c: the checkpoint reader of a restart (-restart_file): it opens the file, checks that it is a
+   checkpoint of this problem (fingerprint.c) and mesh, matches the file's vertices with the mesh's by their coordinates
+   (any partition), and hands each owner of a state its datasets and attributes; a damaged file is refused naming
+   -restart_file. */
+#include "io/ioimpl.h"
+#include <petscviewerhdf5.h>
+
+/* Run f(ctx) with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
+static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(void *), void *ctx, PetscErrorCode *ierr)
+{
+  H5E_auto2_t efunc;
+  void       *edata;
+  int         e;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  *ierr = f(ctx); /* not PetscCall: a damaged file is reported by the caller, naming -restart_file */
+  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
+  PetscCall(PetscPopErrorHandler());
+  e = *ierr ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_INT, MPI_MAX, comm));
+  *ierr = e ? PETSC_ERR_FILE_READ : 0;
+  PetscFunctionReturn(0);
+}
+
+/* ---- the reader: opens the file, checks that it is a checkpoint of this problem and mesh and matches the vertices;
+   the owners then take out their parts. Every refusal names -restart_file and the file; a reader that refuses is
+   closed and freed first (the caller's handle is then gone: the error returns). */
+struct _n_SgCheckpointReader {
+  SgElasticity el;
+  SgContact    c;
+  MPI_Comm     comm;
+  char         file[PETSC_MAX_PATH_LEN];
+  PetscViewer  viewer;
+  PetscInt     dim, nvert;
+  PetscInt    *idx; /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+};
+
+/* one read of the file, run quietly (a damaged file is reported by the caller) */
+typedef struct {
+  SgCheckpointReader r;
+  const char        *name;
+  PetscDataType      type;
+  void              *value;
+  PetscInt           n; /* a dataset's expected size (-1: any) */
+  Vec                v;
+  PetscBool          has;
+} CkItem;
+
+static PetscErrorCode ItemOpen(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, it->r->file, FILE_MODE_READ, &it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemClose(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(it->r->viewer, "/checkpoint", it->name, &it->has));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5ReadAttribute(it->r->viewer, "/checkpoint", it->name, it->type, NULL, it->value));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(PetscViewerHDF5HasDataset(it->r->viewer, it->name, &it->has));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &it->v));
+  PetscCall(PetscObjectSetName((PetscObject)it->v, it->name));
+  if (it->n >= 0) PetscCall(VecSetSizes(it->v, it->n, it->n));
+  PetscCall(VecSetType(it->v, VECSEQ));
+  PetscCall(VecLoad(it->v, it->r->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Close the file and free the reader, with error printing off (a damaged file can fail at H5Fclose): for a refusal,
+   before the error is returned. */
+PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  PetscErrorCode     ierr;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  if (r->viewer) PetscCall(Quietly(r->comm, ItemClose, &it, &ierr));
+  PetscCall(PetscFree(r->idx));
+  PetscCall(PetscFree(*rp));
+  PetscFunctionReturn(0);
+}
+
+/* the file's name, for the owners' messages */
+PetscErrorCode SgCheckpointReaderGetFile(SgCheckpointReader r, const char **file)
+{
+  PetscFunctionBeginUser;
+  *file = r->file;
+  PetscFunctionReturn(0);
+}
+
+/* the reader freed, then: "-restart_file: 'file' is damaged: <what> is <val>" */
+PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *rp, const char what[], PetscReal val)
+{
+  char     f[PETSC_MAX_PATH_LEN], w[256];
+  MPI_Comm comm = (*rp)->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, (*rp)->file, sizeof(f)));
+  PetscCall(PetscStrncpy(w, what, sizeof(w)));
+  PetscCall(SgCheckpointReaderAbandon(rp));
+  SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, w, (double)val);
+}
+
+/* run a read quietly; a failure is reported as "cannot read <what>" (the reader freed) */
+static PetscErrorCode ReaderRun(SgCheckpointReader *rp, PetscErrorCode (*f)(void *), CkItem *it, const char what[])
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(Quietly((*rp)->comm, f, it, &ierr));
+  if (ierr) {
+    char     file[PETSC_MAX_PATH_LEN], w[128];
+    MPI_Comm comm = (*rp)->comm;
+    PetscCall(PetscStrncpy(file, (*rp)->file, sizeof(file)));
+    PetscCall(PetscStrncpy(w, what, sizeof(w)));
+    PetscCall(VecDestroy(&it->v));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", file, w);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasAttribute(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasAttribute, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasDataset(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasDataset, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+/* an attribute of /checkpoint (PETSC_INT: PetscInt *, PETSC_REAL: PetscReal *, PETSC_STRING: char ** to PetscFree) */
+PetscErrorCode SgCheckpointReaderAttribute(SgCheckpointReader r, const char name[], PetscDataType type, void *value)
+{
+  CkItem it = {r, name, type, value, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemAttribute, &it, name));
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of n numbers (n < 0: any number; *len says how many) into a (allocated here; PetscFree) */
+PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader r, const char name[], PetscInt n, PetscInt *len, PetscReal **a)
+{
+  CkItem             it = {r, name, PETSC_REAL, NULL, n, NULL, PETSC_FALSE};
+  char               what[96];
+  const PetscScalar *va;
+  PetscInt           m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(what, sizeof(what), "the dataset %s (of the expected size)", name));
+  PetscCall(ReaderRun(&r, ItemDataset, &it, what));
+  PetscCall(VecGetSize(it.v, &m));
+  PetscCall(PetscMalloc1(m + 1, a));
+  PetscCall(VecGetArrayRead(it.v, &va));
+  for (PetscInt i = 0; i < m; i++) (*a)[i] = PetscRealPart(va[i]);
+  PetscCall(VecRestoreArrayRead(it.v, &va));
+  PetscCall(VecDestroy(&it.v));
+  if (len) *len = m;
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of bs numbers per vertex of the file, all finite (and >= 0 if nonneg; else refused as damaged, naming
+   what), in file order (allocated here; PetscFree) */
+static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
+{
+  PetscInt bad = -1, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(*rp, name, (*rp)->nvert * bs, &n, a));
+  for (PetscInt i = 0; bad < 0 && i < n; i++)
+    if ((!PetscIsNormalReal((*a)[i]) && (*a)[i] != 0) || (nonneg && !((*a)[i] >= 0))) bad = i;
+  if (bad >= 0) {
+    const PetscReal val = (*a)[bad];
+    PetscCall(PetscFree(*a));
+    PetscCall(SgCheckpointReaderDamaged(rp, what, val));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* a displacement per vertex into y (a global vector of the problem), matched by the coordinates; the prescribed
+   components of y are 0 (the file holds the full displacement: a fixed component of a roller is data) */
+PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char name[], const char what[], Vec y)
+{
+  const SgMesh *m;
+  const PetscInt dim = r->dim;
+  PetscReal    *a;
+  PetscScalar  *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  PetscCall(ReaderVertexData(&r, name, dim, PETSC_FALSE, what, &a));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (m->goff[v] < 0 || r->idx[v] < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : a[r->idx[v] * dim + d];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
+/* bs numbers per contact vertex into a (NULL: only checked), matched by the coordinates */
+PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal a[])
+{
+  SgContactView cv = {0};
+  PetscReal    *f;
+
+  PetscFunctionBeginUser;
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(&r, name, bs, nonneg, what, &f));
+  for (PetscInt i = 0; a && i < cv.n; i++)
+    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = r->idx[cv.vert[i]] >= 0 ? f[r->idx[cv.vert[i]] * bs + d] : 0;
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/* vertices of the checkpoint sorted by their coordinates */
+static const PetscReal *SortX;
+static PetscInt         SortDim;
+
+static int CmpPoint(const PetscReal *a, const PetscReal *b)
+{
+  for (PetscInt d = 0; d < SortDim; d++)
+    if (a[d] != b[d]) return a[d] < b[d] ? -1 : 1;
+  return 0;
+}
+
+static int CmpIndex(const void *a, const void *b)
+{
+  return CmpPoint(&SortX[*(const PetscInt *)a * SortDim], &SortX[*(const PetscInt *)b * SortDim]);
+}
+
+static void FindVertex(const PetscInt perm[], PetscInt n, const PetscReal x[], PetscInt *idx)
+{
+  PetscInt lo = 0, hi = n - 1;
+
+  *idx = -1;
+  while (lo <= hi) {
+    const PetscInt mid = (lo + hi) / 2;
+    const int      c   = CmpPoint(&SortX[perm[mid] * SortDim], x);
+    if (!c) {
+      *idx = perm[mid];
+      return;
+    }
+    if (c < 0) lo = mid + 1;
+    else hi = mid - 1;
+  }
+}
+
+/* the file's coordinates (all finite) matched with the mesh's vertices: r->idx; every owned and every contact vertex
+   must be in the file */
+static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscReal         *x;
+  PetscInt          *perm, nmiss = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(rp, "coordinates", r->dim, PETSC_FALSE, "a vertex coordinate", &x));
+  PetscCall(PetscMalloc1(r->nvert + 1, &perm));
+  PetscCall(PetscMalloc1(m->nv + 1, &r->idx));
+  for (PetscInt i = 0; i < r->nvert; i++) perm[i] = i;
+  SortX   = x;
+  SortDim = r->dim;
+  qsort(perm, r->nvert, sizeof(PetscInt), CmpIndex);
+  for (PetscInt v = 0; v < m->nv; v++) {
+    FindVertex(perm, r->nvert, &m->x[v * r->dim], &r->idx[v]);
+    if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
+  }
+  for (PetscInt i = 0; i < cv.n; i++)
+    if (r->idx[cv.vert[i]] < 0) nmiss++;
+  SortX = NULL;
+  PetscCall(PetscFree(perm));
+  PetscCall(PetscFree(x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (nmiss) {
+    char     f[PETSC_MAX_PATH_LEN];
+    MPI_Comm comm = r->comm;
+    PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Open file for a restart of this problem (el, c): a checkpoint of it, of this mesh (its vertices matched by their
+   coordinates, on any partition). Refusals (no such file, not HDF5, another mesh or problem, damage) name
+   -restart_file and the file. */
+PetscErrorCode SgCheckpointReaderOpen(SgElasticity el, SgContact c, const char file[], SgCheckpointReader *rp)
+{
+  SgCheckpointReader r;
+  PetscBool          exists;
+  PetscErrorCode     ierr;
+  PetscInt           dim, nvert;
+  char               f[PETSC_MAX_PATH_LEN];
+  MPI_Comm           comm0;
+
+  PetscFunctionBeginUser;
+  *rp = NULL;
+  PetscCall(PetscStrncpy(f, file, sizeof(f)));
+  PetscCall(SgElasticityGetComm(el, &comm0));
+  PetscCall(PetscTestFile(file, 'r', &exists));
+  PetscCheck(exists, comm0, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", f);
+  PetscCall(PetscNew(&r));
+  r->el   = el;
+  r->c    = c;
+  r->comm = comm0;
+  PetscCall(PetscStrncpy(r->file, file, sizeof(r->file)));
+  {
+    /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
+    CkItem   it   = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+    MPI_Comm comm = r->comm;
+    PetscCall(Quietly(r->comm, ItemOpen, &it, &ierr));
+    if (ierr) PetscCall(SgCheckpointReaderAbandon(&r)); /* a viewer whose file did not open fails its flush: quietly */
+    PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
+  }
+  PetscCall(SgCheckpointReaderHasAttribute(r, "vertices", &exists));
+  if (!exists) {
+    MPI_Comm comm = r->comm;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
+  }
+  PetscCall(SgCheckpointReaderAttribute(r, "dim", PETSC_INT, &r->dim));
+  PetscCall(SgCheckpointReaderAttribute(r, "vertices", PETSC_INT, &r->nvert));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgCheckpointOwnedVertices(el, &nvert));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (!(r->dim == dim && r->nvert == nvert)) {
+    MPI_Comm       comm = r->comm;
+    const PetscInt fd = r->dim, fn = r->nvert;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, fd, fn, dim, nvert);
+  }
+  PetscCall(SgCheckpointCheckProblem(&r, el, c));
+  PetscCall(ReaderMatchVertices(&r));
+  *rp = r;
+  PetscFunctionReturn(0);
+}
+
+/* Close the file (a failure there: the file is damaged) and free the reader. */
+PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  it = (CkItem){r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  if (r->viewer) PetscCall(ReaderRun(rp, ItemClose, &it, "the file's end (closing it failed)"));
+  PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscFunctionReturn(0);
+}
