@@ -52,37 +52,21 @@ static void MomentWeights(PetscInt dim, const PetscReal lo[3], const PetscReal h
   w[5] = PetscSinReal(0.4 + 4.1 * h[0] - 2.9 * h[1] + 3.7 * h[2]);
 }
 
-/* the moments F[] and their sizes S[] (n of each) of the problem at factor 1 */
-static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, PetscReal F[MOM_MAX], PetscReal S[MOM_MAX])
+/* the load's moments (this rank's cells' and facets' part at every vertex it has) and the Dirichlet data's (values and
+   fixed components at the owned vertices), added to buf (values) and buf + MOM_MAX (sizes) */
+static PetscErrorCode MomentsData(SgElasticity el, PetscInt dim, const PetscReal lo[3], const PetscReal hi[3], const PetscInt off[], PetscReal buf[])
 {
   const SgMesh      *m;
-  MPI_Comm           comm;
-  PetscInt           dim, len[NGROUP], off[NGROUP + 1];
-  PetscReal          lo[3], hi[3], w[NMOM], buf[2 * MOM_MAX];
-  DM                 dm, dmVert;
+  PetscReal          w[NMOM];
+  DM                 dmVert;
   PetscSection       gs;
-  Vec                f, ubc, K1, K2, KV;
-  Mat                K;
+  Vec                f, ubc;
   const PetscScalar *fa, *ua;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgElasticityGetMesh(el, &m));
-  PetscCall(SgElasticityGetDMs(el, &dm, &dmVert, NULL, NULL));
+  PetscCall(SgElasticityGetDMs(el, NULL, &dmVert, NULL, NULL));
   PetscCall(DMGetGlobalSection(dmVert, &gs));
-  MomentGroupSizes(dim, len);
-  off[0] = 0;
-  for (PetscInt g = 0; g < NGROUP; g++) off[g + 1] = off[g] + len[g];
-  *n = off[NGROUP];
-  for (PetscInt i = 0; i < 2 * MOM_MAX; i++) buf[i] = 0;
-  /* the bounding box (min and max: the same on any partition) */
-  for (PetscInt d = 0; d < 3; d++) lo[d] = PETSC_MAX_REAL, hi[d] = PETSC_MIN_REAL;
-  for (PetscInt v = 0; v < m->nv; v++)
-    for (PetscInt d = 0; d < dim; d++) lo[d] = PetscMin(lo[d], m->x[v * dim + d]), hi[d] = PetscMax(hi[d], m->x[v * dim + d]);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, lo, 3, MPIU_REAL, MPI_MIN, comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hi, 3, MPIU_REAL, MPI_MAX, comm));
-  /* the load: this rank's cells' and facets' part at every vertex it has; the Dirichlet data at the owned vertices */
   PetscCall(SgElasticityGetFullData(el, &f, &ubc));
   PetscCall(VecGetArrayRead(f, &fa));
   PetscCall(VecGetArrayRead(ubc, &ua));
@@ -109,7 +93,21 @@ static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, 
   }
   PetscCall(VecRestoreArrayRead(f, &fa));
   PetscCall(VecRestoreArrayRead(ubc, &ua));
-  /* the stiffness: v^T K v for two smooth fields v that are no rigid motion */
+  PetscFunctionReturn(0);
+}
+
+/* the stiffness's: v^T K v for two smooth fields v that are no rigid motion */
+static PetscErrorCode MomentsStiffness(SgElasticity el, PetscInt dim, const PetscReal lo[3], const PetscReal hi[3], const PetscInt off[], PetscReal buf[])
+{
+  const SgMesh *m;
+  PetscReal     w[NMOM];
+  DM            dm;
+  Vec           K1, K2, KV;
+  Mat           K;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(el, &m));
+  PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   PetscCall(DMCreateGlobalVector(dm, &K1));
   PetscCall(VecDuplicate(K1, &K2));
@@ -148,25 +146,59 @@ static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, 
   PetscCall(VecDestroy(&K1));
   PetscCall(VecDestroy(&K2));
   PetscCall(VecDestroy(&KV));
-  /* the contact boundary (its weights) and the gaps with the obstacle at its full placement */
-  if (c) {
-    SgContactView cv;
-    PetscReal    *gap;
-    PetscCall(SgContactGetView(c, &cv));
-    PetscCall(PetscMalloc1(cv.n + 1, &gap));
-    PetscCall(SgContactGapsAt(c, 1.0, gap));
-    for (PetscInt i = 0; i < cv.n; i++) {
-      MomentWeights(dim, lo, hi, &m->x[cv.vert[i] * dim], w);
-      for (PetscInt k = 0; k < NMOM; k++) {
-        const PetscReal a = cv.w[i] * w[k], g = gap[i] < PETSC_MAX_REAL ? a * gap[i] : 0; /* a ray that misses: no gap */
-        buf[off[4] + k] += a;
-        buf[MOM_MAX + off[4] + k] += PetscAbsReal(a);
-        buf[off[5] + k] += g;
-        buf[MOM_MAX + off[5] + k] += PetscAbsReal(g);
-      }
+  PetscFunctionReturn(0);
+}
+
+/* the contact boundary's (its weights) and the gaps' with the obstacle at its full placement */
+static PetscErrorCode MomentsContact(SgContact c, const SgMesh *m, PetscInt dim, const PetscReal lo[3], const PetscReal hi[3], const PetscInt off[], PetscReal buf[])
+{
+  SgContactView cv;
+  PetscReal     w[NMOM], *gap;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContactGetView(c, &cv));
+  PetscCall(PetscMalloc1(cv.n + 1, &gap));
+  PetscCall(SgContactGapsAt(c, 1.0, gap));
+  for (PetscInt i = 0; i < cv.n; i++) {
+    MomentWeights(dim, lo, hi, &m->x[cv.vert[i] * dim], w);
+    for (PetscInt k = 0; k < NMOM; k++) {
+      const PetscReal a = cv.w[i] * w[k], g = gap[i] < PETSC_MAX_REAL ? a * gap[i] : 0; /* a ray that misses: no gap */
+      buf[off[4] + k] += a;
+      buf[MOM_MAX + off[4] + k] += PetscAbsReal(a);
+      buf[off[5] + k] += g;
+      buf[MOM_MAX + off[5] + k] += PetscAbsReal(g);
     }
-    PetscCall(PetscFree(gap));
   }
+  PetscCall(PetscFree(gap));
+  PetscFunctionReturn(0);
+}
+
+/* the moments F[] and their sizes S[] (n of each) of the problem at factor 1 */
+static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, PetscReal F[MOM_MAX], PetscReal S[MOM_MAX])
+{
+  const SgMesh *m;
+  MPI_Comm      comm;
+  PetscInt      dim, len[NGROUP], off[NGROUP + 1];
+  PetscReal     lo[3], hi[3], buf[2 * MOM_MAX];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgElasticityGetMesh(el, &m));
+  MomentGroupSizes(dim, len);
+  off[0] = 0;
+  for (PetscInt g = 0; g < NGROUP; g++) off[g + 1] = off[g] + len[g];
+  *n = off[NGROUP];
+  for (PetscInt i = 0; i < 2 * MOM_MAX; i++) buf[i] = 0;
+  /* the bounding box (min and max: the same on any partition) */
+  for (PetscInt d = 0; d < 3; d++) lo[d] = PETSC_MAX_REAL, hi[d] = PETSC_MIN_REAL;
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) lo[d] = PetscMin(lo[d], m->x[v * dim + d]), hi[d] = PetscMax(hi[d], m->x[v * dim + d]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, lo, 3, MPIU_REAL, MPI_MIN, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hi, 3, MPIU_REAL, MPI_MAX, comm));
+  PetscCall(MomentsData(el, dim, lo, hi, off, buf));
+  PetscCall(MomentsStiffness(el, dim, lo, hi, off, buf));
+  if (c) PetscCall(MomentsContact(c, m, dim, lo, hi, off, buf));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf, 2 * MOM_MAX, MPIU_REAL, MPI_SUM, comm));
   for (PetscInt i = 0; i < *n; i++) F[i] = buf[i], S[i] = buf[MOM_MAX + i];
   PetscFunctionReturn(0);
