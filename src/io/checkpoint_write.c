@@ -74,12 +74,8 @@ static PetscErrorCode WriterAddVec(SgCheckpointWriter w, Vec v)
 {
   PetscFunctionBeginUser;
   if (w->nvec == w->capvec) {
-    Vec *a;
     w->capvec = 2 * w->capvec + 8;
-    PetscCall(PetscMalloc1(w->capvec, &a));
-    PetscCall(PetscArraycpy(a, w->vec, w->nvec));
-    PetscCall(PetscFree(w->vec));
-    w->vec = a;
+    PetscCall(PetscRealloc(sizeof(Vec) * w->capvec, &w->vec));
   }
   w->vec[w->nvec++] = v;
   PetscFunctionReturn(0);
@@ -93,12 +89,8 @@ PetscErrorCode SgCheckpointWriterAttribute(SgCheckpointWriter w, const char name
   PetscFunctionBeginUser;
   PetscCheck(type == PETSC_INT || type == PETSC_REAL || type == PETSC_STRING, w->comm, PETSC_ERR_SUP, "SgCheckpointWriterAttribute: %s: an integer, real or string", name);
   if (w->natt == w->capatt) {
-    CkAttr *b;
     w->capatt = 2 * w->capatt + 16;
-    PetscCall(PetscMalloc1(w->capatt, &b));
-    PetscCall(PetscArraycpy(b, w->att, w->natt));
-    PetscCall(PetscFree(w->att));
-    w->att = b;
+    PetscCall(PetscRealloc(sizeof(CkAttr) * w->capatt, &w->att));
   }
   a = &w->att[w->natt++];
   PetscCall(PetscMemzero(a, sizeof(*a)));

@@ -42,12 +42,8 @@ PetscErrorCode SgSSNJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
   for (PetscInt i = 0; i < c->n; i++) s->actjac[i] = (char)(s->lamhat[i] + s->gamma * s->g[i] > 0);
   s->havejac = PETSC_TRUE;
   if (s->nhash == s->maxhash) {
-    PetscInt64 *h;
     s->maxhash = PetscMax(64, 2 * s->maxhash);
-    PetscCall(PetscMalloc1(s->maxhash, &h));
-    PetscCall(PetscArraycpy(h, s->hash, s->nhash));
-    PetscCall(PetscFree(s->hash));
-    s->hash = h;
+    PetscCall(PetscRealloc(sizeof(PetscInt64) * s->maxhash, &s->hash));
   }
   PetscCall(SgContactActiveSetHash(s->c, s->actjac, &s->hash[s->nhash++]));
   PetscCall(SgTMGSetActiveSet(s->tmg, s->actjac));
