@@ -1,6 +1,6 @@
 /* ksp.c: the linear solver of a controller's steps: the KSP made from the options (its types checked first, a
    combination that cannot work reported naming the options), and the elasticity solve without contact. */
-#include "solver/ssnimpl.h"
+#include "sg.h"
 
 /* -<prefix>snes_type, -<prefix>ksp_type and -<prefix>pc_type name a registered method: checked before SetFromOptions,
    whose own message ("Unable to find requested KSP type ...") names neither the option nor a file. */
