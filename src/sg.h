@@ -328,7 +328,7 @@ PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *, const char[], Pet
 PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *);                          /* frees the reader quietly, before a refusal */
 PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *);
 
-/* ------------------------------------------------------------------ solver: ssn.c (residual.c, jacobian.c, friction.c, convergence.c, coulomb.c), ksp.c, condense.c */
+/* ------------------------------------------------------------------ solver: ssn.c (residual.c, jacobian.c, friction.c, convergence.c, fallback.c), ksp.c, condense.c */
 typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT, SG_SSN_ROUNDOFF } SgSSNReason;
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;

@@ -1,5 +1,5 @@
 /* checkpoint_read.c: the checkpoint reader of a restart (-restart_file): it opens the file, checks that it is a
-   checkpoint of this problem (fingerprint.c) and mesh, matches the file's vertices with the mesh's by their coordinates
+   checkpoint of this problem (its fingerprint, fingerprint.c) and mesh, matches the file's vertices with the mesh's by their coordinates
    (any partition), and hands each owner of a state its datasets and attributes; a damaged file is refused naming
    -restart_file. */
 #include "io/ioimpl.h"
@@ -273,6 +273,36 @@ PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[]
   PetscFunctionReturn(0);
 }
 
+/* the history rows (of outer steps up to maxouter) into hist */
+PetscErrorCode SgCheckpointReaderHistory(SgCheckpointReader r, PetscInt maxouter, SgHistory hist)
+{
+  PetscReal *ha;
+  PetscInt   nh;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(r, "history", -1, &nh, &ha));
+  {
+    const char *what = NULL;
+    PetscReal   val  = 0;
+    if (nh % SG_HISTORY_NREALS) what = "the length of the history", val = nh;
+    for (PetscInt i = 0; !what && i < nh / SG_HISTORY_NREALS; i++) {
+      const PetscReal kind = ha[i * SG_HISTORY_NREALS], outer = ha[i * SG_HISTORY_NREALS + 1];
+      if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
+      else if (!(outer >= 0 && outer <= maxouter && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+    }
+    if (what) PetscCall(PetscFree(ha));
+    if (what) PetscCall(SgCheckpointReaderDamaged(&r, what, val));
+  }
+  PetscCall(SgHistoryReset(hist));
+  for (PetscInt i = 0; i < nh / SG_HISTORY_NREALS; i++) {
+    SgHistoryRow row;
+    SgHistoryRowFromReals(&ha[i * SG_HISTORY_NREALS], &row);
+    PetscCall(SgHistoryAdd(hist, &row));
+  }
+  PetscCall(PetscFree(ha));
+  PetscFunctionReturn(0);
+}
+
 /* vertices of the checkpoint sorted by their coordinates */
 static const PetscReal *SortX;
 static PetscInt         SortDim;
@@ -346,6 +376,45 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
   PetscFunctionReturn(0);
 }
 
+/* the problem's numbers (E, nu, load and Dirichlet scales, gap sum; a file of an older version may lack them) and
+   moments (the data with their signs and directions; an older file may lack them) against this run's */
+static PetscErrorCode ReaderCheckProblem(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  PetscBool          has;
+  PetscInt           nmom = 0, n, group = -1, bad = -1;
+  PetscReal          print[SG_FINGERPRINT_NUMBERS], now[SG_FINGERPRINT_NUMBERS], F[SG_FINGERPRINT_MOMENTS_MAX], Sz[SG_FINGERPRINT_MOMENTS_MAX], *ma, a = 0, b = 0;
+  char               f[PETSC_MAX_PATH_LEN], desc[128];
+  MPI_Comm           comm = r->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+  PetscCall(SgCheckpointReaderHasAttribute(r, SgFingerprintNames[0], &has));
+  for (PetscInt i = 0; has && i < SG_FINGERPRINT_NUMBERS; i++) PetscCall(SgCheckpointReaderAttribute(r, SgFingerprintNames[i], PETSC_REAL, &print[i]));
+  if (has) PetscCall(SgFingerprintNumbers(r->el, r->c, now));
+  for (PetscInt i = 0; has && i < SG_FINGERPRINT_NUMBERS; i++) {
+    const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(print[i]) : 0));
+    if (!ok) PetscCall(SgCheckpointReaderAbandon(rp));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, SgFingerprintOptions[i], SgFingerprintNames[i], (double)print[i], (double)now[i]);
+  }
+  PetscCall(SgCheckpointReaderHasAttribute(r, "problem_moments", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(SgCheckpointReaderAttribute(r, "problem_moments", PETSC_INT, &nmom));
+  PetscCall(SgFingerprintMoments(r->el, r->c, &n, F, Sz));
+  if (nmom != n) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(nmom == n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: it holds %" PetscInt_FMT " moments of the problem, a %" PetscInt_FMT "D problem has %" PetscInt_FMT, f, nmom, r->dim, n);
+  PetscCall(SgCheckpointReaderReals(r, "problem_moments", 2 * n, NULL, &ma));
+  for (PetscInt i = 0; bad < 0 && i < 2 * n; i++)
+    if (!PetscIsNormalReal(ma[i]) && ma[i] != 0) bad = i;
+  if (bad < 0) SgFingerprintCompare(r->dim, n, ma, ma + n, F, Sz, &group, desc, sizeof(desc), &a, &b);
+  else a = ma[bad];
+  PetscCall(PetscFree(ma));
+  if (bad >= 0) PetscCall(SgCheckpointReaderDamaged(rp, "a moment of the problem", a));
+  if (group >= 0) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(group < 0, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s (%s: %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, group >= 0 ? SgFingerprintGroups[group] : "", desc, (double)a, (double)b);
+  PetscFunctionReturn(0);
+}
+
 /* Open file for a restart of this problem (el, c): a checkpoint of it, of this mesh (its vertices matched by their
    coordinates, on any partition). Refusals (no such file, not HDF5, another mesh or problem, damage) name
    -restart_file and the file. */
@@ -394,7 +463,7 @@ PetscErrorCode SgCheckpointReaderOpen(SgElasticity el, SgContact c, const char f
     PetscCall(SgCheckpointReaderAbandon(&r));
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, fd, fn, dim, nvert);
   }
-  PetscCall(SgCheckpointCheckProblem(&r, el, c));
+  PetscCall(ReaderCheckProblem(&r));
   PetscCall(ReaderMatchVertices(&r));
   *rp = r;
   PetscFunctionReturn(0);

@@ -166,6 +166,21 @@ PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter w, const char name[]
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgCheckpointWriterHistory(SgCheckpointWriter w, SgHistory hist)
+{
+  PetscInt      nh;
+  SgHistoryRow *rows;
+  PetscReal    *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgHistoryGetRows(hist, &nh, &rows));
+  PetscCall(PetscMalloc1(SG_HISTORY_NREALS * nh + 1, &a));
+  for (PetscInt i = 0; i < nh; i++) SgHistoryRowToReals(&rows[i], &a[i * SG_HISTORY_NREALS]);
+  PetscCall(SgCheckpointWriterReals(w, "history", SG_HISTORY_NREALS * nh, a));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
 /* whether a dataset or attribute of this name was put in */
 PetscErrorCode SgCheckpointWriterHas(SgCheckpointWriter w, const char name[], PetscBool *has)
 {
@@ -181,12 +196,13 @@ PetscErrorCode SgCheckpointWriterHas(SgCheckpointWriter w, const char name[], Pe
 }
 
 /* A writer for file with what identifies the problem and its mesh: the vertex coordinates, the mesh size and the
-   fingerprint (SgCheckpointWriteProblem). */
+   fingerprint (SgFingerprintNumbers, SgFingerprintMoments). */
 PetscErrorCode SgCheckpointWriterCreate(SgElasticity el, SgContact c, const char file[], SgCheckpointWriter *wp)
 {
   SgCheckpointWriter w;
   const SgMesh      *m;
-  PetscInt           dim, nvert;
+  PetscInt           dim, nvert, nmom;
+  PetscReal          print[SG_FINGERPRINT_NUMBERS], F[SG_FINGERPRINT_MOMENTS_MAX], Sz[SG_FINGERPRINT_MOMENTS_MAX], a[2 * SG_FINGERPRINT_MOMENTS_MAX];
   Vec                X;
 
   PetscFunctionBeginUser;
@@ -203,7 +219,12 @@ PetscErrorCode SgCheckpointWriterCreate(SgElasticity el, SgContact c, const char
   nvert /= dim;
   PetscCall(SgCheckpointWriterAttribute(w, "dim", PETSC_INT, &dim));
   PetscCall(SgCheckpointWriterAttribute(w, "vertices", PETSC_INT, &nvert));
-  PetscCall(SgCheckpointWriteProblem(w, el, c));
+  PetscCall(SgFingerprintNumbers(el, c, print));
+  for (PetscInt i = 0; i < SG_FINGERPRINT_NUMBERS; i++) PetscCall(SgCheckpointWriterAttribute(w, SgFingerprintNames[i], PETSC_REAL, &print[i]));
+  PetscCall(SgFingerprintMoments(el, c, &nmom, F, Sz));
+  for (PetscInt i = 0; i < nmom; i++) a[i] = F[i], a[nmom + i] = Sz[i];
+  PetscCall(SgCheckpointWriterReals(w, "problem_moments", 2 * nmom, a));
+  PetscCall(SgCheckpointWriterAttribute(w, "problem_moments", PETSC_INT, &nmom));
   *wp = w;
   PetscFunctionReturn(0);
 }

@@ -1,14 +1,13 @@
-/* fingerprint.c: the problem's fingerprint in a checkpoint, written with the file (SgCheckpointWriterCreate) and
-   checked against this run's on a restart (SgCheckpointReaderOpen). */
+/* fingerprint.c: the problem's fingerprint, which a checkpoint holds (SgCheckpointWriterCreate) and a restart checks
+   against this run's (SgCheckpointReaderOpen). */
 #include "io/ioimpl.h"
 
 /* What identifies the problem a checkpoint belongs to: a restart of another problem (another -E, -nu, load, Dirichlet
    data or obstacle) would resume a continuation path, and report an unconstrained energy, of a problem it is not. */
-#define NPRINT 6
-static const char *PrintNames[NPRINT] = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
-static const char *PrintOptions[NPRINT] = {"-E", "-nu", "the loads (-body_force, -neumann_traction, ...)", "the loads (-body_force, -neumann_traction, ...)", "the Dirichlet data (-dirichlet_values)", "the obstacle (-obstacle_*) or the contact boundary"};
+const char *const SgFingerprintNames[SG_FINGERPRINT_NUMBERS] = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
+const char *const SgFingerprintOptions[SG_FINGERPRINT_NUMBERS] = {"-E", "-nu", "the loads (-body_force, -neumann_traction, ...)", "the loads (-body_force, -neumann_traction, ...)", "the Dirichlet data (-dirichlet_values)", "the obstacle (-obstacle_*) or the contact boundary"};
 
-static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print[NPRINT])
+PetscErrorCode SgFingerprintNumbers(SgElasticity el, SgContact c, PetscReal print[SG_FINGERPRINT_NUMBERS])
 {
   PetscReal gs = 0;
 
@@ -27,8 +26,8 @@ static PetscErrorCode ProblemPrint(SgElasticity el, SgContact c, PetscReal print
    summed once) up to the round-off of parallel sums, and are compared to 1e-10 of the size. The groups: */
 #define NMOM 6 /* weight fields */
 #define NGROUP 6
-static const char *MomentGroups[NGROUP] = {"the loads (-body_force, -neumann_traction, ...) differ", "the Dirichlet values (-dirichlet_values) differ", "the fixed components (-dirichlet_ids, -dirichlet_components) differ", "the stiffness (-E, -nu, -elasticity_rigid_shift) differs", "the contact boundary (-contact_ids, -contact_label) differs", "the obstacle (-obstacle_*) differs"};
-#define MOM_MAX (3 * NMOM * 3 + 2 + 2 * NMOM)
+const char *const SgFingerprintGroups[NGROUP] = {"the loads (-body_force, -neumann_traction, ...) differ", "the Dirichlet values (-dirichlet_values) differ", "the fixed components (-dirichlet_ids, -dirichlet_components) differ", "the stiffness (-E, -nu, -elasticity_rigid_shift) differs", "the contact boundary (-contact_ids, -contact_label) differs", "the obstacle (-obstacle_*) differs"};
+#define MOM_MAX SG_FINGERPRINT_MOMENTS_MAX /* (3 * NMOM * 3 + 2 + 2 * NMOM) */
 
 /* numbers per group in a dim-dimensional problem: loads, Dirichlet values and fixed components per weight and
    component, two quadratic forms of the stiffness, the contact boundary's and the gaps' moments per weight */
@@ -174,7 +173,7 @@ static PetscErrorCode MomentsContact(SgContact c, const SgMesh *m, PetscInt dim,
 }
 
 /* the moments F[] and their sizes S[] (n of each) of the problem at factor 1 */
-static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, PetscReal F[MOM_MAX], PetscReal S[MOM_MAX])
+PetscErrorCode SgFingerprintMoments(SgElasticity el, SgContact c, PetscInt *n, PetscReal F[MOM_MAX], PetscReal S[MOM_MAX])
 {
   const SgMesh *m;
   MPI_Comm      comm;
@@ -206,7 +205,7 @@ static PetscErrorCode ProblemMoments(SgElasticity el, SgContact c, PetscInt *n, 
 
 /* the first moment or size (*what >= 0; -1: none) in which two problems differ beyond round-off; which group, and a
    description of it */
-static void MomentsCompare(PetscInt dim, PetscInt n, const PetscReal F0[], const PetscReal S0[], const PetscReal F1[], const PetscReal S1[], PetscInt *group, char desc[], size_t len, PetscReal *a, PetscReal *b)
+void SgFingerprintCompare(PetscInt dim, PetscInt n, const PetscReal F0[], const PetscReal S0[], const PetscReal F1[], const PetscReal S1[], PetscInt *group, char desc[], size_t len, PetscReal *a, PetscReal *b)
 {
   PetscInt lens[NGROUP], g = 0, start = 0;
 
@@ -229,65 +228,4 @@ static void MomentsCompare(PetscInt dim, PetscInt n, const PetscReal F0[], const
     }
     return;
   }
-}
-
-/* The problem's fingerprint into a checkpoint: its numbers (attributes) and moments (a dataset, their number an
-   attribute) */
-PetscErrorCode SgCheckpointWriteProblem(SgCheckpointWriter w, SgElasticity el, SgContact c)
-{
-  PetscInt  nmom;
-  PetscReal print[NPRINT], F[MOM_MAX], Sz[MOM_MAX], a[2 * MOM_MAX];
-
-  PetscFunctionBeginUser;
-  PetscCall(ProblemPrint(el, c, print));
-  for (PetscInt i = 0; i < NPRINT; i++) PetscCall(SgCheckpointWriterAttribute(w, PrintNames[i], PETSC_REAL, &print[i]));
-  PetscCall(ProblemMoments(el, c, &nmom, F, Sz));
-  for (PetscInt i = 0; i < nmom; i++) a[i] = F[i], a[nmom + i] = Sz[i];
-  PetscCall(SgCheckpointWriterReals(w, "problem_moments", 2 * nmom, a));
-  PetscCall(SgCheckpointWriterAttribute(w, "problem_moments", PETSC_INT, &nmom));
-  PetscFunctionReturn(0);
-}
-
-/* The problem's numbers (E, nu, load and Dirichlet scales, gap sum; a file of an older version may lack them) and
-   moments (the data with their signs and directions; an older file may lack them) in a checkpoint against this run's
-   (el, c): a refusal frees the reader (*rp) first. */
-PetscErrorCode SgCheckpointCheckProblem(SgCheckpointReader *rp, SgElasticity el, SgContact c)
-{
-  SgCheckpointReader r = *rp;
-  PetscBool          has;
-  PetscInt           nmom = 0, n, group = -1, bad = -1, dim;
-  PetscReal          print[NPRINT], now[NPRINT], F[MOM_MAX], Sz[MOM_MAX], *ma, a = 0, b = 0;
-  char               f[PETSC_MAX_PATH_LEN], desc[128];
-  const char        *file;
-  MPI_Comm           comm;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetComm(el, &comm));
-  PetscCall(SgElasticityGetDimension(el, &dim)); /* the file's (SgCheckpointReaderOpen checked it) */
-  PetscCall(SgCheckpointReaderGetFile(r, &file));
-  PetscCall(PetscStrncpy(f, file, sizeof(f)));
-  PetscCall(SgCheckpointReaderHasAttribute(r, PrintNames[0], &has));
-  for (PetscInt i = 0; has && i < NPRINT; i++) PetscCall(SgCheckpointReaderAttribute(r, PrintNames[i], PETSC_REAL, &print[i]));
-  if (has) PetscCall(ProblemPrint(el, c, now));
-  for (PetscInt i = 0; has && i < NPRINT; i++) {
-    const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(print[i]) : 0));
-    if (!ok) PetscCall(SgCheckpointReaderAbandon(rp));
-    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, PrintOptions[i], PrintNames[i], (double)print[i], (double)now[i]);
-  }
-  PetscCall(SgCheckpointReaderHasAttribute(r, "problem_moments", &has));
-  if (!has) PetscFunctionReturn(0);
-  PetscCall(SgCheckpointReaderAttribute(r, "problem_moments", PETSC_INT, &nmom));
-  PetscCall(ProblemMoments(el, c, &n, F, Sz));
-  if (nmom != n) PetscCall(SgCheckpointReaderAbandon(rp));
-  PetscCheck(nmom == n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: it holds %" PetscInt_FMT " moments of the problem, a %" PetscInt_FMT "D problem has %" PetscInt_FMT, f, nmom, dim, n);
-  PetscCall(SgCheckpointReaderReals(r, "problem_moments", 2 * n, NULL, &ma));
-  for (PetscInt i = 0; bad < 0 && i < 2 * n; i++)
-    if (!PetscIsNormalReal(ma[i]) && ma[i] != 0) bad = i;
-  if (bad < 0) MomentsCompare(dim, n, ma, ma + n, F, Sz, &group, desc, sizeof(desc), &a, &b);
-  else a = ma[bad];
-  PetscCall(PetscFree(ma));
-  if (bad >= 0) PetscCall(SgCheckpointReaderDamaged(rp, "a moment of the problem", a));
-  if (group >= 0) PetscCall(SgCheckpointReaderAbandon(rp));
-  PetscCheck(group < 0, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s (%s: %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, group >= 0 ? MomentGroups[group] : "", desc, (double)a, (double)b);
-  PetscFunctionReturn(0);
 }

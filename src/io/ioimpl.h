@@ -24,7 +24,16 @@ PetscErrorCode SgFileRegister(MPI_Comm, const char[], const char[], PetscBool, P
 void           SgFileDirectory(const char[], char[PETSC_MAX_PATH_LEN]);
 PetscErrorCode SgOutputWriteXDMF(SgElasticity, const char[], const char[], PetscInt, const PetscInt[], const PetscReal[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 
-/* What the files of the checkpoint share (checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c) */
+/* What the files of the checkpoint share (checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c, history.c) */
 PetscErrorCode SgCheckpointOwnedVertices(SgElasticity, PetscInt *);
-PetscErrorCode SgCheckpointWriteProblem(SgCheckpointWriter, SgElasticity, SgContact);   /* the problem's fingerprint into the file */
-PetscErrorCode SgCheckpointCheckProblem(SgCheckpointReader *, SgElasticity, SgContact); /* the file's against this run's; a refusal frees the reader */
+#define SG_HISTORY_NREALS 22 /* numbers per history row in the file */
+void SgHistoryRowToReals(const SgHistoryRow *, PetscReal[]);
+void SgHistoryRowFromReals(const PetscReal[], SgHistoryRow *);
+/* the problem's fingerprint: numbers (E, nu, load and Dirichlet scales, gap sum: SgFingerprintNames, and the options
+   that set them) and moments (weighted sums of the data, in groups); their comparison, the first that differs */
+#define SG_FINGERPRINT_NUMBERS     6
+#define SG_FINGERPRINT_MOMENTS_MAX (3 * 6 * 3 + 2 + 2 * 6)
+extern const char *const SgFingerprintNames[SG_FINGERPRINT_NUMBERS], *const SgFingerprintOptions[SG_FINGERPRINT_NUMBERS], *const SgFingerprintGroups[];
+PetscErrorCode SgFingerprintNumbers(SgElasticity, SgContact, PetscReal[SG_FINGERPRINT_NUMBERS]);
+PetscErrorCode SgFingerprintMoments(SgElasticity, SgContact, PetscInt *, PetscReal[SG_FINGERPRINT_MOMENTS_MAX], PetscReal[SG_FINGERPRINT_MOMENTS_MAX]);
+void           SgFingerprintCompare(PetscInt, PetscInt, const PetscReal[], const PetscReal[], const PetscReal[], const PetscReal[], PetscInt *, char[], size_t, PetscReal *, PetscReal *);

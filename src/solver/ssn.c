@@ -3,8 +3,8 @@
    full Newton steps; converged when the active set stops changing (and, for inexact linear solves, ||F|| is small).
    Here the object (options, create with its SNES, frames, condensation or truncated multigrid; destroy; accessors) and
    the solve; the residual is in residual.c, the Jacobian in jacobian.c, the friction terms in friction.c, the
-   convergence test, reasons and monitor in convergence.c, Coulomb's fixed point in coulomb.c, the linear solver in
-   ksp.c. */
+   convergence test, reasons and monitor in convergence.c, what a failed solve does next (sparse LU, Coulomb's fixed
+   point) in fallback.c, the linear solver in ksp.c. */
 #include "solver/ssnimpl.h"
 
 /* The SSN's options, their defaults in s, condense, tmg and frame (also listed by SgSSNPrintHelp) */
@@ -350,26 +350,6 @@ PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
   PetscFunctionReturn(0);
 }
 
-/* one more SNES solve from y with a fresh Jacobian and state (the repetition with sparse LU, the Coulomb fixed point's):
-   its iterations added to *its and *kits, its own SSN iterations in *it */
-PetscErrorCode SgSSNSolveAgain(SgSSN s, Vec y, SNESConvergedReason *reason, PetscInt *its, PetscInt *kits, PetscInt *it)
-{
-  PetscInt kit;
-
-  PetscFunctionBeginUser;
-  s->havejac  = PETSC_FALSE;
-  s->nhash    = 0;
-  s->stagnant = PETSC_FALSE;
-  s->reason   = SG_SSN_ITERATING;
-  PetscCall(SNESSolve(s->snes, NULL, y));
-  PetscCall(SNESGetIterationNumber(s->snes, it));
-  PetscCall(SNESGetLinearSolveIterations(s->snes, &kit));
-  PetscCall(SNESGetConvergedReason(s->snes, reason));
-  s->reason = SgSSNReasonOf(s, *reason);
-  *its += *it;
-  *kits += kit;
-  PetscFunctionReturn(0);
-}
 
 /* Solve (P_gamma) with the current shift c->lamhat from the initial guess y (overwritten). */
 PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
@@ -397,34 +377,8 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     PetscCall(SNESGetConvergedReason(s->snes, reason));
     s->reason = SgSSNReasonOf(s, *reason);
   }
-  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) {
-    /* friction with an iterative linear solver: at a large gamma the slip blocks (Coulomb: the coupling F gamma t n^T,
-       far from symmetric) defeat Krylov solvers with an AMG built for elasticity, which fail or whose inexact steps
-       keep the SSN from converging (GMRES + BoomerAMG on the sliding block at gamma ~ 1e12): this (P_gamma) is solved
-       again from the same start with sparse LU (MUMPS), and so are those at larger gammas; said on the output */
-    KSP      ksp;
-    PetscInt its2;
-    if (!s->kspd) {
-      PC pc;
-      PetscCall(KSPCreate(s->comm, &s->kspd));
-      PetscCall(KSPSetType(s->kspd, KSPPREONLY));
-      PetscCall(KSPGetPC(s->kspd, &pc));
-      PetscCall(PCSetType(pc, PCLU));
-      PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-      if (s->frame) PetscCall(SgFrameAttachKSP(s->frame, s->kspd));
-    }
-    if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
-      PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));
-      s->gamma_direct = gamma;
-    }
-    PetscCall(SNESGetKSP(s->snes, &ksp));
-    PetscCall(PetscObjectReference((PetscObject)ksp));
-    PetscCall(SNESSetKSP(s->snes, s->kspd));
-    PetscCall(VecCopy(s->y0, y));
-    PetscCall(SgSSNSolveAgain(s, y, reason, its, kits, &its2));
-    PetscCall(SNESSetKSP(s->snes, ksp));
-    PetscCall(KSPDestroy(&ksp));
-  }
+  /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c) */
+  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
   /* a bound from lam_N (Coulomb): a failure of the coupled Newton iteration (cycling states) gets the fixed point on the frozen bound */
   if (s->cv.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(SgSSNCoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */

@@ -75,7 +75,7 @@ struct _n_SgSSN {
 };
 
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
-   coulomb.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
+   fallback.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
 PetscErrorCode SgSSNResidual(SNES, Vec, Vec, void *);
 PetscErrorCode SgSSNJacobian(SNES, Vec, Mat, Mat, void *);
 PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
@@ -85,5 +85,5 @@ SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES rea
 void           SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
-PetscErrorCode SgSSNSolveAgain(SgSSN, Vec, SNESConvergedReason *, PetscInt *, PetscInt *, PetscInt *);
+PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgSSNCoulombFixedPoint(SgSSN, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);

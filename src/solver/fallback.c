@@ -1,6 +1,61 @@
-/* coulomb.c: Coulomb friction when the Newton iteration on the coupled law fails: a fixed point on the Tresca bound
-   s = F lam_N, accelerated by Anderson mixing (-ssn_coulomb_fp_*). */
+/* fallback.c: what an SSN solve of (P_gamma) does when its Newton iteration fails: with friction and an iterative
+   linear solver, the same (P_gamma) solved again with sparse LU (MUMPS); with Coulomb friction, a fixed point on the
+   Tresca bound s = F lam_N, accelerated by Anderson mixing (-ssn_coulomb_fp_*). */
 #include "solver/ssnimpl.h"
+
+/* one more SNES solve from y with a fresh Jacobian and state (the repetition with sparse LU, the Coulomb fixed point's):
+   its iterations added to *its and *kits, its own SSN iterations in *it */
+static PetscErrorCode SolveAgain(SgSSN s, Vec y, SNESConvergedReason *reason, PetscInt *its, PetscInt *kits, PetscInt *it)
+{
+  PetscInt kit;
+
+  PetscFunctionBeginUser;
+  s->havejac  = PETSC_FALSE;
+  s->nhash    = 0;
+  s->stagnant = PETSC_FALSE;
+  s->reason   = SG_SSN_ITERATING;
+  PetscCall(SNESSolve(s->snes, NULL, y));
+  PetscCall(SNESGetIterationNumber(s->snes, it));
+  PetscCall(SNESGetLinearSolveIterations(s->snes, &kit));
+  PetscCall(SNESGetConvergedReason(s->snes, reason));
+  s->reason = SgSSNReasonOf(s, *reason);
+  *its += *it;
+  *kits += kit;
+  PetscFunctionReturn(0);
+}
+
+/* friction with an iterative linear solver: at a large gamma the slip blocks (Coulomb: the coupling F gamma t n^T,
+   far from symmetric) defeat Krylov solvers with an AMG built for elasticity, which fail or whose inexact steps
+   keep the SSN from converging (GMRES + BoomerAMG on the sliding block at gamma ~ 1e12): this (P_gamma) is solved
+   again from the same start with sparse LU (MUMPS), and so are those at larger gammas; said on the output */
+PetscErrorCode SgSSNSolveDirect(SgSSN s, PetscReal gamma, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
+{
+  KSP      ksp;
+  PetscInt its2;
+
+  PetscFunctionBeginUser;
+  if (!s->kspd) {
+    PC pc;
+    PetscCall(KSPCreate(s->comm, &s->kspd));
+    PetscCall(KSPSetType(s->kspd, KSPPREONLY));
+    PetscCall(KSPGetPC(s->kspd, &pc));
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    if (s->frame) PetscCall(SgFrameAttachKSP(s->frame, s->kspd));
+  }
+  if (!(s->gamma_direct > 0 && gamma >= s->gamma_direct)) {
+    PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with the iterative linear solver after %" PetscInt_FMT " iterations; solved again with sparse LU (MUMPS), and so from here on at gamma >= %g\n", (double)gamma, SgSSNReasons[s->reason], *its, (double)gamma));
+    s->gamma_direct = gamma;
+  }
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(PetscObjectReference((PetscObject)ksp));
+  PetscCall(SNESSetKSP(s->snes, s->kspd));
+  PetscCall(VecCopy(s->y0, y));
+  PetscCall(SolveAgain(s, y, reason, its, kits, &its2));
+  PetscCall(SNESSetKSP(s->snes, ksp));
+  PetscCall(KSPDestroy(&ksp));
+  PetscFunctionReturn(0);
+}
 
 /* Coulomb when the Newton iteration on the coupled law failed: a fixed point on the Tresca bound. With the bound
    s_i = F lam_N,i frozen the friction law is Tresca's (a convex problem: no coupling F gamma t n^T in the Jacobian, and
@@ -28,7 +83,7 @@ PetscErrorCode SgSSNCoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt *k
     PetscInt  it2, jc;
     PetscReal d = 0, mx = 0;
     s->gfix = s->gfixw;
-    PetscCall(SgSSNSolveAgain(s, y, reason, its, kits, &it2));
+    PetscCall(SolveAgain(s, y, reason, its, kits, &it2));
     s->gfix = NULL;
     if (*reason <= 0) break;
     PetscCall(VecGetArrayRead(y, &ya));
@@ -94,7 +149,7 @@ PetscErrorCode SgSSNCoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt *k
   PetscCall(PetscFree7(x, f, dX, dF, Mat_, rhs, gam));
   if (*reason > 0) { /* the coupled law from the fixed point */
     PetscInt it2;
-    PetscCall(SgSSNSolveAgain(s, y, reason, its, kits, &it2));
+    PetscCall(SolveAgain(s, y, reason, its, kits, &it2));
     if (s->monitor) PetscCall(PetscPrintf(s->comm, "  Coulomb after %" PetscInt_FMT " fixed-point steps at gamma %g: %s after %" PetscInt_FMT " SSN\n", k, (double)s->gamma, SgSSNReasons[s->reason], it2));
   }
   PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g with Coulomb friction: the Newton iteration on the coupled law failed; solved again by a fixed point on the Tresca bound s = F lam_N (%" PetscInt_FMT " steps): %s\n", (double)s->gamma, k, *reason > 0 ? "converged" : SgSSNReasons[s->reason]));
