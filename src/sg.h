@@ -268,6 +268,7 @@ PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i 
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactIsPair(SgContact, PetscBool *); /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
+PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *); /* two bodies: |B^T 1| on the master side, NULL without a pair */
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
 PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */
@@ -295,7 +296,7 @@ PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
 PetscErrorCode SgHistoryGetRows(SgHistory, PetscInt *, SgHistoryRow **);
 PetscErrorCode SgHistoryReset(SgHistory);
 
-/* ------------------------------------------------------------------ io: checkpoint.c
+/* ------------------------------------------------------------------ io: checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c
    The checkpoint file: the problem's fingerprint and the vertex coordinates (a restart may use another partition),
    written atomically; each owner of a state (the controller, its type, the friction state, the load steps:
    cont/state.c) saves it through a writer and loads it through a reader, by names of its own. A reader that refuses
@@ -334,7 +335,7 @@ PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *, const char[], Pet
 PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *);                          /* frees the reader quietly, before a refusal */
 PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *);
 
-/* ------------------------------------------------------------------ solver: ssn.c, condense.c */
+/* ------------------------------------------------------------------ solver: ssn.c (residual.c, jacobian.c, friction.c, convergence.c, fallback.c), ksp.c, condense.c */
 typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT, SG_SSN_ROUNDOFF } SgSSNReason;
 extern const char *const SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;

@@ -1196,6 +1196,29 @@ PetscErrorCode SgContactNormalsAxisAligned(SgContact c, PetscBool *aligned)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: |B^T 1| on the master side (per free dof; 0 on the slave contact vertices), the master's share of the
+   pair for the checkpoint's fingerprint (a pair and a rigid obstacle of the same gaps differ there); NULL without a
+   pair. The caller destroys it. */
+PetscErrorCode SgContactPairMasterWeights(SgContact c, Vec *mw)
+{
+  Vec          one;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  *mw = NULL;
+  if (!c || !c->pair) PetscFunctionReturn(0);
+  PetscCall(MatCreateVecs(c->pair->B, mw, &one));
+  PetscCall(VecSet(one, 1.0));
+  PetscCall(MatMultTranspose(c->pair->B, one, *mw));
+  PetscCall(VecDestroy(&one));
+  PetscCall(VecGetArray(*mw, &a));
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) a[c->off[i] + k] = 0;
+  PetscCall(VecRestoreArray(*mw, &a));
+  PetscCall(VecAbs(*mw));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContactIsPair(SgContact c, PetscBool *pair)
 {
   PetscFunctionBeginUser;

@@ -22,7 +22,7 @@ struct _n_SgObstacle {
   void *data;                            /* a type's own state (cad) */
 };
 
-/* obstacle_mesh.c: triangulated surfaces (STL, .msh) given as -obstacle_cad_file */
+/* obstacle_mesh.c (obstacle_mesh_file.c, obstacle_mesh_surface.c): triangulated surfaces (STL, .msh) given as -obstacle_cad_file */
 PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
 PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
 PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);

@@ -107,3 +107,36 @@ PetscErrorCode SgHistoryReset(SgHistory h)
   h->n = 0;
   PetscFunctionReturn(0);
 }
+
+/* a history row as SG_HISTORY_NREALS numbers (the checkpoint's history dataset), and back */
+void SgHistoryRowToReals(const SgHistoryRow *r, PetscReal a[])
+{
+  const PetscReal v[SG_HISTORY_NREALS] = {r->kind == 's' ? 0 : 1, r->outer, r->gamma, r->it, r->active, r->entered, r->left, r->fnorm, r->r1, r->r2, r->V, r->dV, r->ksp_its, r->time, r->ssn_its, r->C1, r->C2, r->Em, r->rhoF, r->rhoC, r->infeas, r->kkt};
+  for (PetscInt k = 0; k < SG_HISTORY_NREALS; k++) a[k] = v[k];
+}
+
+void SgHistoryRowFromReals(const PetscReal a[], SgHistoryRow *r)
+{
+  r->kind    = a[0] == 0 ? 's' : 'o';
+  r->outer   = (PetscInt)a[1];
+  r->gamma   = a[2];
+  r->it      = (PetscInt)a[3];
+  r->active  = (PetscInt)a[4];
+  r->entered = (PetscInt)a[5];
+  r->left    = (PetscInt)a[6];
+  r->fnorm   = a[7];
+  r->r1      = a[8];
+  r->r2      = a[9];
+  r->V       = a[10];
+  r->dV      = a[11];
+  r->ksp_its = (PetscInt)a[12];
+  r->time    = a[13];
+  r->ssn_its = (PetscInt)a[14];
+  r->C1      = a[15];
+  r->C2      = a[16];
+  r->Em      = a[17];
+  r->rhoF    = a[18];
+  r->rhoC    = a[19];
+  r->infeas  = a[20];
+  r->kkt     = a[21];
+}

@@ -23,3 +23,19 @@ void           SgFileResolve(const char[], const char **, PetscBool *);
 PetscErrorCode SgFileRegister(MPI_Comm, const char[], const char[], PetscBool, PetscBool);
 void           SgFileDirectory(const char[], char[PETSC_MAX_PATH_LEN]);
 PetscErrorCode SgOutputWriteXDMF(SgElasticity, const char[], const char[], PetscInt, const PetscInt[], const PetscReal[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+
+/* What the files of the checkpoint share (checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c, history.c) */
+PetscErrorCode SgCheckpointOwnedVertices(SgElasticity, PetscInt *);
+#define SG_HISTORY_NREALS 22 /* numbers per history row in the file */
+void SgHistoryRowToReals(const SgHistoryRow *, PetscReal[]);
+void SgHistoryRowFromReals(const PetscReal[], SgHistoryRow *);
+/* the problem's fingerprint: numbers (E, nu, load and Dirichlet scales, gap sum: SgFingerprintNames, and the options
+   that set them) and moments (weighted sums of the data, in groups); their comparison, the first that differs */
+#define SG_FINGERPRINT_NUMBERS     6
+#define SG_FINGERPRINT_MOMENTS_MAX (3 * 6 * 3 + 2 + 2 * 6)
+extern const char *const SgFingerprintNames[SG_FINGERPRINT_NUMBERS], *const SgFingerprintOptions[SG_FINGERPRINT_NUMBERS], *const SgFingerprintGroups[];
+PetscErrorCode SgFingerprintNumbers(SgElasticity, SgContact, PetscReal[SG_FINGERPRINT_NUMBERS]);
+PetscErrorCode SgFingerprintMoments(SgElasticity, SgContact, PetscInt *, PetscReal[SG_FINGERPRINT_MOMENTS_MAX], PetscReal[SG_FINGERPRINT_MOMENTS_MAX]);
+void           SgFingerprintCompare(PetscInt, PetscInt, const PetscReal[], const PetscReal[], const PetscReal[], const PetscReal[], PetscInt *, char[], size_t, PetscReal *, PetscReal *);
+PetscErrorCode SgFingerprintMaterials(SgElasticity, PetscInt *, PetscReal[3 * SG_MAX_IDS]); /* several materials: ids, E, nu (3 n numbers; n = 0: one) */
+PetscErrorCode SgFingerprintMaterialText(PetscInt, const PetscReal[], PetscBool, PetscReal, PetscReal, char[], size_t);

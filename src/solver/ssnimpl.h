@@ -45,7 +45,7 @@ struct _n_SgSSN {
   SgSSNReason reason;
   PetscBool   monitor;
   PetscBool   progress;       /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */
-  PetscViewer reason_viewer;  /* -snes_converged_reason, taken over (ReasonView in ssn.c) */
+  PetscViewer reason_viewer;  /* -snes_converged_reason, taken over (SgSSNReasonView in convergence.c) */
   PetscViewerFormat reason_format;
   SgHistory   hist;
   PetscInt    outer;
@@ -59,17 +59,31 @@ struct _n_SgSSN {
   char         *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
   PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
   char         *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
-                                 equilibrium force exceeds the bound, linearized as slip (FrictionJacobian) */
+                                 equilibrium force exceeds the bound, linearized as slip (SgSSNFrictionJacobian) */
   PetscBool     iterative;    /* the linear solver is not preonly */
   KSP           kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
   Vec           y0;           /* the initial guess of the solve, kept for that repetition */
   PetscReal     gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
-  PetscBool     stagnant;     /* friction: the last Newton step did not halve ||F|| (Converged) */
+  PetscBool     stagnant;     /* friction: the last Newton step did not halve ||F|| (SgSSNConverged) */
   PetscInt      nforce;       /* their number, on all ranks */
-  Vec          *wpre;         /* two work vectors of the step's correction for them (PreCheck) */
+  Vec          *wpre;         /* two work vectors of the step's correction for them (SgSSNFrictionPreCheck) */
   PetscInt      nstick, nslip, nfchanged;
-  PetscReal    *gfix;         /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (CoulombFixedPoint) */
+  PetscReal    *gfix;         /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (SgSSNCoulombFixedPoint) */
   PetscReal    *gfixw;        /* its storage, n */
   PetscInt      fp_max_it, fp_m;
   PetscReal     fp_omega, fp_rtol;
 };
+
+/* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
+   fallback.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
+PetscErrorCode SgSSNResidual(SNES, Vec, Vec, void *);
+PetscErrorCode SgSSNJacobian(SNES, Vec, Mat, Mat, void *);
+PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
+PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);
+PetscErrorCode SgSSNReasonView(SNES, void *);
+SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES reason (a failure our test did not name: PETSc's) */
+void           SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
+PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
+PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
+PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
+PetscErrorCode SgSSNCoulombFixedPoint(SgSSN, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);

@@ -1,0 +1,507 @@
+/* checkpoint_read.c: the checkpoint reader of a restart (-restart_file): it opens the file, checks that it is a
+   checkpoint of this problem (its fingerprint, fingerprint.c) and mesh, matches the file's vertices with the mesh's by their coordinates
+   (any partition), and hands each owner of a state its datasets and attributes; a damaged file is refused naming
+   -restart_file. */
+#include "io/ioimpl.h"
+#include <petscviewerhdf5.h>
+
+/* Run f(ctx) with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
+static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(void *), void *ctx, PetscErrorCode *ierr)
+{
+  H5E_auto2_t efunc;
+  void       *edata;
+  int         e;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
+  (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  *ierr = f(ctx); /* not PetscCall: a damaged file is reported by the caller, naming -restart_file */
+  (void)H5Eset_auto2(H5E_DEFAULT, efunc, edata);
+  PetscCall(PetscPopErrorHandler());
+  e = *ierr ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &e, 1, MPI_INT, MPI_MAX, comm));
+  *ierr = e ? PETSC_ERR_FILE_READ : 0;
+  PetscFunctionReturn(0);
+}
+
+/* ---- the reader: opens the file, checks that it is a checkpoint of this problem and mesh and matches the vertices;
+   the owners then take out their parts. Every refusal names -restart_file and the file; a reader that refuses is
+   closed and freed first (the caller's handle is then gone: the error returns). */
+struct _n_SgCheckpointReader {
+  SgElasticity el;
+  SgContact    c;
+  MPI_Comm     comm;
+  char         file[PETSC_MAX_PATH_LEN];
+  PetscViewer  viewer;
+  PetscInt     dim, nvert;
+  PetscInt    *idx; /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+};
+
+/* one read of the file, run quietly (a damaged file is reported by the caller) */
+typedef struct {
+  SgCheckpointReader r;
+  const char        *name;
+  PetscDataType      type;
+  void              *value;
+  PetscInt           n; /* a dataset's expected size (-1: any) */
+  Vec                v;
+  PetscBool          has;
+} CkItem;
+
+static PetscErrorCode ItemOpen(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, it->r->file, FILE_MODE_READ, &it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemClose(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(it->r->viewer, "/checkpoint", it->name, &it->has));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemAttribute(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5ReadAttribute(it->r->viewer, "/checkpoint", it->name, it->type, NULL, it->value));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemHasDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(PetscViewerHDF5HasDataset(it->r->viewer, it->name, &it->has));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ItemDataset(void *ctx)
+{
+  CkItem *it = (CkItem *)ctx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(it->r->viewer, "/checkpoint"));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &it->v));
+  PetscCall(PetscObjectSetName((PetscObject)it->v, it->name));
+  if (it->n >= 0) PetscCall(VecSetSizes(it->v, it->n, it->n));
+  PetscCall(VecSetType(it->v, VECSEQ));
+  PetscCall(VecLoad(it->v, it->r->viewer));
+  PetscCall(PetscViewerHDF5PopGroup(it->r->viewer));
+  PetscFunctionReturn(0);
+}
+
+/* Close the file and free the reader, with error printing off (a damaged file can fail at H5Fclose): for a refusal,
+   before the error is returned. */
+PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  PetscErrorCode     ierr;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  if (r->viewer) PetscCall(Quietly(r->comm, ItemClose, &it, &ierr));
+  PetscCall(PetscFree(r->idx));
+  PetscCall(PetscFree(*rp));
+  PetscFunctionReturn(0);
+}
+
+/* the file's name, for the owners' messages */
+PetscErrorCode SgCheckpointReaderGetFile(SgCheckpointReader r, const char **file)
+{
+  PetscFunctionBeginUser;
+  *file = r->file;
+  PetscFunctionReturn(0);
+}
+
+/* the reader freed, then: "-restart_file: 'file' is damaged: <what> is <val>" */
+PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *rp, const char what[], PetscReal val)
+{
+  char     f[PETSC_MAX_PATH_LEN], w[256];
+  MPI_Comm comm = (*rp)->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, (*rp)->file, sizeof(f)));
+  PetscCall(PetscStrncpy(w, what, sizeof(w)));
+  PetscCall(SgCheckpointReaderAbandon(rp));
+  SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: %s is %g", f, w, (double)val);
+}
+
+/* run a read quietly; a failure is reported as "cannot read <what>" (the reader freed) */
+static PetscErrorCode ReaderRun(SgCheckpointReader *rp, PetscErrorCode (*f)(void *), CkItem *it, const char what[])
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBeginUser;
+  PetscCall(Quietly((*rp)->comm, f, it, &ierr));
+  if (ierr) {
+    char     file[PETSC_MAX_PATH_LEN], w[128];
+    MPI_Comm comm = (*rp)->comm;
+    PetscCall(PetscStrncpy(file, (*rp)->file, sizeof(file)));
+    PetscCall(PetscStrncpy(w, what, sizeof(w)));
+    PetscCall(VecDestroy(&it->v));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", file, w);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasAttribute(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasAttribute, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgCheckpointReaderHasDataset(SgCheckpointReader r, const char name[], PetscBool *has)
+{
+  CkItem it = {r, name, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemHasDataset, &it, name));
+  *has = it.has;
+  PetscFunctionReturn(0);
+}
+
+/* an attribute of /checkpoint (PETSC_INT: PetscInt *, PETSC_REAL: PetscReal *, PETSC_STRING: char ** to PetscFree) */
+PetscErrorCode SgCheckpointReaderAttribute(SgCheckpointReader r, const char name[], PetscDataType type, void *value)
+{
+  CkItem it = {r, name, type, value, -1, NULL, PETSC_FALSE};
+
+  PetscFunctionBeginUser;
+  PetscCall(ReaderRun(&r, ItemAttribute, &it, name));
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of n numbers (n < 0: any number; *len says how many) into a (allocated here; PetscFree) */
+PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader r, const char name[], PetscInt n, PetscInt *len, PetscReal **a)
+{
+  CkItem             it = {r, name, PETSC_REAL, NULL, n, NULL, PETSC_FALSE};
+  char               what[96];
+  const PetscScalar *va;
+  PetscInt           m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(what, sizeof(what), "the dataset %s (of the expected size)", name));
+  PetscCall(ReaderRun(&r, ItemDataset, &it, what));
+  PetscCall(VecGetSize(it.v, &m));
+  PetscCall(PetscMalloc1(m + 1, a));
+  PetscCall(VecGetArrayRead(it.v, &va));
+  for (PetscInt i = 0; i < m; i++) (*a)[i] = PetscRealPart(va[i]);
+  PetscCall(VecRestoreArrayRead(it.v, &va));
+  PetscCall(VecDestroy(&it.v));
+  if (len) *len = m;
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of bs numbers per vertex of the file, all finite (and >= 0 if nonneg; else refused as damaged, naming
+   what), in file order (allocated here; PetscFree) */
+static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
+{
+  PetscInt bad = -1, n;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(*rp, name, (*rp)->nvert * bs, &n, a));
+  for (PetscInt i = 0; bad < 0 && i < n; i++)
+    if ((!PetscIsNormalReal((*a)[i]) && (*a)[i] != 0) || (nonneg && !((*a)[i] >= 0))) bad = i;
+  if (bad >= 0) {
+    const PetscReal val = (*a)[bad];
+    PetscCall(PetscFree(*a));
+    PetscCall(SgCheckpointReaderDamaged(rp, what, val));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* a displacement per vertex into y (a global vector of the problem), matched by the coordinates; the prescribed
+   components of y are 0 (the file holds the full displacement: a fixed component of a roller is data) */
+PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char name[], const char what[], Vec y)
+{
+  const SgMesh *m;
+  const PetscInt dim = r->dim;
+  PetscReal    *a;
+  PetscScalar  *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  PetscCall(ReaderVertexData(&r, name, dim, PETSC_FALSE, what, &a));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (m->goff[v] < 0 || r->idx[v] < 0) continue;
+    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : a[r->idx[v] * dim + d];
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
+/* bs numbers per contact vertex into a (NULL: only checked), matched by the coordinates */
+PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal a[])
+{
+  SgContactView cv = {0};
+  PetscReal    *f;
+
+  PetscFunctionBeginUser;
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(&r, name, bs, nonneg, what, &f));
+  for (PetscInt i = 0; a && i < cv.n; i++)
+    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = r->idx[cv.vert[i]] >= 0 ? f[r->idx[cv.vert[i]] * bs + d] : 0;
+  PetscCall(PetscFree(f));
+  PetscFunctionReturn(0);
+}
+
+/* the history rows (of outer steps up to maxouter) into hist */
+PetscErrorCode SgCheckpointReaderHistory(SgCheckpointReader r, PetscInt maxouter, SgHistory hist)
+{
+  PetscReal *ha;
+  PetscInt   nh;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals(r, "history", -1, &nh, &ha));
+  {
+    const char *what = NULL;
+    PetscReal   val  = 0;
+    if (nh % SG_HISTORY_NREALS) what = "the length of the history", val = nh;
+    for (PetscInt i = 0; !what && i < nh / SG_HISTORY_NREALS; i++) {
+      const PetscReal kind = ha[i * SG_HISTORY_NREALS], outer = ha[i * SG_HISTORY_NREALS + 1];
+      if (!(kind == 0 || kind == 1)) what = "a history row kind", val = kind;
+      else if (!(outer >= 0 && outer <= maxouter && outer == PetscFloorReal(outer))) what = "a history row's outer step", val = outer;
+    }
+    if (what) PetscCall(PetscFree(ha));
+    if (what) PetscCall(SgCheckpointReaderDamaged(&r, what, val));
+  }
+  PetscCall(SgHistoryReset(hist));
+  for (PetscInt i = 0; i < nh / SG_HISTORY_NREALS; i++) {
+    SgHistoryRow row;
+    SgHistoryRowFromReals(&ha[i * SG_HISTORY_NREALS], &row);
+    PetscCall(SgHistoryAdd(hist, &row));
+  }
+  PetscCall(PetscFree(ha));
+  PetscFunctionReturn(0);
+}
+
+/* vertices of the checkpoint sorted by their coordinates */
+static const PetscReal *SortX;
+static PetscInt         SortDim;
+
+static int CmpPoint(const PetscReal *a, const PetscReal *b)
+{
+  for (PetscInt d = 0; d < SortDim; d++)
+    if (a[d] != b[d]) return a[d] < b[d] ? -1 : 1;
+  return 0;
+}
+
+static int CmpIndex(const void *a, const void *b)
+{
+  return CmpPoint(&SortX[*(const PetscInt *)a * SortDim], &SortX[*(const PetscInt *)b * SortDim]);
+}
+
+static void FindVertex(const PetscInt perm[], PetscInt n, const PetscReal x[], PetscInt *idx)
+{
+  PetscInt lo = 0, hi = n - 1;
+
+  *idx = -1;
+  while (lo <= hi) {
+    const PetscInt mid = (lo + hi) / 2;
+    const int      c   = CmpPoint(&SortX[perm[mid] * SortDim], x);
+    if (!c) {
+      *idx = perm[mid];
+      return;
+    }
+    if (c < 0) lo = mid + 1;
+    else hi = mid - 1;
+  }
+}
+
+/* the file's coordinates (all finite) matched with the mesh's vertices: r->idx; every owned and every contact vertex
+   must be in the file */
+static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  const SgMesh      *m;
+  SgContactView      cv = {0};
+  PetscReal         *x;
+  PetscInt          *perm, nmiss = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(r->el, &m));
+  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  PetscCall(ReaderVertexData(rp, "coordinates", r->dim, PETSC_FALSE, "a vertex coordinate", &x));
+  PetscCall(PetscMalloc1(r->nvert + 1, &perm));
+  PetscCall(PetscMalloc1(m->nv + 1, &r->idx));
+  for (PetscInt i = 0; i < r->nvert; i++) perm[i] = i;
+  SortX   = x;
+  SortDim = r->dim;
+  qsort(perm, r->nvert, sizeof(PetscInt), CmpIndex);
+  for (PetscInt v = 0; v < m->nv; v++) {
+    FindVertex(perm, r->nvert, &m->x[v * r->dim], &r->idx[v]);
+    if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
+  }
+  for (PetscInt i = 0; i < cv.n; i++)
+    if (r->idx[cv.vert[i]] < 0) nmiss++;
+  SortX = NULL;
+  PetscCall(PetscFree(perm));
+  PetscCall(PetscFree(x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (nmiss) {
+    char     f[PETSC_MAX_PATH_LEN];
+    MPI_Comm comm = r->comm;
+    PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+    PetscCall(SgCheckpointReaderAbandon(rp));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: %" PetscInt_FMT " vertices of this mesh are not in '%s': it was written for another mesh", nmiss, f);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the problem's numbers (E, nu, load and Dirichlet scales, gap sum; a file of an older version may lack them) and
+   moments (the data with their signs and directions; an older file may lack them) against this run's */
+static PetscErrorCode ReaderCheckProblem(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  PetscBool          has;
+  PetscInt           nmom = 0, n, group = -1, bad = -1;
+  PetscReal          print[SG_FINGERPRINT_NUMBERS], now[SG_FINGERPRINT_NUMBERS], F[SG_FINGERPRINT_MOMENTS_MAX], Sz[SG_FINGERPRINT_MOMENTS_MAX], *ma, a = 0, b = 0;
+  char               f[PETSC_MAX_PATH_LEN], desc[128];
+  MPI_Comm           comm = r->comm;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(f, r->file, sizeof(f)));
+  PetscCall(SgCheckpointReaderHasAttribute(r, SgFingerprintNames[0], &has));
+  for (PetscInt i = 0; has && i < SG_FINGERPRINT_NUMBERS; i++) PetscCall(SgCheckpointReaderAttribute(r, SgFingerprintNames[i], PETSC_REAL, &print[i]));
+  if (has) PetscCall(SgFingerprintNumbers(r->el, r->c, now));
+  { /* the materials first: another one changes the loads' lifting and the stiffness, and would be reported as those */
+    PetscInt  nck = 0, nnow, len;
+    PetscReal tnow[3 * SG_MAX_IDS], *tck = NULL;
+    PetscBool hm, same;
+    PetscCall(SgCheckpointReaderHasAttribute(r, "materials", &hm));
+    if (hm) PetscCall(SgCheckpointReaderAttribute(r, "materials", PETSC_INT, &nck));
+    if (hm && (nck < 1 || nck > SG_MAX_IDS)) PetscCall(SgCheckpointReaderDamaged(rp, "the number of materials", (PetscReal)nck));
+    if (nck) PetscCall(SgCheckpointReaderReals(r, "materials", 3 * nck, &len, &tck));
+    PetscCall(SgFingerprintMaterials(r->el, &nnow, tnow));
+    same = (PetscBool)(nck == nnow);
+    for (PetscInt i = 0; same && i < 3 * nck; i++) same = (PetscBool)(tck[i] == tnow[i]);
+    if (!same) {
+      char      a[1024], b[1024];
+      PetscReal En, nun;
+      PetscCall(SgFingerprintMaterialText(nck, tck, has, print[0], print[1], a, sizeof(a)));
+      PetscCall(SgElasticityGetMaterial(r->el, &En, &nun));
+      PetscCall(SgFingerprintMaterialText(nnow, tnow, PETSC_TRUE, En, nun, b, sizeof(b)));
+      PetscCall(PetscFree(tck));
+      PetscCall(SgCheckpointReaderAbandon(rp));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: the materials (-material_ids, -E, -nu) differ (%s in the checkpoint, %s in this run); a restart must solve the same problem", f, a, b);
+    }
+    PetscCall(PetscFree(tck));
+  }
+  for (PetscInt i = 0; has && i < SG_FINGERPRINT_NUMBERS; i++) {
+    const PetscBool ok = (PetscBool)(PetscAbsReal(now[i] - print[i]) <= 1e-10 * PetscMax(PetscAbsReal(now[i]), PetscAbsReal(print[i])) + (i == 5 ? 1e-14 * PetscAbsReal(print[i]) : 0));
+    if (!ok) PetscCall(SgCheckpointReaderAbandon(rp));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s differs (%s %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, SgFingerprintOptions[i], SgFingerprintNames[i], (double)print[i], (double)now[i]);
+  }
+  PetscCall(SgCheckpointReaderHasAttribute(r, "problem_moments", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(SgCheckpointReaderAttribute(r, "problem_moments", PETSC_INT, &nmom));
+  PetscCall(SgFingerprintMoments(r->el, r->c, &n, F, Sz));
+  if (nmom != n) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(nmom == n, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: it holds %" PetscInt_FMT " moments of the problem, a %" PetscInt_FMT "D problem has %" PetscInt_FMT, f, nmom, r->dim, n);
+  PetscCall(SgCheckpointReaderReals(r, "problem_moments", 2 * n, NULL, &ma));
+  for (PetscInt i = 0; bad < 0 && i < 2 * n; i++)
+    if (!PetscIsNormalReal(ma[i]) && ma[i] != 0) bad = i;
+  if (bad < 0) SgFingerprintCompare(r->dim, n, ma, ma + n, F, Sz, &group, desc, sizeof(desc), &a, &b);
+  else a = ma[bad];
+  PetscCall(PetscFree(ma));
+  if (bad >= 0) PetscCall(SgCheckpointReaderDamaged(rp, "a moment of the problem", a));
+  if (group >= 0) PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscCheck(group < 0, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: %s (%s: %.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, group >= 0 ? SgFingerprintGroups[group] : "", desc, (double)a, (double)b);
+  PetscFunctionReturn(0);
+}
+
+/* Open file for a restart of this problem (el, c): a checkpoint of it, of this mesh (its vertices matched by their
+   coordinates, on any partition). Refusals (no such file, not HDF5, another mesh or problem, damage) name
+   -restart_file and the file. */
+PetscErrorCode SgCheckpointReaderOpen(SgElasticity el, SgContact c, const char file[], SgCheckpointReader *rp)
+{
+  SgCheckpointReader r;
+  PetscBool          exists;
+  PetscErrorCode     ierr;
+  PetscInt           dim, nvert;
+  char               f[PETSC_MAX_PATH_LEN];
+  MPI_Comm           comm0;
+
+  PetscFunctionBeginUser;
+  *rp = NULL;
+  PetscCall(PetscStrncpy(f, file, sizeof(f)));
+  PetscCall(SgElasticityGetComm(el, &comm0));
+  PetscCall(PetscTestFile(file, 'r', &exists));
+  PetscCheck(exists, comm0, PETSC_ERR_FILE_OPEN, "-restart_file: cannot read '%s'", f);
+  PetscCall(PetscNew(&r));
+  r->el   = el;
+  r->c    = c;
+  r->comm = comm0;
+  PetscCall(PetscStrncpy(r->file, file, sizeof(r->file)));
+  {
+    /* a truncated or overwritten file fails here or in the reads below: the message names the option and the file */
+    CkItem   it   = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+    MPI_Comm comm = r->comm;
+    PetscCall(Quietly(r->comm, ItemOpen, &it, &ierr));
+    if (ierr) PetscCall(SgCheckpointReaderAbandon(&r)); /* a viewer whose file did not open fails its flush: quietly */
+    PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a readable HDF5 file (truncated or damaged?)", f);
+  }
+  PetscCall(SgCheckpointReaderHasAttribute(r, "vertices", &exists));
+  if (!exists) {
+    MPI_Comm comm = r->comm;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is not a checkpoint of this program", f);
+  }
+  PetscCall(SgCheckpointReaderAttribute(r, "dim", PETSC_INT, &r->dim));
+  PetscCall(SgCheckpointReaderAttribute(r, "vertices", PETSC_INT, &r->nvert));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(SgCheckpointOwnedVertices(el, &nvert));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nvert, 1, MPIU_INT, MPI_SUM, r->comm));
+  if (!(r->dim == dim && r->nvert == nvert)) {
+    MPI_Comm       comm = r->comm;
+    const PetscInt fd = r->dim, fn = r->nvert;
+    PetscCall(SgCheckpointReaderAbandon(&r));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' holds a %" PetscInt_FMT "D mesh of %" PetscInt_FMT " vertices, this run has a %" PetscInt_FMT "D mesh of %" PetscInt_FMT, f, fd, fn, dim, nvert);
+  }
+  PetscCall(ReaderCheckProblem(&r));
+  PetscCall(ReaderMatchVertices(&r));
+  *rp = r;
+  PetscFunctionReturn(0);
+}
+
+/* Close the file (a failure there: the file is damaged) and free the reader. */
+PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *rp)
+{
+  SgCheckpointReader r = *rp;
+  CkItem             it;
+
+  PetscFunctionBeginUser;
+  if (!r) PetscFunctionReturn(0);
+  it = (CkItem){r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
+  if (r->viewer) PetscCall(ReaderRun(rp, ItemClose, &it, "the file's end (closing it failed)"));
+  PetscCall(SgCheckpointReaderAbandon(rp));
+  PetscFunctionReturn(0);
+}
