@@ -320,7 +320,11 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
     PetscCall(SgFrameGetAxes(s->frame, &axis, &sign, NULL));
     PetscCall(PetscArraycpy(t->axis, axis, s->cv.n));
     PetscCall(PetscArraycpy(t->sign, sign, s->cv.n));
-  } else PetscCall(SgContactAxisAligned(s->c, "-ssn_pc_truncated_mg with the contact frames turned off (-ssn_frame false)", t->axis, t->sign)); /* collective */
+  } else {
+    PetscBool pair; /* two bodies have no frames: the refusal names the multigrid alone */
+    PetscCall(SgContactIsPair(s->c, &pair));
+    PetscCall(SgContactAxisAligned(s->c, pair ? "-ssn_pc_truncated_mg" : "-ssn_pc_truncated_mg with the contact frames turned off (-ssn_frame false)", t->axis, t->sign)); /* collective */
+  }
   PetscCall(PetscObjectReference((PetscObject)pc));
   t->amg = pc;
   PetscCall(PCCreate(s->comm, &pc));
