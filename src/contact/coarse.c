@@ -48,9 +48,19 @@ PetscErrorCode SgProblemCreateCoarse(SgProblem p, PetscInt down, SgProblem *coar
   q->contact  = p->contact;
   PetscCall(PetscArraycpy(q->values_dim, p->values_dim, 3));
   PetscCall(PetscStrncpy(q->obstacle, p->obstacle, sizeof(q->obstacle)));
-  PetscCall(PetscOptionsSetValue(NULL, opt, now));
+  { /* the coarser mesh kept with the fine one when it was made (fem/mesh.c, MeshRefineNested): its distribution */
+    DM          dm;
+    PetscObject lv = NULL;
+    char        name[64];
+    PetscCall(SgElasticityGetDMs(p->el, &dm, NULL, NULL, NULL));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, down));
+    PetscCall(PetscObjectQuery((PetscObject)dm, name, &lv));
+    if (lv) q->dm = (DM)lv;
+    if (lv) PetscCall(PetscObjectReference(lv));
+  }
+  if (!q->dm) PetscCall(PetscOptionsSetValue(NULL, opt, now)); /* else the mesh again, refined fewer times */
   ierr = SgProblemSetUp(q);
-  PetscCall(PetscOptionsSetValue(NULL, opt, was));
+  if (!q->dm) PetscCall(PetscOptionsSetValue(NULL, opt, was));
   if (ierr) PetscCall(SgProblemDestroy(&q));
   PetscCall(ierr);
   if (p->load_set) { /* the fine problem's load step */
