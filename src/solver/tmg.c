@@ -47,7 +47,9 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
-  PetscCall(PCSetOperators(t->amg, A, B));
+  /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
+     coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
+  PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
   PetscCall(PCSetUp(t->amg));
   PetscCall(PCGetInterpolations(t->amg, &n, &P));
   PetscCall(PCDestroy(&t->amg));
