@@ -1137,6 +1137,7 @@ PetscErrorCode SgContSolve(SgCont ct)
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));
+  ct->nested_start = PETSC_FALSE; /* the next solve (a load step) is warm from this one */
   PetscCall(PetscTime(&ct->t1));
   PetscCall(SgElasticityEnergy(ct->prob, ct->y, &ct->V));
   if (ct->c) {
@@ -1147,7 +1148,6 @@ PetscErrorCode SgContSolve(SgCont ct)
   ct->solved     = PETSC_TRUE;
   ct->restarted  = PETSC_FALSE;
   ct->warm       = PETSC_FALSE;
-  ct->nested_start = PETSC_FALSE;
   ct->have_state = PETSC_TRUE;
   if (t != 0) ct->V0unit = ct->V0 / (t * t); /* a step unloaded to 0 says nothing of it */
   if (ct->ngammas && PetscIsNormalReal(ct->gammas[ct->ngammas - 1])) ct->gamma_warm = ct->gammas[ct->ngammas - 1];
