@@ -280,6 +280,9 @@ PetscErrorCode SgProblemGetContact(SgProblem, SgContact *); /* NULL without a co
 PetscErrorCode SgProblemGetComm(SgProblem, MPI_Comm *);
 PetscErrorCode SgProblemGetCreationTime(SgProblem, PetscLogDouble *);
 PetscErrorCode SgProblemHasLoadSteps(SgProblem, PetscBool *);
+/* contact/coarse.c: the coarser problems of nested iteration (-cont_nested) */
+PetscErrorCode SgProblemGetRefinement(SgProblem, PetscBool *, PetscInt *); /* mesh from the options?, its -dm_refine */
+PetscErrorCode SgProblemCreateCoarse(SgProblem, PetscInt, SgProblem *);    /* the same problem on the mesh refined k times fewer */
 
 /* ------------------------------------------------------------------ io: history.c */
 typedef struct {

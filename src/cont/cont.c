@@ -186,6 +186,7 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_coulomb_shifted_path", "Coulomb friction: when a regularized solve of pf or ipf fails, or the tolerance lies below the double-precision cap of gamma (PRECISION_LIMIT), solve again from the start on the shifted path (the augmented Lagrangian steps of alm, gamma doubled per step)", &ct->coulomb_shifted, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
+  if (!ct->nested_inner) PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off)", &ct->nested, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -322,6 +323,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));
+  PetscCall(SgContNestedCheck(ct));
   ct->setup_failed          = PETSC_FALSE;
   ct->setfromoptions_called = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -393,6 +395,7 @@ PetscErrorCode SgContDestroy(SgCont *cont)
   PetscCall(PetscFree(ct->dvsteps));
   PetscCall(PetscFree2(ct->ysteps, ct->lamsteps));
   PetscCall(PetscFree(ct->steps));
+  PetscCall(PetscFree(ct->nested_lamhat));
   PetscCall(SgProblemDestroy(&ct->problem_obj)); /* the controller's hold on it: freed if the caller let it go */
   PetscCall(PetscHeaderDestroy(&ct));
   PetscFunctionReturn(0);
@@ -895,13 +898,14 @@ static PetscErrorCode SolveContinuation(SgCont ct)
   const PetscBool shifted = (PetscBool)(ct->c && ct->cv.coupled && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
 
   PetscFunctionBeginUser;
-  if (!ct->restarted && !ct->warm) PetscCall(ct->ops.start(ct));
+  if (!ct->restarted && (!ct->warm || ct->nested_start)) PetscCall(ct->ops.start(ct));
   PetscCall(SgContStart(ct, &ok)); /* V(0) */
   if (shifted && ok) {
     if (!ct->ystart) PetscCall(VecDuplicate(ct->y, &ct->ystart));
     PetscCall(VecCopy(ct->y, ct->ystart));
   }
-  if (!ct->restarted && !ct->warm && ct->ops.started) PetscCall(ct->ops.started(ct));
+  if (!ct->restarted && (!ct->warm || ct->nested_start) && ct->ops.started) PetscCall(ct->ops.started(ct));
+  if (ct->nested_start) PetscCall(SgContNestedResume(ct)); /* the coarse level's gamma and shift */
   while (ok && !stop) {
     const PetscInt its0 = ct->ssn_its;
     SgHistoryRow   mdl;
@@ -1126,9 +1130,14 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(PetscArraycpy(ct->yref, yref, 2 * ct->cv.n * dim)); /* this controller's */
   }
   PetscCall(SgContUseSlipReference(ct)); /* this controller's, not the last one's that solved the problem */
+  /* nested iteration: the first solve starts from the coarse levels' solution (a coarse level's controller from the
+     level below it, set by SgContNestedStart of the finest) like a warm load step, slip reference and all kept */
+  if (ct->nested && !ct->warm && !ct->restarted && !ct->have_state) PetscCall(SgContNestedStart(ct));
+  if (ct->nested_start) ct->warm = PETSC_TRUE;
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SolveContinuation(ct));
+  ct->nested_start = PETSC_FALSE; /* the next solve (a load step) is warm from this one */
   PetscCall(PetscTime(&ct->t1));
   PetscCall(SgElasticityEnergy(ct->prob, ct->y, &ct->V));
   if (ct->c) {

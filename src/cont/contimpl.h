@@ -117,6 +117,16 @@ struct _n_SgCont {
      KKT measures */
   PetscReal   *yref;
   SgFrictionSummary fsum;
+  /* nested iteration (cont/nested.c): the first solve of the run starts from the solution of the same problem on
+     coarser meshes (the fine one refined -cont_nested times fewer), interpolated, with the coarse controller's last
+     gamma and shift */
+  PetscInt     nested;        /* -cont_nested: coarse levels (0: none) */
+  PetscBool    nested_inner;  /* the controller of a coarse level: -cont_nested is not read */
+  PetscBool    nested_start;  /* this solve starts from a coarser level (y, nested_lamhat, gamma_warm, V0unit) */
+  PetscReal   *nested_lamhat; /* the interpolated shift: n, then with friction the tangential one, n dim */
+  PetscInt     nested_done;   /* coarse levels solved */
+  PetscInt     nested_ssn_its, nested_ksp_its; /* their SSN steps and linear iterations */
+  PetscLogDouble nested_time; /* their time, set-up included */
 };
 
 extern PetscFunctionList SgContList;
@@ -148,3 +158,6 @@ PetscErrorCode SgContCreate_IPF(SgCont);
 PetscErrorCode SgContCreate_Fast(SgCont);
 PetscErrorCode SgContCreate_PDAS(SgCont);
 PetscErrorCode SgContCreate_VI(SgCont);
+PetscErrorCode SgContNestedCheck(SgCont);  /* nested.c: -cont_nested against the problem (SgContSetFromOptions) */
+PetscErrorCode SgContNestedStart(SgCont);  /* nested.c: solve the coarse levels, start this solve from them */
+PetscErrorCode SgContNestedResume(SgCont); /* nested.c: after the type's start, the coarse level's gamma and shift */

@@ -118,6 +118,57 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
   PetscFunctionReturn(0);
 }
 
+/* Nested iteration (-cont_nested L under the mesh's prefix, with -dm_refine N >= L; cont/nested.c): the mesh refined
+   N - L times by DMSetFromOptions (read or boxed, distributed), then L times more by DMRefine as DMSetFromOptions does
+   (the same regular refinement of the same distributed mesh: the finest mesh is the one -dm_refine N gives). Each
+   coarser mesh is kept with the finest, composed as "SgNestedLevel<k>" (the mesh refined k times fewer), so that the
+   coarse levels of the solve have the fine mesh's distribution (a second partitioning of the file, by PT-Scotch on
+   several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it. */
+static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
+{
+  PetscInt  nest = 0, nref = 0;
+  PetscBool nset, rset;
+  char      opt[PETSC_MAX_PATH_LEN], was[32], now[32];
+  DM       *lv;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* a malformed value is reported by its reader */
+  if (PetscOptionsGetInt(NULL, prefix, "-cont_nested", &nest, &nset)) nset = PETSC_FALSE;
+  if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
+  PetscCall(PetscPopErrorHandler());
+  if (!nset || !rset || nest < 1 || nest > nref) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_refine", prefix ? prefix : ""));
+  PetscCall(PetscSNPrintf(was, sizeof(was), "%" PetscInt_FMT, nref));
+  PetscCall(PetscSNPrintf(now, sizeof(now), "%" PetscInt_FMT, nref - nest));
+  PetscCall(PetscOptionsSetValue(NULL, opt, now));
+  {
+    PetscErrorCode ierr = DMSetFromOptions(*dm);
+    PetscCall(PetscOptionsSetValue(NULL, opt, was));
+    PetscCall(ierr);
+  }
+  PetscCall(DMPlexSetRefinementUniform(*dm, PETSC_TRUE));
+  PetscCall(PetscMalloc1(nest, &lv));
+  for (PetscInt r = 0; r < nest; r++) {
+    DM rdm;
+    lv[r] = *dm;
+    PetscCall(DMRefine(lv[r], PetscObjectComm((PetscObject)lv[r]), &rdm));
+    PetscCheck(rdm, PetscObjectComm((PetscObject)lv[r]), PETSC_ERR_PLIB, "-cont_nested: DMRefine made no mesh");
+    *dm = rdm;
+  }
+  PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)*dm, prefix));
+  for (PetscInt r = 0; r < nest; r++) {
+    char name[64];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nest - r));
+    PetscCall(PetscObjectCompose((PetscObject)*dm, name, (PetscObject)lv[r]));
+    PetscCall(DMDestroy(&lv[r])); /* the finest mesh holds it */
+  }
+  PetscCall(PetscFree(lv));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* Create the distributed simplex mesh from a gmsh file (-dm_plex_filename) or the structured box (-box_*), options
    under the prefix. */
 PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
@@ -140,7 +191,11 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
   PetscCall(SgMeshCheckDM(comm, file ? fname : "(box)", *dm));
-  PetscCall(DMSetFromOptions(*dm));
+  {
+    PetscBool nested;
+    PetscCall(MeshRefineNested(prefix, dm, &nested));
+    if (!nested) PetscCall(DMSetFromOptions(*dm));
+  }
   {
     /* the assembly and the energy visit every local cell once: cells shared by an overlap would count twice */
     PetscInt ov;

@@ -81,13 +81,15 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
-  PetscCall(PCSetOperators(t->amg, A, B));
+  /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
+     coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
+  PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
   {
     MatNullSpace keep = NULL;
-    PetscCall(RotationsOnly(t, A, &keep));
+    PetscCall(RotationsOnly(t, t->ssn->Klin, &keep));
     PetscCall(PCSetUp(t->amg));
     if (keep) {
-      PetscCall(MatSetNearNullSpace(A, keep));
+      PetscCall(MatSetNearNullSpace(t->ssn->Klin, keep));
       PetscCall(MatNullSpaceDestroy(&keep));
     }
   }

@@ -1,0 +1,292 @@
+/* cont/nested.c: nested iteration (-cont_nested L, issue 27). The first solve of a run is preceded by solves of the
+   same problem on the meshes refined L, L-1, ..., 1 times fewer than the given one (contact/coarse.c: the same file
+   or box, the same distribution, -dm_refine lowered), each by a controller of the same type and options. Each level
+   starts from the one below it, and the finest (the problem itself, unchanged) from the last coarse level:
+   - the displacement: P1 interpolation through the regular refinement (DMPlexTransformGetSourcePoint: a fine vertex
+     is a coarse vertex or the midpoint of a coarse edge; checked against the coordinates, so that a distribution or
+     refinement that does not nest is refused rather than used);
+   - the contact state: the multiplier lam is a pressure (an L2 function with lumped weights w_i, ALGORITHMS.md), so
+     its nodal values are interpolated the same way, without scaling; it becomes the shift lamhat of a type that
+     moves it (alm; with friction the tangential one too) and the multiplier estimate ct->lam (pdas' first active
+     set); the path-following types keep lamhat = 0;
+   - gamma: the coarse level's last one, where the finer level's controller continues as in a warm load step
+     (PrepareWarm; the type's start hooks run, then SgContNestedResume puts gamma and the shift back);
+   - V(0): the coarse level's (the finer one's would cost its unconstrained solve, the linear solve nesting saves; it
+     enters only the path models of pf/ipf and the summary's V0).
+   Only the finest level's steps are the run's counters, history and output; the coarse levels' SSN steps, linear
+   iterations and time are in the summary (nested_*). A level that does not converge ends the nesting: the finest level
+   then starts cold, as without -cont_nested, and says so. A restart (-restart_file) continues the finest level from
+   its checkpoint: no coarse level is solved again; the coarse levels write no checkpoints. */
+#include "cont/contimpl.h"
+#include <petscdmplextransform.h>
+
+/* -cont_nested against the problem (end of SgContSetFromOptions) */
+PetscErrorCode SgContNestedCheck(SgCont ct)
+{
+  PetscBool own;
+  PetscInt  nref;
+
+  PetscFunctionBeginUser;
+  if (ct->nested_inner) PetscFunctionReturn(0);
+  PetscCheck(ct->nested >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_nested: must be >= 0 (the number of coarser levels solved first; 0: off), got %" PetscInt_FMT, ct->nested);
+  if (!ct->nested) PetscFunctionReturn(0);
+  PetscCheck(ct->c, ct->comm, PETSC_ERR_USER_INPUT, "-cont_nested %" PetscInt_FMT ": nested iteration solves the contact problem on coarser meshes first; this problem has no contact boundary", ct->nested);
+  PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
+  PetscCheck(own, ct->comm, PETSC_ERR_USER_INPUT, "-cont_nested %" PetscInt_FMT ": the mesh was given by the program (SgProblemSetDM); nested iteration needs a mesh made from the options and refined with -dm_refine", ct->nested);
+  PetscCheck(ct->nested <= nref, ct->comm, PETSC_ERR_USER_INPUT, "-cont_nested %" PetscInt_FMT ": the mesh is refined %" PetscInt_FMT " times after distribution (-dm_refine %" PetscInt_FMT "); the coarsest level is the mesh refined -dm_refine - -cont_nested times, so -cont_nested must be at most -dm_refine", ct->nested, nref, nref);
+  PetscFunctionReturn(0);
+}
+
+/* For every local vertex of b's mesh (the next refinement of a's), the two local vertices of a's mesh it is the
+   midpoint of (the same one twice: a vertex of a's mesh). */
+static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
+{
+  DM              dma, dmb;
+  const SgMesh   *ma, *mb;
+  DMPlexTransform tr;
+  const char     *prefix;
+  PetscInt        eStart, eEnd, dim, bad = 0;
+  PetscReal       scale = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetMesh(a->prob, &ma));
+  PetscCall(SgElasticityGetMesh(b->prob, &mb));
+  dim = ma->dim;
+  PetscCall(PetscMalloc1(2 * mb->nv + 1, map));
+  PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
+  for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, a->comm));
+  if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
+  else {
+    /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
+    PetscCall(DMPlexTransformCreate(PetscObjectComm((PetscObject)dma), &tr));
+    PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)tr, prefix));
+    PetscCall(DMPlexTransformSetDM(tr, dma));
+    PetscCall(DMPlexTransformSetFromOptions(tr));
+    PetscCall(DMPlexTransformSetUp(tr));
+    for (PetscInt v = 0; v < mb->nv; v++) {
+      DMPolytopeType  ct, ctn;
+      PetscInt        p, r, v0 = -1, v1 = -1;
+      const PetscInt *cone;
+      PetscCall(DMPlexTransformGetSourcePoint(tr, mb->vStart + v, &ct, &ctn, &p, &r));
+      if (ct == DM_POLYTOPE_POINT) v0 = v1 = p - ma->vStart;
+      else if (ct == DM_POLYTOPE_SEGMENT) {
+        PetscCall(DMPlexGetCone(dma, p, &cone));
+        v0 = cone[0] - ma->vStart;
+        v1 = cone[1] - ma->vStart;
+      }
+      if (v0 < 0 || v0 >= ma->nv || v1 < 0 || v1 >= ma->nv) {
+        bad++;
+        v0 = v1 = 0;
+      } else
+        for (PetscInt d = 0; d < dim; d++)
+          if (!(PetscAbsReal(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d])) <= 1e-10 * scale)) {
+            bad++;
+            break;
+          }
+      (*map)[2 * v]     = v0;
+      (*map)[2 * v + 1] = v1;
+    }
+    PetscCall(DMPlexTransformDestroy(&tr));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, a->comm));
+  if (bad) PetscCall(PetscFree(*map));
+  PetscCheck(!bad, a->comm, PETSC_ERR_SUP, "-cont_nested: the mesh of a coarse level, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the distribution or the refinement does not nest here (a partitioner that gives another distribution each time, or a transform that reorders the mesh); run without -cont_nested", bad);
+  PetscFunctionReturn(0);
+}
+
+/* A field of bs numbers per owned contact vertex of a (vals) as a local vector of the vertex DM dmv (bs dofs per
+   vertex: a's vertex scalar or vector DM), zero off the contact boundary, ghost vertices included. */
+static PetscErrorCode ContactField(SgCont a, DM dmv, PetscInt bs, const PetscReal vals[], Vec loc)
+{
+  Vec           g;
+  PetscSection  s;
+  PetscScalar  *la;
+  const SgMesh *ma;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh(a->prob, &ma));
+  PetscCall(DMGetLocalSection(dmv, &s));
+  PetscCall(VecZeroEntries(loc));
+  PetscCall(VecGetArray(loc, &la));
+  for (PetscInt i = 0; i < a->cv.n; i++) {
+    PetscInt off;
+    PetscCall(PetscSectionGetOffset(s, ma->vStart + a->cv.vert[i], &off));
+    for (PetscInt k = 0; k < bs; k++) la[off + k] = vals[i * bs + k];
+  }
+  PetscCall(VecRestoreArray(loc, &la));
+  PetscCall(DMGetGlobalVector(dmv, &g));
+  PetscCall(DMLocalToGlobal(dmv, loc, INSERT_VALUES, g));
+  PetscCall(DMGlobalToLocal(dmv, g, INSERT_VALUES, loc));
+  PetscCall(DMRestoreGlobalVector(dmv, &g));
+  PetscFunctionReturn(0);
+}
+
+/* The interpolation of a contact field of a (bs per owned contact vertex) at b's owned contact vertices */
+static PetscErrorCode TransferContactField(SgCont a, SgCont b, const PetscInt map[], PetscBool vector, PetscInt bs, const PetscReal va[], PetscReal vb[])
+{
+  DM                 dmv;
+  Vec                loc;
+  PetscSection       s;
+  const PetscScalar *la;
+  const SgMesh      *ma, *mb;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(a->prob, NULL, vector ? NULL : &dmv, vector ? &dmv : NULL, NULL));
+  PetscCall(SgElasticityGetMesh(a->prob, &ma));
+  PetscCall(SgElasticityGetMesh(b->prob, &mb));
+  PetscCall(DMGetLocalVector(dmv, &loc));
+  PetscCall(ContactField(a, dmv, bs, va, loc));
+  PetscCall(DMGetLocalSection(dmv, &s));
+  PetscCall(VecGetArrayRead(loc, &la));
+  for (PetscInt j = 0; j < b->cv.n; j++) {
+    const PetscInt v = b->cv.vert[j];
+    PetscInt       o0, o1;
+    PetscCall(PetscSectionGetOffset(s, ma->vStart + map[2 * v], &o0));
+    PetscCall(PetscSectionGetOffset(s, ma->vStart + map[2 * v + 1], &o1));
+    for (PetscInt k = 0; k < bs; k++) vb[j * bs + k] = 0.5 * (PetscRealPart(la[o0 + k]) + PetscRealPart(la[o1 + k]));
+  }
+  PetscCall(VecRestoreArrayRead(loc, &la));
+  PetscCall(DMRestoreLocalVector(dmv, &loc));
+  PetscFunctionReturn(0);
+}
+
+/* b (the next finer level) starts from a's solution: y, the multipliers, gamma and V(0) */
+static PetscErrorCode Transfer(SgCont a, SgCont b)
+{
+  DM                 dma, dmb;
+  Vec                ya, yb;
+  const PetscScalar *pa;
+  PetscScalar       *pb;
+  const SgMesh      *ma, *mb;
+  PetscInt          *map, dim = 0, n = b->cv.n;
+  PetscReal         *lb;
+
+  PetscFunctionBeginUser;
+  PetscCall(VertexMap(a, b, &map));
+  PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetMesh(a->prob, &ma));
+  PetscCall(SgElasticityGetMesh(b->prob, &mb));
+  dim = ma->dim;
+  /* the displacement, Dirichlet values included, at every local vertex; the fixed components of partly fixed vertices
+     are unknowns that stay 0 */
+  PetscCall(DMGetLocalVector(dma, &ya));
+  PetscCall(DMGetLocalVector(dmb, &yb));
+  PetscCall(SgElasticityGlobalToLocal(a->prob, a->y, ya));
+  PetscCall(VecZeroEntries(yb));
+  PetscCall(VecGetArrayRead(ya, &pa));
+  PetscCall(VecGetArray(yb, &pb));
+  for (PetscInt v = 0; v < mb->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) pb[mb->loff[v] + d] = (mb->bcmask[v] >> d) & 1 ? 0.0 : 0.5 * (pa[ma->loff[map[2 * v]] + d] + pa[ma->loff[map[2 * v + 1]] + d]);
+  PetscCall(VecRestoreArray(yb, &pb));
+  PetscCall(VecRestoreArrayRead(ya, &pa));
+  PetscCall(DMLocalToGlobal(dmb, yb, INSERT_VALUES, b->y));
+  PetscCall(DMRestoreLocalVector(dma, &ya));
+  PetscCall(DMRestoreLocalVector(dmb, &yb));
+  /* the multipliers: the normal one, then with friction the tangential one */
+  PetscCall(PetscFree(b->nested_lamhat));
+  PetscCall(PetscCalloc1(n * (1 + (b->cv.friction ? dim : 0)) + 1, &b->nested_lamhat));
+  lb = b->nested_lamhat;
+  PetscCall(TransferContactField(a, b, map, PETSC_FALSE, 1, a->lam, lb));
+  PetscCall(PetscArraycpy(b->lam, lb, n));
+  if (b->cv.friction && a->ssn) {
+    PetscReal       *lhT;
+    const PetscReal *mT;
+    PetscCall(SgSSNGetFriction(a->ssn, &lhT, &mT, NULL));
+    PetscCall(TransferContactField(a, b, map, PETSC_TRUE, dim, mT, lb + n));
+  }
+  PetscCall(PetscFree(map));
+  b->gamma_warm   = a->gamma_warm;
+  b->V0unit       = a->V0unit;
+  b->V0           = a->V0;
+  b->nested_start = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* After the type's start hooks of a solve started from a coarser level: its last gamma, and for a type that moves the
+   shift (alm) the interpolated multipliers as the shift */
+PetscErrorCode SgContNestedResume(SgCont ct)
+{
+  PetscFunctionBeginUser;
+  ct->gamma = ct->gamma_warm;
+  if (!ct->ssn || !ct->ops.shifts || !ct->nested_lamhat) PetscFunctionReturn(0);
+  PetscCall(PetscArraycpy(ct->lamhat, ct->nested_lamhat, ct->cv.n));
+  if (ct->cv.friction) {
+    PetscReal *lhT;
+    PetscInt   dim;
+    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
+    PetscCall(PetscArraycpy(lhT, ct->nested_lamhat + ct->cv.n, ct->cv.n * dim));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The coarse levels, coarsest first, each from the one below it; then ct (the finest) starts from the last one. */
+PetscErrorCode SgContNestedStart(SgCont ct)
+{
+  SgCont         prev = NULL;
+  PetscLogDouble t0, t1;
+  const char    *prefix;
+  PetscInt       nref;
+  PetscBool      own, ok = PETSC_TRUE;
+  PetscInt      *nunk;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
+  PetscCall(SgContGetOptionsPrefix(ct, &prefix));
+  PetscCall(PetscCalloc1(ct->nested + 1, &nunk));
+  ct->nested_done = ct->nested_ssn_its = ct->nested_ksp_its = 0;
+  for (PetscInt k = ct->nested; k >= 1 && ok; k--) {
+    SgProblem   pc;
+    SgCont      cc;
+    PetscBool   conv;
+    const char *reason;
+
+    PetscCall(SgProblemCreateCoarse(ct->problem_obj, k, &pc));
+    PetscCall(SgContCreate(pc, &cc));
+    PetscCall(SgProblemDestroy(&pc)); /* the controller holds it */
+    cc->nested_inner = PETSC_TRUE;
+    if (prefix) PetscCall(SgContSetOptionsPrefix(cc, prefix));
+    PetscCall(SgContSetType(cc, ct->type));
+    PetscCall(SgContSetMonitor(cc, ct->monitor));
+    PetscCall(SgContSetTolerances(cc, ct->kkt_tol, ct->max_outer));
+    PetscCall(SgContSetFromOptions(cc));
+    cc->ckfile[0] = cc->rsfile[0] = 0; /* the finest level's files */
+    PetscCall(SgContSetUp(cc));
+    PetscCall(SgProblemGetSizes(cc->problem_obj, &nunk[ct->nested - k], NULL, NULL));
+    if (ct->monitor) PetscCall(PetscPrintf(ct->comm, "  nested level %" PetscInt_FMT " of %" PetscInt_FMT ": %" PetscInt_FMT " unknowns (-dm_refine %" PetscInt_FMT ")\n", ct->nested - k + 1, ct->nested + 1, nunk[ct->nested - k], nref - k));
+    if (prev) PetscCall(Transfer(prev, cc));
+    PetscCall(SgContDestroy(&prev));
+    PetscCall(SgContSolve(cc));
+    ct->nested_ssn_its += cc->ssn_its;
+    ct->nested_ksp_its += cc->ksp_its;
+    PetscCall(SgContGetConvergedReason(cc, &conv, &reason));
+    if (!conv) {
+      PetscCall(PetscPrintf(ct->comm, "  nested level %" PetscInt_FMT " (-dm_refine %" PetscInt_FMT ") did not converge (%s): the finest level starts from the unconstrained solution, as without -cont_nested\n", ct->nested - k + 1, nref - k, reason));
+      ok = PETSC_FALSE;
+    } else ct->nested_done++;
+    prev = cc;
+  }
+  if (ok) {
+    PetscCall(SgProblemGetSizes(ct->problem_obj, &nunk[ct->nested], NULL, NULL));
+    if (ct->monitor) PetscCall(PetscPrintf(ct->comm, "  nested level %" PetscInt_FMT " of %" PetscInt_FMT ": %" PetscInt_FMT " unknowns (-dm_refine %" PetscInt_FMT "), from the interpolated solution at gamma %g\n", ct->nested + 1, ct->nested + 1, nunk[ct->nested], nref, (double)prev->gamma_warm));
+    PetscCall(Transfer(prev, ct));
+  }
+  PetscCall(SgContDestroy(&prev));
+  PetscCall(PetscTime(&t1));
+  ct->nested_time = t1 - t0;
+  PetscCall(SgSummarySetInt(ct->sum, "nested_levels", ct->nested));
+  PetscCall(SgSummarySetInt(ct->sum, "nested_levels_solved", ct->nested_done));
+  PetscCall(SgSummarySetBool(ct->sum, "nested_used", ok));
+  PetscCall(SgSummarySetInt(ct->sum, "nested_coarse_ssn_its", ct->nested_ssn_its));
+  PetscCall(SgSummarySetInt(ct->sum, "nested_coarse_ksp_its", ct->nested_ksp_its));
+  PetscCall(SgSummarySetReal(ct->sum, "nested_coarse_time", (PetscReal)ct->nested_time));
+  PetscCall(SgSummarySetIntArray(ct->sum, "nested_unknowns", ct->nested_done + (ok ? 1 : 0), nunk));
+  PetscCall(PetscFree(nunk));
+  PetscFunctionReturn(0);
+}
