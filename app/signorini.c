@@ -21,11 +21,11 @@ typedef struct {
 /* quasi-static load stepping: n steps at the load factors t[0] < ... < t[n-1] = 1 */
 #define SG_LOAD_STEPS_MAX 10000
 typedef struct {
-  PetscInt  n, stop;
-  PetscReal t[SG_LOAD_STEPS_MAX];
-  char      dvstr[65536]; /* -load_dirichlet_values as given ("": none) */
-  PetscInt  ndv;          /* Dirichlet values per step (dim per Dirichlet id), 0 without -load_dirichlet_values */
-  PetscReal *dv;          /* n * ndv: the Dirichlet values of every step */
+  PetscInt   n, stop;
+  PetscReal  t[SG_LOAD_STEPS_MAX];
+  char       dvstr[65536]; /* -load_dirichlet_values as given ("": none) */
+  PetscInt   ndv;          /* Dirichlet values per step (dim per Dirichlet id), 0 without -load_dirichlet_values */
+  PetscReal *dv;           /* n * ndv: the Dirichlet values of every step */
 } LoadSteps;
 
 /* ---- options files that include themselves
@@ -142,7 +142,7 @@ static int CheckOptionsFileCycles(int argc, char **argv)
 {
   static IncludeStack st; /* large: not on the stack */
   int                 skiprc = 0, r = 0;
-  const char         *env    = getenv("PETSC_OPTIONS");
+  const char         *env = getenv("PETSC_OPTIONS");
 
   for (int i = 1; i < argc; i++)
     if (!strcasecmp(argv[i], "-skip_petscrc")) skiprc = 1;
@@ -335,13 +335,13 @@ static PetscErrorCode CheckFileOptions(MPI_Comm comm)
 
 int main(int argc, char **argv)
 {
-  MPI_Comm       comm;
-  Output         out;
+  MPI_Comm         comm;
+  Output           out;
   static LoadSteps ls; /* large: not on the stack */
-  SgProblem      prob;
-  SgCont         cont;
-  PetscBool      converged, helponly;
-  PetscErrorCode ierr_fields = 0, ierr_hist;
+  SgProblem        prob;
+  SgCont           cont;
+  PetscBool        converged, helponly;
+  PetscErrorCode   ierr_fields = 0, ierr_hist;
 
   if (CheckOptionsFileCycles(argc, argv)) return PETSC_ERR_USER_INPUT;
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));

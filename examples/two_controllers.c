@@ -117,16 +117,16 @@ static PetscErrorCode SolveWith(SgProblem prob, Result *r)
 
 int main(int argc, char **argv)
 {
-  MPI_Comm  comm;
-  DM        dm;
-  SgProblem prob;
-  PetscInt  nx = 40, ny = 20, nc, nv, ncontact;
-  PetscReal rtol = 1e-8, de, df;
+  MPI_Comm        comm;
+  DM              dm;
+  SgProblem       prob;
+  PetscInt        nx = 40, ny = 20, nc, nv, ncontact;
+  PetscReal       rtol     = 1e-8, de, df;
   const PetscInt  bottom[] = {BOTTOM}, top[] = {TOP};
-  const PetscReal push[]   = {0, -0.01}; /* displacement of the top (x, y) */
-  Result    res[2] = {
-    {.prefix = "a_", .type = SGCONTIPF},
-    {.prefix = "b_", .type = SGCONTALM}
+  const PetscReal push[] = {0, -0.01}; /* displacement of the top (x, y) */
+  Result          res[2] = {
+               {.prefix = "a_", .type = SGCONTIPF},
+               {.prefix = "b_", .type = SGCONTALM}
   };
   PetscBool ok = PETSC_TRUE;
 

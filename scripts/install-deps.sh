@@ -2,7 +2,7 @@
 # Install the Debian packages this project needs (as root). With --print, only print the command.
 # Quiet and quick when everything is already there.
 set -eu
-PKGS="petsc-dev libopenblas0-pthread gmsh libgmsh-dev python3 python3-matplotlib python3-h5py python3-numpy make gcc openmpi-bin valgrind"
+PKGS="petsc-dev libopenblas0-pthread gmsh libgmsh-dev python3 python3-matplotlib python3-h5py python3-numpy make gcc openmpi-bin valgrind clang-format"
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

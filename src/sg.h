@@ -6,13 +6,13 @@
 #include <signorini.h>
 #include <math.h>
 
-#define SG_MAX_IDS 32 /* label values per boundary part */
+#define SG_MAX_IDS 32               /* label values per boundary part */
 #define SG_OPT_MAX (3 * SG_MAX_IDS) /* entries of a list option read by SgOptionsIntList/RealList */
 #define SG_NAN     ((PetscReal)NAN) /* "not set" in tables and summaries */
 
 /* ------------------------------------------------------------------ core: init.c, options.c */
 extern PetscLogEvent SG_MeshSetUp, SG_Assembly, SG_ContactSetUp, SG_Residual, SG_Jacobian, SG_ActiveSet, SG_LinearSolve, SG_ContStep, SG_Output;
-PetscErrorCode SgLogEventsRegister(void);
+PetscErrorCode       SgLogEventsRegister(void);
 /* Argument checks of the public functions. PETSc's PetscValid* macros compile to nothing in an optimized PETSc (as
    Debian's is), so these do the same checks always: a NULL or wrong argument is an error naming the function and the
    argument, never a segmentation fault. */
@@ -23,12 +23,12 @@ PetscErrorCode SgValidObject(PetscObject, PetscClassId, const char[], const char
    first gamma: -cont_gamma), -<prefix>cont_<type>_<param> for a type's own. The names before the rule are read with
    these, with a deprecation notice (options.c); *used names the option that set the value. */
 #define SG_DEPRECATED_IN "0.2.0"
-PetscErrorCode SgOptionsRealRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscReal *, const char **);
-PetscErrorCode SgOptionsIntRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscInt *, const char **);
-PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscBool *, const char **);
+PetscErrorCode      SgOptionsRealRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscReal *, const char **);
+PetscErrorCode      SgOptionsIntRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscInt *, const char **);
+PetscErrorCode      SgOptionsBoolRenamed(PetscOptionItems *, const char[], const char[], const char[], PetscBool *, const char **);
 extern PetscClassId SG_PROBLEM_CLASSID, SG_CONT_CLASSID; /* the PETSc classes of SgProblem and SgCont (SgLogEventsRegister) */
-PetscErrorCode SgValidProblem(SgProblem, const char[], int);
-PetscErrorCode SgValidCont(SgCont, const char[], int);
+PetscErrorCode      SgValidProblem(SgProblem, const char[], int);
+PetscErrorCode      SgValidCont(SgCont, const char[], int);
 
 /* ------------------------------------------------------------------ fem: mesh.c, gmshcheck.c, elasticity.c */
 /* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty
@@ -50,43 +50,43 @@ typedef struct {
 /* The P1 view of a distributed simplex mesh, flattened once for the assembly loops. */
 typedef struct {
   PetscInt   dim;
-  PetscInt   nv, nc;    /* local vertices and cells */
+  PetscInt   nv, nc; /* local vertices and cells */
   PetscInt   vStart, cStart;
-  PetscInt  *cellv;     /* nc*(dim+1) local vertex numbers (0..nv-1) */
-  PetscReal *x;         /* nv*dim vertex coordinates */
-  PetscInt  *gblock;    /* global block (vertex) index of the free displacement, -1 if Dirichlet */
-  PetscInt  *loff;      /* offset of the vertex in the local displacement vector */
-  PetscInt  *goff;      /* offset in this rank's part of the global vector, -1 if not owned or Dirichlet */
-  PetscInt  *bcgroup;   /* Dirichlet part (index into ids) fixing some component, or -1 */
-  PetscInt  *bcmask;    /* components fixed (bit d: component d); all dim bits: the vertex is left out of the global
+  PetscInt  *cellv;      /* nc*(dim+1) local vertex numbers (0..nv-1) */
+  PetscReal *x;          /* nv*dim vertex coordinates */
+  PetscInt  *gblock;     /* global block (vertex) index of the free displacement, -1 if Dirichlet */
+  PetscInt  *loff;       /* offset of the vertex in the local displacement vector */
+  PetscInt  *goff;       /* offset in this rank's part of the global vector, -1 if not owned or Dirichlet */
+  PetscInt  *bcgroup;    /* Dirichlet part (index into ids) fixing some component, or -1 */
+  PetscInt  *bcmask;     /* components fixed (bit d: component d); all dim bits: the vertex is left out of the global
                            vector; some: its fixed components stay in it as decoupled unknowns that stay 0 ("rollers") */
-  PetscInt  *bcpart;    /* nv*dim: the Dirichlet part whose value fixes component d of vertex v, or -1 */
-  PetscInt   nowned;    /* vertices owned by this rank (free or not) */
-  PetscInt   nfree_glob;/* global number of free vertices */
+  PetscInt  *bcpart;     /* nv*dim: the Dirichlet part whose value fixes component d of vertex v, or -1 */
+  PetscInt   nowned;     /* vertices owned by this rank (free or not) */
+  PetscInt   nfree_glob; /* global number of free vertices */
 } SgMesh;
 
-PetscErrorCode SgMeshCreateDM(MPI_Comm, const char[], DM *);
-PetscErrorCode SgMeshCheckDM(MPI_Comm, const char[], DM);
-PetscErrorCode SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
-PetscErrorCode SgBoundaryComponentsFromOptions(PetscOptionItems *, SgBoundary *, PetscInt);
-PetscErrorCode SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
-PetscErrorCode SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
-PetscErrorCode SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
-PetscErrorCode SgMeshDestroy(SgMesh *);
-PetscErrorCode SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
-PetscErrorCode SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
+PetscErrorCode          SgMeshCreateDM(MPI_Comm, const char[], DM *);
+PetscErrorCode          SgMeshCheckDM(MPI_Comm, const char[], DM);
+PetscErrorCode          SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
+PetscErrorCode          SgBoundaryComponentsFromOptions(PetscOptionItems *, SgBoundary *, PetscInt);
+PetscErrorCode          SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
+PetscErrorCode          SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
+PetscErrorCode          SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
+PetscErrorCode          SgMeshDestroy(SgMesh *);
+PetscErrorCode          SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
+PetscErrorCode          SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
 static inline PetscBool SgMeshFixed(const SgMesh *m, PetscInt v, PetscInt d) { return (PetscBool)((m->bcmask[v] >> d) & 1); }
 static inline PetscBool SgMeshPartial(const SgMesh *m, PetscInt v) { return (PetscBool)(m->bcmask[v] && m->bcmask[v] != (1 << m->dim) - 1); }
-PetscErrorCode SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
-PetscErrorCode SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
+PetscErrorCode          SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
+PetscErrorCode          SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
 
 /* ------------------------------------------------------------------ elasticity.c */
 typedef struct _n_SgElasticity *SgElasticity;
 
 /* Settings given through the library's interface before the options are read (the options override them). */
 typedef struct {
-  PetscBool  material_set;
-  PetscReal  E, nu;
+  PetscBool material_set;
+  PetscReal E, nu;
   /* several materials (SgProblemSetMaterials): nmat > 0 values of the cell label matlabel, E and nu of each */
   PetscInt   nmat, matids[SG_MAX_IDS];
   PetscReal  matE[SG_MAX_IDS], matnu[SG_MAX_IDS];
@@ -103,22 +103,22 @@ PetscErrorCode SgElasticityGetComm(SgElasticity, MPI_Comm *);
 PetscErrorCode SgElasticityGetDimension(SgElasticity, PetscInt *);
 PetscErrorCode SgElasticityGetDMs(SgElasticity, DM *, DM *, DM *, DM *); /* displacement, vertex scalar, vertex vector, cell scalar */
 PetscErrorCode SgElasticityGetMesh(SgElasticity, const SgMesh **);
-PetscErrorCode SgElasticityGetOperators(SgElasticity, Mat *, Vec *);     /* K and b */
+PetscErrorCode SgElasticityGetOperators(SgElasticity, Mat *, Vec *); /* K and b */
 PetscErrorCode SgElasticityGetMass(SgElasticity, Vec *);
-PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *); /* NULL when not attached */
+PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *);                 /* NULL when not attached */
 PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||K||_inf, ||b||_2, ||b||_inf */
 PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
-PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *); /* the one material, or of several the stiffest (largest E, the first of equals) */
+PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);                                                              /* the one material, or of several the stiffest (largest E, the first of equals) */
 PetscErrorCode SgElasticityGetMaterials(SgElasticity, const char **, PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **); /* -material_label, number of -material_ids (0: one material for every cell), the ids, E and nu of each */
-PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBool *, PetscLogDouble *); /* dofs, cells, mms, assembly time */
+PetscErrorCode SgElasticityGetInfo(SgElasticity, PetscInt *, PetscInt *, PetscBool *, PetscLogDouble *);                                     /* dofs, cells, mms, assembly time */
 PetscErrorCode SgElasticityEnergy(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticitySetLoadFactor(SgElasticity, PetscReal); /* loads and Dirichlet values times the factor */
 PetscErrorCode SgElasticityGetLoadFactor(SgElasticity, PetscReal *);
 PetscErrorCode SgElasticitySetDirichletValues(SgElasticity, const PetscReal[]); /* dim per Dirichlet id, unscaled from now on */
 PetscErrorCode SgElasticityGetDirichletSize(SgElasticity, PetscInt *);
-PetscErrorCode SgElasticityGetDirichletValues(SgElasticity, PetscBool *, PetscReal[]); /* those set, if any */
+PetscErrorCode SgElasticityGetDirichletValues(SgElasticity, PetscBool *, PetscReal[]);             /* those set, if any */
 PetscErrorCode SgElasticityGetFullLoadScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||b||_2, ||b||_inf, energy shift at factor 1 */
-PetscErrorCode SgElasticityGetFullData(SgElasticity, Vec *, Vec *); /* at factor 1, local: the load before the lifting (this rank's cells' part), the Dirichlet values */
+PetscErrorCode SgElasticityGetFullData(SgElasticity, Vec *, Vec *);                                /* at factor 1, local: the load before the lifting (this rank's cells' part), the Dirichlet values */
 PetscErrorCode SgElasticityGlobalToLocal(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityFullDisplacement(SgElasticity, Vec, Vec);
 PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
@@ -127,7 +127,7 @@ PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
 PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
 PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
-PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *); /* loads and support forces at y: largest components, resultant, l1 sum */
+PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest components, resultant, l1 sum */
 PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf and the total load ||f||_1 at factor 1, mesh diameter */
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
@@ -135,50 +135,49 @@ PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
 
 /* ------------------------------------------------------------------ io: output.c (files, summary, fields), history.c, checkpoint.c */
 typedef struct _n_SgSummary *SgSummary;
-PetscErrorCode SgFileTmpName(const char[], char[], size_t);
-PetscErrorCode SgFileCommit(MPI_Comm, const char[]);
-PetscErrorCode SgFileAbandon(MPI_Comm, const char[]);
-PetscErrorCode SgFileOpen(MPI_Comm, const char[], const char[], FILE **);
-PetscErrorCode SgFileClose(MPI_Comm, const char[], FILE **);
-PetscErrorCode SgFileBegin(const char[]);
-void           SgFileCleanup(void);
-const char    *SgFileErrorCause(int, const char[]);
-PetscErrorCode SgFileHDF5NameMax(MPI_Comm, size_t *);
-PetscErrorCode SgFileWriteHDF5(MPI_Comm, const char[], const char[], PetscErrorCode (*)(PetscViewer, void *), void *, PetscBool, PetscBool *, char[], size_t);
-PetscErrorCode SgOutputXdmfName(const char[], char[], size_t);
-PetscErrorCode SgSummaryCreate(SgSummary *);
-PetscErrorCode SgSummaryDestroy(SgSummary *);
-PetscErrorCode SgSummarySetRaw(SgSummary, const char[], const char[]);
-PetscErrorCode SgSummarySetReal(SgSummary, const char[], PetscReal);
-PetscErrorCode SgSummarySetInt(SgSummary, const char[], PetscInt);
-PetscErrorCode SgSummarySetBool(SgSummary, const char[], PetscBool);
-PetscErrorCode SgSummarySetString(SgSummary, const char[], const char[]);
-PetscErrorCode SgSummarySetRealArray(SgSummary, const char[], PetscInt, const PetscReal[]);
-PetscErrorCode SgSummarySetIntArray(SgSummary, const char[], PetscInt, const PetscInt[]);
-PetscErrorCode SgSummaryWrite(MPI_Comm, SgSummary, const char[], const char[]);
-PetscErrorCode SgOutputWrite(SgElasticity, const char[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
+PetscErrorCode               SgFileTmpName(const char[], char[], size_t);
+PetscErrorCode               SgFileCommit(MPI_Comm, const char[]);
+PetscErrorCode               SgFileAbandon(MPI_Comm, const char[]);
+PetscErrorCode               SgFileOpen(MPI_Comm, const char[], const char[], FILE **);
+PetscErrorCode               SgFileClose(MPI_Comm, const char[], FILE **);
+PetscErrorCode               SgFileBegin(const char[]);
+void                         SgFileCleanup(void);
+const char                  *SgFileErrorCause(int, const char[]);
+PetscErrorCode               SgFileHDF5NameMax(MPI_Comm, size_t *);
+PetscErrorCode               SgFileWriteHDF5(MPI_Comm, const char[], const char[], PetscErrorCode (*)(PetscViewer, void *), void *, PetscBool, PetscBool *, char[], size_t);
+PetscErrorCode               SgOutputXdmfName(const char[], char[], size_t);
+PetscErrorCode               SgSummaryCreate(SgSummary *);
+PetscErrorCode               SgSummaryDestroy(SgSummary *);
+PetscErrorCode               SgSummarySetRaw(SgSummary, const char[], const char[]);
+PetscErrorCode               SgSummarySetReal(SgSummary, const char[], PetscReal);
+PetscErrorCode               SgSummarySetInt(SgSummary, const char[], PetscInt);
+PetscErrorCode               SgSummarySetBool(SgSummary, const char[], PetscBool);
+PetscErrorCode               SgSummarySetString(SgSummary, const char[], const char[]);
+PetscErrorCode               SgSummarySetRealArray(SgSummary, const char[], PetscInt, const PetscReal[]);
+PetscErrorCode               SgSummarySetIntArray(SgSummary, const char[], PetscInt, const PetscInt[]);
+PetscErrorCode               SgSummaryWrite(MPI_Comm, SgSummary, const char[], const char[]);
+PetscErrorCode               SgOutputWrite(SgElasticity, const char[], PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 typedef PetscErrorCode (*SgOutputFill)(void *, PetscInt, PetscInt, Vec[], PetscInt, Vec[]);
 PetscErrorCode SgOutputWriteSteps(SgElasticity, const char[], PetscInt, const PetscInt[], const PetscReal[], SgOutputFill, void *, PetscInt, Vec[], PetscInt, Vec[], PetscReal);
 
 /* ------------------------------------------------------------------ contact: obstacle.c, contact.c, problem.c */
 extern PetscFunctionList SgObstacleList; /* SgObstacle and SgObstacleRegister: include/signorini.h */
-PetscErrorCode SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
-PetscErrorCode SgObstaclePrintHelp(MPI_Comm, const char[], PetscInt); /* -help: every type's options */
-PetscErrorCode SgObstacleGetType(SgObstacle, const char *[]);
-PetscErrorCode SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
-PetscErrorCode SgObstacleDistance(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]); /* signed distance g (> 0 outside) and the unit outward normal n at the closest point */
-PetscErrorCode SgObstacleHasDistance(SgObstacle, PetscBool *);
-PetscErrorCode SgObstacleSetPlacement(SgObstacle, PetscReal);
-PetscErrorCode SgObstacleGetTranslation(SgObstacle, PetscReal[3]);
-PetscErrorCode SgObstacleDestroy(SgObstacle *);
-PetscErrorCode SgObstacleCreate_Plane(SgObstacle);
-PetscErrorCode SgObstacleCreate_Parabola(SgObstacle);
-PetscErrorCode SgObstacleCreate_Ball(SgObstacle);
-PetscErrorCode SgObstacleCreate_CAD(SgObstacle); /* obstacle_cad.c */
+PetscErrorCode           SgObstacleCreate(MPI_Comm, const char[], PetscInt, const char[], SgObstacle *);
+PetscErrorCode           SgObstaclePrintHelp(MPI_Comm, const char[], PetscInt); /* -help: every type's options */
+PetscErrorCode           SgObstacleGetType(SgObstacle, const char *[]);
+PetscErrorCode           SgObstacleGap(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
+PetscErrorCode           SgObstacleDistance(SgObstacle, const PetscReal x[], PetscReal *g, PetscReal n[]); /* signed distance g (> 0 outside) and the unit outward normal n at the closest point */
+PetscErrorCode           SgObstacleHasDistance(SgObstacle, PetscBool *);
+PetscErrorCode           SgObstacleSetPlacement(SgObstacle, PetscReal);
+PetscErrorCode           SgObstacleGetTranslation(SgObstacle, PetscReal[3]);
+PetscErrorCode           SgObstacleDestroy(SgObstacle *);
+PetscErrorCode           SgObstacleCreate_Plane(SgObstacle);
+PetscErrorCode           SgObstacleCreate_Parabola(SgObstacle);
+PetscErrorCode           SgObstacleCreate_Ball(SgObstacle);
+PetscErrorCode           SgObstacleCreate_CAD(SgObstacle); /* obstacle_cad.c */
 
 /* ------------------------------------------------------------------ contact.c */
 typedef struct _n_SgContact *SgContact;
-
 
 
 PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const SgBoundary *, const char[], SgContact *); /* the contact part, the master side (two bodies) or NULL, the obstacle type */
@@ -190,21 +189,23 @@ PetscErrorCode SgContactSetUp(SgContact);
 #define SGLAWCOULOMB          "coulomb"
 #define SG_LAW_MAX_PARAMETERS 8
 extern PetscFunctionList SgContactLawList;
-PetscErrorCode SgContactLawRegisterAll(void);
-PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *, MPI_Comm, PetscInt, SgContactLaw *);
-PetscErrorCode SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
-void           SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
-PetscErrorCode SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                    /* max_i g_i(lam_N) over all ranks */
-PetscErrorCode SgContactLawGetType(SgContactLaw, const char *[]);
-const char    *SgLawName(SgContactLaw); /* its type name, for messages */
-PetscErrorCode SgContactLawGetId(SgContactLaw, PetscInt *);
-PetscErrorCode SgContactLawGetTypeName(PetscInt, const char **);
-PetscErrorCode SgContactLawGetInfo(SgContactLaw, PetscBool *, PetscBool *, PetscReal *); /* friction, coupled (the bound depends on lam_N), gamma_T / gamma */
-PetscErrorCode SgContactLawGetParameters(SgContactLaw, PetscInt *, const char *[], PetscReal[]); /* names (summary, checkpoint) and values, at most SG_LAW_MAX_PARAMETERS */
-PetscErrorCode SgContactLawGetDescription(SgContactLaw, const char **); /* "Coulomb F = 0.3", for messages */
-PetscErrorCode SgContactLawView(SgContactLaw, PetscViewer);
-PetscErrorCode SgContactLawDestroy(SgContactLaw *);
-enum { SG_FRICTION_FREE = 0, SG_FRICTION_STICK = 1, SG_FRICTION_SLIP = 2 }; /* the state of a contact vertex */
+PetscErrorCode           SgContactLawRegisterAll(void);
+PetscErrorCode           SgContactLawCreateFromOptions(PetscOptionItems *, MPI_Comm, PetscInt, SgContactLaw *);
+PetscErrorCode           SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
+void                     SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
+PetscErrorCode           SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                     /* max_i g_i(lam_N) over all ranks */
+PetscErrorCode           SgContactLawGetType(SgContactLaw, const char *[]);
+const char              *SgLawName(SgContactLaw); /* its type name, for messages */
+PetscErrorCode           SgContactLawGetId(SgContactLaw, PetscInt *);
+PetscErrorCode           SgContactLawGetTypeName(PetscInt, const char **);
+PetscErrorCode           SgContactLawGetInfo(SgContactLaw, PetscBool *, PetscBool *, PetscReal *);         /* friction, coupled (the bound depends on lam_N), gamma_T / gamma */
+PetscErrorCode           SgContactLawGetParameters(SgContactLaw, PetscInt *, const char *[], PetscReal[]); /* names (summary, checkpoint) and values, at most SG_LAW_MAX_PARAMETERS */
+PetscErrorCode           SgContactLawGetDescription(SgContactLaw, const char **);                          /* "Coulomb F = 0.3", for messages */
+PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
+PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
+enum { SG_FRICTION_FREE  = 0,
+       SG_FRICTION_STICK = 1,
+       SG_FRICTION_SLIP  = 2 }; /* the state of a contact vertex */
 /* friction at a displacement y (SgContactKKT): the tangential multiplier lam_T,i = -T_i (K y - b)_i / w_i balancing the
    tangential residual, its states, and its resultant sum_i w_i lam_T,i (the friction force on the obstacle) */
 typedef struct {
@@ -215,10 +216,10 @@ typedef struct {
   PetscReal bound, slip;          /* the two friction parts of the KKT measures (dual and complementarity) */
 } SgFrictionSummary;
 PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
-PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec); /* y -> tangential traction, slip, state */
-PetscErrorCode SgContactSetSlipReference(SgContact, Vec); /* the start of a load step's slip increment (NULL: zero) */
+PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec);     /* y -> tangential traction, slip, state */
+PetscErrorCode SgContactSetSlipReference(SgContact, Vec);                  /* the start of a load step's slip increment (NULL: zero) */
 PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
-PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **); /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
+PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **);         /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */
@@ -230,10 +231,10 @@ typedef struct {
   PetscReal        area;       /* |Gamma_c| */
   /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
   SgContactLaw     law;
-  PetscBool        friction;   /* the law has a tangential part */
-  PetscBool        coupled;    /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
-  PetscReal        fgfac;      /* gamma_T = fgfac * gamma: -friction_gamma_factor */
-  const PetscReal *yref;       /* friction: the displacement at the start of the load step, n*dim (zeros at the
+  PetscBool        friction; /* the law has a tangential part */
+  PetscBool        coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
+  PetscReal        fgfac;    /* gamma_T = fgfac * gamma: -friction_gamma_factor */
+  const PetscReal *yref;     /* friction: the displacement at the start of the load step, n*dim (zeros at the
                                   first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference) */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
@@ -267,12 +268,12 @@ PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i lam_i n_i with SgContactKKT's multiplier */
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
-PetscErrorCode SgContactIsPair(SgContact, PetscBool *); /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
+PetscErrorCode SgContactIsPair(SgContact, PetscBool *);      /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
 PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *); /* two bodies: |B^T 1| on the master side, NULL without a pair */
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
-PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *); /* sum_i w_i d_i with the obstacle at a placement t */
-PetscErrorCode SgContactGapsAt(SgContact, PetscReal, PetscReal[]); /* d_i per owned contact vertex with the obstacle at a placement t */
+PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *);          /* sum_i w_i d_i with the obstacle at a placement t */
+PetscErrorCode SgContactGapsAt(SgContact, PetscReal, PetscReal[]);          /* d_i per owned contact vertex with the obstacle at a placement t */
 PetscErrorCode SgContactNormalDisplacementMax(SgContact, Vec, PetscReal *); /* max_i n_i . y_i */
 
 PetscErrorCode SgProblemGetElasticity(SgProblem, SgElasticity *);
@@ -291,13 +292,13 @@ typedef struct {
   PetscReal gamma, fnorm, r1, r2, V, dV, C1, C2, Em, rhoF, rhoC, infeas, kkt, time;
 } SgHistoryRow;
 typedef struct _n_SgHistory *SgHistory;
-PetscErrorCode SgHistoryCreate(SgHistory *);
-PetscErrorCode SgHistoryDestroy(SgHistory *);
-PetscErrorCode SgHistoryRowInit(SgHistoryRow *);
-PetscErrorCode SgHistoryAdd(SgHistory, const SgHistoryRow *);
-PetscErrorCode SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
-PetscErrorCode SgHistoryGetRows(SgHistory, PetscInt *, SgHistoryRow **);
-PetscErrorCode SgHistoryReset(SgHistory);
+PetscErrorCode               SgHistoryCreate(SgHistory *);
+PetscErrorCode               SgHistoryDestroy(SgHistory *);
+PetscErrorCode               SgHistoryRowInit(SgHistoryRow *);
+PetscErrorCode               SgHistoryAdd(SgHistory, const SgHistoryRow *);
+PetscErrorCode               SgHistoryWrite(MPI_Comm, SgHistory, const char[], const char[]);
+PetscErrorCode               SgHistoryGetRows(SgHistory, PetscInt *, SgHistoryRow **);
+PetscErrorCode               SgHistoryReset(SgHistory);
 
 /* ------------------------------------------------------------------ io: checkpoint.c, checkpoint_write.c, checkpoint_read.c, fingerprint.c
    The checkpoint file: the problem's fingerprint and the vertex coordinates (a restart may use another partition),
@@ -316,31 +317,41 @@ typedef struct {
 #define SG_LOADSTEP_NREAL 12
 typedef struct _n_SgCheckpointWriter *SgCheckpointWriter;
 typedef struct _n_SgCheckpointReader *SgCheckpointReader;
-PetscErrorCode SgCheckpointWriterCreate(SgElasticity, SgContact, const char[], SgCheckpointWriter *);
-PetscErrorCode SgCheckpointWriterAttribute(SgCheckpointWriter, const char[], PetscDataType, const void *); /* PETSC_INT, PETSC_REAL, PETSC_STRING */
-PetscErrorCode SgCheckpointWriterReals(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);       /* numbers every rank has */
-PetscErrorCode SgCheckpointWriterDisplacement(SgCheckpointWriter, const char[], Vec, PetscBool);            /* per vertex, with the Dirichlet values or zeros there */
-PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);     /* bs per contact vertex (NULL: zeros) */
-PetscErrorCode SgCheckpointWriterHistory(SgCheckpointWriter, SgHistory);
-PetscErrorCode SgCheckpointWriterHas(SgCheckpointWriter, const char[], PetscBool *);
-PetscErrorCode SgCheckpointWriterCommit(SgCheckpointWriter, PetscBool *, char[], size_t); /* ok, and why not */
-PetscErrorCode SgCheckpointWriterDestroy(SgCheckpointWriter *);
-PetscErrorCode SgCheckpointReaderOpen(SgElasticity, SgContact, const char[], SgCheckpointReader *);
-PetscErrorCode SgCheckpointReaderGetFile(SgCheckpointReader, const char **);
-PetscErrorCode SgCheckpointReaderHasAttribute(SgCheckpointReader, const char[], PetscBool *);
-PetscErrorCode SgCheckpointReaderHasDataset(SgCheckpointReader, const char[], PetscBool *);
-PetscErrorCode SgCheckpointReaderAttribute(SgCheckpointReader, const char[], PetscDataType, void *); /* PETSC_STRING: a char ** to PetscFree */
-PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader, const char[], PetscInt, PetscInt *, PetscReal **); /* n (< 0: any), allocated */
-PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader, const char[], const char[], Vec);
-PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader, const char[], PetscInt, PetscBool, const char[], PetscReal[]);
-PetscErrorCode SgCheckpointReaderHistory(SgCheckpointReader, PetscInt, SgHistory);
-PetscErrorCode SgCheckpointReaderDamaged(SgCheckpointReader *, const char[], PetscReal); /* frees the reader, returns the error */
-PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *);                          /* frees the reader quietly, before a refusal */
-PetscErrorCode SgCheckpointReaderDestroy(SgCheckpointReader *);
+PetscErrorCode                        SgCheckpointWriterCreate(SgElasticity, SgContact, const char[], SgCheckpointWriter *);
+PetscErrorCode                        SgCheckpointWriterAttribute(SgCheckpointWriter, const char[], PetscDataType, const void *); /* PETSC_INT, PETSC_REAL, PETSC_STRING */
+PetscErrorCode                        SgCheckpointWriterReals(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);     /* numbers every rank has */
+PetscErrorCode                        SgCheckpointWriterDisplacement(SgCheckpointWriter, const char[], Vec, PetscBool);           /* per vertex, with the Dirichlet values or zeros there */
+PetscErrorCode                        SgCheckpointWriterContact(SgCheckpointWriter, const char[], PetscInt, const PetscReal[]);   /* bs per contact vertex (NULL: zeros) */
+PetscErrorCode                        SgCheckpointWriterHistory(SgCheckpointWriter, SgHistory);
+PetscErrorCode                        SgCheckpointWriterHas(SgCheckpointWriter, const char[], PetscBool *);
+PetscErrorCode                        SgCheckpointWriterCommit(SgCheckpointWriter, PetscBool *, char[], size_t); /* ok, and why not */
+PetscErrorCode                        SgCheckpointWriterDestroy(SgCheckpointWriter *);
+PetscErrorCode                        SgCheckpointReaderOpen(SgElasticity, SgContact, const char[], SgCheckpointReader *);
+PetscErrorCode                        SgCheckpointReaderGetFile(SgCheckpointReader, const char **);
+PetscErrorCode                        SgCheckpointReaderHasAttribute(SgCheckpointReader, const char[], PetscBool *);
+PetscErrorCode                        SgCheckpointReaderHasDataset(SgCheckpointReader, const char[], PetscBool *);
+PetscErrorCode                        SgCheckpointReaderAttribute(SgCheckpointReader, const char[], PetscDataType, void *);          /* PETSC_STRING: a char ** to PetscFree */
+PetscErrorCode                        SgCheckpointReaderReals(SgCheckpointReader, const char[], PetscInt, PetscInt *, PetscReal **); /* n (< 0: any), allocated */
+PetscErrorCode                        SgCheckpointReaderDisplacement(SgCheckpointReader, const char[], const char[], Vec);
+PetscErrorCode                        SgCheckpointReaderContact(SgCheckpointReader, const char[], PetscInt, PetscBool, const char[], PetscReal[]);
+PetscErrorCode                        SgCheckpointReaderHistory(SgCheckpointReader, PetscInt, SgHistory);
+PetscErrorCode                        SgCheckpointReaderDamaged(SgCheckpointReader *, const char[], PetscReal); /* frees the reader, returns the error */
+PetscErrorCode                        SgCheckpointReaderAbandon(SgCheckpointReader *);                          /* frees the reader quietly, before a refusal */
+PetscErrorCode                        SgCheckpointReaderDestroy(SgCheckpointReader *);
 
 /* ------------------------------------------------------------------ solver: ssn.c (residual.c, jacobian.c, friction.c, convergence.c, fallback.c), ksp.c, condense.c */
-typedef enum { SG_SSN_ITERATING, SG_SSN_SETTLED, SG_SSN_NEIGHBOURHOOD, SG_SSN_ZERO_RESIDUAL, SG_SSN_CYCLING, SG_SSN_NAN, SG_SSN_MAX_IT, SG_SSN_LINEAR_SOLVE, SG_SSN_SNES_FAILED, SG_SSN_KKT, SG_SSN_ROUNDOFF } SgSSNReason;
-extern const char *const SgSSNReasons[];
+typedef enum { SG_SSN_ITERATING,
+               SG_SSN_SETTLED,
+               SG_SSN_NEIGHBOURHOOD,
+               SG_SSN_ZERO_RESIDUAL,
+               SG_SSN_CYCLING,
+               SG_SSN_NAN,
+               SG_SSN_MAX_IT,
+               SG_SSN_LINEAR_SOLVE,
+               SG_SSN_SNES_FAILED,
+               SG_SSN_KKT,
+               SG_SSN_ROUNDOFF } SgSSNReason;
+extern const char *const      SgSSNReasons[];
 typedef struct _n_SgSSN      *SgSSN;
 typedef struct _n_SgCondense *SgCondense;
 typedef struct _n_SgTMG      *SgTMG;
@@ -348,7 +359,7 @@ typedef struct _n_SgFrame    *SgFrame;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
-PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]); /* -help: the default solver's option */
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                         /* -help: the default solver's option */
 PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
@@ -356,9 +367,9 @@ PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSS
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgSSNGetSNES(SgSSN, SNES *);
-PetscErrorCode SgSSNUpdateLoad(SgSSN); /* the load scales again after the load factor changed */
-PetscErrorCode SgSSNGetShift(SgSSN, PetscReal **);            /* lamhat per contact vertex, for the controller to set */
-PetscErrorCode SgSSNGetMultiplier(SgSSN, const PetscReal **); /* max(0, lamhat + gamma g) at the last residual */
+PetscErrorCode SgSSNUpdateLoad(SgSSN);                                           /* the load scales again after the load factor changed */
+PetscErrorCode SgSSNGetShift(SgSSN, PetscReal **);                               /* lamhat per contact vertex, for the controller to set */
+PetscErrorCode SgSSNGetMultiplier(SgSSN, const PetscReal **);                    /* max(0, lamhat + gamma g) at the last residual */
 PetscErrorCode SgSSNGetPathValues(SgSSN, PetscReal *, PetscReal *, PetscReal *); /* gamma, J(gamma, y), dJ/dgamma there */
 PetscErrorCode SgSSNGetReason(SgSSN, SgSSNReason *);
 PetscErrorCode SgSSNSetNeighbourhood(SgSSN, PetscReal);
@@ -371,12 +382,12 @@ PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
-PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool); /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set */
-PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]); /* -help without a problem: the SSN's options */
-PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec); /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                                /* keep the preconditioner while gamma and the active set stay */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                             /* vertices whose state at y differs from the last Jacobian's set */
+PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]);                                   /* -help without a problem: the SSN's options */
+PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec);                                       /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
-PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *); /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
+PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *);   /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);

@@ -25,7 +25,7 @@ static PetscErrorCode RecordError(MPI_Comm comm, int line, const char *fn, const
 /* The outcome of a wrong call: an error (of the class `code` unless it is 0) whose message contains `want`. */
 static PetscErrorCode Expect(const char what[], PetscErrorCode ierr, PetscErrorCode code, const char want[])
 {
-  PetscBool ok = (PetscBool)(ierr != 0 && (!code || ierr == code));
+  PetscBool ok    = (PetscBool)(ierr != 0 && (!code || ierr == code));
   char     *found = NULL;
 
   PetscFunctionBeginUser;
@@ -49,25 +49,25 @@ static PetscErrorCode Check(const char what[], PetscBool ok)
   PetscFunctionReturn(0);
 }
 
-#define WRONG(call, code, want) \
-  do { \
-    PetscErrorCode e_; \
-    LastError[0] = 0; \
+#define WRONG(call, code, want)                          \
+  do {                                                   \
+    PetscErrorCode e_;                                   \
+    LastError[0] = 0;                                    \
     PetscCall(PetscPushErrorHandler(RecordError, NULL)); \
-    e_ = (call); \
-    PetscCall(PetscPopErrorHandler()); \
-    PetscCall(Expect(#call, e_, code, want)); \
+    e_ = (call);                                         \
+    PetscCall(PetscPopErrorHandler());                   \
+    PetscCall(Expect(#call, e_, code, want));            \
   } while (0)
 
-#define RIGHT(call) \
-  do { \
-    PetscErrorCode e_; \
-    LastError[0] = 0; \
-    PetscCall(PetscPushErrorHandler(RecordError, NULL)); \
-    e_ = (call); \
-    PetscCall(PetscPopErrorHandler()); \
+#define RIGHT(call)                                                          \
+  do {                                                                       \
+    PetscErrorCode e_;                                                       \
+    LastError[0] = 0;                                                        \
+    PetscCall(PetscPushErrorHandler(RecordError, NULL));                     \
+    e_ = (call);                                                             \
+    PetscCall(PetscPopErrorHandler());                                       \
     if (e_) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    %s\n", LastError)); \
-    PetscCall(Check(#call, (PetscBool)(e_ == 0))); \
+    PetscCall(Check(#call, (PetscBool)(e_ == 0)));                           \
   } while (0)
 
 /* A small problem on the options' box (-box_faces): the top (box marker 3) pushed down and to the side, the bottom
@@ -147,14 +147,14 @@ static PetscErrorCode MakeBox(PetscInt nx, PetscInt ny, DM *dm)
 /* SgProblem: creation, the DM, the setters and the getters, each called wrongly */
 static PetscErrorCode CasesProblem(void)
 {
-  SgProblem       p = NULL, q = NULL;
-  DM              da, plex, bare, quads;
-  Vec             v, y;
-  const char     *s;
-  PetscInt        n, ids[2] = {1, 3}, mask0 = 0, mask8 = 8, faces[2] = {2, 2};
-  PetscReal       V, nanv = NAN, vals[4] = {0, 0, 0, 0}, bad[2] = {0, NAN};
-  PetscBool       has;
-  char            longname[400];
+  SgProblem   p = NULL, q = NULL;
+  DM          da, plex, bare, quads;
+  Vec         v, y;
+  const char *s;
+  PetscInt    n, ids[2] = {1, 3}, mask0 = 0, mask8 = 8, faces[2] = {2, 2};
+  PetscReal   V, nanv = NAN, vals[4] = {0, 0, 0, 0}, bad[2] = {0, NAN};
+  PetscBool   has;
+  char        longname[400];
 
   PetscFunctionBeginUser;
   PetscCall(MakeDMDA(&da));
@@ -458,7 +458,7 @@ static PetscErrorCode CasesOptions(void)
 {
   PetscInt  iv[3] = {1, 2, 3}, n, i1 = 0;
   PetscReal rv[3] = {0, 0, 0}, r1 = 0;
-  PetscBool b     = PETSC_FALSE;
+  PetscBool b = PETSC_FALSE;
   char      name[64];
 
   PetscFunctionBeginUser;
@@ -519,9 +519,9 @@ static PetscErrorCode CasesOrder(PetscReal *energy)
 {
   SgProblem   p;
   SgCont      c;
-  PetscBool   conv = PETSC_TRUE;
+  PetscBool   conv   = PETSC_TRUE;
   const char *reason = NULL;
-  PetscReal   V = 0;
+  PetscReal   V      = 0;
   PetscInt    outer = -1, ssn = -1, ksp = -1;
   SgKKT       kkt;
 
@@ -617,7 +617,7 @@ static PetscErrorCode CasesRefcount(PetscReal *energy, PetscReal *energy_ref)
   d = c;
   RIGHT(SgContDestroy(&d));
   PetscCall(Check("SgContDestroy of one holder sets only its handle to NULL", (PetscBool)(!d && c)));
-  RIGHT(SgContSolve(c)); /* (not pdas: the first solve's default entered -ssn_condense into the options database) */
+  RIGHT(SgContSolve(c));                        /* (not pdas: the first solve's default entered -ssn_condense into the options database) */
   RIGHT(PetscObjectDestroy((PetscObject *)&c)); /* PETSc's generic destroy reaches SgContDestroy */
   PetscCall(Check("PetscObjectDestroy sets the handle to NULL", (PetscBool)!c));
 

@@ -11,8 +11,8 @@ static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|mode
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
-static const PetscReal Kref2[36] = {2.0,  1.0,  -1.5, -0.5, -0.5, -0.5, 1.0,  2.0,  -0.5, -0.5, -0.5, -1.5, -1.5, -0.5, 1.5, 0.0, 0.0, 0.5,
-                                    -0.5, -0.5, 0.0,  0.5,  0.5,  0.0,  -0.5, -0.5, 0.0,  0.5,  0.5,  0.0,  -0.5, -1.5, 0.5, 0.0, 0.0, 1.5};
+static const PetscReal Kref2[36] = {2.0, 1.0, -1.5, -0.5, -0.5, -0.5, 1.0, 2.0, -0.5, -0.5, -0.5, -1.5, -1.5, -0.5, 1.5, 0.0, 0.0, 0.5,
+                                    -0.5, -0.5, 0.0, 0.5, 0.5, 0.0, -0.5, -0.5, 0.0, 0.5, 0.5, 0.0, -0.5, -1.5, 0.5, 0.0, 0.0, 1.5};
 
 static PetscErrorCode TestElement2D(SgSummary s)
 {
@@ -66,12 +66,12 @@ static PetscErrorCode TestElement3D(SgSummary s)
 /* The assembled stiffness without Dirichlet conditions annihilates the rigid-body modes (and nothing else of them). */
 static PetscErrorCode TestRigid(SgSummary s)
 {
-  SgElasticity        p;
-  PetscInt         nvec;
-  const Vec       *vecs;
-  PetscBool        has;
-  PetscReal        worst = 0, Knorm;
-  Vec              Kz;
+  SgElasticity p;
+  PetscInt     nvec;
+  const Vec   *vecs;
+  PetscBool    has;
+  PetscReal    worst = 0, Knorm;
+  Vec          Kz;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityCreate(PETSC_COMM_WORLD, NULL, &p));
@@ -110,7 +110,7 @@ static PetscErrorCode GapAt(const char *type, const char *opts, PetscInt dim, co
 
 static PetscErrorCode TestGap(SgSummary s)
 {
-  const char     *ball = "-obstacle_ball_radius 0.5 -obstacle_ball_center -0.3,0,-1";
+  const char     *ball    = "-obstacle_ball_radius 0.5 -obstacle_ball_center -0.3,0,-1";
   const PetscReal down[3] = {0, 0, -1}, tilt[3] = {0.6, 0, -0.8};
   /* point, normal, expected: ball top, on the sphere 0.3 off axis (height -1 + 0.4), past the rim (floor plane),
      and along a tilted normal aimed at the centre from distance 1 (gap 1 - R) */
@@ -152,7 +152,7 @@ static PetscErrorCode TestModelFit(SgSummary s)
 {
   const PetscReal C1 = -0.0104, C2 = 3.7e-2, E = 350.0, g[3] = {1e2, 1e5, 1e9};
   PetscReal       err = 0;
-  PetscBool       ok = PETSC_TRUE;
+  PetscBool       ok  = PETSC_TRUE;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < 3; i++) {
@@ -236,10 +236,10 @@ static PetscErrorCode CtlCont(SgProblem p, SgCont *ct)
 /* solve at load factor t; r: the result (r->y allocated here); *nfail counts the solves that did not converge */
 static PetscErrorCode CtlSolve(SgProblem p, SgCont ct, PetscReal t, CtlResult *r, PetscInt *nfail)
 {
-  SgContact         c;
-  SgKKT             kkt;
-  PetscBool         conv;
-  Vec               y;
+  SgContact c;
+  SgKKT     kkt;
+  PetscBool conv;
+  Vec       y;
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemSetLoadFactor(p, t));
@@ -290,7 +290,7 @@ static PetscErrorCode CtlDiff(const CtlResult *a, const CtlResult *b, PetscReal 
     nd /= PetscMax(nb, 1e-300);
   } else {
     const NormType types[3] = {NORM_1, NORM_2, NORM_INFINITY};
-    nd = 0;
+    nd                      = 0;
     for (PetscInt k = 0; k < 3; k++) {
       PetscReal na;
       PetscCall(VecNorm(a->y, types[k], &na));
@@ -316,12 +316,12 @@ static PetscReal CtlJson(const char *buf, const char key[])
 
 static PetscErrorCode TestControllers(SgSummary s)
 {
-  SgProblem   p1, p2, p3;
-  SgCont      A, B, C, D;
-  CtlResult   rA[3], rB[3], rC[3], rD[3];
-  PetscInt    nfail = 0;
-  PetscReal   d;
-  char        file[PETSC_MAX_PATH_LEN] = "";
+  SgProblem p1, p2, p3;
+  SgCont    A, B, C, D;
+  CtlResult rA[3], rB[3], rC[3], rD[3];
+  PetscInt  nfail = 0;
+  PetscReal d;
+  char      file[PETSC_MAX_PATH_LEN] = "";
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetString(NULL, NULL, "-report_file", file, sizeof(file), NULL));
@@ -601,7 +601,7 @@ static PetscErrorCode TestSurfaceCreate(PetscInt dim, PetscInt nx, PetscInt ny, 
       t->facets[2 * f] = f, t->facets[2 * f + 1] = f + 1;
       n[0] = -sx, n[1] = 1; /* the upward normal of y = z0 + sx x */
     } else {
-      PetscInt c = f / 2, i = c % nx, j = c / nx, v = j * (nx + 1) + i;
+      PetscInt  c = f / 2, i = c % nx, j = c / nx, v = j * (nx + 1) + i;
       PetscInt *F = t->facets + 3 * f;
       if (f % 2 == 0) F[0] = v, F[1] = v + 1, F[2] = v + nx + 2;
       else F[0] = v, F[1] = v + nx + 2, F[2] = v + nx + 1;
@@ -683,7 +683,7 @@ static PetscErrorCode TestMortarCase(SgSummary sum, const char prefix[], const T
   }
   for (PetscInt j = 0; j < ts->nv; j++) {
     PetscReal gx = gcoef[0] + gcoef[1] * ts->x[dim * j] + (dim == 3 ? gcoef[2] * ts->x[dim * j + 1] : 0);
-    erow = PetscMax(erow, PetscAbsReal(rs[j] - D[j]));
+    erow         = PetscMax(erow, PetscAbsReal(rs[j] - D[j]));
     if (covered) {
       elump = PetscMax(elump, PetscAbsReal(D[j] - w[j]));
       egap  = PetscMax(egap, PetscAbsReal(g0[j] - D[j] * gx));
@@ -838,7 +838,7 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscCall(VecGetArrayRead(pair->g0, &ga));
   PetscCall(VecGetArrayRead(pair->N, &Na));
   for (PetscInt j = 0; j < nloc; j++) {
-    const PetscScalar *n = Na + j * dim;
+    const PetscScalar *n   = Na + j * dim;
     PetscReal          nAn = 0, nn = 0;
     if (PetscRealPart(Da[j]) == 0) continue;
     for (PetscInt a = 0; a < dim; a++) {

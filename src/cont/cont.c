@@ -80,15 +80,15 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   PetscCall(PetscHeaderCreate(ct, SG_CONT_CLASSID, "SgCont", "Contact solver", "SgCont", comm, SgContDestroy, SgContView)); /* PetscObjectDestroy/View reach them */
   ct->comm = comm;
   PetscCall(PetscObjectReference((PetscObject)prob));
-  ct->problem_obj = prob;
-  ct->kkt_tol     = 1e-10;
-  ct->max_outer   = 50;
-  ct->gamma_max   = 1e20;
-  ct->stall_its   = 10;
+  ct->problem_obj     = prob;
+  ct->kkt_tol         = 1e-10;
+  ct->max_outer       = 50;
+  ct->gamma_max       = 1e20;
+  ct->stall_its       = 10;
   ct->coulomb_shifted = PETSC_TRUE;
-  ct->residual    = SG_NAN;
+  ct->residual        = SG_NAN;
   ct->V0 = ct->V = SG_NAN;
-  ct->monitor     = PETSC_TRUE;
+  ct->monitor    = PETSC_TRUE;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   PetscCall(SgHistoryCreate(&ct->hist));
   PetscCall(SgSummaryCreate(&ct->sum));
@@ -208,9 +208,9 @@ static PetscErrorCode TypeOptions(SgCont ct, PetscOptionItems *PetscOptionsObjec
    is thrown away), so that -help lists them all whichever type runs. */
 static PetscErrorCode HelpTypes(SgCont ct, const char skip[], PetscOptionItems *PetscOptionsObject)
 {
-  PetscBool     help;
-  int           n;
-  const char  **names;
+  PetscBool    help;
+  int          n;
+  const char **names;
   PetscErrorCode (*create)(SgCont);
 
   PetscFunctionBeginUser;
@@ -250,7 +250,7 @@ PetscErrorCode SgContPrintHelp(SgCont ct)
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) PetscFunctionReturn(0);
   PetscCall(PetscNew(&tmp));
-  PetscCall(PetscMemcpy(tmp, ct, sizeof(*ct))); /* the settings' defaults (nothing of it is freed or called) */
+  PetscCall(PetscMemcpy(tmp, ct, sizeof(*ct)));                                                        /* the settings' defaults (nothing of it is freed or called) */
   PetscOptionsBegin(ct->comm, ((PetscObject)ct)->prefix, "Contact solver (SgCont) options", "SgCont"); /* PetscObjectOptionsBegin's title: listed once */
   PetscCall(CommonOptions(tmp, PetscOptionsObject));
   PetscCall(HelpTypes(tmp, "", PetscOptionsObject));
@@ -433,8 +433,8 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
 PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
 {
   const SgContactView *c = &ct->cv;
-  PetscInt            dim, rstart;
-  Mat                 K;
+  PetscInt             dim, rstart;
+  Mat                  K;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
@@ -620,7 +620,7 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, const SgHistoryRow *m
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t));
   PetscCall(SgHistoryRowInit(&row));
-  row.kind = 'o';
+  row.kind  = 'o';
   row.outer = ct->outer;
   if (ct->ssn) PetscCall(SgSSNGetPathValues(ct->ssn, &row.gamma, &row.V, &row.dV));
   row.active  = ct->kkt.nactive;
@@ -715,8 +715,8 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
 PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
 {
   const PetscReal gamma_next = ct->gamma, gamma_now = ct->ngammas ? ct->gammas[ct->ngammas - 1] : SG_NAN;
-  PetscReal       gdp        = PETSC_MAX_REAL;
-  PetscBool       atcap      = PETSC_FALSE;
+  PetscReal       gdp   = PETSC_MAX_REAL;
+  PetscBool       atcap = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *stop = PETSC_TRUE;
@@ -834,10 +834,10 @@ static PetscErrorCode RestoreBest(SgCont ct)
    KKT tolerance of (P). Said on the output and in the reason; the shift is 0 again afterwards (the path's). */
 static PetscErrorCode CoulombShiftedPath(SgCont ct)
 {
-  PetscReal  gamma, *lhT;
-  PetscBool  stop = PETSC_FALSE, ok = PETSC_TRUE;
-  PetscInt   dim, outer0 = ct->outer;
-  char       was[sizeof(ct->reason)];
+  PetscReal gamma, *lhT;
+  PetscBool stop = PETSC_FALSE, ok = PETSC_TRUE;
+  PetscInt  dim, outer0            = ct->outer;
+  char      was[sizeof(ct->reason)];
 
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
@@ -853,7 +853,7 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
   ct->best_kkt  = PETSC_MAX_REAL;
   ct->best_step = ct->outer;
   while (ok && !stop) {
-    const PetscInt its0 = ct->ssn_its;
+    const PetscInt   its0 = ct->ssn_its;
     const PetscReal *mT;
     ct->outer++;
     PetscCall(SgContSSN(ct, gamma, &ok));
@@ -894,7 +894,7 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
 /* The outer loop of every continuation controller (see cont/contimpl.h for the order of the hooks). */
 static PetscErrorCode SolveContinuation(SgCont ct)
 {
-  PetscBool stop = PETSC_FALSE, ok, ssnfail = PETSC_FALSE;
+  PetscBool       stop = PETSC_FALSE, ok, ssnfail = PETSC_FALSE;
   const PetscBool shifted = (PetscBool)(ct->c && ct->cv.coupled && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
 
   PetscFunctionBeginUser;
@@ -952,11 +952,11 @@ static PetscErrorCode PrepareWarm(SgCont ct)
   PetscFunctionBeginUser;
   PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
   ct->outer = ct->ssn_its = ct->ksp_its = 0;
-  ct->ngammas   = 0;
-  ct->best_kkt  = 0;
-  ct->best_step = 0;
-  ct->converged = PETSC_FALSE;
-  ct->residual  = SG_NAN;
+  ct->ngammas                           = 0;
+  ct->best_kkt                          = 0;
+  ct->best_step                         = 0;
+  ct->converged                         = PETSC_FALSE;
+  ct->residual                          = SG_NAN;
   PetscCall(PetscStrcpy(ct->reason, "NOT_RUN"));
   ct->gamma = ct->gamma_warm;
   if (ct->c && ct->ssn && !ct->ops.shifts && ct->nsteps && ct->steps[ct->nsteps - 1].t != t) {

@@ -35,120 +35,120 @@ typedef struct {
   PetscErrorCode (*update)(SgCont, PetscReal *);
   PetscErrorCode (*finish)(SgCont);
   PetscErrorCode (*solve)(SgCont);
-  PetscErrorCode (*view)(SgCont, PetscViewer); /* the type's parameters, continuing SgContView's first line ("; ...", no newline) */
-  PetscErrorCode (*destroy)(SgCont); /* frees what data holds; SgContDestroy frees data itself */
+  PetscErrorCode (*view)(SgCont, PetscViewer);        /* the type's parameters, continuing SgContView's first line ("; ...", no newline) */
+  PetscErrorCode (*destroy)(SgCont);                  /* frees what data holds; SgContDestroy frees data itself */
   PetscErrorCode (*save)(SgCont, SgCheckpointWriter); /* the type's own state into a checkpoint, optional */
   PetscErrorCode (*load)(SgCont, SgCheckpointReader); /* and out of one (-restart_file) */
-  PetscBool   needs_ssn;
-  PetscBool   shifts;     /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */
+  PetscBool needs_ssn;
+  PetscBool shifts; /* the type moves the shift lamhat between steps (alm): it progresses at a fixed gamma */
 } SgContOps;
 
 /* A PetscObject (class SG_CONT_CLASSID): its header holds the reference count, the options prefix (-<prefix>cont_*)
    and, once chosen, the type name (PetscObjectGetType); PetscObjectView/ViewFromOptions reach SgContView. */
 struct _n_SgCont {
   struct _p_PetscObject hdr;
-  MPI_Comm     comm;         /* the problem's communicator */
-  char         type[64];     /* empty until set: then the default for the problem (SgContSetFromOptions) */
-  PetscBool    monitor;      /* -cont_monitor: a line per outer step */
-  PetscBool    type_default; /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
-  char         solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */
-  SgProblem    problem_obj;
-  SgElasticity prob;
-  SgContact    c;
-  SgContactView cv;
-  KSP          ksp;          /* the linear solver of every step (-<prefix>ksp_*, -<prefix>pc_*) */
-  Mat          J;            /* its working matrix */
-  SgSSN        ssn;          /* NULL for the baselines */
-  PetscReal   *lamhat;       /* the SSN's shift (NULL without SSN) */
-  Vec          y;            /* the iterate, finally the solution */
-  PetscReal   *lam;          /* the multiplier at y */
-  PetscReal    kkt_tol;
-  PetscReal    gamma;        /* gamma of the next outer step */
-  PetscBool    restarted;    /* the state comes from -restart_file */
-  char         ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
-  PetscInt     max_outer, stall_its;
-  PetscReal    gamma_max;
-  PetscBool    gamma_max_set; /* -cont_gamma_max given; else 1e14 x the normal stiffness per contact area (SgContStart) */
-  PetscReal    best_kkt;     /* progress watch */
-  PetscInt     best_step;
-  Vec          ybest;        /* the iterate of least KKT residual of this solve, its multiplier, residual and step */
-  Vec          ystart;       /* Coulomb: the iterate this solve started from (for CoulombShiftedPath) */
-  PetscBool    coulomb_shifted; /* Coulomb: after a failed SSN, solve again on the shifted path (-cont_coulomb_shifted_path) */
-  PetscReal   *lambest;
-  PetscReal    kktbest;
-  PetscInt     outerbest;
-  PetscInt     outer, ssn_its, ksp_its;
-  PetscInt     ngammas, capgammas;
-  PetscReal   *gammas;       /* gamma of every outer step */
-  PetscBool    setfromoptions_called, setup, solved;
-  PetscBool    setup_failed; /* SgContSetFromOptions or SgContSetUp stopped with an error: not used again */
-  PetscBool    converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
-  char         reason[512];
-  const char  *problem;      /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */
-  PetscReal    residual;     /* the measure of that problem: the KKT residual of (P), the equilibrium residual of (P_gamma) or the backward error of K y = b */
-  SgKKT        kkt;
-  PetscReal    V0, V;        /* energy of the unconstrained solution and of the result */
-  PetscLogDouble t_linear_setup, t_linear_solve; /* the unconstrained solve: preconditioner setup and solve */
-  SgHistory    hist;
-  SgSummary    sum;          /* what the solver adds to the summary beside the standard keys (report.c) */
-  PetscLogDouble t0, t1;
-  void        *data;
-  SgContOps    ops;
+  MPI_Comm              comm;             /* the problem's communicator */
+  char                  type[64];         /* empty until set: then the default for the problem (SgContSetFromOptions) */
+  PetscBool             monitor;          /* -cont_monitor: a line per outer step */
+  PetscBool             type_default;     /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
+  char                  solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */
+  SgProblem             problem_obj;
+  SgElasticity          prob;
+  SgContact             c;
+  SgContactView         cv;
+  KSP                   ksp;    /* the linear solver of every step (-<prefix>ksp_*, -<prefix>pc_*) */
+  Mat                   J;      /* its working matrix */
+  SgSSN                 ssn;    /* NULL for the baselines */
+  PetscReal            *lamhat; /* the SSN's shift (NULL without SSN) */
+  Vec                   y;      /* the iterate, finally the solution */
+  PetscReal            *lam;    /* the multiplier at y */
+  PetscReal             kkt_tol;
+  PetscReal             gamma;     /* gamma of the next outer step */
+  PetscBool             restarted; /* the state comes from -restart_file */
+  char                  ckfile[PETSC_MAX_PATH_LEN], rsfile[PETSC_MAX_PATH_LEN];
+  PetscInt              max_outer, stall_its;
+  PetscReal             gamma_max;
+  PetscBool             gamma_max_set; /* -cont_gamma_max given; else 1e14 x the normal stiffness per contact area (SgContStart) */
+  PetscReal             best_kkt;      /* progress watch */
+  PetscInt              best_step;
+  Vec                   ybest;           /* the iterate of least KKT residual of this solve, its multiplier, residual and step */
+  Vec                   ystart;          /* Coulomb: the iterate this solve started from (for CoulombShiftedPath) */
+  PetscBool             coulomb_shifted; /* Coulomb: after a failed SSN, solve again on the shifted path (-cont_coulomb_shifted_path) */
+  PetscReal            *lambest;
+  PetscReal             kktbest;
+  PetscInt              outerbest;
+  PetscInt              outer, ssn_its, ksp_its;
+  PetscInt              ngammas, capgammas;
+  PetscReal            *gammas; /* gamma of every outer step */
+  PetscBool             setfromoptions_called, setup, solved;
+  PetscBool             setup_failed; /* SgContSetFromOptions or SgContSetUp stopped with an error: not used again */
+  PetscBool             converged;    /* the problem named by `problem` was solved to -cont_kkt_tol */
+  char                  reason[512];
+  const char           *problem;  /* what the run solves: "P" (contact), "P_gamma" (one regularized problem), "elasticity" */
+  PetscReal             residual; /* the measure of that problem: the KKT residual of (P), the equilibrium residual of (P_gamma) or the backward error of K y = b */
+  SgKKT                 kkt;
+  PetscReal             V0, V;                          /* energy of the unconstrained solution and of the result */
+  PetscLogDouble        t_linear_setup, t_linear_solve; /* the unconstrained solve: preconditioner setup and solve */
+  SgHistory             hist;
+  SgSummary             sum; /* what the solver adds to the summary beside the standard keys (report.c) */
+  PetscLogDouble        t0, t1;
+  void                 *data;
+  SgContOps             ops;
   /* load stepping: SgContSolve called again after SgProblemSetLoadFactor */
-  PetscBool    warm;         /* this solve starts from the last load step's solution and controller state */
-  PetscBool    have_state;   /* a load step was solved (or restored from a checkpoint taken between load steps) */
-  PetscBool    rsread;       /* -restart_file was read */
-  PetscBool    yref_read;    /* the next load step's slip reference came from a step-end -restart_file */
-  PetscReal    gamma_warm;   /* the last gamma solved at: the warm start's first */
-  PetscReal    V0unit;       /* V(0) / t^2 (the unconstrained solution is linear in the load factor t) */
-  PetscReal    rsload;       /* the load factor of -restart_file's state */
-  PetscInt     nsteps, capsteps;
-  SgLoadStep  *steps;
-  PetscBool    store_steps;  /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
-  Vec         *ysteps;
-  PetscReal  **lamsteps;
-  PetscReal  **yrsteps;      /* capsteps: with friction, each kept step's slip reference (dim per contact vertex) */
-  PetscInt     ndv;          /* Dirichlet values per step (dim per Dirichlet id) */
-  PetscReal   *dvsteps;      /* capsteps x ndv: each step's Dirichlet values when they were set (SgProblemSetDirichletValues),
+  PetscBool   warm;       /* this solve starts from the last load step's solution and controller state */
+  PetscBool   have_state; /* a load step was solved (or restored from a checkpoint taken between load steps) */
+  PetscBool   rsread;     /* -restart_file was read */
+  PetscBool   yref_read;  /* the next load step's slip reference came from a step-end -restart_file */
+  PetscReal   gamma_warm; /* the last gamma solved at: the warm start's first */
+  PetscReal   V0unit;     /* V(0) / t^2 (the unconstrained solution is linear in the load factor t) */
+  PetscReal   rsload;     /* the load factor of -restart_file's state */
+  PetscInt    nsteps, capsteps;
+  SgLoadStep *steps;
+  PetscBool   store_steps; /* keep each step's y and lam for the fields (SgContSetStoreSteps) */
+  Vec        *ysteps;
+  PetscReal **lamsteps;
+  PetscReal **yrsteps; /* capsteps: with friction, each kept step's slip reference (dim per contact vertex) */
+  PetscInt    ndv;     /* Dirichlet values per step (dim per Dirichlet id) */
+  PetscReal  *dvsteps; /* capsteps x ndv: each step's Dirichlet values when they were set (SgProblemSetDirichletValues),
                                 NaN rows for steps without; NULL while none was set */
   /* friction: the state of this controller's solves, not the problem's (another controller on the same problem has its
      own): the slip reference of its load step (2 n dim: of the unknowns, then of the full displacement; 0 until its first load step ends), copied into
      the contact object's working array before each use (SgContUseSlipReference), and the friction summary of its last
      KKT measures */
-  PetscReal   *yref;
+  PetscReal        *yref;
   SgFrictionSummary fsum;
   /* nested iteration (cont/nested.c): the first solve of the run starts from the solution of the same problem on
      coarser meshes (the fine one refined -cont_nested times fewer), interpolated, with the coarse controller's last
      gamma and shift */
-  PetscInt     nested;        /* -cont_nested: coarse levels (0: none) */
-  PetscBool    nested_inner;  /* the controller of a coarse level: -cont_nested is not read */
-  PetscBool    nested_start;  /* this solve starts from a coarser level (y, nested_lamhat, gamma_warm, V0unit) */
-  PetscReal   *nested_lamhat; /* the interpolated shift: n, then with friction the tangential one, n dim */
-  PetscInt     nested_done;   /* coarse levels solved */
-  PetscInt     nested_ssn_its, nested_ksp_its; /* their SSN steps and linear iterations */
-  PetscLogDouble nested_time; /* their time, set-up included */
+  PetscInt       nested;                         /* -cont_nested: coarse levels (0: none) */
+  PetscBool      nested_inner;                   /* the controller of a coarse level: -cont_nested is not read */
+  PetscBool      nested_start;                   /* this solve starts from a coarser level (y, nested_lamhat, gamma_warm, V0unit) */
+  PetscReal     *nested_lamhat;                  /* the interpolated shift: n, then with friction the tangential one, n dim */
+  PetscInt       nested_done;                    /* coarse levels solved */
+  PetscInt       nested_ssn_its, nested_ksp_its; /* their SSN steps and linear iterations */
+  PetscLogDouble nested_time;                    /* their time, set-up included */
 };
 
 extern PetscFunctionList SgContList;
-PetscErrorCode SgContStart(SgCont, PetscBool *);
-PetscErrorCode SgContNormalStiffness(SgCont, PetscReal[]);
-PetscErrorCode SgContSSN(SgCont, PetscReal, PetscBool *);
-PetscErrorCode SgContMeasure(SgCont);
-PetscErrorCode SgContUseSlipReference(SgCont);
-PetscErrorCode SgContAddGamma(SgCont, PetscReal);
-PetscErrorCode SgContFail(SgCont, const char[], ...);
-PetscErrorCode SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
-PetscErrorCode SgContCheck(SgCont, PetscBool *);
-PetscErrorCode SgContCheckBaseline(SgCont);
-PetscErrorCode SgContBoundFrame(SgCont, const char[], SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
-PetscErrorCode SgContCheckpointWrite(SgCont);
-PetscErrorCode SgContCheckpointWriteStepEnd(SgCont);
-PetscErrorCode SgContCheckpointRead(SgCont);
-PetscErrorCode SgContSaveState(SgCont, SgCheckpointWriter, PetscInt, const char *const[], const PetscReal[]);
-PetscErrorCode SgContLoadState(SgCont, SgCheckpointReader, PetscInt, const char *const[], PetscReal[]);
-const char    *SgContVerdict(SgCont);
-PetscBool      SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
-PetscBool      SgContGammaCap(SgCont, PetscReal, PetscReal *);
+PetscErrorCode           SgContStart(SgCont, PetscBool *);
+PetscErrorCode           SgContNormalStiffness(SgCont, PetscReal[]);
+PetscErrorCode           SgContSSN(SgCont, PetscReal, PetscBool *);
+PetscErrorCode           SgContMeasure(SgCont);
+PetscErrorCode           SgContUseSlipReference(SgCont);
+PetscErrorCode           SgContAddGamma(SgCont, PetscReal);
+PetscErrorCode           SgContFail(SgCont, const char[], ...);
+PetscErrorCode           SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
+PetscErrorCode           SgContCheck(SgCont, PetscBool *);
+PetscErrorCode           SgContCheckBaseline(SgCont);
+PetscErrorCode           SgContBoundFrame(SgCont, const char[], SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
+PetscErrorCode           SgContCheckpointWrite(SgCont);
+PetscErrorCode           SgContCheckpointWriteStepEnd(SgCont);
+PetscErrorCode           SgContCheckpointRead(SgCont);
+PetscErrorCode           SgContSaveState(SgCont, SgCheckpointWriter, PetscInt, const char *const[], const PetscReal[]);
+PetscErrorCode           SgContLoadState(SgCont, SgCheckpointReader, PetscInt, const char *const[], PetscReal[]);
+const char              *SgContVerdict(SgCont);
+PetscBool                SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, PetscReal *, PetscReal *, PetscReal *);
+PetscBool                SgContGammaCap(SgCont, PetscReal, PetscReal *);
 #define ValidCont(ct, arg) PetscCall(SgValidCont(ct, PETSC_FUNCTION_NAME, arg))
 PetscErrorCode SgContGammaPrecision(SgCont, PetscReal *);
 PetscErrorCode SgContCreate_None(SgCont);

@@ -24,10 +24,10 @@ typedef struct {
   PetscInt  max_it;     /* SSN steps per (P_gamma) */
   /* run time */
   SgCont    ct;
-  Vec       w;         /* the prospective Newton iterate */
-  void     *defctx;     /* KSPConvergedDefault's context */
+  Vec       w;      /* the prospective Newton iterate */
+  void     *defctx; /* KSPConvergedDefault's context */
   PetscReal rnorm0;
-  PetscReal kkt_next;   /* the KKT test waits until ||r|| / ||r_0|| falls below this */
+  PetscReal kkt_next; /* the KKT test waits until ||r|| / ||r_0|| falls below this */
   PetscBool on, last_full, stopped;
   PetscBool retry;         /* a failed SSN may be continued once at the same gamma */
   PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol or the KKT tolerance */
@@ -168,8 +168,8 @@ static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
 
 static PetscErrorCode Solve_Fast(SgCont ct)
 {
-  Fast       *f = (Fast *)ct->data;
-  SgSSN       s = ct->ssn;
+  Fast       *f   = (Fast *)ct->data;
+  SgSSN       s   = ct->ssn;
   KSP         ksp = ct->ksp;
   SNES        snes;
   SgSSNReason sr;
@@ -276,7 +276,7 @@ static PetscErrorCode View_Fast(SgCont ct, PetscViewer viewer)
 
 static PetscErrorCode Save_Fast(SgCont ct, SgCheckpointWriter w)
 {
-  Fast           *f                 = (Fast *)ct->data;
+  Fast           *f              = (Fast *)ct->data;
   const PetscReal v[NSTATE_FAST] = {f->nearly, f->nfull, f->nkkt, f->early, f->last_full};
 
   PetscFunctionBeginUser;
@@ -317,12 +317,12 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&f));
-  f->gamma           = 0;
-  f->start_rtol      = 1e-2;
-  f->loose           = 1e-1;
-  f->early           = PETSC_TRUE;
-  f->kkt_stop        = PETSC_TRUE;
-  f->max_it          = 30;
+  f->gamma               = 0;
+  f->start_rtol          = 1e-2;
+  f->loose               = 1e-1;
+  f->early               = PETSC_TRUE;
+  f->kkt_stop            = PETSC_TRUE;
+  f->max_it              = 30;
   ct->data               = f;
   ct->ops.setfromoptions = SetFromOptions_Fast;
   ct->ops.view           = View_Fast;

@@ -9,7 +9,7 @@
 typedef struct {
   PetscReal gamma1, tau, tau1, q, tau3;
   PetscReal gamma, J, dJ, C1, C2, E, rhoF, rhoC; /* the last step's path data (Model_IPF) */
-  PetscReal state[2]; /* between outer steps (checkpointed): J of the last step (J(0, y_0) = V(0) at first) and the
+  PetscReal state[2];                            /* between outer steps (checkpointed): J of the last step (J(0, y_0) = V(0) at first) and the
                          neighbourhood tau (0: the last problem, solved exactly) */
 } IPF;
 

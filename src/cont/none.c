@@ -24,10 +24,10 @@ static PetscErrorCode SetFromOptions_None(SgCont ct, PetscOptionItems *PetscOpti
 
 static PetscErrorCode Solve_None(SgCont ct)
 {
-  None     *nn = (None *)ct->data;
-  PetscBool ok;
-  PetscInt  its0 = ct->ssn_its;
-  PetscReal roundoff, V, dV;
+  None       *nn = (None *)ct->data;
+  PetscBool   ok;
+  PetscInt    its0 = ct->ssn_its;
+  PetscReal   roundoff, V, dV;
   SgSSNReason sr;
 
   PetscFunctionBeginUser;

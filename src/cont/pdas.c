@@ -12,7 +12,7 @@
 #include "cont/contimpl.h"
 
 typedef struct {
-  PetscReal c;     /* weight of the gap in the active-set test lam + c g > 0 (0: E / contact mesh size) */
+  PetscReal c; /* weight of the gap in the active-set test lam + c g > 0 (0: E / contact mesh size) */
   PetscInt  maxit;
   PetscBool monitor;
   PetscBool coupled; /* Coulomb: the slip force F lam_N t with the normal reaction of the same solve */
@@ -102,7 +102,7 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], const PetscReal nax[], const PetscReal yref[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
 {
   const SgContactView *c = &ct->cv;
-  const PetscScalar   *ya, *ra = NULL;
+  const PetscScalar   *ya, *ra  = NULL;
   PetscInt             dim, nch = 0;
   PetscReal            gmax = 0;
 
@@ -116,8 +116,8 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
     const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * nax[i] / c->w[i] : 0;
     PetscReal       g;
     SgContactLawBound(c->law, i, lamN, &g, NULL);
-    PetscReal       z[3] = {0, 0, 0}, nz = 0, dt = 0;
-    char            s;
+    PetscReal z[3] = {0, 0, 0}, nz = 0, dt = 0;
+    char      s;
     for (PetscInt j = 0; j < dim; j++) {
       if (j == axis[i]) continue;
       z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * (PetscRealPart(ya[c->off[i] + j]) - yref[i * dim + j]);
@@ -136,7 +136,7 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
     }
     if (s == 2)
       for (PetscInt j = 0; j < dim; j++) {
-        dt = PetscMax(dt, PetscAbsReal(z[j] / nz - tdir[i * dim + j]));
+        dt                = PetscMax(dt, PetscAbsReal(z[j] / nz - tdir[i * dim + j]));
         tdir[i * dim + j] = z[j] / nz;
       }
     nch += (s != st[i] || (s == 2 && (dt > 1e-12 || PetscAbsReal(g - gb[i]) > 1e-12 * gmax)));
@@ -155,7 +155,7 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
    run converged (the reason says how large the gaps and multipliers of the changing normal sets are). */
 static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next[], const PetscReal g[], PetscInt nchanged)
 {
-  PetscReal v[2] = {0, 0}, Knorm, ymax, ro;
+  PetscReal v[2]   = {0, 0}, Knorm, ymax, ro;
   PetscInt  loaded = 0;
 
   /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y||_inf / w): a body that
@@ -209,33 +209,33 @@ static PetscErrorCode PdasFrameFree(SgFrame *f, Mat *Af, Vec b, Vec *bw, Vec *yw
 
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
-  PDAS              *pd = (PDAS *)ct->data;
-  const SgContactView *c = &ct->cv;
-  PetscInt           dim;
-  Mat                A   = ct->J, K;
-  Vec                b;
-  PetscReal          E;
-  KSP                ksp = ct->ksp;
-  Vec                rhs, x, diag;
-  PetscInt          *axis, *rows, rstart, N, k, nhash = 0;
-  PetscReal         *sign, *g, dmean, hc = 0;
-  PetscInt64        *hash;
-  char              *act, *next;
-  PetscBool          done = PETSC_FALSE, ok;
-  PetscReal          kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
-  const PetscBool    fr = c->friction;
-  const PetscBool    coupled = (PetscBool)(c->coupled && pd->coupled); /* a bound linear in lam_N: dg lam_N */
-  char              *fst = NULL, *fnext = NULL;  /* friction state: 0 free, 1 stick, 2 slip */
-  PetscReal         *tdir = NULL, *gb = NULL;     /* slip direction (n*dim) and bound of the next solve */
-  PetscReal         *zn = NULL, *blk = NULL;      /* |z| at the state test; the slip blocks (3D) */
-  Vec                R = NULL;
+  PDAS                *pd = (PDAS *)ct->data;
+  const SgContactView *c  = &ct->cv;
+  PetscInt             dim;
+  Mat                  A = ct->J, K;
+  Vec                  b;
+  PetscReal            E;
+  KSP                  ksp = ct->ksp;
+  Vec                  rhs, x, diag;
+  PetscInt            *axis, *rows, rstart, N, k, nhash = 0;
+  PetscReal           *sign, *g, dmean, hc = 0;
+  PetscInt64          *hash;
+  char                *act, *next;
+  PetscBool            done    = PETSC_FALSE, ok;
+  PetscReal            kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
+  const PetscBool      fr      = c->friction;
+  const PetscBool      coupled = (PetscBool)(c->coupled && pd->coupled); /* a bound linear in lam_N: dg lam_N */
+  char                *fst = NULL, *fnext = NULL;                        /* friction state: 0 free, 1 stick, 2 slip */
+  PetscReal           *tdir = NULL, *gb = NULL;                          /* slip direction (n*dim) and bound of the next solve */
+  PetscReal           *zn = NULL, *blk = NULL;                           /* |z| at the state test; the slip blocks (3D) */
+  Vec                  R = NULL;
   /* the working coordinates: the contact frames where a normal is not an axis (SgContBoundFrame), else the original
      ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component on the axis dof */
-  SgFrame            f = NULL;
-  Mat                Kw, Af = NULL;
-  Vec                bw, yw;
-  PetscReal         *nax, *yrf = NULL;
-  const PetscReal   *yref;
+  SgFrame          f = NULL;
+  Mat              Kw, Af = NULL;
+  Vec              bw, yw;
+  PetscReal       *nax, *yrf = NULL;
+  const PetscReal *yref;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
@@ -350,7 +350,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscCall(VecGetArray(x, &xa));
     for (PetscInt i = 0; i < c->n; i++)
       if (act[i]) {
-        rows[nrows++]             = rstart + c->off[i] + axis[i];
+        rows[nrows++]           = rstart + c->off[i] + axis[i];
         xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
       }
     if (fr) {
@@ -360,14 +360,14 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
         for (PetscInt j = 0; j < dim; j++) {
           if (j == axis[i]) continue;
           if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
-            rows[nrows++]       = rstart + c->off[i] + j;
+            rows[nrows++]     = rstart + c->off[i] + j;
             xa[c->off[i] + j] = yref[i * dim + j];
           } else if (fst[i] == 2) {
             if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
-              const PetscInt     ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
-              PetscReal          gi, dg;
+              const PetscInt ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
+              PetscReal      gi, dg;
               SgContactLawBound(c->law, i, 0, &gi, &dg);
-              const PetscReal    fc  = dg * tdir[i * dim + j] * nax[i];
+              const PetscReal    fc = dg * tdir[i * dim + j] * nax[i];
               const PetscScalar *va;
               const PetscInt    *ca;
               PetscInt           nc;
@@ -384,7 +384,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
               PetscCall(VecRestoreArrayRead(bw, &ba));
               ncoupled++;
             } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
-            if (dim == 3) /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
+            if (dim == 3)                                                    /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
               for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
           }
         }
@@ -507,9 +507,9 @@ PetscErrorCode SgContCreate_PDAS(SgCont ct)
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&pd));
-  pd->maxit          = 100;
-  pd->coupled        = PETSC_TRUE;
-  ct->data           = pd;
+  pd->maxit              = 100;
+  pd->coupled            = PETSC_TRUE;
+  ct->data               = pd;
   ct->ops.setfromoptions = SetFromOptions_PDAS;
   ct->ops.view           = View_PDAS;
   ct->ops.solve          = Solve_PDAS;

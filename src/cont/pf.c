@@ -28,8 +28,8 @@ static PetscErrorCode Start_PF(SgCont ct)
   PF *pf = (PF *)ct->data;
 
   PetscFunctionBeginUser;
-  ct->gamma    = pf->gamma1;
-  pf->tauk     = 1; /* tau_k = tau0^k */
+  ct->gamma = pf->gamma1;
+  pf->tauk  = 1; /* tau_k = tau0^k */
   for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }

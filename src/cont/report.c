@@ -9,7 +9,7 @@ static PetscErrorCode SummaryLoadSteps(SgCont, SgSummary);
 static PetscErrorCode SummaryPath(SgCont ct, SgSummary sum)
 {
   const char   *names[] = {"path_gamma", "path_V", "path_dVdgamma", "path_C1", "path_C2", "path_E", "path_ssn_iterations", "path_rho_F", "path_rho_C", "path_infeasibility", "path_kkt_residual"};
-  PetscInt      n = 0, nrows;
+  PetscInt      n       = 0, nrows;
   PetscReal    *a[11];
   SgHistoryRow *rows;
 
@@ -334,7 +334,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
   if (loadsteps && nkept) {
     /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
-    PetscInt *idx, *num, m;
+    PetscInt  *idx, *num, m;
     PetscReal *times, t, *dv = NULL, *yr = NULL;
     PetscBool  dset;
     StepsCtx   sc;
@@ -409,9 +409,9 @@ PetscErrorCode SgContWriteLoadCurve(SgCont ct, const char file[])
 /* Per load step arrays in the summary (only for a run with load steps: a run without keeps its summary). */
 static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
 {
-  PetscReal *a[7];
-  PetscInt  *b[5], tot[3] = {0, 0, 0};
-  PetscBool  loadsteps;
+  PetscReal  *a[7];
+  PetscInt   *b[5], tot[3] = {0, 0, 0};
+  PetscBool   loadsteps;
   const char *rn[7] = {"load_factors", "load_step_obstacle_displacement", "load_step_normal_displacement_max", "load_step_contact_force", "load_step_kkt_residual", "load_step_energy", "load_step_time"};
   const char *in[5] = {"load_step_outer_iterations", "load_step_ssn_iterations", "load_step_ksp_iterations", "load_step_active_set_size", "load_step_converged"};
 
@@ -422,18 +422,18 @@ static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
   for (PetscInt j = 0; j < 5; j++) PetscCall(PetscMalloc1(ct->nsteps + 1, &b[j]));
   for (PetscInt k = 0; k < ct->nsteps; k++) {
     const SgLoadStep *r = &ct->steps[k];
-    a[0][k] = r->t;
-    a[1][k] = r->obstacle_displacement;
-    a[2][k] = r->normal_displacement_max;
-    a[3][k] = r->force;
-    a[4][k] = r->kkt;
-    a[5][k] = r->energy;
-    a[6][k] = r->time;
-    b[0][k] = r->outer;
-    b[1][k] = r->ssn_its;
-    b[2][k] = r->ksp_its;
-    b[3][k] = r->nactive;
-    b[4][k] = r->converged;
+    a[0][k]             = r->t;
+    a[1][k]             = r->obstacle_displacement;
+    a[2][k]             = r->normal_displacement_max;
+    a[3][k]             = r->force;
+    a[4][k]             = r->kkt;
+    a[5][k]             = r->energy;
+    a[6][k]             = r->time;
+    b[0][k]             = r->outer;
+    b[1][k]             = r->ssn_its;
+    b[2][k]             = r->ksp_its;
+    b[3][k]             = r->nactive;
+    b[4][k]             = r->converged;
     tot[0] += r->outer;
     tot[1] += r->ssn_its;
     tot[2] += r->ksp_its;

@@ -252,10 +252,10 @@ static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *f
    values (non-proportional loading) and friction numbers. A run without load steps writes none of it. */
 static PetscErrorCode LoadStepsSave(SgCont ct, SgCheckpointWriter w, PetscBool step_open)
 {
-  PetscBool  loadsteps, kept;
-  PetscReal  load, *a;
-  PetscInt   open = step_open, nkept;
-  const SgLoadStep *s = ct->steps;
+  PetscBool         loadsteps, kept;
+  PetscReal         load, *a;
+  PetscInt          open = step_open, nkept;
+  const SgLoadStep *s    = ct->steps;
 
   PetscFunctionBeginUser;
   PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
@@ -387,7 +387,7 @@ static PetscErrorCode LoadStepsData(SgCont ct, SgCheckpointReader r, const LoadH
   ct->steps  = steps;
   ct->nsteps = ct->capsteps = h->has ? h->nsteps : 0;
   if (h->nkept > 0) PetscCall(LoadKeptSteps(ct, r, h->nkept)); /* the fields of the steps before the restart */
-  if (h->ndv > 0) { /* the finished steps' Dirichlet values */
+  if (h->ndv > 0) {                                            /* the finished steps' Dirichlet values */
     PetscInt m;
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     if (h->ndv != m) PetscCall(SgCheckpointReaderAbandon(&r));

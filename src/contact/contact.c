@@ -285,12 +285,12 @@ static PetscErrorCode PairSetUp(SgContact c)
 
 PetscErrorCode SgContactSetUp(SgContact c)
 {
-  const SgMesh    *m;
-  PetscInt         dim = c->dim;
-  PetscInt         nfac, *facets, *part, nloc = 0, nfglob;
-  Vec              wl, nl, wg, ng;
-  PetscScalar     *wa, *na;
-  PetscSection     ws, ns;
+  const SgMesh *m;
+  PetscInt      dim = c->dim;
+  PetscInt      nfac, *facets, *part, nloc = 0, nfglob;
+  Vec           wl, nl, wg, ng;
+  PetscScalar  *wa, *na;
+  PetscSection  ws, ns;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDMs(c->prob, &c->dm, &c->dmVert, &c->dmVec, NULL));
@@ -394,7 +394,7 @@ PetscErrorCode SgContactSetUp(SgContact c)
     PetscCheck(nn > 1e-12 * c->w[nloc], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "contact vertex %" PetscInt_FMT " has no defined normal (opposite facet normals cancel)", v);
     for (PetscInt k = 0; k < dim; k++) c->normal[nloc * dim + k] = PetscRealPart(na[noff + k]) / nn;
     PetscCall(SgObstacleGap(c->obs, &m->x[v * dim], &c->normal[nloc * dim], &c->d[nloc]));
-        nloc++;
+    nloc++;
   }
   c->n = nloc;
   PetscCall(VecRestoreArray(wl, &wa));
@@ -410,14 +410,14 @@ PetscErrorCode SgContactSetUp(SgContact c)
 PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
 {
   PetscFunctionBeginUser;
-  v->n       = c->n;
-  v->nglobal = c->nglobal;
-  v->vert    = c->vert;
-  v->off     = c->off;
-  v->w       = c->w;
-  v->normal  = c->normal;
-  v->d       = c->d;
-  v->area    = c->area;
+  v->n        = c->n;
+  v->nglobal  = c->nglobal;
+  v->vert     = c->vert;
+  v->off      = c->off;
+  v->w        = c->w;
+  v->normal   = c->normal;
+  v->d        = c->d;
+  v->area     = c->area;
   v->law      = c->law;
   v->friction = c->friction;
   v->coupled  = c->law->coupled;
@@ -638,8 +638,8 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], c
     nt += lt[k] * lt[k];
     nu += u[k] * u[k];
   }
-  nt      = PetscSqrtReal(nt);
-  nu      = PetscSqrtReal(nu);
+  nt = PetscSqrtReal(nt);
+  nu = PetscSqrtReal(nu);
   SgContactLawBound(c->law, i, lamN, gb, NULL);
   partial = (PetscBool)(c->haspartial && SgMeshPartial(c->mesh, v));
   *ntfree = nt; /* the part the solution must keep within the bound: that of the free components */
@@ -652,7 +652,7 @@ static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], c
     *ntfree = PetscSqrtReal(*ntfree);
   }
   if (c->law->coupled ? !act : *gb <= noise) return SG_FRICTION_FREE; /* a bound from lam_N: free out of contact */
-  if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) { /* prescribed sliding */
+  if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) {     /* prescribed sliding */
     for (PetscInt k = 0; k < dim; k++) lt[k] = *gb * u[k] / nu;
     return SG_FRICTION_SLIP;
   }
@@ -837,10 +837,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       char            st;
       for (PetscInt k = 0; k < dim; k++) {
         const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
-        r[k]  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
-        dy[k] = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
+        r[k]                  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
+        dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
         if (ul && !c->norecord) {
-          c->ypfull[i * dim + k]              = PetscRealPart(ul[c->mesh->loff[v] + k]);
+          c->ypfull[i * dim + k]          = PetscRealPart(ul[c->mesh->loff[v] + k]);
           c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
         }
       }
@@ -859,8 +859,8 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
         for (PetscInt k = 0; k < dim; k++)
           if (!(c->haspartial && SgMeshFixed(c->mesh, v, k))) ra[c->off[i] + k] = rn * c->normal[i * dim + k];
       }
-      nt = PetscSqrtReal(nt);
-      un = PetscSqrtReal(un);
+      nt    = PetscSqrtReal(nt);
+      un    = PetscSqrtReal(un);
       fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
       fm[1] = PetscMax(fm[1], un);
       f[5] += c->w[i] * nt;
@@ -904,13 +904,13 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscBool act = (PetscBool)c->kact[i]; /* the active set of the fields and of the friction states too */
-    const PetscReal rf  = SafeRatio(c->w[i] * lam[i], sc.F), rg = SafeRatio(-PetscMin(0, g[i]), sc.Y);
-    if (!act && rf < rg) letgo = PetscMax(letgo, c->w[i] * lam[i]); /* let go: its force is unbalanced */
-    s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                      /* infeasibility^2 */
+    const PetscReal rf = SafeRatio(c->w[i] * lam[i], sc.F), rg = SafeRatio(-PetscMin(0, g[i]), sc.Y);
+    if (!act && rf < rg) letgo = PetscMax(letgo, c->w[i] * lam[i]);                      /* let go: its force is unbalanced */
+    s[0] += c->w[i] * PetscSqr(PetscMax(0, g[i]));                                       /* infeasibility^2 */
     s[1] += c->w[i] * (act ? PetscSqr(PetscMin(0, g[i])) : PetscSqr(PetscMax(0, g[i]))); /* complementarity^2 */
-    s[4] += c->w[i] * PetscMax(0, g[i]);                                                /* rho_F */
-    s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                   /* rho_C */
-    s[6] += c->w[i] * lam[i];                                                           /* contact force */
+    s[4] += c->w[i] * PetscMax(0, g[i]);                                                 /* rho_F */
+    s[5] += c->w[i] * (act ? -PetscMin(0, g[i]) : PetscMax(0, g[i]));                    /* rho_C */
+    s[6] += c->w[i] * lam[i];                                                            /* contact force */
     s[7] += (act ? 1 : 0);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
@@ -918,14 +918,14 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   /* the largest nodal force left unbalanced, against the largest force acting: its round-off floor rnoise / F is
      reported beside it (kkt->roundoff) */
   PetscCall(VecNorm(R, NORM_INFINITY, &nrm));
-  kkt->uscale          = sc.Y;
-  kkt->lscale          = sc.Y * PetscSqrtReal(c->area);
-  kkt->fscale          = sc.F;
-  kkt->roundoff        = SafeRatio(sc.rnoise, sc.F);
-  kkt->balance         = SafeRatio(bal, sc.l1);
-  kkt->penetration     = PetscSqrtReal(s[0]);
-  kkt->equilibrium     = SafeRatio(nrm, sc.F);
-  kkt->infeasibility   = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
+  kkt->uscale        = sc.Y;
+  kkt->lscale        = sc.Y * PetscSqrtReal(c->area);
+  kkt->fscale        = sc.F;
+  kkt->roundoff      = SafeRatio(sc.rnoise, sc.F);
+  kkt->balance       = SafeRatio(bal, sc.l1);
+  kkt->penetration   = PetscSqrtReal(s[0]);
+  kkt->equilibrium   = SafeRatio(nrm, sc.F);
+  kkt->infeasibility = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
   if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
   kkt->complementarity = PetscMax(SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale), SafeRatio(letgo, sc.F));
   kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound) : SafeRatio(mx[1], sc.F);
@@ -1008,9 +1008,9 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   }
   PetscCall(PetscFree(g));
   {
-    Vec          ol;
-    PetscScalar *oa;
-    PetscSection vs;
+    Vec            ol;
+    PetscScalar   *oa;
+    PetscSection   vs;
     const PetscInt dim = c->dim;
     PetscCall(DMGetLocalSection(c->dmVec, &vs));
     PetscCall(DMGetLocalVector(c->dmVec, &ol));

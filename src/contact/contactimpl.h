@@ -10,7 +10,7 @@ struct _n_SgObstacle {
   MPI_Comm  comm;
   char      type[64];
   PetscInt  dim;
-  PetscReal p[16]; /* shape parameters */
+  PetscReal p[16];          /* shape parameters */
   PetscReal translation[3]; /* -obstacle_translation: a rigid translation of any obstacle at full load */
   PetscReal placement;      /* the part of it applied (the load factor; 1 without load steps) */
   PetscErrorCode (*gap)(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *);
@@ -52,50 +52,50 @@ struct _n_SgContactLaw {
   PetscBool        friction; /* a tangential part (false: frictionless, the solvers' frictionless paths) */
   PetscBool        coupled;  /* the bound depends on lam_N: nonsymmetric Jacobians, Coulomb's fallbacks */
   SgContactLawOps  ops;
-  void            *data;     /* the type's parameters */
+  void            *data; /* the type's parameters */
 };
 
 struct _n_SgContact {
   SgElasticity prob;
   /* read once from the elasticity object */
-  MPI_Comm      comm;
-  PetscInt      dim;
-  DM            dm, dmVert, dmVec;
-  const SgMesh *mesh;
-  Mat           K;
-  Vec           b;
-  char          obstype[64]; /* obstacle type given through the interface ("": plane unless -obstacle_type) */
-  SgBoundary bnd;
-  SgObstacle obs;
-  PetscInt   n, nglobal; /* contact vertices owned here / in all */
-  PetscInt  *vert;       /* local vertex number */
-  PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
-  PetscReal *normal;     /* outward unit normals, n*dim */
-  PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
-  PetscReal *d;          /* gap to the obstacle along the normal (at the obstacle's current placement) */
-  PetscBool  obsnormal;  /* -contact_normal obstacle: normal = -n_o and d = g, the obstacle's signed distance and
+  MPI_Comm          comm;
+  PetscInt          dim;
+  DM                dm, dmVert, dmVec;
+  const SgMesh     *mesh;
+  Mat               K;
+  Vec               b;
+  char              obstype[64]; /* obstacle type given through the interface ("": plane unless -obstacle_type) */
+  SgBoundary        bnd;
+  SgObstacle        obs;
+  PetscInt          n, nglobal; /* contact vertices owned here / in all */
+  PetscInt         *vert;       /* local vertex number */
+  PetscInt         *off;        /* offset of its first dof in the local part of a global displacement vector */
+  PetscReal        *normal;     /* outward unit normals, n*dim */
+  PetscReal        *w;          /* lumped boundary weights int_Gamma_c phi_i */
+  PetscReal        *d;          /* gap to the obstacle along the normal (at the obstacle's current placement) */
+  PetscBool         obsnormal;  /* -contact_normal obstacle: normal = -n_o and d = g, the obstacle's signed distance and
                             normal at the closest point (SgObstacleDistance); body: the facets' normal, d along it */
-  PetscReal  area;
-  char      *prefix;
-  SgContactLaw   law;        /* -friction_type and its parameters */
-  PetscBool      friction;   /* the law has a tangential part */
-  PetscReal      fgfac;      /* -friction_gamma_factor c: gamma_T = c gamma (the law's) */
-  PetscReal     *xc;         /* the coordinates of the contact vertices, n dim (for the law) */
-  SgFrictionSummary fsum;    /* of the last SgContactKKT */
-  PetscReal     *yref;       /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
+  PetscReal         area;
+  char             *prefix;
+  SgContactLaw      law;      /* -friction_type and its parameters */
+  PetscBool         friction; /* the law has a tangential part */
+  PetscReal         fgfac;    /* -friction_gamma_factor c: gamma_T = c gamma (the law's) */
+  PetscReal        *xc;       /* the coordinates of the contact vertices, n dim (for the law) */
+  SgFrictionSummary fsum;     /* of the last SgContactKKT */
+  PetscReal        *yref;     /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
                                 tangential law acts on the slip increment T_i (y_i - yref_i) */
   /* prescribed tangential motion (friction): the fixed components of partly fixed contact vertices hold Dirichlet
      data, not unknowns; their slip is the data's increment, and where a Dirichlet facet is a contact facet too its
      reaction is a traction on Gamma_c (the friction force, up to the bound) */
-  PetscBool  haspartial;     /* some contact vertex, on some rank, has fixed components */
-  PetscBool  hasdface;       /* some contact vertex has components fixed by a Dirichlet facet of Gamma_c */
-  PetscInt  *dmask;          /* per contact vertex: those components (bits) */
-  PetscReal *ypref;          /* the full displacement at the start of the load step, n*dim (used on fixed components):
+  PetscBool  haspartial; /* some contact vertex, on some rank, has fixed components */
+  PetscBool  hasdface;   /* some contact vertex has components fixed by a Dirichlet facet of Gamma_c */
+  PetscInt  *dmask;      /* per contact vertex: those components (bits) */
+  PetscReal *ypref;      /* the full displacement at the start of the load step, n*dim (used on fixed components):
                                 the second half of yref */
-  PetscReal *ypfull;         /* the full displacement of the last recorded SgContactKKT, n*dim, and (from n*dim on)
+  PetscReal *ypfull;     /* the full displacement of the last recorded SgContactKKT, n*dim, and (from n*dim on)
                                 its y: SgContactSetSlipReference of that y takes the data of that call */
   PetscBool  haverecord;
-  PetscBool  norecord;       /* SgContactKKT for the fields: the friction summary and the record left alone */
+  PetscBool  norecord; /* SgContactKKT for the fields: the friction summary and the record left alone */
   /* per contact vertex, of the last SgContactKKT: the multiplier, the active flag, and with friction lam_T, the slip
      and the state (the fields and the summary's vectors are these numbers) */
   PetscReal *klam, *klt, *kslip;
@@ -116,17 +116,17 @@ struct _n_SgContact {
    SgProblemView through it. */
 struct _n_SgProblem {
   struct _p_PetscObject hdr;
-  MPI_Comm             comm;        /* the caller's communicator (the header keeps PETSc's duplicate) */
-  DM                   dm;          /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
-  SgElasticitySettings settings;    /* material and boundary parts given through the interface */
-  SgBoundary           contact;     /* the contact boundary given through the interface */
-  SgBoundary           master;      /* two bodies: the master side given through the interface (SG_BOUNDARY_CONTACT_MASTER) */
-  char                 obstacle[64];/* obstacle type given through the interface ("" : from the options) */
-  SgElasticity         el;
-  SgContact            c;           /* NULL: no contact boundary (linear elasticity) */
-  PetscBool            setfromoptions, setup;
-  PetscBool            setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
-  PetscBool            load_set;    /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
-  PetscLogDouble       t_create;
-  PetscInt             values_dim[4]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
+  MPI_Comm              comm;         /* the caller's communicator (the header keeps PETSc's duplicate) */
+  DM                    dm;           /* the caller's mesh (SgProblemSetDM), or NULL: from the options */
+  SgElasticitySettings  settings;     /* material and boundary parts given through the interface */
+  SgBoundary            contact;      /* the contact boundary given through the interface */
+  SgBoundary            master;       /* two bodies: the master side given through the interface (SG_BOUNDARY_CONTACT_MASTER) */
+  char                  obstacle[64]; /* obstacle type given through the interface ("" : from the options) */
+  SgElasticity          el;
+  SgContact             c; /* NULL: no contact boundary (linear elasticity) */
+  PetscBool             setfromoptions, setup;
+  PetscBool             setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
+  PetscBool             load_set;     /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
+  PetscLogDouble        t_create;
+  PetscInt              values_dim[4]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
 };

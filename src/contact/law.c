@@ -179,8 +179,8 @@ PetscErrorCode SgContactLawRegister(const char name[], PetscErrorCode (*create)(
 /* The names of the registered laws as "none, tresca, coulomb, ..." for messages. */
 static PetscErrorCode LawNames(char buf[], size_t len)
 {
-  const char       **names;
-  int                n;
+  const char **names;
+  int          n;
 
   PetscFunctionBeginUser;
   buf[0] = 0;
@@ -217,8 +217,8 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
   PetscCall(PetscStrncpy(law->type, type, sizeof(law->type)));
   PetscCall(PetscSNPrintf(law->desc, sizeof(law->desc), "friction law %s", type));
   {
-    const char       **all;
-    int                n;
+    const char **all;
+    int          n;
     PetscCall(PetscFunctionListGet(SgContactLawList, &all, &n));
     law->id = n;
     for (int k = 0; k < n && all[k]; k++)
@@ -235,8 +235,8 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
      -friction_coefficient, run with -friction_type tresca) keeps working, a bad value is never silently ignored, and
      -help lists every type's options */
   {
-    const char       **all;
-    int                n;
+    const char **all;
+    int          n;
     PetscCall(PetscFunctionListGet(SgContactLawList, &all, &n));
     for (int k = 0; k < n && all[k]; k++) {
       SgContactLaw o;
@@ -309,8 +309,8 @@ PetscErrorCode SgContactLawGetId(SgContactLaw law, PetscInt *id)
 /* the name of the law of number id (NULL if there is none) */
 PetscErrorCode SgContactLawGetTypeName(PetscInt id, const char **name)
 {
-  const char       **all;
-  int                n;
+  const char **all;
+  int          n;
 
   PetscFunctionBeginUser;
   *name = NULL;

@@ -171,7 +171,7 @@ static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMorta
   {
     PetscReal as = Cross2(S[0], S[1], S[2]), am = Cross2(M[0], M[1], M[2]);
     if (PetscAbsReal(as) <= 1e-14 * l * l || PetscAbsReal(am) <= 1e-12 * l * l) PetscFunctionReturn(0); /* degenerate or edge-on */
-    if (as < 0) so[1] = 2, so[2] = 1; /* walk both counter-clockwise */
+    if (as < 0) so[1] = 2, so[2] = 1;                                                                   /* walk both counter-clockwise */
     if (am < 0) mo[1] = 2, mo[2] = 1;
   }
   for (PetscInt i = 0; i < 3; i++) P[i][0] = M[mo[i]][0], P[i][1] = M[mo[i]][1];

@@ -78,8 +78,8 @@ PetscErrorCode SgObstacleCreate_Plane(SgObstacle o)
 /* ---- parabola: d = a |x_t - c_t|^2 + offset, x_t the tangential part (Example 1: 0.003 (x1 - 1.5)^2 + 0.001) */
 static PetscErrorCode Gap_Parabola(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
 {
-  const PetscReal  a = o->p[0], off = o->p[1], *c = o->p + 2;
-  PetscReal        r[3], rn = 0, rt2 = 0;
+  const PetscReal a = o->p[0], off = o->p[1], *c = o->p + 2;
+  PetscReal       r[3], rn = 0, rt2 = 0;
 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < o->dim; k++) {
@@ -134,9 +134,9 @@ static PetscErrorCode SetFromOptions_Parabola(SgObstacle o, PetscOptionItems *Pe
 
   PetscFunctionBeginUser;
   o->p[5 + o->dim - 1] = 1;
-  o->p[0] = 0.003;
-  o->p[1] = 0.001;
-  o->p[2] = 1.5;
+  o->p[0]              = 0.003;
+  o->p[1]              = 0.001;
+  o->p[2]              = 1.5;
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_parabola_a", "Curvature coefficient a of d = a |x_t - c_t|^2 + offset", &o->p[0], NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-obstacle_parabola_offset", "Gap at the vertex of the parabola", &o->p[1], NULL));
   PetscCall(ReadVector(PetscOptionsObject, o->comm, "-obstacle_parabola_center", "Vertex of the parabola (its normal component is ignored)", o->dim, o->p + 2));
@@ -163,8 +163,8 @@ PetscErrorCode SgObstacleCreate_Parabola(SgObstacle o)
    plane (z - c).u = 0, which is the obstacle away from the ball (Example 2: c = (-0.3,0,-1), R = 0.5). */
 static PetscErrorCode Gap_Ball(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d)
 {
-  const PetscReal  R = o->p[0], *c = o->p + 1, *u = o->p + 4;
-  PetscReal        xc[3], b = 0, xc2 = 0, nu = 0, disc, t;
+  const PetscReal R = o->p[0], *c = o->p + 1, *u = o->p + 4;
+  PetscReal       xc[3], b = 0, xc2 = 0, nu = 0, disc, t;
 
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < o->dim; k++) {
@@ -177,7 +177,7 @@ static PetscErrorCode Gap_Ball(SgObstacle o, const PetscReal x[], const PetscRea
   disc = b * b - (xc2 - R * R);
   if (disc >= 0) {
     PetscReal h = 0;
-    t = -b - PetscSqrtReal(disc);
+    t           = -b - PetscSqrtReal(disc);
     for (PetscInt k = 0; k < o->dim; k++) h += (xc[k] + t * n[k]) * u[k];
     if (h >= 0) {
       *d = t;
@@ -278,7 +278,7 @@ PetscErrorCode SgObstacleCreate(MPI_Comm comm, const char prefix[], PetscInt dim
   PetscCall(ReadVector(PetscOptionsObject, comm, "-obstacle_translation", "Rigid translation of the obstacle (any type); with -load_steps it is applied in proportion to the load factor", dim, o->translation));
   PetscOptionsEnd();
   o->placement = 1;
-  *obs = o;
+  *obs         = o;
   PetscFunctionReturn(0);
 }
 

@@ -13,15 +13,15 @@
 #include <ctype.h>
 
 typedef struct {
-  char      file[PETSC_MAX_PATH_LEN];
-  PetscReal shift[3], scale; /* placement: a CAD point z sits at scale z + shift */
-  PetscReal msize;           /* tessellation size (CAD units) */
-  PetscBool solid;           /* volumes (3D) / surfaces (2D): inside by parity */
-  PetscInt  nel;             /* tessellation: triangles (3D) or segments (2D) */
-  double   *xyz;             /* their vertices, 3 coordinates each, dim vertices per element */
-  int      *tag;             /* the CAD face (3D) or curve (2D) of each element */
-  double    len;             /* the diagonal of the CAD model's bounding box */
-  double    *dev;            /* per CAD entity tag: how far its tessellation strays from it (at element centres) */
+  char       file[PETSC_MAX_PATH_LEN];
+  PetscReal  shift[3], scale; /* placement: a CAD point z sits at scale z + shift */
+  PetscReal  msize;           /* tessellation size (CAD units) */
+  PetscBool  solid;           /* volumes (3D) / surfaces (2D): inside by parity */
+  PetscInt   nel;             /* tessellation: triangles (3D) or segments (2D) */
+  double    *xyz;             /* their vertices, 3 coordinates each, dim vertices per element */
+  int       *tag;             /* the CAD face (3D) or curve (2D) of each element */
+  double     len;             /* the diagonal of the CAD model's bounding box */
+  double    *dev;             /* per CAD entity tag: how far its tessellation strays from it (at element centres) */
   int        maxent;
   PetscReal *hit, *sorted, *roott; /* work: ray parameters of candidate and exact crossings and of refined ones */
   int       *hitel, *roottag;
@@ -31,8 +31,8 @@ typedef struct {
 } Obstacle_CAD;
 
 static PetscBool     gmsh_up = PETSC_FALSE;
-static PetscLogEvent CAD_SetUp, CAD_Gap; /* -log_view: reading and tessellating the file; the gap queries */
-static char      gmsh_file[PETSC_MAX_PATH_LEN]; /* the file gmsh's current model was read from */
+static PetscLogEvent CAD_SetUp, CAD_Gap;            /* -log_view: reading and tessellating the file; the gap queries */
+static char          gmsh_file[PETSC_MAX_PATH_LEN]; /* the file gmsh's current model was read from */
 
 static PetscErrorCode GmshFinalize(void)
 {
@@ -97,7 +97,7 @@ static PetscErrorCode CadLoad(SgObstacle o, Obstacle_CAD *cad)
 static PetscErrorCode CadRefuseMeshFile(SgObstacle o, const char file[])
 {
   const char *mesh[] = {"stl", "msh", "vtk", "vtu", "unv", "mesh", "bdf", "nas", "inp", "med", "cgns", "ply", "ply2", "off", "obj", "su2", "wrl", "vrml", "x3d", "p3d", "diff"};
-  const char *dot    = strrchr(file, '.'), *slash = strrchr(file, '/');
+  const char *dot = strrchr(file, '.'), *slash = strrchr(file, '/');
   char        ext[16];
   size_t      k;
 
@@ -446,7 +446,7 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
     if (DistTessellation(cad, dim, tag, y) > slack) continue;
     if (!found || (inside ? t > best : t < best)) best = t;
     cad->rmax = PetscMax(cad->rmax, r);
-    found = PETSC_TRUE;
+    found     = PETSC_TRUE;
   }
   if (!found && fexact) { /* no candidate made exact: the tessellation's crossing */
     best  = texact;
@@ -464,14 +464,22 @@ static PetscErrorCode Gap_CAD(SgObstacle o, const PetscReal xb[], const PetscRea
    generic directions (a third decides when they disagree: a ray through an edge of the tessellation) */
 static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
 {
-  const double dirs[3][3] = {{0.5236, 0.6471, 0.5539}, {-0.6133, 0.2719, -0.7417}, {0.3013, -0.8429, 0.4458}};
-  const double dirs2[3][3] = {{0.8316, 0.5554, 0}, {-0.4226, 0.9063, 0}, {-0.7071, -0.7071, 0}};
-  double       tol = 1e-9 * cad->len, t, out;
-  int          vote = 0;
+  const double dirs[3][3] = {
+      { 0.5236,  0.6471,  0.5539},
+      {-0.6133,  0.2719, -0.7417},
+      { 0.3013, -0.8429,  0.4458}
+  };
+  const double dirs2[3][3] = {
+      { 0.8316,  0.5554, 0},
+      {-0.4226,  0.9063, 0},
+      {-0.7071, -0.7071, 0}
+  };
+  double tol  = 1e-9 * cad->len, t, out;
+  int    vote = 0;
 
   for (int r = 0; r < 3; r++) {
-    double    n[3];
-    PetscInt  nh = 0, nout = 0;
+    double     n[3];
+    PetscInt   nh = 0, nout = 0;
     PetscReal *ts = cad->sorted;
     for (int k = 0; k < 3; k++) n[k] = dim == 3 ? dirs[r][k] : dirs2[r][k];
     if (dim == 3) {
@@ -502,9 +510,9 @@ static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
    an error. */
 static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], const PetscReal xb[], double z[3], double *h, int *btag_, double bpar[2])
 {
-  PetscInt dim = o->dim;
-  int      sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
-  double   q[3], zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
+  PetscInt  dim  = o->dim;
+  int       sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
+  double    q[3], zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
   PetscBool found = PETSC_FALSE;
 
   PetscFunctionBeginUser;
@@ -518,7 +526,7 @@ static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], c
     }
   }
   for (PetscInt e = 0; e < cad->nel && ntag < 64; e++) { /* the entities near it */
-    int       tag = cad->tag[e];
+    int       tag  = cad->tag[e];
     PetscBool seen = PETSC_FALSE;
     ClosestElement(dim, &cad->xyz[e * dim * 3], x, q);
     if (Dist3(x, q) > dt + 8 * cad->dev[tag] + tol) continue;
@@ -609,7 +617,7 @@ static PetscErrorCode Distance_CAD(SgObstacle o, const PetscReal xb[], PetscReal
     *g = cad->scale * (inside ? -h : h);
   } else { /* on the surface: the normal from the closest points of points delta away along the axes (their offset
               x + delta e_k - z_k is delta (e_k.n) n), oriented by the side of the point off along it */
-    double    best = 0, y[3], dot = 0, delta = 1e-5 * cad->len;
+    double best = 0, y[3], dot = 0, delta = 1e-5 * cad->len;
     PetscCheck(btag >= 0 && cad->solid, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies on %s, where the obstacle's normal cannot be computed", cad->file, (double)xb[0], (double)xb[1], (double)(dim == 3 ? xb[2] : 0), btag < 0 ? "an edge or corner of the obstacle" : "a sheet (a model without volumes has no inside to orient it)");
     for (PetscInt k = 0; k < dim; k++) {
       double yk[3] = {x[0], x[1], x[2]}, zy[3], hy, py[2];

@@ -50,7 +50,7 @@ static void ElementBox(const Obstacle_Mesh *m, PetscInt e, double lo[3], double 
 
 static PetscErrorCode BuildNode(Obstacle_Mesh *m, PetscInt id, PetscInt start, PetscInt count, KeyId *work)
 {
-  MeshNode *nd = &m->node[id];
+  MeshNode *nd     = &m->node[id];
   double    clo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, chi[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, pad = 1e-12 * m->len;
   int       axis = 0;
   PetscInt  half;
@@ -120,7 +120,7 @@ typedef struct {
 
 static void ClosestOnElement(const Obstacle_Mesh *m, PetscInt e, const double p[3], MeshClosest *c)
 {
-  const double eps = 1e-12;
+  const double  eps = 1e-12;
   const double *a = Vtx(m, e, 0), *b = Vtx(m, e, 1);
 
   c->e    = e;
@@ -158,7 +158,8 @@ static void ClosestOnElement(const Obstacle_Mesh *m, PetscInt e, const double p[
       }
       if (d2 < c->d2) {
         c->d2   = d2;
-        c->feat = u <= 0 ? 4 + k : u >= 1 ? 4 + (k + 1) % 3 : 1 + k;
+        c->feat = u <= 0 ? 4 + k : u >= 1 ? 4 + (k + 1) % 3
+                                          : 1 + k;
         for (int j = 0; j < 3; j++) c->q[j] = q[j];
       }
     }
@@ -169,7 +170,8 @@ static void ClosestOnElement(const Obstacle_Mesh *m, PetscInt e, const double p[
       uu += PetscSqr(b[j] - a[j]);
     }
     u       = u / uu;
-    c->feat = u <= 0 ? 4 : u >= 1 ? 5 : 0;
+    c->feat = u <= 0 ? 4 : u >= 1 ? 5
+                                  : 0;
     u       = PetscMin(1, PetscMax(0, u));
     c->d2   = 0;
     for (int j = 0; j < 3; j++) {
@@ -190,8 +192,8 @@ static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *
   PetscInt stack[256], sp = 0;
 
   PetscMemzero(best, sizeof(*best));
-  best->d2 = PETSC_MAX_REAL;
-  best->e  = PETSC_MAX_INT;
+  best->d2    = PETSC_MAX_REAL;
+  best->e     = PETSC_MAX_INT;
   stack[sp++] = 0;
   while (sp) {
     const MeshNode *nd = &m->node[stack[--sp]];
@@ -257,8 +259,8 @@ static void SignedDistance(const Obstacle_Mesh *m, const double p[3], const Mesh
 /* the line x + t n enters the obstacle through element e at *t (n . m < 0, the crossing inside the element) */
 static PetscBool RayHit(const Obstacle_Mesh *m, PetscInt e, const double x[3], const double n[3], double *t)
 {
-  const double  eps = 1e-12, *mm = &m->nrm[3 * e], *a = Vtx(m, e, 0), *b = Vtx(m, e, 1);
-  double        dn = Dot(n, mm), ax[3], y[3], w[3], e1[3];
+  const double eps = 1e-12, *mm = &m->nrm[3 * e], *a = Vtx(m, e, 0), *b = Vtx(m, e, 1);
+  double       dn = Dot(n, mm), ax[3], y[3], w[3], e1[3];
 
   if (!(dn < -1e-12)) return PETSC_FALSE;
   for (int k = 0; k < 3; k++) ax[k] = a[k] - x[k];

@@ -8,7 +8,7 @@
 static void FileExtension(const char file[], char ext[], size_t len)
 {
   const char *dot = strrchr(file, '.'), *slash = strrchr(file, '/');
-  size_t      k   = 0;
+  size_t      k = 0;
 
   ext[0] = 0;
   if (!dot || (slash && dot < slash) || strlen(dot + 1) >= len) return;

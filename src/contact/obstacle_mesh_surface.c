@@ -12,9 +12,9 @@ static void Cross(const double a[3], const double b[3], double c[3])
 /* Vertices welded (equal coordinates are one vertex), checks, normals, edges and pseudo-normals. */
 PetscErrorCode SgObstacleMeshBuildSurface(SgObstacle o, Obstacle_Mesh *m, const Soup *s)
 {
-  PetscInt nv = m->nv, np = s->n * nv, dim = o->dim;
-  KeyId   *key;
-  double   lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+  PetscInt  nv = m->nv, np = s->n * nv, dim = o->dim;
+  KeyId    *key;
+  double    lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
   PetscInt *order;
 
   PetscFunctionBeginUser;
@@ -94,7 +94,7 @@ PetscErrorCode SgObstacleMeshOrient(SgObstacle o, Obstacle_Mesh *m)
     PetscCall(PetscMalloc2(m->nvert, &from, m->nvert, &to));
     for (PetscInt v = 0; v < m->nvert; v++) from[v] = to[v] = -1;
     for (PetscInt e = 0; e < nel; e++) {
-      PetscInt a = m->el[2 * e], b = m->el[2 * e + 1], fa = from[a], tb = to[b];
+      PetscInt      a = m->el[2 * e], b = m->el[2 * e + 1], fa = from[a], tb = to[b];
       const double *x = &m->x[3 * a], *y = &m->x[3 * b];
       if (fa >= 0 || tb >= 0) PetscCall(PetscFree2(from, to));
       PetscCheck(fa < 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: segments %" PetscInt_FMT " and %" PetscInt_FMT " both start at the vertex (%g, %g): the curve is not consistently oriented (or branches); each vertex must end one segment and start the next", m->file, fa + 1, e + 1, x[0], x[1]);
@@ -126,7 +126,7 @@ PetscErrorCode SgObstacleMeshOrient(SgObstacle o, Obstacle_Mesh *m)
       while (j < 3 * nel && he[j].key == he[i].key) j++;
       if (j - i >= 2) {
         PetscInt      h0 = he[i].id, h1 = he[i + 1].id, a0 = m->el[h0], a1 = m->el[h1]; /* where each half-edge starts */
-        const double *x = &m->x[3 * a0];
+        const double *x  = &m->x[3 * a0];
         PetscBool     ok = (PetscBool)(j - i == 2 && a0 != a1);
         if (!ok) {
           PetscInt h2 = j - i > 2 ? he[i + 2].id : -1;

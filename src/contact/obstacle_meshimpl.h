@@ -44,7 +44,8 @@ typedef struct {
 static inline int CompareKeyId(const void *a, const void *b)
 {
   const KeyId *x = (const KeyId *)a, *y = (const KeyId *)b;
-  return x->key < y->key ? -1 : x->key > y->key ? 1 : (x->id > y->id) - (x->id < y->id);
+  return x->key < y->key ? -1 : x->key > y->key ? 1
+                                                : (x->id > y->id) - (x->id < y->id);
 }
 
 static inline double Dot(const double a[3], const double b[3])

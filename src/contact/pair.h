@@ -21,8 +21,8 @@ typedef struct _n_SgContactPair *SgContactPair;
 struct _n_SgContactPair {
   MPI_Comm  comm;
   PetscInt  dim;
-  PetscInt  nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
-  PetscReal area;    /* covered measure of the slave surface */
+  PetscInt  nslave; /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
+  PetscReal area;   /* covered measure of the slave surface */
   Vec       D, g0, N;
   Mat       B;
 };

@@ -248,7 +248,7 @@ PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char
     PetscCheck(PetscIsNormalReal(values[i]) || values[i] == 0, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: value %" PetscInt_FMT " is %g, must be finite", i, (double)values[i]);
     b->values[i] = values[i];
   }
-  b->nvalues = nv;
+  b->nvalues          = nv;
   p->values_dim[type] = nv ? dim : 0;
   PetscFunctionReturn(0);
 }

@@ -68,8 +68,8 @@ PetscErrorCode SgOptionsIntList(PetscOptionItems *PetscOptionsObject, const char
   PetscInt  nt;
   PetscBool flg;
 
-  MPI_Comm  comm;
-  char      name[256];
+  MPI_Comm comm;
+  char     name[256];
 
   PetscFunctionBeginUser;
   PetscCall(CheckReaderArgs(PetscOptionsObject, opt, max, vals, n, "SgOptionsIntList"));
@@ -104,8 +104,8 @@ PetscErrorCode SgOptionsRealList(PetscOptionItems *PetscOptionsObject, const cha
   PetscInt  nt;
   PetscBool flg;
 
-  MPI_Comm  comm;
-  char      name[256];
+  MPI_Comm comm;
+  char     name[256];
 
   PetscFunctionBeginUser;
   PetscCall(CheckReaderArgs(PetscOptionsObject, opt, max, vals, n, "SgOptionsRealList"));

@@ -8,14 +8,14 @@
    ranks' cells are not local). DMCreateMatrix() and MATPREALLOCATOR cost several times the assembly itself. */
 static PetscErrorCode CreateStiffness(SgElasticity p)
 {
-  const SgMesh  *m = &p->mesh;
-  const PetscInt dim = p->dim, nv = dim + 1;
-  PetscInt       n, N, bstart, bend, *vcoff, *vcell, *mark, *dnz, *onz;
+  const SgMesh   *m   = &p->mesh;
+  const PetscInt  dim = p->dim, nv = dim + 1;
+  PetscInt        n, N, bstart, bend, *vcoff, *vcell, *mark, *dnz, *onz;
   const PetscInt *ranges;
-  PetscMPIInt    size;
-  Vec            cloc, cglob;
-  PetscScalar   *ca;
-  PetscSection   vs;
+  PetscMPIInt     size;
+  Vec             cloc, cglob;
+  PetscScalar    *ca;
+  PetscSection    vs;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(p->b, &n));
@@ -89,7 +89,7 @@ static PetscErrorCode CreateStiffness(SgElasticity p)
    preconditioners), so that their unknowns stay 0; their values enter by the lifting */
 static PetscErrorCode AddElementStiffness(SgElasticity p, const PetscInt cv[], const PetscInt gb[], PetscBool partial, const PetscReal Ke[])
 {
-  const SgMesh  *m = &p->mesh;
+  const SgMesh  *m   = &p->mesh;
   const PetscInt dim = p->dim, nv = dim + 1, ne = nv * dim;
   PetscReal      Kd[144];
 
@@ -135,10 +135,10 @@ static PetscErrorCode ElementLoad(SgElasticity p, const PetscReal xe[], PetscRea
    (pa) and of the energy shift 1/2 u_D K u_D - f u_D (added to shift); ua: the Dirichlet values (local arrays) */
 static PetscErrorCode AssembleCells(SgElasticity p, const PetscScalar ua[], PetscScalar fa[], PetscScalar ma[], PetscScalar pa[], PetscReal *shift)
 {
-  const SgMesh   *m = &p->mesh;
-  const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
-  PetscReal       s = *shift, *lq = NULL, *wq = NULL;
-  PetscInt        nq = 0;
+  const SgMesh  *m   = &p->mesh;
+  const PetscInt dim = p->dim, nv = dim + 1, ne = nv * dim;
+  PetscReal      s = *shift, *lq = NULL, *wq = NULL;
+  PetscInt       nq = 0;
 
   PetscFunctionBeginUser;
   if (p->mms) PetscCall(SgSimplexQuadrature(dim, &nq, &lq, &wq));
@@ -185,7 +185,7 @@ static PetscErrorCode AssembleCells(SgElasticity p, const PetscScalar ua[], Pets
 /* Neumann: constant traction per label value, exact P1 load on each facet (into fa, pa and shift as AssembleCells) */
 static PetscErrorCode AssembleNeumann(SgElasticity p, const PetscScalar ua[], PetscScalar fa[], PetscScalar pa[], PetscReal *shift)
 {
-  const SgMesh  *m = &p->mesh;
+  const SgMesh  *m   = &p->mesh;
   const PetscInt dim = p->dim;
   PetscInt       nfac, *facets, *part;
   PetscReal      s = *shift;

@@ -81,7 +81,9 @@ PetscErrorCode SgBoundaryComponentsFromOptions(PetscOptionItems *PetscOptionsObj
   for (PetscInt i = 0; i < n; i++) {
     PetscInt mask = 0;
     for (const char *c = words[i]; *c; c++) {
-      const PetscInt d = *c == 'x' ? 0 : *c == 'y' ? 1 : *c == 'z' ? 2 : -1;
+      const PetscInt d = *c == 'x' ? 0 : *c == 'y' ? 1
+                                     : *c == 'z'   ? 2
+                                                   : -1;
       PetscCheck(d >= 0 && d < dim, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " '%s' has '%c': use the letters x, y%s", name, i, words[i], *c, dim == 3 ? ", z" : " (2D)");
       PetscCheck(!(mask & (1 << d)), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "%s: entry %" PetscInt_FMT " '%s' names '%c' twice", name, i, words[i], *c);
       mask |= 1 << d;
@@ -116,9 +118,9 @@ PetscErrorCode SgBoundaryGetLabel(DM dm, const SgBoundary *bnd, DMLabel *label)
 /* Call fn(point, part) for every point of the boundary part. */
 static PetscErrorCode BoundaryForEachPoint(DM dm, const SgBoundary *bnd, PetscErrorCode (*fn)(void *, PetscInt, PetscInt), void *ctx)
 {
-  DMLabel  label;
-  IS       vis = NULL;
-  PetscInt nvals;
+  DMLabel         label;
+  IS              vis = NULL;
+  PetscInt        nvals;
   const PetscInt *vals;
 
   PetscFunctionBeginUser;
@@ -153,12 +155,12 @@ static PetscErrorCode BoundaryForEachPoint(DM dm, const SgBoundary *bnd, PetscEr
 }
 
 typedef struct {
-  DM        dm;
-  PetscInt  fStart, fEnd, vStart, vEnd;
-  PetscInt  n, *facets, *part; /* facet collection */
-  PetscInt *vpart;             /* vertex marking */
-  PetscInt  dim, *vmask, *vcomp; /* Dirichlet components: fixed per vertex (bits), part per vertex component */
-  const PetscInt *comps;         /* components per part (NULL: all) */
+  DM              dm;
+  PetscInt        fStart, fEnd, vStart, vEnd;
+  PetscInt        n, *facets, *part;   /* facet collection */
+  PetscInt       *vpart;               /* vertex marking */
+  PetscInt        dim, *vmask, *vcomp; /* Dirichlet components: fixed per vertex (bits), part per vertex component */
+  const PetscInt *comps;               /* components per part (NULL: all) */
 } PointCollect;
 
 static PetscErrorCode CollectFacet(void *ctx, PetscInt p, PetscInt part)
@@ -238,10 +240,10 @@ PetscErrorCode SgBoundaryMarkVertices(DM dm, const SgBoundary *bnd, SgMesh *m)
 /* Vertices (local numbers), measure and outward unit normal of a boundary facet. */
 PetscErrorCode SgFacetGeometry(DM dm, const SgMesh *m, PetscInt f, PetscInt *nfv, PetscInt fv[], PetscReal *area, PetscReal normal[])
 {
-  const PetscInt  dim = m->dim;
-  PetscInt       *cl  = NULL, ncl, k = 0, ns;
-  const PetscInt *supp;
-  PetscReal       e[2][3] = {{0}}, nrm = 0, dir = 0;
+  const PetscInt   dim = m->dim;
+  PetscInt        *cl = NULL, ncl, k = 0, ns;
+  const PetscInt  *supp;
+  PetscReal        e[2][3] = {{0}}, nrm = 0, dir = 0;
   const PetscReal *x0;
 
   PetscFunctionBeginUser;
@@ -270,7 +272,7 @@ PetscErrorCode SgFacetGeometry(DM dm, const SgMesh *m, PetscInt f, PetscInt *nfv
   PetscCheck(ns == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "facet %" PetscInt_FMT " of a boundary part lies inside the mesh (%" PetscInt_FMT " cells)", f, ns);
   PetscCall(DMPlexGetSupport(dm, f, &supp));
   for (PetscInt a = 0; a <= dim; a++) {
-    const PetscInt v = m->cellv[(supp[0] - m->cStart) * (dim + 1) + a];
+    const PetscInt v   = m->cellv[(supp[0] - m->cStart) * (dim + 1) + a];
     PetscBool      onf = PETSC_FALSE;
     for (PetscInt b = 0; b < dim; b++) onf = (PetscBool)(onf || fv[b] == v);
     if (onf) continue;

@@ -9,13 +9,13 @@ const char *const SgBoxDiagonals[] = {"right", "left", "mirror", "SgBoxDiagonal"
 static PetscInt BoxFaceMarker(PetscInt dim, PetscInt axis, PetscBool upper)
 {
   static const PetscInt m2[2][2] = {
-    {4, 2},
-    {1, 3}
+      {4, 2},
+      {1, 3}
   };
   static const PetscInt m3[3][2] = {
-    {6, 5},
-    {3, 4},
-    {1, 2}
+      {6, 5},
+      {3, 4},
+      {1, 2}
   };
   return dim == 2 ? m2[axis][upper] : m3[axis][upper];
 }
@@ -28,7 +28,7 @@ static PetscErrorCode BoxCheckSize(MPI_Comm comm, PetscInt dim, const PetscInt f
   const double ncd = dim == 2 ? 2.0 * faces[0] * faces[1] : 6.0 * faces[0] * faces[1] * faces[2];
   /* entries of the largest index arrays of the interpolated DMPlex (Euler: edges ~ vertices + cells; 3D faces ~ 2 cells):
      2D points 2V+2C, cones 2V+5C; 3D points 2V+4C, cones 2V+12C */
-  const double idx = dim == 2 ? 2 * nvd + 5 * ncd : 2 * nvd + 12 * ncd;
+  const double idx  = dim == 2 ? 2 * nvd + 5 * ncd : 2 * nvd + 12 * ncd;
   double       phys = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGE_SIZE), bytes;
 
   PetscFunctionBeginUser;
@@ -53,7 +53,7 @@ static void BoxFill(PetscInt dim, const PetscInt faces[], const PetscReal lo[], 
   for (PetscInt k = 0; k < (dim == 3 ? nz + 1 : 1); k++)
     for (PetscInt j = 0; j <= ny; j++)
       for (PetscInt i = 0; i <= nx; i++) {
-        const PetscInt v = (k * (ny + 1) + j) * (nx + 1) + i;
+        const PetscInt v    = (k * (ny + 1) + j) * (nx + 1) + i;
         coords[v * dim + 0] = lo[0] + (hi[0] - lo[0]) * i / nx;
         coords[v * dim + 1] = lo[1] + (hi[1] - lo[1]) * j / ny;
         if (dim == 3) coords[v * dim + 2] = lo[2] + (hi[2] - lo[2]) * k / nz;
@@ -63,10 +63,10 @@ static void BoxFill(PetscInt dim, const PetscInt faces[], const PetscReal lo[], 
       for (PetscInt i = 0; i < nx; i++) {
         const PetscInt v00 = j * (nx + 1) + i, v10 = v00 + 1, v01 = v00 + nx + 1, v11 = v01 + 1;
         const PetscInt tr[2][2][3] = {
-          {{v00, v10, v11}, {v00, v11, v01}},
-          {{v00, v10, v01}, {v10, v11, v01}}
+            {{v00, v10, v11}, {v00, v11, v01}},
+            {{v00, v10, v01}, {v10, v11, v01}}
         };
-        const PetscInt  k = diag == SG_BOX_MIRROR ? (2 * i < nx ? SG_BOX_LEFT : SG_BOX_RIGHT) : diag;
+        const PetscInt k = diag == SG_BOX_MIRROR ? (2 * i < nx ? SG_BOX_LEFT : SG_BOX_RIGHT) : diag;
         for (PetscInt t = 0; t < 2; t++)
           for (PetscInt a = 0; a < 3; a++) cells[c * 3 + t * 3 + a] = tr[k][t][a];
         c += 2;
@@ -74,12 +74,12 @@ static void BoxFill(PetscInt dim, const PetscInt faces[], const PetscReal lo[], 
   } else {
     /* Kuhn: the tetrahedra along the paths from corner (0,0,0) to (1,1,1); conforming across cubes */
     static const PetscInt perm[6][3] = {
-      {0, 1, 2},
-      {0, 2, 1},
-      {1, 0, 2},
-      {1, 2, 0},
-      {2, 0, 1},
-      {2, 1, 0}
+        {0, 1, 2},
+        {0, 2, 1},
+        {1, 0, 2},
+        {1, 2, 0},
+        {2, 0, 1},
+        {2, 1, 0}
     };
     for (PetscInt k = 0; k < nz; k++)
       for (PetscInt j = 0; j < ny; j++)
@@ -105,14 +105,14 @@ static void BoxFill(PetscInt dim, const PetscInt faces[], const PetscReal lo[], 
 /* The "Face Sets" of the box (on rank 0, before the distribution): each boundary face by the side its centre lies on. */
 static PetscErrorCode BoxMarkFaces(DM dm, PetscInt dim, const PetscReal lo[], const PetscReal hi[])
 {
-  DMLabel         bd, fs;
-  IS              is;
-  const PetscInt *faces_;
-  PetscInt        nf;
-  Vec             cl;
-  PetscSection    cs;
+  DMLabel            bd, fs;
+  IS                 is;
+  const PetscInt    *faces_;
+  PetscInt           nf;
+  Vec                cl;
+  PetscSection       cs;
   const PetscScalar *ca;
-  PetscInt        vStart, vEnd;
+  PetscInt           vStart, vEnd;
 
   PetscFunctionBeginUser;
   PetscCall(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
@@ -202,7 +202,10 @@ PetscErrorCode SgBoxFromOptions(MPI_Comm comm, const char prefix[], SgBox *box)
   PetscInt ndim = 1;
 
   PetscFunctionBeginUser;
-  *box = (SgBox){.dim = 2, .faces = {10, 10, 10}, .hi = {1, 1, 1}, .diag = SG_BOX_RIGHT};
+  PetscCall(PetscMemzero(box, sizeof(*box))); /* the defaults: the unit square, 10 x 10 faces, right diagonals */
+  box->dim  = 2;
+  box->diag = SG_BOX_RIGHT;
+  for (PetscInt k = 0; k < 3; k++) box->faces[k] = 10, box->hi[k] = 1;
   PetscOptionsBegin(comm, prefix, "Structured simplex box mesh (used without -dm_plex_filename)", NULL);
   PetscCall(SgOptionsIntList(PetscOptionsObject, "-box_dim", "Spatial dimension of the box: 2 or 3", 1, &box->dim, &ndim, NULL));
   PetscCheck(box->dim == 2 || box->dim == 3, comm, PETSC_ERR_USER_INPUT, "-box_dim: the dimension must be 2 or 3, got %" PetscInt_FMT, box->dim);

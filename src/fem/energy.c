@@ -32,12 +32,12 @@ static inline void SumAddL(SgSumL *a, long double x)
    double; partial sums gathered as pairs of doubles. */
 static PetscErrorCode EnergyReference(SgElasticity p, const PetscScalar ya[], const PetscScalar fa[], Vec y, long double *Vref)
 {
-  const SgMesh      *m = &p->mesh;
-  const PetscInt     dim = p->dim, nv = dim + 1;
-  SgSumL             el = {0, 0}, ld = {0, 0}, tot = {0, 0};
-  PetscInt           nloc, n;
-  double             part[4], *all;
-  PetscMPIInt        size;
+  const SgMesh  *m   = &p->mesh;
+  const PetscInt dim = p->dim, nv = dim + 1;
+  SgSumL         el = {0, 0}, ld = {0, 0}, tot = {0, 0};
+  PetscInt       nloc, n;
+  double         part[4], *all;
+  PetscMPIInt    size;
 
   PetscFunctionBeginUser;
   for (PetscInt c = 0; c < m->nc; c++) {
@@ -122,7 +122,7 @@ static PetscErrorCode EnergyReference(SgElasticity p, const PetscScalar ya[], co
    Costs about one pass over the cells (no matrix product). */
 PetscErrorCode SgElasticityEnergy(SgElasticity p, Vec y, PetscReal *V)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc;
   const PetscScalar *ya, *fa;

@@ -4,57 +4,59 @@
 #include "sg.h"
 
 struct _n_SgElasticity {
-  MPI_Comm     comm;
-  char        *prefix;    /* options prefix (may be NULL) */
-  PetscBool    setup;
-  DM           dm;      /* vertex P1 displacement, Dirichlet vertices constrained in the section */
-  DM           dmCell;  /* one scalar per cell (cell fields) */
-  DM           dmVert;  /* one scalar per vertex, no constraints (contact fields) */
-  DM           dmVec;   /* dim values per vertex, no constraints (output of the full displacement) */
-  SgMesh       mesh;
-  PetscInt     dim;
-  PetscReal    E, nu, lambda, mu; /* the material; of several (nmat > 0), the stiffest (largest E) */
+  MPI_Comm  comm;
+  char     *prefix; /* options prefix (may be NULL) */
+  PetscBool setup;
+  DM        dm;     /* vertex P1 displacement, Dirichlet vertices constrained in the section */
+  DM        dmCell; /* one scalar per cell (cell fields) */
+  DM        dmVert; /* one scalar per vertex, no constraints (contact fields) */
+  DM        dmVec;  /* dim values per vertex, no constraints (output of the full displacement) */
+  SgMesh    mesh;
+  PetscInt  dim;
+  PetscReal E, nu, lambda, mu; /* the material; of several (nmat > 0), the stiffest (largest E) */
   /* several materials (-material_ids): cell c has material cellmat[c] of the ids matids[] of the cell label matlabel;
      nmat = 0 (and cellmat NULL): E, nu above in every cell */
-  PetscInt     nmat, matids[SG_MAX_IDS], *cellmat;
-  PetscReal    matE[SG_MAX_IDS], matnu[SG_MAX_IDS], matlambda[SG_MAX_IDS], matmu[SG_MAX_IDS];
-  char         matlabel[256];
-  PetscReal    body_force[3];
-  PetscInt     nbody_force;  /* entries given with -body_force (must be dim) */
-  SgBoundary   dirichlet, neumann;
-  PetscBool    mms;          /* manufactured solution: body force and Dirichlet data from a known field */
-  Mat          K;            /* stiffness on the free dofs, block size dim */
-  Vec          b;            /* load with the Dirichlet lifting */
-  Vec          mass;         /* lumped volume of each free dof's vertex (for the discrete dual norm) */
-  Vec          ubc;          /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
-  PetscReal    energy_shift; /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
-  PetscReal    bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
-  PetscReal    Knorm;        /* ||K||_inf */
-  Vec          fpart;        /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
-  PetscReal    diam;         /* diameter of the mesh's bounding box */
-  PetscReal    rigid_shift;  /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
-  PetscBool    rigid_shift_set;
-  PetscBool    energy_check; /* -elasticity_energy_check: compare the energy with a long double evaluation */
-  MatNullSpace nearnull;     /* rigid-body modes */
-  PetscBool    use_nearnull; /* attached to K and the Jacobians */
-  PetscInt     ndofs;
-  PetscInt     npartial, *partial; /* local offsets of the fixed components of partly fixed vertices */
+  PetscInt       nmat, matids[SG_MAX_IDS], *cellmat;
+  PetscReal      matE[SG_MAX_IDS], matnu[SG_MAX_IDS], matlambda[SG_MAX_IDS], matmu[SG_MAX_IDS];
+  char           matlabel[256];
+  PetscReal      body_force[3];
+  PetscInt       nbody_force; /* entries given with -body_force (must be dim) */
+  SgBoundary     dirichlet, neumann;
+  PetscBool      mms;              /* manufactured solution: body force and Dirichlet data from a known field */
+  Mat            K;                /* stiffness on the free dofs, block size dim */
+  Vec            b;                /* load with the Dirichlet lifting */
+  Vec            mass;             /* lumped volume of each free dof's vertex (for the discrete dual norm) */
+  Vec            ubc;              /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
+  PetscReal      energy_shift;     /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
+  PetscReal      bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
+  PetscReal      Knorm;            /* ||K||_inf */
+  Vec            fpart;            /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
+  PetscReal      diam;             /* diameter of the mesh's bounding box */
+  PetscReal      rigid_shift;      /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
+  PetscBool      rigid_shift_set;
+  PetscBool      energy_check; /* -elasticity_energy_check: compare the energy with a long double evaluation */
+  MatNullSpace   nearnull;     /* rigid-body modes */
+  PetscBool      use_nearnull; /* attached to K and the Jacobians */
+  PetscInt       ndofs;
+  PetscInt       npartial, *partial; /* local offsets of the fixed components of partly fixed vertices */
   PetscLogDouble t_assembly;
   /* load stepping (SgElasticitySetLoadFactor): the loads above are the full ones times load; the full ones are kept
      here once a factor is set (NULL until then) */
-  PetscReal    load;
-  Vec          b1, ubc1, fpart1;
-  PetscReal    energy_shift1, bnorm1, bnorm_inf1;
+  PetscReal load;
+  Vec       b1, ubc1, fpart1;
+  PetscReal energy_shift1, bnorm1, bnorm_inf1;
   /* non-proportional loading (SgElasticitySetDirichletValues): the Dirichlet values of every id, not scaled by load,
      and the load of factor 1 without the lifting of the given Dirichlet values (NULL until then) */
-  PetscBool    dvals_set;
-  PetscReal    dvals[3 * SG_MAX_IDS];
-  Vec          bload1;
+  PetscBool dvals_set;
+  PetscReal dvals[3 * SG_MAX_IDS];
+  Vec       bload1;
 };
 /* What the files of the mesh share (box.c, mesh.c, boundary.c, layout.c) */
 /* mirror: left in the lower half of x, right in the upper half, so that the mesh is symmetric about the box's middle
    x = (lower + upper) / 2 and its upper half is the -box_diagonal right mesh of that half (half models) */
-typedef enum { SG_BOX_RIGHT, SG_BOX_LEFT, SG_BOX_MIRROR } SgBoxDiagonal;
+typedef enum { SG_BOX_RIGHT,
+               SG_BOX_LEFT,
+               SG_BOX_MIRROR } SgBoxDiagonal;
 /* the structured simplex box of the -box_* options: the entries given of each list (nfaces, nlo, nhi) are checked
    against the dimension when the box is made */
 typedef struct {

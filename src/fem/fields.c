@@ -51,7 +51,7 @@ PetscErrorCode SgElasticityFullDisplacement(SgElasticity p, Vec y, Vec ufull)
 /* Per-cell von Mises stress and elastic shear (distortion) energy density mu |dev eps|^2 (plane strain: eps_33 = 0). */
 PetscErrorCode SgElasticityCellFields(SgElasticity p, Vec y, Vec vm, Vec wshear)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc, vml, wl;
   const PetscScalar *ya;

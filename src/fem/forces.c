@@ -6,9 +6,9 @@
    volume: the support and reaction forces below are sums of these over the cells at fixed components. */
 static PetscErrorCode CellForce(SgElasticity p, PetscInt c, const PetscScalar ya[], PetscReal fe[], PetscReal *vol)
 {
-  const SgMesh   *m = &p->mesh;
+  const SgMesh   *m   = &p->mesh;
   const PetscInt  dim = p->dim, nv = dim + 1, ne = nv * dim;
-  const PetscInt *cv  = &m->cellv[c * nv];
+  const PetscInt *cv = &m->cellv[c * nv];
   PetscReal       xe[12], Ke[144], ue[12], lambda, mu;
 
   PetscFunctionBeginUser;
@@ -30,7 +30,7 @@ static PetscErrorCode CellForce(SgElasticity p, PetscInt c, const PetscScalar ya
    forces it balances the loads: R = sum_i w_i lam_i n_i - sum f. */
 PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc;
   const PetscScalar *ya;
@@ -79,7 +79,7 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
    cells at the Dirichlet part are visited: the cost of the measures stays that of a product with K. */
 PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscReal *smax, PetscReal fsum[3], PetscReal *fl1)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc, sloc, sg, fg;
   const PetscScalar *ya, *pa, *fa;
@@ -156,7 +156,7 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
   PetscCall(VecNorm(fg, NORM_INFINITY, &nrm[2]));
   PetscCall(VecNorm(fg, NORM_1, &nrm[3]));
   if (p->rigid_shift > 0) { /* the foundation's force -k M y on the body is a support force */
-    const PetscReal k = p->rigid_shift * p->E / PetscSqr(p->diam);
+    const PetscReal k   = p->rigid_shift * p->E / PetscSqr(p->diam);
     PetscReal       fmx = 0;
     PetscCall(VecPointwiseMult(fg, p->mass, y));
     PetscCall(VecGetArrayRead(fg, &fa));
@@ -213,7 +213,7 @@ PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscR
    motion is prescribed (friction with prescribed slip, SgContactKKT). */
 PetscErrorCode SgElasticityFixedResidual(SgElasticity p, Vec y, Vec R)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc, rloc;
   const PetscScalar *ya, *fa;

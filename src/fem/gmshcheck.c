@@ -21,36 +21,36 @@ typedef struct {
 /* gmsh element types: dimension, corner vertices, nodes (gmsh manual, "MSH file format"; complete Lagrange and the
    serendipity 16/17; types missing here are refused, PETSc's reader knows no more) */
 static const GmshType GmshTypes[] = {
-  {15, 0, 1, 1  },
-  {1,  1, 2, 2  },
-  {8,  1, 2, 3  },
-  {26, 1, 2, 4  },
-  {27, 1, 2, 5  },
-  {28, 1, 2, 6  },
-  {2,  2, 3, 3  },
-  {9,  2, 3, 6  },
-  {21, 2, 3, 10 },
-  {23, 2, 3, 15 },
-  {25, 2, 3, 21 },
-  {3,  2, 4, 4  },
-  {10, 2, 4, 9  },
-  {16, 2, 4, 8  },
-  {36, 2, 4, 16 },
-  {37, 2, 4, 25 },
-  {4,  3, 4, 4  },
-  {11, 3, 4, 10 },
-  {29, 3, 4, 20 },
-  {30, 3, 4, 35 },
-  {31, 3, 4, 56 },
-  {5,  3, 8, 8  },
-  {12, 3, 8, 27 },
-  {17, 3, 8, 20 },
-  {92, 3, 8, 64 },
-  {93, 3, 8, 125},
-  {6,  3, 6, 6  },
-  {13, 3, 6, 18 },
-  {7,  3, 5, 5  },
-  {14, 3, 5, 14 },
+    {15, 0, 1,   1},
+    { 1, 1, 2,   2},
+    { 8, 1, 2,   3},
+    {26, 1, 2,   4},
+    {27, 1, 2,   5},
+    {28, 1, 2,   6},
+    { 2, 2, 3,   3},
+    { 9, 2, 3,   6},
+    {21, 2, 3,  10},
+    {23, 2, 3,  15},
+    {25, 2, 3,  21},
+    { 3, 2, 4,   4},
+    {10, 2, 4,   9},
+    {16, 2, 4,   8},
+    {36, 2, 4,  16},
+    {37, 2, 4,  25},
+    { 4, 3, 4,   4},
+    {11, 3, 4,  10},
+    {29, 3, 4,  20},
+    {30, 3, 4,  35},
+    {31, 3, 4,  56},
+    { 5, 3, 8,   8},
+    {12, 3, 8,  27},
+    {17, 3, 8,  20},
+    {92, 3, 8,  64},
+    {93, 3, 8, 125},
+    { 6, 3, 6,   6},
+    {13, 3, 6,  18},
+    { 7, 3, 5,   5},
+    {14, 3, 5,  14},
 };
 
 #define GMSH_MAX_ENTITY_TAGS 16   /* PETSc's GMSH_MAX_TAGS: physical tags per entity */
@@ -64,12 +64,12 @@ typedef struct {
   size_t      cap;
   long        line;
   PetscBool   unended; /* the current line is the file's last and has no newline: a truncated file */
-  long long   fsize; /* bytes: bounds every count in a header before anything is allocated for it */
+  long long   fsize;   /* bytes: bounds every count in a header before anything is allocated for it */
   int         bad;
   char        msg[768];
   /* entities of MSH 4.1: sorted tags per dimension */
-  PetscInt    nent[4];
-  PetscInt   *ent[4];
+  PetscInt  nent[4];
+  PetscInt *ent[4];
   /* nodes */
   PetscInt       nnodes, nmin, nmax;
   PetscInt      *tags;   /* all node tags, in file order (sorted when the range is sparse) */
@@ -77,18 +77,18 @@ typedef struct {
   PetscBool      sorted; /* lookup by binary search in tags[] instead of bits */
 } GmshCheck;
 
-#define GFAIL(p, ...) \
-  do { \
+#define GFAIL(p, ...)                    \
+  do {                                   \
     PetscCall(GmshFail(p, __VA_ARGS__)); \
-    PetscFunctionReturn(0); \
+    PetscFunctionReturn(0);              \
   } while (0)
-#define GCHECK(p, cond, ...) \
-  do { \
+#define GCHECK(p, cond, ...)            \
+  do {                                  \
     if (!(cond)) GFAIL(p, __VA_ARGS__); \
   } while (0)
-#define GCALL(p, call) \
-  do { \
-    PetscCall(call); \
+#define GCALL(p, call)                    \
+  do {                                    \
+    PetscCall(call);                      \
     if ((p)->bad) PetscFunctionReturn(0); \
   } while (0)
 
@@ -134,7 +134,7 @@ static PetscErrorCode NextLine(GmshCheck *p, PetscBool *eof)
     p->unended = p->buf[n - 1] != '\n' ? PETSC_TRUE : PETSC_FALSE;
     GCHECK(p, (size_t)n == strlen(p->buf), "a NUL byte: not a text (ASCII) gmsh file");
     while (n > 0 && (p->buf[n - 1] == '\n' || p->buf[n - 1] == '\r' || p->buf[n - 1] == ' ' || p->buf[n - 1] == '\t')) p->buf[--n] = 0;
-    for (s = p->buf; *s == ' ' || *s == '\t'; s++) { }
+    for (s = p->buf; *s == ' ' || *s == '\t'; s++) {}
     if (*s) break;
   }
   *eof = PETSC_FALSE;
@@ -223,7 +223,8 @@ static int TokReal(const char **s, double *v)
 
 static const char *NonFinite(double x)
 {
-  return isnan(x) ? "NaN" : x > 0 ? "+inf" : "-inf";
+  return isnan(x) ? "NaN" : x > 0 ? "+inf"
+                                  : "-inf";
 }
 
 static int AtEnd(const char *s)
@@ -298,8 +299,8 @@ static PetscErrorCode FindEntity(GmshCheck *p, long long dim, long long tag, Pet
    bounding entities (dim > 0). */
 static PetscErrorCode CheckEntities(GmshCheck *p)
 {
-  long long       c[4];
-  const long long lo[4] = {0, 0, 0, 0}, hi[4] = {p->fsize / 8, p->fsize / 8, p->fsize / 8, p->fsize / 8};
+  long long          c[4];
+  const long long    lo[4] = {0, 0, 0, 0}, hi[4] = {p->fsize / 8, p->fsize / 8, p->fsize / 8, p->fsize / 8};
   static const char *dname[4] = {"point", "curve", "surface", "volume"};
 
   PetscFunctionBeginUser;
@@ -413,7 +414,7 @@ static PetscErrorCode CheckNodes41(GmshCheck *p)
   long long       h[4], b[4];
   const long long lo[4] = {0, 0, 0, 0}, hi[4] = {p->fsize / 8, p->fsize / 8, PETSC_MAX_INT, PETSC_MAX_INT};
   const long long blo[4] = {0, 1, 0, 0}, bhi[4] = {3, PETSC_MAX_INT, 1, p->fsize / 8};
-  long           *blk  = NULL; /* per block: first node index, line of its first tag; and a sentinel */
+  long           *blk     = NULL; /* per block: first node index, line of its first tag; and a sentinel */
   long            section = p->line;
   PetscInt        node    = 0;
 
@@ -545,7 +546,7 @@ static PetscErrorCode ElementNodes(GmshCheck *p, const GmshType *ty, long long e
   }
   if (!AtEnd(s)) {
     int n = ty->nnodes;
-    for (long long t; TokInt(&s, &t) != 0 && n < 1000000; n++) { }
+    for (long long t; TokInt(&s, &t) != 0 && n < 1000000; n++) {}
     GFAIL(p, "element %lld has %d%s node tags, its type %d needs %d: '%s'", etag, n, AtEnd(s) ? "" : " or more", ty->type, ty->nnodes, Shown(p));
   }
   PetscFunctionReturn(0);

@@ -25,7 +25,7 @@ static PetscErrorCode SyncDirichletVertices(DM dm, SgMesh *m)
   for (PetscInt i = 0; i < ns * np; i++) a[i] = big;
   for (PetscInt v = 0; v < m->nv; v++) {
     const PetscInt p = m->vStart + v - pStart;
-    a[p] = m->bcgroup[v] >= 0 ? m->bcgroup[v] : big;
+    a[p]             = m->bcgroup[v] >= 0 ? m->bcgroup[v] : big;
     for (PetscInt d = 0; d < dim; d++) a[(1 + d) * np + p] = m->bcpart[v * dim + d] >= 0 ? m->bcpart[v * dim + d] : big;
   }
   PetscCall(PetscArraycpy(b, a, ns * np));
@@ -39,7 +39,7 @@ static PetscErrorCode SyncDirichletVertices(DM dm, SgMesh *m)
     const PetscInt p    = m->vStart + v - pStart;
     PetscInt       mask = 0;
     for (PetscInt d = 0; d < dim; d++) {
-      const PetscInt g = b[(1 + d) * np + p];
+      const PetscInt g       = b[(1 + d) * np + p];
       m->bcpart[v * dim + d] = g < big ? g : -1;
       if (g < big) mask |= 1 << d;
     }
@@ -56,11 +56,11 @@ static PetscErrorCode SyncDirichletVertices(DM dm, SgMesh *m)
 /* Build the P1 displacement section (dim dofs per vertex, Dirichlet vertices constrained) and the flat mesh arrays. */
 PetscErrorCode SgMeshSetUp(DM dm, const SgBoundary *dirichlet, SgMesh *m)
 {
-  PetscSection    s, gs, cs;
-  PetscInt        pStart, pEnd, vEnd, cEnd, dim;
-  Vec             cl;
+  PetscSection       s, gs, cs;
+  PetscInt           pStart, pEnd, vEnd, cEnd, dim;
+  Vec                cl;
   const PetscScalar *ca;
-  PetscInt        cidx[3] = {0, 1, 2};
+  PetscInt           cidx[3] = {0, 1, 2};
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof(*m)));

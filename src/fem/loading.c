@@ -64,7 +64,7 @@ static PetscErrorCode KeepFullLoad(SgElasticity p)
    partly fixed vertices, as in Assemble), and uKu = u_D^T K_DD u_D summed over the ranks (for the energy shift). */
 static PetscErrorCode Lifting(SgElasticity p, Vec ubc, Vec bl, PetscReal *uKu)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1, ne = nv * dim;
   const PetscScalar *ua;
   PetscScalar       *fa;

@@ -89,7 +89,7 @@ static PetscErrorCode MeshDropConstantZ(MPI_Comm comm, const char fname[], DM dm
 static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
 {
   PetscErrorCode ierr;
-  const char    *msg = NULL;
+  const char    *msg      = NULL;
   char           why[512] = "";
   PetscBool      userdim;
   PetscInt       dim, cdim;

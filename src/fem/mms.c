@@ -4,9 +4,9 @@
 
 /* Manufactured solution u_k = A sin(pi a_k.x + phi_k) and the body force -div sigma(u) that produces it. */
 static const PetscReal MMS_A = 0.01, MMS_a[3][3] = {
-  {1.0,  0.5,  0.25},
-  {0.5,  1.0,  0.75},
-  {0.25, 0.75, 1.0 }
+                                         { 1.0,  0.5, 0.25},
+                                         { 0.5,  1.0, 0.75},
+                                         {0.25, 0.75,  1.0}
 },
                        MMS_phi[3] = {0.1, 0.3, 0.7};
 
@@ -41,7 +41,7 @@ void SgMMSForce(PetscInt dim, PetscReal lambda, PetscReal mu, const PetscReal x[
 /* L2 and H1-seminorm errors against the manufactured solution. */
 PetscErrorCode SgElasticityMMSErrors(SgElasticity p, Vec y, PetscReal *l2, PetscReal *h1)
 {
-  const SgMesh      *m = &p->mesh;
+  const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
   Vec                yloc;
   const PetscScalar *ya;

@@ -195,7 +195,7 @@ static PetscErrorCode DescribeModes(PetscInt dim, PetscInt nfree, const PetscRea
   PetscFunctionBeginUser;
   what[0] = 0;
   for (PetscInt k = 0; k < nfree && k < 3; k++) {
-    const PetscReal *q = &modes[k * nr];
+    const PetscReal *q    = &modes[k * nr];
     PetscReal        t[3] = {0, 0, 0}, w[3] = {0, 0, 0}, tn = 0, wn = 0, tw = 0, x0[3], ax[3];
     size_t           l;
     char             buf[256];
@@ -471,7 +471,7 @@ PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity p)
    -elasticity_near_null_space 0) */
 PetscErrorCode SgElasticityCreateNearNullSpace(SgElasticity p)
 {
-  const SgMesh  *m = &p->mesh;
+  const SgMesh  *m   = &p->mesh;
   const PetscInt dim = p->dim;
   Vec            xg, xloc;
   PetscScalar   *xa;

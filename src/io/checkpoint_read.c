@@ -115,7 +115,7 @@ static PetscErrorCode ItemDataset(void *ctx)
    before the error is returned. */
 PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
 {
-  SgCheckpointReader r = *rp;
+  SgCheckpointReader r  = *rp;
   CkItem             it = {r, NULL, PETSC_INT, NULL, -1, NULL, PETSC_FALSE};
   PetscErrorCode     ierr;
 
@@ -240,10 +240,10 @@ static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[]
    components of y are 0 (the file holds the full displacement: a fixed component of a roller is data) */
 PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char name[], const char what[], Vec y)
 {
-  const SgMesh *m;
+  const SgMesh  *m;
   const PetscInt dim = r->dim;
-  PetscReal    *a;
-  PetscScalar  *ya;
+  PetscReal     *a;
+  PetscScalar   *ya;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMesh(r->el, &m));

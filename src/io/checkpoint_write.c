@@ -6,7 +6,7 @@
 /* A vector of n numbers held by rank 0 (n on every rank), for the data every rank has a copy of. */
 static PetscErrorCode RootVec(MPI_Comm comm, const char name[], PetscInt n, const PetscReal a[], Vec *v)
 {
-  PetscMPIInt rank;
+  PetscMPIInt  rank;
   PetscScalar *va;
 
   PetscFunctionBeginUser;

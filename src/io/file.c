@@ -26,8 +26,8 @@ static void PendingAdd(const char tmp[])
       size_t n = strlen(tmp);
       if (n > PETSC_MAX_PATH_LEN - 1) n = PETSC_MAX_PATH_LEN - 1;
       memcpy(Pending[i], tmp, n);
-      Pending[i][n] = 0;
-      PendingUsed[i]                     = 1;
+      Pending[i][n]  = 0;
+      PendingUsed[i] = 1;
       return;
     }
 }
@@ -48,8 +48,8 @@ void SgFileCleanup(void)
     }
 }
 
-static struct sigaction    OldAction[2];
-static const int           CaughtSignals[2] = {SIGINT, SIGTERM};
+static struct sigaction      OldAction[2];
+static const int             CaughtSignals[2] = {SIGINT, SIGTERM};
 static volatile sig_atomic_t Dying            = 0;
 
 /* SIGINT, SIGTERM: remove the ".part" files, then let the handler that was there before (PETSc's, or the default)
@@ -251,8 +251,8 @@ static PetscBool OptionIsHDF5(const char option[])
 /* Fail early (before any solve) if an output location cannot be written, is not ours to replace, or is named twice. */
 PetscErrorCode SgFileCheckWritable(MPI_Comm comm, const char option[], const char name[])
 {
-  FILE     *fp;
-  PetscBool direct;
+  FILE       *fp;
+  PetscBool   direct;
   const char *path;
 
   PetscFunctionBeginUser;

@@ -4,7 +4,7 @@
 
 /* What identifies the problem a checkpoint belongs to: a restart of another problem (another -E, -nu, load, Dirichlet
    data or obstacle) would resume a continuation path, and report an unconstrained energy, of a problem it is not. */
-const char *const SgFingerprintNames[SG_FINGERPRINT_NUMBERS] = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
+const char *const SgFingerprintNames[SG_FINGERPRINT_NUMBERS]   = {"E", "nu", "load_norm", "load_max", "dirichlet_energy", "gap_sum"};
 const char *const SgFingerprintOptions[SG_FINGERPRINT_NUMBERS] = {"-E", "-nu", "the loads (-body_force, -neumann_traction, ...)", "the loads (-body_force, -neumann_traction, ...)", "the Dirichlet data (-dirichlet_values)", "the obstacle (-obstacle_*) or the contact boundary"};
 
 PetscErrorCode SgFingerprintNumbers(SgElasticity el, SgContact c, PetscReal print[SG_FINGERPRINT_NUMBERS])
@@ -24,7 +24,7 @@ PetscErrorCode SgFingerprintNumbers(SgElasticity el, SgContact c, PetscReal prin
    with fixed weight fields w_k(x) of the vertex coordinates (scaled to the mesh's bounding box), each with the sum of
    the absolute values of its terms (its size). They do not depend on the partition (each vertex, cell or facet is
    summed once) up to the round-off of parallel sums, and are compared to 1e-10 of the size. The groups: */
-#define NMOM 6 /* weight fields */
+#define NMOM   6 /* weight fields */
 #define NGROUP 6
 const char *const SgFingerprintGroups[NGROUP] = {"the loads (-body_force, -neumann_traction, ...) differ", "the Dirichlet values (-dirichlet_values) differ", "the fixed components (-dirichlet_ids, -dirichlet_components) differ", "the stiffness (-E, -nu, -material_ids, -material_label, -elasticity_rigid_shift) differs", "the contact boundary (-contact_ids, -contact_label) differs", "the obstacle (-obstacle_*) or the master side (-contact_master_ids) differs"};
 #define MOM_MAX SG_FINGERPRINT_MOMENTS_MAX /* (3 * NMOM * 3 + 2 + 2 * NMOM) */
@@ -34,7 +34,7 @@ const char *const SgFingerprintGroups[NGROUP] = {"the loads (-body_force, -neuma
 static void MomentGroupSizes(PetscInt dim, PetscInt len[NGROUP])
 {
   len[0] = len[1] = len[2] = NMOM * dim;
-  len[3]               = 2;
+  len[3]                   = 2;
   len[4] = len[5] = NMOM;
 }
 
@@ -273,12 +273,12 @@ void SgFingerprintCompare(PetscInt dim, PetscInt n, const PetscReal F0[], const 
   *group = -1;
   MomentGroupSizes(dim, lens);
   for (PetscInt i = 0; i < n; i++) {
-    const PetscReal tol = 1e-10 * PetscMax(S0[i], S1[i]);
+    const PetscReal tol  = 1e-10 * PetscMax(S0[i], S1[i]);
     const PetscBool same = (PetscBool)(PetscAbsReal(F0[i] - F1[i]) <= tol && PetscAbsReal(S0[i] - S1[i]) <= tol);
     while (g < NGROUP - 1 && i >= start + lens[g]) start += lens[g++];
     if (same) continue;
     {
-      const PetscInt j = i - start, k = g < 3 ? j / dim : j;
+      const PetscInt  j = i - start, k = g < 3 ? j / dim : j;
       const PetscBool sz = (PetscBool)(PetscAbsReal(F0[i] - F1[i]) <= tol);
       if (g < 3) (void)PetscSNPrintf(desc, len, "%s %" PetscInt_FMT " of the %c components", sz ? "the size of weighted sum" : "weighted sum", k, "xyz"[j % dim]);
       else if (g == 3) (void)PetscSNPrintf(desc, len, "%s %" PetscInt_FMT, sz ? "the size of quadratic form" : "quadratic form", k);

@@ -17,7 +17,9 @@ struct _n_SgHistory {
 
 /* The files of a result (registry.c, file.c, hdf5.c, xdmf.c, output.c) */
 /* how SgFileFinish ends a file after closing it: remove its .part, rename it, or keep it for a later SgFileCommit */
-typedef enum { SG_FILE_ABANDON, SG_FILE_COMMIT, SG_FILE_KEEP } SgFileEnd;
+typedef enum { SG_FILE_ABANDON,
+               SG_FILE_COMMIT,
+               SG_FILE_KEEP } SgFileEnd;
 PetscErrorCode SgFileFinish(MPI_Comm, const char[], FILE **, SgFileEnd);
 void           SgFileResolve(const char[], const char **, PetscBool *);
 PetscErrorCode SgFileRegister(MPI_Comm, const char[], const char[], PetscBool, PetscBool);

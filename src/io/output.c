@@ -4,14 +4,14 @@
 #include <petscviewerhdf5.h>
 
 typedef struct {
-  DM            dm;
-  PetscInt      nv, nc;
-  Vec          *vf, *cf;
-  PetscReal     magnification;
-  PetscInt      nsteps; /* 0: one set of fields; else the load steps steps[] filled by fill */
+  DM              dm;
+  PetscInt        nv, nc;
+  Vec            *vf, *cf;
+  PetscReal       magnification;
+  PetscInt        nsteps; /* 0: one set of fields; else the load steps steps[] filled by fill */
   const PetscInt *steps;
-  SgOutputFill  fill;
-  void         *fctx;
+  SgOutputFill    fill;
+  void           *fctx;
 } FieldsCtx;
 
 /* VecView of v under the name <its name>_step<step> (the name restored after) */

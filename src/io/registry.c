@@ -14,8 +14,8 @@
    - a character device or FIFO (text results only) is written directly, without a ".part" and a rename. */
 typedef struct {
   char      option[64];
-  char      name[PETSC_MAX_PATH_LEN]; /* as given */
-  char      path[PETSC_MAX_PATH_LEN]; /* the file written: name, or the target of a symbolic link */
+  char      name[PETSC_MAX_PATH_LEN];     /* as given */
+  char      path[PETSC_MAX_PATH_LEN];     /* the file written: name, or the target of a symbolic link */
   char      key[PATH_MAX + NAME_MAX + 2]; /* realpath of the directory + "/" + base name of path */
   PetscBool direct, input, exists;
   dev_t     dev;

@@ -25,7 +25,11 @@ static PetscErrorCode XmlEscape(const char s[], char out[], size_t len)
 
   PetscFunctionBeginUser;
   for (const char *c = s; *c; c++) {
-    const char *e = *c == '&' ? "&amp;" : *c == '<' ? "&lt;" : *c == '>' ? "&gt;" : *c == '"' ? "&quot;" : *c == '\'' ? "&apos;" : NULL;
+    const char *e = *c == '&' ? "&amp;" : *c == '<' ? "&lt;"
+                                      : *c == '>'   ? "&gt;"
+                                      : *c == '"'   ? "&quot;"
+                                      : *c == '\''  ? "&apos;"
+                                                    : NULL;
     size_t      l = e ? strlen(e) : 1;
     PetscCheck(n + l < len, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-output_file: the name '%s' is too long for the XDMF file", s);
     if (e) memcpy(out + n, e, l);

@@ -5,19 +5,19 @@
 #include "solver/ssnimpl.h"
 
 struct _n_SgCondense {
-  SgSSN      ssn;
-  Mat        F;     /* MUMPS factor of K with the Schur complement on the contact dofs */
-  Mat        S0;    /* S_K, kept to restart every update from */
-  PetscInt   ncomp; /* 1: the normal component of each contact vertex (axis-aligned normals), dim: all components */
-  PetscInt  *axis;  /* axis of each contact vertex's normal (ncomp = 1) */
-  PetscBool  ready;
+  SgSSN     ssn;
+  Mat       F;     /* MUMPS factor of K with the Schur complement on the contact dofs */
+  Mat       S0;    /* S_K, kept to restart every update from */
+  PetscInt  ncomp; /* 1: the normal component of each contact vertex (axis-aligned normals), dim: all components */
+  PetscInt *axis;  /* axis of each contact vertex's normal (ncomp = 1) */
+  PetscBool ready;
 };
 
 static PetscErrorCode CondenseUpdate(SgCondense cd)
 {
-  SgSSN          s   = cd->ssn;
-  const SgContactView *c = &s->cv;
-  const PetscInt dim = s->dim;
+  SgSSN                s   = cd->ssn;
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
   Mat                  S;
   MatFactorSchurStatus status;
   PetscScalar         *sa;
@@ -55,11 +55,11 @@ static PetscErrorCode PCSetUp_Condense(PC pc)
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &cd));
   if (!cd->ready) { /* the one sparse factorization, with the Schur complement on the contact dofs */
-    const PetscInt dim = cd->ssn->dim;
-    const SgContactView *c = &cd->ssn->cv;
-    PetscInt      *idx, rstart;
-    IS             is;
-    MatFactorInfo  info;
+    const PetscInt       dim = cd->ssn->dim;
+    const SgContactView *c   = &cd->ssn->cv;
+    PetscInt            *idx, rstart;
+    IS                   is;
+    MatFactorInfo        info;
     MatFactorSchurStatus status;
 
     PetscCall(MatGetOwnershipRange(cd->ssn->Klin, &rstart, NULL));
@@ -94,12 +94,12 @@ static PetscErrorCode PCApply_Condense(PC pc, Vec r, Vec x)
 /* Replace the SSN's linear solver by the condensed one. */
 PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
 {
-  SgCondense  cd;
-  PetscMPIInt size;
-  KSP         ksp;
-  PC          pc;
-  PetscBool   aligned = PETSC_TRUE;
-  const PetscInt dim = s->dim;
+  SgCondense     cd;
+  PetscMPIInt    size;
+  KSP            ksp;
+  PC             pc;
+  PetscBool      aligned = PETSC_TRUE;
+  const PetscInt dim     = s->dim;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));

@@ -78,9 +78,9 @@ PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal
 
 PetscErrorCode SgSSNMonitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx)
 {
-  SgSSN     s = (SgSSN)ctx;
-  KSP       ksp;
-  PetscInt  kits = 0;
+  SgSSN          s = (SgSSN)ctx;
+  KSP            ksp;
+  PetscInt       kits = 0;
   PetscLogDouble t;
 
   PetscFunctionBeginUser;
@@ -96,20 +96,20 @@ PetscErrorCode SgSSNMonitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx)
   if (it > 0 && s->hist) {
     SgHistoryRow row;
     PetscCall(SgHistoryRowInit(&row));
-    row.kind     = 's';
-    row.outer    = s->outer;
-    row.gamma    = s->gamma;
-    row.it       = it;
-    row.active   = s->nact;
-    row.entered  = s->nentered;
-    row.left     = s->nleft;
-    row.fnorm    = fnorm;
-    row.r1       = s->r1;
-    row.r2       = s->r2;
-    row.V        = s->V;
-    row.dV       = s->dVdg;
-    row.ksp_its  = kits;
-    row.time     = t - s->t0;
+    row.kind    = 's';
+    row.outer   = s->outer;
+    row.gamma   = s->gamma;
+    row.it      = it;
+    row.active  = s->nact;
+    row.entered = s->nentered;
+    row.left    = s->nleft;
+    row.fnorm   = fnorm;
+    row.r1      = s->r1;
+    row.r2      = s->r2;
+    row.V       = s->V;
+    row.dV      = s->dVdg;
+    row.ksp_its = kits;
+    row.time    = t - s->t0;
     PetscCall(SgHistoryAdd(s->hist, &row));
   }
   PetscFunctionReturn(0);

@@ -95,8 +95,8 @@ PetscErrorCode SgSSNCoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt *k
       PetscReal gi;
       SgContactLawBound(c->law, i, s->lamhat[i] + s->gamma * s->g[i], &gi, NULL);
       const PetscReal fi = gi - s->gfixw[i];
-      d  = PetscMax(d, PetscAbsReal(fi));
-      mx = PetscMax(mx, gi);
+      d                  = PetscMax(d, PetscAbsReal(fi));
+      mx                 = PetscMax(mx, gi);
       if (k > 0) {
         dX[jc * n + i] = s->gfixw[i] - x[i];
         dF[jc * n + i] = fi - f[i];

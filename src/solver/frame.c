@@ -18,17 +18,17 @@
 #include "solver/ssnimpl.h"
 
 struct _n_SgFrame {
-  MPI_Comm     comm;
-  PetscInt     dim, n, nrot;  /* contact vertices here; of those rotated (on all ranks: nrot_global) */
-  PetscInt     nrot_global;
-  const PetscInt *off;        /* dof offset of each contact vertex (the contact view's) */
-  PetscReal   *Q;             /* Q_i row-major: column b is the frame's b-th vector in global components */
-  PetscBool   *rot;           /* Q_i is not the identity */
-  PetscInt    *axis;          /* the frame dof of the normal */
-  PetscReal   *sign;          /* n = sign Q_i e_axis */
-  Mat          Kr;            /* Q^T K Q */
-  MatNullSpace nsp;           /* the rotated near null space (NULL if the problem has none) */
-  Vec          b;             /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  MPI_Comm        comm;
+  PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
+  PetscInt        nrot_global;
+  const PetscInt *off;  /* dof offset of each contact vertex (the contact view's) */
+  PetscReal      *Q;    /* Q_i row-major: column b is the frame's b-th vector in global components */
+  PetscBool      *rot;  /* Q_i is not the identity */
+  PetscInt       *axis; /* the frame dof of the normal */
+  PetscReal      *sign; /* n = sign Q_i e_axis */
+  Mat             Kr;   /* Q^T K Q */
+  MatNullSpace    nsp;  /* the rotated near null space (NULL if the problem has none) */
+  Vec             b;    /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
 };
 
 static PetscLogEvent SG_FrameSetUp;
@@ -41,7 +41,7 @@ static PetscBool     frame_registered = PETSC_FALSE;
    component e_f of a roller (n orthogonal to it, so u along e_f) keeps its place. n = s Q e_k. */
 static void VertexFrame(PetscInt dim, const PetscReal n[], PetscReal Q[], PetscInt *axis, PetscReal *sign)
 {
-  PetscInt  k = 0;
+  PetscInt  k    = 0;
   PetscReal v[3] = {0, 0, 0}, u[3], c, Ux[3][3], U2[3][3], e[3] = {0, 0, 0};
 
   for (PetscInt a = 1; a < dim; a++)
@@ -49,11 +49,11 @@ static void VertexFrame(PetscInt dim, const PetscReal n[], PetscReal Q[], PetscI
   *sign = n[k] > 0 ? 1 : -1;
   *axis = k;
   for (PetscInt a = 0; a < dim; a++) v[a] = *sign * n[a];
-  e[k] = 1;
-  u[0] = e[1] * v[2] - e[2] * v[1];
-  u[1] = e[2] * v[0] - e[0] * v[2];
-  u[2] = e[0] * v[1] - e[1] * v[0];
-  c    = v[k];
+  e[k]     = 1;
+  u[0]     = e[1] * v[2] - e[2] * v[1];
+  u[1]     = e[2] * v[0] - e[0] * v[2];
+  u[2]     = e[0] * v[1] - e[1] * v[0];
+  c        = v[k];
   Ux[0][0] = 0, Ux[0][1] = -u[2], Ux[0][2] = u[1];
   Ux[1][0] = u[2], Ux[1][1] = 0, Ux[1][2] = -u[0];
   Ux[2][0] = -u[1], Ux[2][1] = u[0], Ux[2][2] = 0;
@@ -120,7 +120,7 @@ void SgFrameVectorToLocal(SgFrame f, PetscInt i, const PetscReal v[], PetscReal 
 /* Q as a matrix (block diagonal, dim x dim blocks) for the product Q^T K Q */
 static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
 {
-  PetscInt rstart, rend, m, bs = f->dim;
+  PetscInt  rstart, rend, m, bs = f->dim;
   PetscInt *rowv;
 
   PetscFunctionBeginUser;

@@ -11,7 +11,7 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
-  const PetscReal     *n   = &c->normal[i * dim], gT = c->fgfac * s->gamma;
+  const PetscReal     *n = &c->normal[i * dim], gT = c->fgfac * s->gamma;
   PetscReal            un = 0, zdn = 0, z[3], nz = 0, dy[3];
 
   for (PetscInt k = 0; k < dim; k++) {
@@ -87,12 +87,12 @@ void SgSSNFrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[]
           lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
         }
         const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i];
-        PetscReal gi, dg;
+        PetscReal       gi, dg;
         SgContactLawBound(c->law, i, mN[i], &gi, &dg); /* the bound's round-off from lam_N's */
         ro = 8 * PETSC_MACHINE_EPSILON * (lh + gb + gT * ymax) + s->kroff / c->w[i] + (c->coupled ? dg * roN : 0);
         if (st == SG_FRICTION_FREE || s->fstjac[i] == SG_FRICTION_FREE) loc[5] += (PetscAbsReal(s->lamhat[i] + s->gamma * s->g[i]) > roN); /* the normal multiplier crossed 0 */
-        else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro); /* stick <-> slip */
-        else loc[5] += (zn > ro);                                              /* a slip that reversed */
+        else if (st != s->fstjac[i]) loc[5] += (PetscAbsReal(zn - gb) > ro);                                                               /* stick <-> slip */
+        else loc[5] += (zn > ro);                                                                                                          /* a slip that reversed */
       }
     }
   }
@@ -141,7 +141,7 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN s, Vec y, Mat P)
       for (PetscInt k = 0; k < dim; k++) fn += n[k] * PetscRealPart(fa[c->off[i] + k]);
       for (PetscInt k = 0; k < dim; k++) {
         const PetscReal r = (PetscRealPart(fa[c->off[i] + k]) - fn * n[k]) / c->w[i];
-        le[k] = lt[k] - r;
+        le[k]             = lt[k] - r;
         ln += le[k] * le[k];
         rt += r * r;
         ym = PetscMax(ym, PetscMax(PetscAbsReal(PetscRealPart(ya[c->off[i] + k])), PetscAbsReal(c->yref[i * dim + k])));
@@ -160,15 +160,15 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN s, Vec y, Mat P)
     if (st == SG_FRICTION_FREE) continue;
     {
       /* in the vertex's frame (-ssn_frame) the block Q^T B Q is made from n = e_axis and t in the frame */
-      PetscReal        nf[3] = {0, 0, 0}, tf[3], gi, dg = 0;
+      PetscReal nf[3] = {0, 0, 0}, tf[3], gi, dg = 0;
       if (c->coupled) SgContactLawBound(c->law, i, mN, &gi, &dg); /* the bound's derivative in lam_N */
       const PetscReal *nb = n, *tb = t;
       if (frot && frot[i]) {
         nf[faxis[i]] = fsign[i]; /* n = sign Q e_axis */
         SgFrameVectorToLocal(s->frame, i, t, tf);
         tf[faxis[i]] = 0;
-        nb = nf;
-        tb = tf;
+        nb           = nf;
+        tb           = tf;
       }
       for (PetscInt a = 0; a < dim; a++)
         for (PetscInt b = 0; b < dim; b++) {

@@ -30,9 +30,9 @@ static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
 
 PetscErrorCode SgSSNJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 {
-  SgSSN              s = (SgSSN)ctx;
+  SgSSN                s = (SgSSN)ctx;
   const SgContactView *c = &s->cv;
-  const PetscScalar *ya;
+  const PetscScalar   *ya;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Jacobian, 0, 0, 0, 0));

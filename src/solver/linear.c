@@ -76,10 +76,10 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   if (kset) PetscCall(PetscOptionsGetString(NULL, NULL, opt, ktype, sizeof(ktype), NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%spc_type", prefix ? prefix : ""));
   PetscCall(PetscOptionsHasName(NULL, NULL, opt, &pset));
-  *defaulted = (PetscBool)!(kset || pset);
+  *defaulted = (PetscBool) !(kset || pset);
   if (!*defaulted) {
     *iterative = (PetscBool)strcmp(ktype, KSPPREONLY); /* PETSc's default Krylov method is GMRES */
-    if (nonsym) { /* Coulomb friction: the SSN's matrices are nonsymmetric */
+    if (nonsym) {                                      /* Coulomb friction: the SSN's matrices are nonsymmetric */
       char ptype[64] = "";
       PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%spc_type", prefix ? prefix : ""));
       if (pset) PetscCall(PetscOptionsGetString(NULL, NULL, opt, ptype, sizeof(ptype), NULL));

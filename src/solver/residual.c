@@ -44,13 +44,13 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
 
 PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
 {
-  SgSSN              s = (SgSSN)ctx;
-  const SgContactView *c = &s->cv;
-  const PetscInt     dim = s->dim;
-  const PetscScalar *ya;
-  PetscScalar       *fa, dots[2];
-  PetscReal          loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
-  Vec                vecs[2];
+  SgSSN                s   = (SgSSN)ctx;
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  const PetscScalar   *ya;
+  PetscScalar         *fa, dots[2];
+  PetscReal            loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
+  Vec                  vecs[2];
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
@@ -76,8 +76,8 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
     const PetscReal z = s->lamhat[i] + s->gamma * s->g[i];
     /* the multiplier of the last Newton step: lamhat + gamma g on the set it used, 0 elsewhere */
     const PetscReal lj = s->havejac ? (s->actjac[i] ? z : 0) : PetscMax(0, z);
-    s->m[i]   = PetscMax(0, z);
-    s->act[i] = (char)(z > 0);
+    s->m[i]            = PetscMax(0, z);
+    s->act[i]          = (char)(z > 0);
     loc[0] += c->w[i] * s->m[i] * s->m[i];
     loc[1] += c->w[i] * s->m[i] * s->g[i];
     loc[2] += s->act[i];
@@ -146,11 +146,11 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
    resolved in double precision at this gamma. */
 PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal *err, PetscReal *roundoff)
 {
-  const SgContactView *c   = &s->cv;
-  Vec                F;
-  PetscScalar       *fa;
-  const PetscScalar *ya;
-  PetscReal          floor = 0, nrm[2], *g, *m;
+  const SgContactView *c = &s->cv;
+  Vec                  F;
+  PetscScalar         *fa;
+  const PetscScalar   *ya;
+  PetscReal            floor = 0, nrm[2], *g, *m;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc2(c->n, &g, c->n, &m));

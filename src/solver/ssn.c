@@ -361,7 +361,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->dmax    = 0;
   for (PetscInt i = 0; i < s->cv.n; i++) s->dmax = PetscMax(s->dmax, PetscAbsReal(s->cv.d[i]));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
-  s->nhash   = 0;
+  s->nhash    = 0;
   s->stagnant = PETSC_FALSE;
   if (s->cv.friction && (s->iterative || s->cv.coupled)) {
     if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
@@ -369,7 +369,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   }
   if (s->gamma_direct > 0 && gamma >= s->gamma_direct) { /* the iterative solver failed at a smaller gamma already */
     *its = *kits = 0;
-    s->reason = SG_SSN_LINEAR_SOLVE;
+    s->reason    = SG_SSN_LINEAR_SOLVE;
   } else {
     PetscCall(SNESSolve(s->snes, NULL, y));
     PetscCall(SNESGetIterationNumber(s->snes, its));

@@ -5,73 +5,73 @@
 
 
 struct _n_SgSSN {
-  SgElasticity prob;
-  SgContact   c;              /* NULL without a contact boundary */
-  SgContactView cv;           /* its vertices */
+  SgElasticity  prob;
+  SgContact     c;  /* NULL without a contact boundary */
+  SgContactView cv; /* its vertices */
   /* read once from the elasticity object */
-  MPI_Comm      comm;
-  PetscInt      dim;
-  const SgMesh *mesh;
-  Mat           K;
-  Vec           b, mass;
-  PetscReal     Knorm, bnorm, bnorm_inf, energy_shift;
-  PetscReal    *lamhat;       /* the shift of (P_gamma), set by the controller (SgSSNGetShift) */
-  SNES        snes;
-  Mat         J;
-  Vec         r;
-  PetscReal   gamma;
-  PetscReal  *g, *m;          /* gap and max(0, lamhat + gamma g) at the last residual evaluation */
-  char       *act, *actjac;   /* active set there, and the one the last Jacobian used */
-  PetscBool   havejac;
-  PetscInt    nact, nentered, nleft;
-  PetscReal   kroff;          /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
-  PetscReal   dmax;           /* max |d| over the contact vertices (SgSSNSolve) */
-  PetscReal   udata;          /* the largest Dirichlet value now and at load factor 1 (SgSSNUpdateLoad) */
-  PetscInt    nhard;          /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
-  PetscReal   V, dVdg;        /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
-  PetscReal   r1, r2, fdual, fnorm0, prev_fnorm;
-  PetscReal   ffloor;         /* the round-off floor of ||F|| at the last residual evaluation (the gamma-scaled terms) */
-  PetscBool   prev_settled;
-  PetscInt    nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
-  PetscInt64 *hash;
-  PetscBool   residual_test;  /* inexact linear solves: also require a small residual */
-  PetscInt    pc_reuse_its;   /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
-  SgCondense  cond;           /* -ssn_condense: linear solves condensed onto the contact dofs */
-  SgTMG       tmg;            /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
-  SgFrame     frame;          /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
-  Mat         Klin;           /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
-  Mat         Pf;             /* with frames: the Jacobian assembled in them (the KSP's matrices) */
-  PetscReal   nbhd_tau;       /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
-  SgSSNReason reason;
-  PetscBool   monitor;
-  PetscBool   progress;       /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */
-  PetscViewer reason_viewer;  /* -snes_converged_reason, taken over (SgSSNReasonView in convergence.c) */
+  MPI_Comm          comm;
+  PetscInt          dim;
+  const SgMesh     *mesh;
+  Mat               K;
+  Vec               b, mass;
+  PetscReal         Knorm, bnorm, bnorm_inf, energy_shift;
+  PetscReal        *lamhat; /* the shift of (P_gamma), set by the controller (SgSSNGetShift) */
+  SNES              snes;
+  Mat               J;
+  Vec               r;
+  PetscReal         gamma;
+  PetscReal        *g, *m;        /* gap and max(0, lamhat + gamma g) at the last residual evaluation */
+  char             *act, *actjac; /* active set there, and the one the last Jacobian used */
+  PetscBool         havejac;
+  PetscInt          nact, nentered, nleft;
+  PetscReal         kroff;   /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
+  PetscReal         dmax;    /* max |d| over the contact vertices (SgSSNSolve) */
+  PetscReal         udata;   /* the largest Dirichlet value now and at load factor 1 (SgSSNUpdateLoad) */
+  PetscInt          nhard;   /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
+  PetscReal         V, dVdg; /* J(gamma, y) and dJ/dgamma at the last residual evaluation */
+  PetscReal         r1, r2, fdual, fnorm0, prev_fnorm;
+  PetscReal         ffloor; /* the round-off floor of ||F|| at the last residual evaluation (the gamma-scaled terms) */
+  PetscBool         prev_settled;
+  PetscInt          nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
+  PetscInt64       *hash;
+  PetscBool         residual_test; /* inexact linear solves: also require a small residual */
+  PetscInt          pc_reuse_its;  /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
+  SgCondense        cond;          /* -ssn_condense: linear solves condensed onto the contact dofs */
+  SgTMG             tmg;           /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
+  SgFrame           frame;         /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
+  Mat               Klin;          /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
+  Mat               Pf;            /* with frames: the Jacobian assembled in them (the KSP's matrices) */
+  PetscReal         nbhd_tau;      /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
+  SgSSNReason       reason;
+  PetscBool         monitor;
+  PetscBool         progress;      /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */
+  PetscViewer       reason_viewer; /* -snes_converged_reason, taken over (SgSSNReasonView in convergence.c) */
   PetscViewerFormat reason_format;
-  SgHistory   hist;
-  PetscInt    outer;
-  PetscLogDouble t0;          /* the history's time origin */
-  SgSSNStopTest stop_test;    /* a controller's own stopping test (SgSSNSetStopTest) */
-  void         *stop_ctx;
-  PetscBool     pc_same_set;  /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
-  PetscReal    *gy;           /* gaps of a prospective iterate (SgSSNCountSetChanges) */
+  SgHistory         hist;
+  PetscInt          outer;
+  PetscLogDouble    t0;        /* the history's time origin */
+  SgSSNStopTest     stop_test; /* a controller's own stopping test (SgSSNSetStopTest) */
+  void             *stop_ctx;
+  PetscBool         pc_same_set; /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
+  PetscReal        *gy;          /* gaps of a prospective iterate (SgSSNCountSetChanges) */
   /* friction (cv.friction: the law has a tangential part): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
-  PetscReal    *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
-  char         *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
-  PetscReal    *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
-  char         *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
+  PetscReal *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
+  char      *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
+  PetscReal *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
+  char      *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
                                  equilibrium force exceeds the bound, linearized as slip (SgSSNFrictionJacobian) */
-  PetscBool     iterative;    /* the linear solver is not preonly */
-  KSP           kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
-  Vec           y0;           /* the initial guess of the solve, kept for that repetition */
-  PetscReal     gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
-  PetscBool     stagnant;     /* friction: the last Newton step did not halve ||F|| (SgSSNConverged) */
-  PetscInt      nforce;       /* their number, on all ranks */
-  Vec          *wpre;         /* two work vectors of the step's correction for them (SgSSNFrictionPreCheck) */
-  PetscInt      nstick, nslip, nfchanged;
-  PetscReal    *gfix;         /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (SgSSNCoulombFixedPoint) */
-  PetscReal    *gfixw;        /* its storage, n */
-  PetscInt      fp_max_it, fp_m;
-  PetscReal     fp_omega, fp_rtol;
+  PetscBool  iterative;    /* the linear solver is not preonly */
+  KSP        kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
+  Vec        y0;           /* the initial guess of the solve, kept for that repetition */
+  PetscReal  gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
+  PetscBool  stagnant;     /* friction: the last Newton step did not halve ||F|| (SgSSNConverged) */
+  PetscInt   nforce;       /* their number, on all ranks */
+  Vec       *wpre;         /* two work vectors of the step's correction for them (SgSSNFrictionPreCheck) */
+  PetscInt   nstick, nslip, nfchanged;
+  PetscReal *gfix;  /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (SgSSNCoulombFixedPoint) */
+  PetscReal *gfixw; /* its storage, n */
+  PetscInt   fp_max_it, fp_m;
+  PetscReal  fp_omega, fp_rtol;
 };
 
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,

@@ -12,22 +12,22 @@
 #include "solver/ssnimpl.h"
 
 struct _n_SgTMG {
-  SgSSN          ssn;
-  PC             amg;     /* the configured AMG, set up once; destroyed after its interpolations are taken */
-  PC             mg;      /* PCMG on the interpolations, coarse operators set here */
-  PetscInt       nlevels;
-  Mat           *P;       /* P[l]: interpolation from level l-1 to l (PCMG numbering, 0 coarsest); P[n-1] the finest */
-  Mat            Pt;      /* the finest one truncated (held by mg) */
-  Mat           *AK;      /* AK[l]: Galerkin operators of K with the whole interpolations, l < n-1 */
-  Mat           *A;       /* A[l]: the coarse operators of the current Jacobian, l < n-1 */
-  Mat            KP;      /* K P[n-1] */
-  IS             cols;    /* the owned columns of P[n-1] */
-  PetscInt      *axis;    /* normal axis of each contact vertex */
-  PetscReal     *sign;
-  char          *want;    /* the active set of the last Jacobian (SgTMGSetActiveSet) */
-  char          *have;    /* the set the coarse operators were made for */
-  PetscBool      has_set, fresh;
-  PetscBool      gamg;    /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
+  SgSSN      ssn;
+  PC         amg; /* the configured AMG, set up once; destroyed after its interpolations are taken */
+  PC         mg;  /* PCMG on the interpolations, coarse operators set here */
+  PetscInt   nlevels;
+  Mat       *P;    /* P[l]: interpolation from level l-1 to l (PCMG numbering, 0 coarsest); P[n-1] the finest */
+  Mat        Pt;   /* the finest one truncated (held by mg) */
+  Mat       *AK;   /* AK[l]: Galerkin operators of K with the whole interpolations, l < n-1 */
+  Mat       *A;    /* A[l]: the coarse operators of the current Jacobian, l < n-1 */
+  Mat        KP;   /* K P[n-1] */
+  IS         cols; /* the owned columns of P[n-1] */
+  PetscInt  *axis; /* normal axis of each contact vertex */
+  PetscReal *sign;
+  char      *want; /* the active set of the last Jacobian (SgTMGSetActiveSet) */
+  char      *have; /* the set the coarse operators were made for */
+  PetscBool  has_set, fresh;
+  PetscBool  gamg; /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
 };
 
 static PetscBool     tmg_registered = PETSC_FALSE;
@@ -159,10 +159,10 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
    smoothers and the coarse LU see no zero pivot. */
 static PetscErrorCode DeadDofs(Mat A, Mat AK)
 {
-  Vec          d, dk;
-  PetscScalar *da;
+  Vec                d, dk;
+  PetscScalar       *da;
   const PetscScalar *dka;
-  PetscInt     n, dead = 0;
+  PetscInt           n, dead = 0;
 
   PetscFunctionBeginUser;
   PetscCall(MatCreateVecs(A, &d, &dk));
@@ -198,7 +198,7 @@ static PetscErrorCode Update(SgTMG t)
   const PetscInt       n = t->nlevels;
   PetscInt             rstart, na = 0, nag, *rows;
   PetscBool            same = PETSC_TRUE;
-  Mat                  D = NULL;
+  Mat                  D    = NULL;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < c->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
@@ -311,9 +311,9 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
   PetscCheck(hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
   PetscCall(PetscNew(&t));
-  t->ssn      = s;
-  t->gamg     = gamg;
-  t->fresh    = PETSC_TRUE;
+  t->ssn   = s;
+  t->gamg  = gamg;
+  t->fresh = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
   for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
   if (s->frame) { /* every normal is the axis of its frame (frame.c) */
