@@ -19,12 +19,7 @@ import os
 import h5py
 import numpy as np
 
-
-def dataset(group, name):
-    for k in group:
-        if k == name or k.startswith(name + "_"):
-            return group[k][()]
-    raise KeyError("no field %s in %s" % (name, group.name))
+from cv_patch import dataset
 
 
 def main():
