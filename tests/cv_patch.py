@@ -27,6 +27,15 @@ def dataset(group, name):
     raise KeyError("no field %s in %s" % (name, group.name))
 
 
+def report(res, out):
+    """Print the results on one line and write them to OUT (JSON; replaced whole, never half-written)."""
+    print(" ".join("%s %.6g" % (k, v) for k, v in res.items()))
+    tmp = out + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(res, f, indent=1)
+    os.replace(tmp, out)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", required=True)
@@ -62,11 +71,7 @@ def main():
            "pressure_mean": float(pr[on & act].mean()) if (on & act).any() else 0.0,
            "u_err": float(np.abs(u - uex).max() / np.abs(uex).max()),
            "penetration": float(max(0.0, -((r + u) @ n).min()))}
-    print(" ".join("%s %.6g" % (k, v) for k, v in res.items()))
-    tmp = a.out + ".tmp"
-    with open(tmp, "w") as f:
-        json.dump(res, f, indent=1)
-    os.replace(tmp, a.out)
+    report(res, a.out)
 
 
 if __name__ == "__main__":

@@ -13,13 +13,10 @@ deformed slave vertex into the lower block (its top at H1 + u).
 usage: tb_patch.py --out OUT.json -E E -nu NU --h1 H1 --h2 H2 --gap G0 --delta D RESULT.h5
 """
 import argparse
-import json
-import os
-
 import h5py
 import numpy as np
 
-from cv_patch import dataset
+from cv_patch import dataset, report
 
 
 def main():
@@ -54,11 +51,7 @@ def main():
            "pressure_dev": float(np.abs(pr[slave & act] - p).max() / p) if (slave & act).any() else float("inf"),
            "u_err": float(np.abs(u - uex).max() / np.abs(uex).max()),
            "penetration": float(max(0.0, -(z[slave] + u[slave, dim - 1] - lower_top).min())) if slave.any() else 0.0}
-    print(" ".join("%s %.6g" % (k, v) for k, v in res.items()))
-    tmp = a.out + ".tmp"
-    with open(tmp, "w") as f:
-        json.dump(res, f, indent=1)
-    os.replace(tmp, a.out)
+    report(res, a.out)
 
 
 if __name__ == "__main__":
