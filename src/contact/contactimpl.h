@@ -111,6 +111,13 @@ struct _n_SgContact {
   Vec           pw, pf, pl; /* work: displacement and force wrappers (no array), B's row vector */
 };
 
+/* contact_pair.c: the contact object as a two-body pair (its fields master, pairdist, pair, prow, pw, pf, pl) */
+PetscErrorCode SgContactPairFromOptions(PetscOptionItems *, SgContact);
+PetscErrorCode SgContactPairSetUp(SgContact);
+PetscErrorCode SgContactPairGap(SgContact, const PetscScalar[], PetscReal[]);
+PetscErrorCode SgContactPairForce(SgContact, const PetscReal[], PetscScalar[]);
+PetscErrorCode SgContactPairJacobian(SgContact, const char[], PetscReal, Mat);
+
 /* A PetscObject (class SG_PROBLEM_CLASSID): its header holds the reference count (the caller's handle and each
    controller's PetscObjectReference), the options prefix and the name; PetscObjectView/ViewFromOptions reach
    SgProblemView through it. */

@@ -1,0 +1,198 @@
+/* contact_pair.c: two elastic bodies as a contact of their own (-contact_master_ids): the options of the pair, the
+   contact vertices from its mortar operator (pair.c), and the gap, force and Jacobian terms the contact object's
+   public functions hand over to here when it is a pair (contact.c) */
+#include "contact/contactimpl.h"
+
+/* Two bodies: -contact_master_ids (values of -contact_label: the master side; the -contact_ids are the slave side)
+   and -contact_pair_distance (how far along the slave normal a master facet may be to face a slave facet) */
+PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, SgContact c)
+{
+  PetscInt  n = c->master.nids; /* given through the interface (SG_BOUNDARY_CONTACT_MASTER), or 0 */
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  c->master.what = "contact_master";
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
+  if (set) c->master.nids = n, c->master.active = PETSC_TRUE;
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_pair_distance", "Two bodies: the largest distance along the slave normal at which a master facet faces a slave facet (default: a tenth of the mesh's diameter; larger than the initial gap, smaller than a body's thickness)", &c->pairdist, &set));
+  PetscCheck(!set || c->pairdist > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance: must be positive, got %g", (double)c->pairdist);
+  PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance is given without -contact_master_ids (two-body contact)");
+  if (!c->master.nids) PetscFunctionReturn(0);
+  PetscCheck(!c->master.label[0] || !strcmp(c->master.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the master side's label '%s' is not the contact part's '%s' (both sides are values of one label)", c->master.label, c->bnd.label);
+  PetscCheck(c->bnd.nids > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids needs -contact_ids (the slave side): without it every value of '%s' would be the slave side, the master's too", c->bnd.label);
+  for (PetscInt a = 0; a < c->master.nids; a++)
+    for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
+  PetscCheck(!c->friction, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: two-body contact is frictionless for now (-friction_type %s is not available with it)", c->law->type);
+  PetscFunctionReturn(0);
+}
+
+/* whether a row of the pair is a contact vertex: D_j > 0 and a normal (not all along fixed components) */
+static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
+{
+  return (PetscBool)(PetscRealPart(D) > 0 && (n[0] != 0 || n[1] != 0 || (dim == 3 && n[2] != 0)));
+}
+
+/* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
+   owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
+   from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
+   zeros), so that the Jacobians K + gamma B^T diag(act / D) B keep one pattern (factorizations keep their symbolic
+   phase; the preconditioners and the SSN's copies of K are made after this). */
+PetscErrorCode SgContactPairSetUp(SgContact c)
+{
+  const PetscInt     dim = c->dim;
+  const SgMesh      *m   = c->mesh;
+  PetscInt           rstart, rend, nrow, *vof;
+  const PetscScalar *Da, *ga, *Na;
+  Mat                BtB;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(c->master.label, c->bnd.label, sizeof(c->master.label)));
+  if (!(c->pairdist > 0)) {
+    PetscReal diam;
+    PetscCall(SgElasticityGetDataScales(c->prob, NULL, NULL, NULL, NULL, &diam));
+    c->pairdist = 0.1 * diam;
+  }
+  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, &c->pair));
+  c->area = c->pair->area;
+  PetscCall(MatGetOwnershipRange(c->pair->B, &rstart, &rend));
+  nrow = rend - rstart;
+  /* the owned vertex of each local row (free block rstart + j: the vertex with goff = j dim) */
+  PetscCall(PetscMalloc1(nrow + 1, &vof));
+  for (PetscInt j = 0; j < nrow; j++) vof[j] = -1;
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (m->goff[v] >= 0) vof[m->goff[v] / dim] = v;
+  PetscCall(VecGetArrayRead(c->pair->D, &Da));
+  PetscCall(VecGetArrayRead(c->pair->g0, &ga));
+  PetscCall(VecGetArrayRead(c->pair->N, &Na));
+  c->n = 0;
+  for (PetscInt j = 0; j < nrow; j++) c->n += PairRow(dim, Da[j], &Na[j * dim]);
+  PetscCall(PetscMalloc5(c->n, &c->vert, c->n, &c->off, c->n * dim, &c->normal, c->n, &c->w, c->n, &c->d));
+  PetscCall(PetscMalloc1(c->n + 1, &c->prow));
+  c->n = 0;
+  for (PetscInt j = 0; j < nrow; j++) {
+    if (!PairRow(dim, Da[j], &Na[j * dim])) continue;
+    PetscCheck(vof[j] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "free block %" PetscInt_FMT " has no owned vertex", rstart + j);
+    c->prow[c->n] = j;
+    c->vert[c->n] = vof[j];
+    c->off[c->n]  = j * dim;
+    c->w[c->n]    = PetscRealPart(Da[j]);
+    c->d[c->n]    = PetscRealPart(ga[j]) / c->w[c->n];
+    for (PetscInt k = 0; k < dim; k++) c->normal[c->n * dim + k] = PetscRealPart(Na[j * dim + k]);
+    c->n++;
+  }
+  PetscCall(VecRestoreArrayRead(c->pair->D, &Da));
+  PetscCall(VecRestoreArrayRead(c->pair->g0, &ga));
+  PetscCall(VecRestoreArrayRead(c->pair->N, &Na));
+  PetscCall(PetscFree(vof));
+  /* the Jacobian's pattern: K's and B^T B's */
+  PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
+  PetscCall(MatZeroEntries(BtB));
+  {
+    /* MatAXPY with a new pattern replaces K's data and header, and PETSc 3.18 loses (leaks) the near null space
+       attached to it: it is taken off and put back around */
+    MatNullSpace nsp, sp;
+    PetscCall(MatGetNearNullSpace(c->K, &nsp));
+    PetscCall(MatGetNullSpace(c->K, &sp));
+    PetscCall(PetscObjectReference((PetscObject)nsp));
+    PetscCall(PetscObjectReference((PetscObject)sp));
+    PetscCall(MatSetNearNullSpace(c->K, NULL));
+    PetscCall(MatSetNullSpace(c->K, NULL));
+    PetscCall(MatAXPY(c->K, 1.0, BtB, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatSetNearNullSpace(c->K, nsp));
+    PetscCall(MatSetNullSpace(c->K, sp));
+    PetscCall(MatNullSpaceDestroy(&nsp));
+    PetscCall(MatNullSpaceDestroy(&sp));
+  }
+  PetscCall(MatDestroy(&BtB));
+  PetscCall(VecCreateMPIWithArray(c->comm, 1, nrow * dim, PETSC_DETERMINE, NULL, &c->pw));
+  PetscCall(VecDuplicate(c->pw, &c->pf));
+  PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: J += gamma B^T diag(act_i / D_i) B (J has the pattern of B^T B: PairSetUp). J is assembled here: the
+   caller's assembly after it is a no-op. */
+PetscErrorCode SgContactPairJacobian(SgContact c, const char active[], PetscReal gamma, Mat J)
+{
+  Mat          Bs, C;
+  Vec          sc;
+  PetscScalar *sa;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatDuplicate(c->pair->B, MAT_COPY_VALUES, &Bs));
+  PetscCall(VecDuplicate(c->pl, &sc));
+  PetscCall(VecZeroEntries(sc));
+  PetscCall(VecGetArray(sc, &sa));
+  for (PetscInt i = 0; i < c->n; i++) sa[c->prow[i]] = active[i] ? PetscSqrtReal(gamma / c->w[i]) : 0;
+  PetscCall(VecRestoreArray(sc, &sa));
+  PetscCall(MatDiagonalScale(Bs, sc, NULL));
+  PetscCall(MatTransposeMatMult(Bs, Bs, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &C));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAXPY(J, 1.0, C, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&C));
+  PetscCall(MatDestroy(&Bs));
+  PetscCall(VecDestroy(&sc));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: |B^T 1| on the master side (per free dof; 0 on the slave contact vertices), the master's share of the
+   pair for the checkpoint's fingerprint (a pair and a rigid obstacle of the same gaps differ there); NULL without a
+   pair. The caller destroys it. */
+PetscErrorCode SgContactPairMasterWeights(SgContact c, Vec *mw)
+{
+  Vec          one;
+  PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  *mw = NULL;
+  if (!c || !c->pair) PetscFunctionReturn(0);
+  PetscCall(MatCreateVecs(c->pair->B, mw, &one));
+  PetscCall(VecSet(one, 1.0));
+  PetscCall(MatMultTranspose(c->pair->B, one, *mw));
+  PetscCall(VecDestroy(&one));
+  PetscCall(VecGetArray(*mw, &a));
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) a[c->off[i] + k] = 0;
+  PetscCall(VecRestoreArray(*mw, &a));
+  PetscCall(VecAbs(*mw));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactIsPair(SgContact c, PetscBool *pair)
+{
+  PetscFunctionBeginUser;
+  *pair = (PetscBool)(c && c->pair);
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: g_i = (B y)_i / D_i - d_i at every contact vertex (ya: the local part of a global displacement vector) */
+PetscErrorCode SgContactPairGap(SgContact c, const PetscScalar ya[], PetscReal g[])
+{
+  const PetscScalar *la;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecPlaceArray(c->pw, ya));
+  PetscCall(MatMult(c->pair->B, c->pw, c->pl));
+  PetscCall(VecResetArray(c->pw));
+  PetscCall(VecGetArrayRead(c->pl, &la));
+  for (PetscInt i = 0; i < c->n; i++) g[i] = PetscRealPart(la[c->prow[i]]) / c->w[i] - c->d[i];
+  PetscCall(VecRestoreArrayRead(c->pl, &la));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: F += B^T lam (on both sides: equal and opposite) */
+PetscErrorCode SgContactPairForce(SgContact c, const PetscReal lam[], PetscScalar Fa[])
+{
+  PetscScalar *la;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(c->pl));
+  PetscCall(VecGetArray(c->pl, &la));
+  for (PetscInt i = 0; i < c->n; i++) la[c->prow[i]] = lam[i];
+  PetscCall(VecRestoreArray(c->pl, &la));
+  PetscCall(VecPlaceArray(c->pf, Fa));
+  PetscCall(MatMultTransposeAdd(c->pair->B, c->pl, c->pf, c->pf));
+  PetscCall(VecResetArray(c->pf));
+  PetscFunctionReturn(0);
+}
