@@ -23,6 +23,11 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
   for (PetscInt a = 0; a < c->master.nids; a++)
     for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
   PetscCheck(!c->friction, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: two-body contact is frictionless for now (-friction_type %s is not available with it)", c->law->type);
+  { /* a rigid obstacle besides the pair is not built: asking for one would be ignored silently */
+    PetscBool obst = (PetscBool)(c->obstype[0] != 0);
+    if (!obst) PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-obstacle_type", &obst));
+    PetscCheck(!obst, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: a rigid obstacle in the same run as a two-body pair is not available yet (-obstacle_type or SgProblemSetObstacleType is given): the pair replaces the obstacle");
+  }
   PetscFunctionReturn(0);
 }
 
