@@ -27,6 +27,16 @@ def dataset(group, name):
     raise KeyError("no field %s in %s" % (name, group.name))
 
 
+def contact_fields(path):
+    """The vertex coordinates, displacement, contact pressure and active flags of a result file."""
+    with h5py.File(path, "r") as f:
+        x = f["geometry/vertices"][()]
+        u = dataset(f["vertex_fields"], "displacement")
+        pr = dataset(f["vertex_fields"], "contact_pressure")
+        act = dataset(f["vertex_fields"], "active") > 0.5
+    return x, u, pr, act
+
+
 def report(res, out):
     """Print the results on one line and write them to OUT (JSON; replaced whole, never half-written)."""
     print(" ".join("%s %.6g" % (k, v) for k, v in res.items()))
@@ -46,11 +56,7 @@ def main():
     ap.add_argument("-nu", type=float, required=True)
     ap.add_argument("result")
     a = ap.parse_args()
-    with h5py.File(a.result, "r") as f:
-        x = f["geometry/vertices"][()]
-        u = dataset(f["vertex_fields"], "displacement")
-        pr = dataset(f["vertex_fields"], "contact_pressure")
-        act = dataset(f["vertex_fields"], "active") > 0.5
+    x, u, pr, act = contact_fields(a.result)
     dim = x.shape[1]
     x0 = np.array([float(v) for v in a.point.split(",")])
     n = np.array([float(v) for v in a.normal.split(",")])

@@ -13,10 +13,9 @@ deformed slave vertex into the lower block (its top at H1 + u).
 usage: tb_patch.py --out OUT.json -E E -nu NU --h1 H1 --h2 H2 --gap G0 --delta D RESULT.h5
 """
 import argparse
-import h5py
 import numpy as np
 
-from cv_patch import dataset, report
+from cv_patch import contact_fields, report
 
 
 def main():
@@ -26,11 +25,7 @@ def main():
         ap.add_argument(o, type=float, required=True)
     ap.add_argument("result")
     a = ap.parse_args()
-    with h5py.File(a.result, "r") as f:
-        x = f["geometry/vertices"][()]
-        u = dataset(f["vertex_fields"], "displacement")
-        pr = dataset(f["vertex_fields"], "contact_pressure")
-        act = dataset(f["vertex_fields"], "active") > 0.5
+    x, u, pr, act = contact_fields(a.result)
     dim = x.shape[1]
     z = x[:, dim - 1]
     eps = -(a.delta - a.gap) / (a.h1 + a.h2)
