@@ -4,7 +4,8 @@
 // displacement, the exact solution is a uniaxial compression.
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 0.5};
-Box(2) = {0, 0, 0.51, 1, 1, 0.5};
+If (!Exists(g0)) g0 = 0.01; EndIf // -setnumber g0 G: another gap (tb_far3d: apart, tb_overlap3d: overlapping)
+Box(2) = {0, 0, 0.5 + g0, 1, 1, 0.5};
 MeshSize{PointsOf{Volume{1};}} = 0.25;
 MeshSize{PointsOf{Volume{2};}} = 0.18;
 Physical Surface("bottom", 1) = {5};

@@ -676,7 +676,7 @@ static PetscErrorCode TestMortarCase(SgSummary sum, const char prefix[], const T
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc5(ts->nv, &D, ts->nv, &g0, ts->nv, &w, ts->nv, &rs, dim * ts->nv, &lin));
-  PetscCall(SgMortarIntegrals(&s, &m, dmax, D, g0, &nM, &Mr, &Mc, &Mv, &area));
+  PetscCall(SgMortarIntegrals(&s, &m, dmax, D, g0, &nM, &Mr, &Mc, &Mv, &area, NULL));
   TestLumped(ts, w);
   PetscCall(PetscArrayzero(rs, ts->nv));
   PetscCall(PetscArrayzero(lin, dim * ts->nv));

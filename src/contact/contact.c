@@ -172,7 +172,11 @@ static PetscErrorCode VerticesDone(SgContact c)
   nglob = c->n;
   PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
   PetscCheck(c->nglobal > 0 || c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
-  PetscCheck(c->nglobal > 0 || !c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave vertex of '%s' faces the master side within -contact_pair_distance %g (the sides do not face each other, or they are farther apart)", c->bnd.label, (double)c->pairdist);
+  /* two bodies without a slave vertex opposite the master: farther apart than the pairing distance (a valid problem:
+     solved without contact, with a warning), or sides that do not face each other (an error) */
+  PetscCheck(c->nglobal > 0 || !c->pair || c->pair->nbeyond > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave facet of '%s' faces a master facet (the two sides face away from each other, or do not lie opposite each other)", c->bnd.label);
+  if (!c->nglobal && c->pair)
+    PetscCall(PetscPrintf(c->comm, "WARNING: -contact_ids/-contact_master_ids: the slave side of '%s' faces the master side only farther away than -contact_pair_distance %g: the pair has no contact vertices, and the problem is solved without contact (give a larger -contact_pair_distance if the bodies can come that close)\n", c->bnd.label, (double)c->pairdist));
   PetscCall(PetscCalloc2(c->n + 1, &c->klam, c->n + 1, &c->kact));
   PetscFunctionReturn(0);
 }

@@ -11,6 +11,8 @@ typedef struct {
   PetscInt   n, cap;
   PetscInt  *row, *col;
   PetscReal *val;
+  PetscReal  behind; /* the current slave facet: the deepest facing overlap farther than dmax behind it (g < -dmax), or 0 */
+  PetscBool  beyond; /* the current slave facet: a facing overlap farther than dmax ahead of it (g > dmax) */
 } Triplets;
 
 static PetscErrorCode TripletsAdd(Triplets *t, PetscInt r, PetscInt c, PetscReal v)
@@ -55,6 +57,14 @@ static void AddPoint(PetscInt nb, const PetscInt sv[], PetscReal w, const PetscR
   }
 }
 
+/* A facing master facet overlaps the slave facet farther than dmax along its normal: ahead (apart) or behind (the
+   slave facet inside the master body) */
+static void Beyond(Triplets *t, PetscReal g, PetscReal dmax)
+{
+  if (g > dmax) t->beyond = PETSC_TRUE;
+  else if (g < -dmax) t->behind = PetscMin(t->behind, g);
+}
+
 /* The pair's block of M as triplets */
 static PetscErrorCode AddBlock(PetscInt nb, const PetscInt sv[], const PetscInt mv[], const PetscReal Mloc[], Triplets *t)
 {
@@ -84,7 +94,10 @@ static PetscErrorCode Pair2D(const SgMortarSurface *s, PetscInt f, const SgMorta
     /* distance along n at the overlap's centre: the far side of a closed master body is not a partner */
     PetscReal xi = 0.5 * (lo + hi), eta = (xi - xp) / (xq - xp), g = 0;
     for (PetscInt c = 0; c < 2; c++) g += (p[c] + eta * (q[c] - p[c]) - (a[c] + xi * L * tv[c])) * n[c];
-    if (PetscAbsReal(g) > dmax) PetscFunctionReturn(0);
+    if (PetscAbsReal(g) > dmax) {
+      Beyond(t, g, dmax);
+      PetscFunctionReturn(0);
+    }
   }
   for (PetscInt k = 0; k < 2; k++) {
     PetscReal xi = lo + (hi - lo) * 0.5 * (1 + (k ? 1 : -1) / PetscSqrtReal(3.0)), eta = (xi - xp) / (xq - xp), g = 0;
@@ -186,7 +199,10 @@ static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMorta
   {
     PetscReal ls[3], lm[3], g;
     Point3D(s, f, m, e, S, M, e1, e2, cen, ls, lm, &g);
-    if (PetscAbsReal(g) > dmax) PetscFunctionReturn(0); /* the far side of a closed master body is not a partner */
+    if (PetscAbsReal(g) > dmax) { /* the far side of a closed master body is not a partner */
+      Beyond(t, g, dmax);
+      PetscFunctionReturn(0);
+    }
   }
   for (PetscInt k = 1; k + 1 < np; k++) {
     const PetscReal *tri[3] = {P[0], P[k], P[k + 1]};
@@ -202,9 +218,10 @@ static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMorta
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area)
+PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search)
 {
-  Triplets t = {0, 0, NULL, NULL, NULL};
+  Triplets       t  = {0, 0, NULL, NULL, NULL, 0, PETSC_FALSE};
+  SgMortarSearch sr = {0, -1, 0};
 
   PetscFunctionBeginUser;
   PetscCheck(s && m && s->dim == m->dim && (s->dim == 2 || s->dim == 3), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgMortarIntegrals: the two surfaces must be given, of the same dimension 2 or 3");
@@ -213,8 +230,15 @@ PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface
   PetscCall(PetscArrayzero(g0, s->nv));
   *area = 0;
   /* every pair: the surfaces are one rank's contact zone; a bounding-box tree is the next step for large ones */
-  for (PetscInt f = 0; f < s->nf; f++)
+  for (PetscInt f = 0; f < s->nf; f++) {
+    PetscReal a0 = *area;
+    t.behind = 0, t.beyond = PETSC_FALSE;
     for (PetscInt e = 0; e < m->nf; e++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, e, dmax, D, g0, &t, area));
+    if (*area > a0) continue; /* a partner within dmax */
+    if (t.beyond) sr.nbeyond++;
+    if (-t.behind > sr.overlap) sr.overlap = -t.behind, sr.foverlap = f;
+  }
   *nM = t.n, *Mrow = t.row, *Mcol = t.col, *Mval = t.val;
+  if (search) *search = sr;
   PetscFunctionReturn(0);
 }

@@ -31,4 +31,14 @@ typedef struct {
    such a vertex is (a contact vertex of its own, or one left out).
    *area returns the covered measure of the slave surface. The *nM triplets are allocated (PetscFree each array); a
    pair (j, k) may appear several times: add them. */
-PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area);
+/* *search (may be NULL) reports the slave facets that got no partner within dmax (the bad-input checks of the pair):
+   nbeyond of them face a master facet farther than dmax ahead (the bodies apart), and overlap > 0 is the largest
+   depth at which such a facet lies behind a facing master facet (the slave facet inside the master body: the bodies
+   overlap), foverlap that facet (-1: none). */
+typedef struct {
+  PetscReal overlap;
+  PetscInt  foverlap;
+  PetscInt  nbeyond;
+} SgMortarSearch;
+
+PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search);

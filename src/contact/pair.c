@@ -172,6 +172,42 @@ static PetscErrorCode NormalizeNormals(SgContactPair p, Vec free)
   PetscFunctionReturn(0);
 }
 
+/* "a,b,c": a side's values (for the messages) */
+static void IdList(const SgBoundary *b, char buf[], size_t len)
+{
+  size_t k = 0;
+  buf[0]   = 0;
+  for (PetscInt i = 0; i < b->nids && k + 24 < len; i++) k += (size_t)snprintf(buf + k, len - k, "%s%" PetscInt_FMT, i ? "," : "", b->ids[i]);
+}
+
+/* The slave facets that found no partner within dmax (mortar.h's search): one that lies deeper than dmax behind a
+   facing master facet means that the bodies overlap at the start: an error naming the sides, the depth and the place.
+   Those that face the master farther than dmax ahead are counted (nbeyond, all ranks): if no slave vertex gets a row,
+   the bodies are apart (the contact object warns and solves without contact), not facing away from each other. */
+static PetscErrorCode CheckSearch(MPI_Comm comm, PetscInt dim, const Side *sl, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgMortarSearch *sr, PetscInt *nbeyond)
+{
+  PetscReal depth = sr->overlap, x[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(&sr->nbeyond, nbeyond, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &depth, 1, MPIU_REAL, MPI_MAX, comm));
+  if (!(depth > 0)) PetscFunctionReturn(0);
+  if (sr->foverlap >= 0 && sr->overlap == depth) { /* the facet's centre, from the rank that has it */
+    for (PetscInt c = 0; c < dim; c++) x[c] = 0;
+    for (PetscInt i = 0; i < dim; i++)
+      for (PetscInt c = 0; c < dim; c++) x[c] += sl->x[(sr->foverlap * dim + i) * dim + c] / dim;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x, 3, MPIU_REAL, MPI_MAX, comm));
+  {
+    char ids[256], mids[256], at[96];
+    IdList(slave, ids, sizeof(ids));
+    IdList(master, mids, sizeof(mids));
+    if (dim == 3) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]));
+    else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)x[0], (double)x[1]));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the bodies overlap at the start: the slave side near %s lies %g inside the master side (behind a facing master facet, deeper than -contact_pair_distance %g): move the bodies apart in the mesh", ids, mids, at, (double)depth, (double)dmax);
+  }
+}
+
 PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, SgContactPair *pair)
 {
   SgContactPair   p;
@@ -180,6 +216,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   Mat             K, Ms;
   Side            sl, ml, mall;
   SgMortarSurface ss, ms;
+  SgMortarSearch  search;
   PetscInt        dim, nloc, *sfac, *mfac, nM, *Mr, *Mc;
   PetscReal      *Dl, *gl, *Mv;
 
@@ -198,8 +235,9 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SideSurface(dim, &sl, &ss, &sfac));
   PetscCall(SideSurface(dim, &mall, &ms, &mfac));
   PetscCall(PetscMalloc2(ss.nv + 1, &Dl, ss.nv + 1, &gl));
-  PetscCall(SgMortarIntegrals(&ss, &ms, dmax, Dl, gl, &nM, &Mr, &Mc, &Mv, &p->area));
+  PetscCall(SgMortarIntegrals(&ss, &ms, dmax, Dl, gl, &nM, &Mr, &Mc, &Mv, &p->area, &search));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->area, 1, MPIU_REAL, MPI_SUM, p->comm));
+  PetscCall(CheckSearch(p->comm, dim, &sl, slave, master, dmax, &search, &p->nbeyond));
 
   PetscCall(VecCreateMPI(p->comm, nloc, PETSC_DETERMINE, &p->D));
   PetscCall(VecDuplicate(p->D, &p->g0));

@@ -21,8 +21,9 @@ typedef struct _n_SgContactPair *SgContactPair;
 struct _n_SgContactPair {
   MPI_Comm  comm;
   PetscInt  dim;
-  PetscInt  nslave; /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
-  PetscReal area;   /* covered measure of the slave surface */
+  PetscInt  nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
+  PetscReal area;    /* covered measure of the slave surface */
+  PetscInt  nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
   Vec       D, g0, N;
   Mat       B;
 };
