@@ -44,11 +44,13 @@ PetscErrorCode SgFileInstallCleanup(void);
 
 /* ---- SgProblem */
 typedef enum {
-  SG_BOUNDARY_DIRICHLET,     /* values: dim displacements per id */
-  SG_BOUNDARY_NEUMANN,       /* values: dim tractions per id */
-  SG_BOUNDARY_CONTACT,       /* values: none (NULL) */
-  SG_BOUNDARY_CONTACT_MASTER /* values: none (NULL); two elastic bodies: the master side, ids of the contact part's
-                                label (the contact part's ids are then the slave side; default of -contact_master_ids) */
+  SG_BOUNDARY_DIRICHLET,       /* values: dim displacements per id */
+  SG_BOUNDARY_NEUMANN,         /* values: dim tractions per id */
+  SG_BOUNDARY_CONTACT,         /* values: none (NULL) */
+  SG_BOUNDARY_CONTACT_MASTER,  /* values: none (NULL); two elastic bodies: the master side, ids of the contact part's
+                                  label (the contact part's ids are then the slave side; default of -contact_master_ids) */
+  SG_BOUNDARY_CONTACT_OBSTACLE /* values: none (NULL); two bodies and a rigid obstacle: the faces that may touch the
+                                  obstacle, ids of the contact part's label (default of -contact_obstacle_ids) */
 } SgBoundaryType;
 
 PetscErrorCode SgProblemCreate(MPI_Comm, SgProblem *);             /* an empty problem on the communicator */

@@ -180,7 +180,7 @@ PetscErrorCode           SgObstacleCreate_CAD(SgObstacle); /* obstacle_cad.c */
 typedef struct _n_SgContact *SgContact;
 
 
-PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const SgBoundary *, const char[], SgContact *); /* the contact part, the master side (two bodies) or NULL, the obstacle type */
+PetscErrorCode SgContactCreate(SgElasticity, const char[], const SgBoundary *, const SgBoundary *, const SgBoundary *, const char[], SgContact *); /* the contact part, the master side (two bodies) or NULL, the obstacle's faces besides a pair or NULL, the obstacle type */
 PetscErrorCode SgContactSetUp(SgContact);
 /* the contact law (law.c; -friction_type, SgContactLawRegister in include/signorini.h): the bound of |lam_T| and its
    derivative in lam_N at a contact vertex; "none" leaves the frictionless code paths untouched */

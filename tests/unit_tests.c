@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -822,7 +822,7 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   dim = m->dim;
-  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, &pair));
+  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, NULL, &pair));
   /* Y = A x and T = a translation, in the free dofs */
   PetscCall(MatCreateVecs(K, &Y, NULL));
   PetscCall(VecDuplicate(Y, &T));
@@ -909,6 +909,29 @@ static PetscErrorCode TestPairAPI(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies and a rigid obstacle through the library (SG_BOUNDARY_CONTACT_OBSTACLE, SgProblemSetObstacleType): the
+   2D patch test with the lower block resting on a rigid plane (its point from the options); the exact energy, and the
+   force carried by the pair and by the plane alike */
+static PetscErrorCode TestPairObstacleAPI(SgSummary s)
+{
+  SgProblem      prob;
+  const PetscInt slave[1] = {20}, master[1] = {10}, obst[1] = {1};
+  SgKKT          kkt;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreate(PETSC_COMM_WORLD, &prob));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_CONTACT, "Face Sets", 1, slave, NULL));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_CONTACT_MASTER, "Face Sets", 1, master, NULL));
+  PetscCall(SgProblemSetBoundary(prob, SG_BOUNDARY_CONTACT_OBSTACLE, "Face Sets", 1, obst, NULL));
+  PetscCall(SgProblemSetObstacleType(prob, "plane"));
+  PetscCall(SolveRecord(prob, s, &kkt));
+  PetscCall(SgSummarySetReal(s, "energy_exact", 0.5 * 0.04 * 0.04 / 0.91));
+  PetscCall(SgSummarySetReal(s, "force", kkt.force));
+  PetscCall(SgSummarySetReal(s, "force_exact", 2 * 0.04 / 0.91));
+  PetscCall(SgProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -936,6 +959,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "mortar", &eq) == 0 && eq) PetscCall(TestMortar(s));
   else if (PetscStrcmp(test, "pair", &eq) == 0 && eq) PetscCall(TestPair(s));
   else if (PetscStrcmp(test, "pairapi", &eq) == 0 && eq) PetscCall(TestPairAPI(s));
+  else if (PetscStrcmp(test, "pairobstacleapi", &eq) == 0 && eq) PetscCall(TestPairObstacleAPI(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

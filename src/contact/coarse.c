@@ -46,7 +46,9 @@ PetscErrorCode SgProblemCreateCoarse(SgProblem p, PetscInt down, SgProblem *coar
   if (prefix) PetscCall(SgProblemSetOptionsPrefix(q, prefix));
   q->settings = p->settings;
   q->contact  = p->contact;
-  PetscCall(PetscArraycpy(q->values_dim, p->values_dim, 3));
+  q->master   = p->master; /* two bodies through the interface: the same sides (and obstacle faces) on every level */
+  q->obnd     = p->obnd;
+  PetscCall(PetscArraycpy(q->values_dim, p->values_dim, (PetscInt)(sizeof(q->values_dim) / sizeof(q->values_dim[0]))));
   PetscCall(PetscStrncpy(q->obstacle, p->obstacle, sizeof(q->obstacle)));
   { /* the coarser mesh kept with the fine one when it was made (fem/mesh.c, MeshRefineNested): its distribution */
     DM          dm;

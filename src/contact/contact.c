@@ -46,7 +46,7 @@ static PetscErrorCode ObstacleCondition(SgContact c, PetscInt v, PetscReal nrm[]
 
 /* The contact boundary from the settings (bnd: the label and ids given through the interface, or NULL) and the
    options; *contact = NULL if no contact boundary is given (linear elasticity). The geometry comes in SgContactSetUp. */
-PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const SgBoundary *master, const char obstype[], SgContact *contact)
+PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoundary *bnd, const SgBoundary *master, const SgBoundary *obnd, const char obstype[], SgContact *contact)
 {
   SgContact c;
   char      nmode[64] = "";
@@ -63,6 +63,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   if (bnd) c->bnd = *bnd;
   c->bnd.what = "contact";
   if (master) c->master = *master;
+  if (obnd) c->obnd = *obnd;
   if (!c->bnd.label[0]) PetscCall(PetscStrcpy(c->bnd.label, "Face Sets"));
   PetscOptionsBegin(c->comm, prefix, "Contact boundary", NULL);
   PetscCall(SgBoundaryFromOptions(PetscOptionsObject, &c->bnd, 0, NULL, "possible contact"));
@@ -82,8 +83,8 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   {
     PetscBool has;
     PetscCall(SgObstacleHasDistance(c->obs, &has));
-    c->obsnormal = nset ? (PetscBool)!strcmp(nmode, "obstacle") : (PetscBool)(has && !strcmp(c->obs->type, "plane") && !c->master.nids);
-    PetscCheck(!c->master.nids || !c->obsnormal, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: two-body contact (-contact_master_ids) takes the slave side's normals (-contact_normal body)");
+    c->obsnormal = nset ? (PetscBool)!strcmp(nmode, "obstacle") : (PetscBool)(has && !strcmp(c->obs->type, "plane") && (!c->master.nids || c->obnd.nids));
+    PetscCheck(!c->master.nids || c->obnd.nids || !c->obsnormal, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: two-body contact (-contact_master_ids) takes the slave side's normals (-contact_normal body); with a rigid obstacle besides (-contact_obstacle_ids) it chooses the obstacle's conditions");
     PetscCheck(!c->obsnormal || has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
   }
   *contact = c;
@@ -182,9 +183,54 @@ static PetscErrorCode VerticesDone(SgContact c)
 }
 
 
+static PetscErrorCode PairSetUp(SgContact);
+static PetscErrorCode ObstacleVertices(SgContact, const SgBoundary *);
+
 PetscErrorCode SgContactSetUp(SgContact c)
 {
-  const SgMesh *m;
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(c->prob, &c->dm, &c->dmVert, &c->dmVec, NULL));
+  PetscCall(SgElasticityGetMesh(c->prob, &c->mesh));
+  PetscCall(SgElasticityGetOperators(c->prob, &c->K, &c->b));
+  PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
+  if (c->master.nids) { /* two bodies: the pair's rows (and the obstacle's, -contact_obstacle_ids) */
+    PetscCall(PairSetUp(c));
+    PetscCall(VerticesDone(c));
+    PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ObstacleVertices(c, &c->bnd));
+  PetscCall(VerticesDone(c));
+  if (c->friction) PetscCall(PrescribedSetUp(c));
+  PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies: the pair's rows; with a rigid obstacle besides, its nodal conditions on the faces -contact_obstacle_ids
+   first (as for one body), handed to the pair as rows of their own */
+static PetscErrorCode PairSetUp(SgContact c)
+{
+  PetscInt   n = 0, *off = NULL;
+  PetscReal *w = NULL, *nrm = NULL, *d = NULL, area = 0;
+  PetscInt  *vert = NULL;
+
+  PetscFunctionBeginUser;
+  if (c->obnd.nids) {
+    PetscCall(PetscStrncpy(c->obnd.label, c->bnd.label, sizeof(c->obnd.label)));
+    PetscCall(ObstacleVertices(c, &c->obnd));
+    n = c->n, vert = c->vert, off = c->off, nrm = c->normal, w = c->w, d = c->d, area = c->area;
+    c->n = 0, c->vert = NULL, c->off = NULL, c->normal = NULL, c->w = NULL, c->d = NULL;
+  }
+  PetscCall(SgContactPairSetUp(c, n, off, w, nrm, d));
+  c->area += area; /* the pair's covered slave surface and the obstacle's faces */
+  PetscCall(PetscFree5(vert, off, nrm, w, d));
+  PetscFunctionReturn(0);
+}
+
+/* The nodal conditions on the faces of bnd against the obstacle: the contact vertices (n, vert, off, normal, w, d) */
+static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
+{
+  const SgMesh *m   = c->mesh;
   PetscInt      dim = c->dim;
   PetscInt      nfac, *facets, *part, nloc = 0, nfglob;
   Vec           wl, nl, wg, ng;
@@ -192,21 +238,10 @@ PetscErrorCode SgContactSetUp(SgContact c)
   PetscSection  ws, ns;
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetDMs(c->prob, &c->dm, &c->dmVert, &c->dmVec, NULL));
-  PetscCall(SgElasticityGetMesh(c->prob, &c->mesh));
-  PetscCall(SgElasticityGetOperators(c->prob, &c->K, &c->b));
-  m = c->mesh;
-  PetscCall(PetscLogEventBegin(SG_ContactSetUp, 0, 0, 0, 0));
-  if (c->master.nids) { /* two bodies: the pair's rows */
-    PetscCall(SgContactPairSetUp(c));
-    PetscCall(VerticesDone(c));
-    PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(SgBoundaryGetFacets(c->dm, &c->bnd, &nfac, &facets, &part));
+  PetscCall(SgBoundaryGetFacets(c->dm, bnd, &nfac, &facets, &part));
   nfglob = nfac;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, c->comm));
-  PetscCheck(nfglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.label);
+  PetscCheck(nfglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-%s_label/-%s_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.what, bnd->what, bnd->label);
   PetscCall(DMGetLocalVector(c->dmVert, &wl));
   PetscCall(DMGetLocalVector(c->dmVec, &nl));
   PetscCall(VecZeroEntries(wl));
@@ -300,9 +335,6 @@ PetscErrorCode SgContactSetUp(SgContact c)
   PetscCall(VecRestoreArray(nl, &na));
   PetscCall(DMRestoreLocalVector(c->dmVert, &wl));
   PetscCall(DMRestoreLocalVector(c->dmVec, &nl));
-  PetscCall(VerticesDone(c));
-  if (c->friction) PetscCall(PrescribedSetUp(c));
-  PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -328,7 +360,12 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
 PetscErrorCode SgContactGetObstacleType(SgContact c, const char *type[])
 {
   PetscFunctionBeginUser;
-  if (c->master.nids) *type = "none: two bodies (-contact_master_ids, mortar)";
+  if (c->master.nids && c->obnd.nids) { /* a rigid obstacle besides the pair */
+    const char *ot;
+    PetscCall(SgObstacleGetType(c->obs, &ot));
+    PetscCall(PetscSNPrintf(c->obsdesc, sizeof(c->obsdesc), "%s (-contact_obstacle_ids) and two bodies (-contact_master_ids, mortar)", ot));
+    *type = c->obsdesc;
+  } else if (c->master.nids) *type = "none: two bodies (-contact_master_ids, mortar)";
   else PetscCall(SgObstacleGetType(c->obs, type));
   PetscFunctionReturn(0);
 }
@@ -358,6 +395,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->xc));
   PetscCall(PetscFree((*c)->prow));
+  PetscCall(PetscFree((*c)->obsrow));
   PetscCall(VecDestroy(&(*c)->pw));
   PetscCall(VecDestroy(&(*c)->pf));
   PetscCall(VecDestroy(&(*c)->pl));
@@ -1091,7 +1129,7 @@ static PetscErrorCode VertexGap(SgContact c, PetscInt i, PetscReal *d)
   const PetscReal *x = &c->mesh->x[c->vert[i] * dim], *n = &c->normal[i * dim];
 
   PetscFunctionBeginUser;
-  if (c->pair) { /* two bodies: the weighted gap of the reference configuration, at every placement */
+  if (c->pair && !c->obsrow[i]) { /* two bodies: the weighted gap of the reference configuration, at every placement */
     *d = c->d[i];
     PetscFunctionReturn(0);
   }
@@ -1117,9 +1155,11 @@ PetscErrorCode SgContactSetLoadFactor(SgContact c, PetscReal t)
   PetscCall(SgObstacleGetTranslation(c->obs, T));
   moves = (PetscBool)(T[0] != 0 || T[1] != 0 || T[2] != 0);
   PetscCall(SgObstacleSetPlacement(c->obs, t));
-  /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex); a pair's do not */
-  if (moves && !c->pair)
-    for (PetscInt i = 0; i < c->n; i++) PetscCall(VertexGap(c, i, &c->d[i]));
+  /* the gaps change only with a translation (a CAD obstacle's queries cost about 0.6 ms a vertex); a pair's rows do
+     not (its obstacle rows do) */
+  if (moves)
+    for (PetscInt i = 0; i < c->n; i++)
+      if (!c->pair || c->obsrow[i]) PetscCall(VertexGap(c, i, &c->d[i]));
   PetscFunctionReturn(0);
 }
 

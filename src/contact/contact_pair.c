@@ -14,19 +14,30 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
   c->master.what = "contact_master";
   PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
   if (set) c->master.nids = n, c->master.active = PETSC_TRUE;
+  n            = c->obnd.nids; /* given through the interface (SG_BOUNDARY_CONTACT_OBSTACLE), or 0 */
+  c->obnd.what = "contact_obstacle";
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_obstacle_ids", "Two bodies and a rigid obstacle in one run: values of -contact_label marking the faces that may touch the obstacle (-obstacle_type); without -contact_master_ids the -contact_ids are those faces", SG_MAX_IDS, c->obnd.ids, &n, &set));
+  if (set) c->obnd.nids = n, c->obnd.active = PETSC_TRUE;
+  PetscCheck(!c->obnd.nids || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_obstacle_ids is for a run with a two-body pair (-contact_master_ids); without one, the -contact_ids are the faces that may touch the obstacle");
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_pair_distance", "Two bodies: the largest distance along the slave normal at which a master facet faces a slave facet (default: a tenth of the mesh's diameter; larger than the initial gap, smaller than a body's thickness)", &c->pairdist, &set));
   PetscCheck(!set || c->pairdist > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance: must be positive, got %g", (double)c->pairdist);
   PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance is given without -contact_master_ids (two-body contact)");
   if (!c->master.nids) PetscFunctionReturn(0);
+  PetscCheck(!c->obnd.label[0] || !strcmp(c->obnd.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the obstacle's faces' label '%s' is not the contact part's '%s' (the faces are values of one label)", c->obnd.label, c->bnd.label);
   PetscCheck(!c->master.label[0] || !strcmp(c->master.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the master side's label '%s' is not the contact part's '%s' (both sides are values of one label)", c->master.label, c->bnd.label);
   PetscCheck(c->bnd.nids > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids needs -contact_ids (the slave side): without it every value of '%s' would be the slave side, the master's too", c->bnd.label);
   for (PetscInt a = 0; a < c->master.nids; a++)
     for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
   PetscCheck(!c->friction, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: two-body contact is frictionless for now (-friction_type %s is not available with it)", c->law->type);
-  { /* a rigid obstacle besides the pair is not built: asking for one would be ignored silently */
+  { /* a rigid obstacle besides the pair: the faces that may touch it are named apart from the pair's sides */
     PetscBool obst = (PetscBool)(c->obstype[0] != 0);
     if (!obst) PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-obstacle_type", &obst));
-    PetscCheck(!obst, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: a rigid obstacle in the same run as a two-body pair is not available yet (-obstacle_type or SgProblemSetObstacleType is given): the pair replaces the obstacle");
+    PetscCheck(!obst || c->obnd.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids with a rigid obstacle (-obstacle_type or SgProblemSetObstacleType): name the faces that may touch the obstacle with -contact_obstacle_ids (values of -contact_label '%s'; the -contact_ids are the pair's slave side)", c->bnd.label);
+    PetscCheck(obst || !c->obnd.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_obstacle_ids is given without a rigid obstacle: give -obstacle_type (and its options)");
+    for (PetscInt a = 0; a < c->obnd.nids; a++) {
+      for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->obnd.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_obstacle_ids: the value %" PetscInt_FMT " is in -contact_ids too: a face touches either the other body (slave side) or the obstacle", c->obnd.ids[a]);
+      for (PetscInt b = 0; b < c->master.nids; b++) PetscCheck(c->obnd.ids[a] != c->master.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_obstacle_ids: the value %" PetscInt_FMT " is in -contact_master_ids too: a face touches either the other body (master side) or the obstacle", c->obnd.ids[a]);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -42,10 +53,11 @@ static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
    from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
    zeros), so that the Jacobians K + gamma B^T diag(act / D) B keep one pattern (factorizations keep their symbolic
    phase; the preconditioners and the SSN's copies of K are made after this). */
-PetscErrorCode SgContactPairSetUp(SgContact c)
+PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt ooff[], const PetscReal ow[], const PetscReal onrm[], const PetscReal od[])
 {
-  const PetscInt     dim = c->dim;
-  const SgMesh      *m   = c->mesh;
+  SgPairObstacleRows obst = {nobs, ooff, ow, onrm, od};
+  const PetscInt     dim  = c->dim;
+  const SgMesh      *m    = c->mesh;
   PetscInt           rstart, rend, nrow, *vof;
   const PetscScalar *Da, *ga, *Na;
   Mat                BtB;
@@ -57,7 +69,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c)
     PetscCall(SgElasticityGetDataScales(c->prob, NULL, NULL, NULL, NULL, &diam));
     c->pairdist = 0.1 * diam;
   }
-  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, &c->pair));
+  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, c->obnd.nids ? &obst : NULL, &c->pair));
   c->area = c->pair->area;
   PetscCall(MatGetOwnershipRange(c->pair->B, &rstart, &rend));
   nrow = rend - rstart;
@@ -73,15 +85,17 @@ PetscErrorCode SgContactPairSetUp(SgContact c)
   for (PetscInt j = 0; j < nrow; j++) c->n += PairRow(dim, Da[j], &Na[j * dim]);
   PetscCall(PetscMalloc5(c->n, &c->vert, c->n, &c->off, c->n * dim, &c->normal, c->n, &c->w, c->n, &c->d));
   PetscCall(PetscMalloc1(c->n + 1, &c->prow));
+  PetscCall(PetscCalloc1(c->n + 1, &c->obsrow));
   c->n = 0;
   for (PetscInt j = 0; j < nrow; j++) {
     if (!PairRow(dim, Da[j], &Na[j * dim])) continue;
     PetscCheck(vof[j] >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "free block %" PetscInt_FMT " has no owned vertex", rstart + j);
-    c->prow[c->n] = j;
-    c->vert[c->n] = vof[j];
-    c->off[c->n]  = j * dim;
-    c->w[c->n]    = PetscRealPart(Da[j]);
-    c->d[c->n]    = PetscRealPart(ga[j]) / c->w[c->n];
+    c->prow[c->n]   = j;
+    c->obsrow[c->n] = (PetscBool)(c->pair->obsrow && c->pair->obsrow[j]);
+    c->vert[c->n]   = vof[j];
+    c->off[c->n]    = j * dim;
+    c->w[c->n]      = PetscRealPart(Da[j]);
+    c->d[c->n]      = PetscRealPart(ga[j]) / c->w[c->n];
     for (PetscInt k = 0; k < dim; k++) c->normal[c->n * dim + k] = PetscRealPart(Na[j * dim + k]);
     c->n++;
   }

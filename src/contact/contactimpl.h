@@ -108,12 +108,18 @@ struct _n_SgContact {
   PetscReal     pairdist;
   SgContactPair pair;
   PetscInt     *prow;
-  Vec           pw, pf, pl; /* work: displacement and force wrappers (no array), B's row vector */
+  /* a rigid obstacle besides the pair (-contact_obstacle_ids, the faces that may touch it): its nodal conditions are
+     rows of B too (w_i n_i^T e_i, d_i the obstacle's gap), marked obsrow[i]; their gaps follow the obstacle's
+     placement */
+  SgBoundary obnd;
+  PetscBool *obsrow;
+  char       obsdesc[160]; /* the obstacle's description then (SgContactGetObstacleType) */
+  Vec        pw, pf, pl;   /* work: displacement and force wrappers (no array), B's row vector */
 };
 
 /* contact_pair.c: the contact object as a two-body pair (its fields master, pairdist, pair, prow, pw, pf, pl) */
 PetscErrorCode SgContactPairFromOptions(PetscOptionItems *, SgContact);
-PetscErrorCode SgContactPairSetUp(SgContact);
+PetscErrorCode SgContactPairSetUp(SgContact, PetscInt, const PetscInt[], const PetscReal[], const PetscReal[], const PetscReal[]);
 PetscErrorCode SgContactPairGap(SgContact, const PetscScalar[], PetscReal[]);
 PetscErrorCode SgContactPairForce(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactPairJacobian(SgContact, const char[], PetscReal, Mat);
@@ -128,6 +134,7 @@ struct _n_SgProblem {
   SgElasticitySettings  settings;     /* material and boundary parts given through the interface */
   SgBoundary            contact;      /* the contact boundary given through the interface */
   SgBoundary            master;       /* two bodies: the master side given through the interface (SG_BOUNDARY_CONTACT_MASTER) */
+  SgBoundary            obnd;         /* two bodies and an obstacle: its faces given through the interface (SG_BOUNDARY_CONTACT_OBSTACLE) */
   char                  obstacle[64]; /* obstacle type given through the interface ("" : from the options) */
   SgElasticity          el;
   SgContact             c; /* NULL: no contact boundary (linear elasticity) */
@@ -135,5 +142,5 @@ struct _n_SgProblem {
   PetscBool             setup_failed; /* SgProblemSetUp stopped with an error: its half-made state is not used again */
   PetscBool             load_set;     /* SgProblemSetLoadFactor or SgProblemSetDirichletValues was called: a run with load steps */
   PetscLogDouble        t_create;
-  PetscInt              values_dim[4]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
+  PetscInt              values_dim[5]; /* the dimension SgProblemSetBoundary read its values with, per SgBoundaryType (0: none given) */
 };

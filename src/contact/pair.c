@@ -208,7 +208,36 @@ static PetscErrorCode CheckSearch(MPI_Comm comm, PetscInt dim, const Side *sl, c
   }
 }
 
-PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, SgContactPair *pair)
+/* The obstacle's rows (pair.h): at owned free vertices that have no row of the pair (no D, no M entry) */
+static PetscErrorCode ObstacleRows(SgContactPair p, Mat Ms, PetscInt nloc, const SgPairObstacleRows *o)
+{
+  const PetscInt dim = p->dim;
+  PetscScalar   *Da, *ga, *Na;
+  PetscInt       rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(nloc + 1, &p->obsrow));
+  PetscCall(MatGetOwnershipRange(Ms, &rstart, NULL));
+  PetscCall(VecGetArray(p->D, &Da));
+  PetscCall(VecGetArray(p->g0, &ga));
+  PetscCall(VecGetArray(p->N, &Na));
+  for (PetscInt i = 0; i < o->n; i++) {
+    PetscInt j = o->off[i] / dim, nc;
+    PetscCall(MatGetRow(Ms, rstart + j, &nc, NULL, NULL));
+    PetscCall(MatRestoreRow(Ms, rstart + j, &nc, NULL, NULL));
+    if (nc > 0 || PetscRealPart(Da[j]) != 0) continue; /* the vertex faces the master: the pair's row */
+    p->obsrow[j] = PETSC_TRUE;
+    Da[j]        = o->w[i];
+    ga[j]        = o->w[i] * o->d[i];
+    for (PetscInt c = 0; c < dim; c++) Na[j * dim + c] = o->nrm[i * dim + c];
+  }
+  PetscCall(VecRestoreArray(p->D, &Da));
+  PetscCall(VecRestoreArray(p->g0, &ga));
+  PetscCall(VecRestoreArray(p->N, &Na));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgPairObstacleRows *obst, SgContactPair *pair)
 {
   SgContactPair   p;
   DM              dm;
@@ -268,6 +297,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(VecAssemblyEnd(p->N));
   PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
+  if (obst) PetscCall(ObstacleRows(p, Ms, nloc, obst));
   {
     Vec          free;
     PetscScalar *fa;
@@ -306,6 +336,7 @@ PetscErrorCode SgContactPairDestroy(SgContactPair *pair)
   PetscCall(VecDestroy(&(*pair)->g0));
   PetscCall(VecDestroy(&(*pair)->N));
   PetscCall(MatDestroy(&(*pair)->B));
+  PetscCall(PetscFree((*pair)->obsrow));
   PetscCall(PetscFree(*pair));
   PetscFunctionReturn(0);
 }

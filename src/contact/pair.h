@@ -19,16 +19,28 @@ typedef struct _n_SgContactPair *SgContactPair;
    Master vertices of a Dirichlet part that fixes all their components have no dof: their columns are left out (they
    do not move). */
 struct _n_SgContactPair {
-  MPI_Comm  comm;
-  PetscInt  dim;
-  PetscInt  nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
-  PetscReal area;    /* covered measure of the slave surface */
-  PetscInt  nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
-  Vec       D, g0, N;
-  Mat       B;
+  MPI_Comm   comm;
+  PetscInt   dim;
+  PetscInt   nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
+  PetscReal  area;    /* covered measure of the slave surface */
+  PetscBool *obsrow;  /* per owned free vertex: its row is an obstacle row (SgPairObstacleRows), or NULL */
+  PetscInt   nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
+  Vec        D, g0, N;
+  Mat        B;
 };
 
+/* Nodal conditions against a rigid obstacle given to the pair as rows of their own (a rigid obstacle besides the
+   pair): n vertices by their local dof offset off[i] (the free displacement's owned part), lumped weight w[i], unit
+   normal nrm[dim i..] (outward of the body) and gap d[i]: row off[i] / dim of B becomes w_i n_i^T e_i, D = w_i,
+   g0 = w_i d_i. A vertex that has a row of the pair (it faces the master) keeps that one. */
+typedef struct {
+  PetscInt         n;
+  const PetscInt  *off;
+  const PetscReal *w, *nrm, *d;
+} SgPairObstacleRows;
+
 /* slave, master: the two sides (label and values); dmax: the largest distance along the slave normal at which a
-   master facet is a partner (larger than the initial gap, smaller than the bodies' thickness) */
-PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, SgContactPair *);
+   master facet is a partner (larger than the initial gap, smaller than the bodies' thickness); obst: rows against a
+   rigid obstacle, or NULL */
+PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgPairObstacleRows *obst, SgContactPair *);
 PetscErrorCode SgContactPairDestroy(SgContactPair *);

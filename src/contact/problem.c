@@ -228,16 +228,17 @@ PetscErrorCode SgProblemSetBoundary(SgProblem p, SgBoundaryType type, const char
 
   PetscFunctionBeginUser;
   PetscCall(CheckNotSetUp(p, "SgProblemSetBoundary"));
-  PetscCheck(type >= SG_BOUNDARY_DIRICHLET && type <= SG_BOUNDARY_CONTACT_MASTER, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: unknown boundary type %d", (int)type);
-  b = type == SG_BOUNDARY_DIRICHLET ? &p->settings.dirichlet : (type == SG_BOUNDARY_NEUMANN ? &p->settings.neumann : (type == SG_BOUNDARY_CONTACT ? &p->contact : &p->master));
+  PetscCheck(type >= SG_BOUNDARY_DIRICHLET && type <= SG_BOUNDARY_CONTACT_OBSTACLE, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: unknown boundary type %d", (int)type);
+  b = type == SG_BOUNDARY_DIRICHLET ? &p->settings.dirichlet : (type == SG_BOUNDARY_NEUMANN ? &p->settings.neumann : (type == SG_BOUNDARY_CONTACT ? &p->contact : (type == SG_BOUNDARY_CONTACT_MASTER ? &p->master : &p->obnd)));
   PetscCheck(label && label[0], p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetBoundary: a label name is needed");
   PetscCall(PetscStrlen(label, &len));
   PetscCheck(len < sizeof(b->label), p->comm, PETSC_ERR_ARG_SIZ, "SgProblemSetBoundary: the label name has %zu characters, at most %zu are supported", len, sizeof(b->label) - 1);
   PetscCheck(n >= 0 && n <= SG_MAX_IDS, p->comm, PETSC_ERR_ARG_OUTOFRANGE, "SgProblemSetBoundary: %" PetscInt_FMT " ids, at most %d are supported", n, SG_MAX_IDS);
   PetscCheck(!n || ids, p->comm, PETSC_ERR_ARG_NULL, "SgProblemSetBoundary: %" PetscInt_FMT " ids, but the array of ids is NULL", n);
   PetscCall(ValuesDimension(p, &dim));
-  PetscCheck((type != SG_BOUNDARY_CONTACT && type != SG_BOUNDARY_CONTACT_MASTER) || !values, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the contact part takes no values");
+  PetscCheck(type < SG_BOUNDARY_CONTACT || !values, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the contact part takes no values");
   PetscCheck(type != SG_BOUNDARY_CONTACT_MASTER || n > 0, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the master side (SG_BOUNDARY_CONTACT_MASTER) needs its ids (values of the contact part's label)");
+  PetscCheck(type != SG_BOUNDARY_CONTACT_OBSTACLE || n > 0, p->comm, PETSC_ERR_ARG_WRONG, "SgProblemSetBoundary: the obstacle's faces (SG_BOUNDARY_CONTACT_OBSTACLE) need their ids (values of the contact part's label)");
   PetscCall(PetscMemzero(b, sizeof(*b)));
   PetscCall(PetscStrncpy(b->label, label, sizeof(b->label)));
   b->active = PETSC_TRUE;
@@ -296,7 +297,7 @@ PetscErrorCode SgProblemSetFromOptions(SgProblem p)
   PetscCall(SgElasticityCreate(p->comm, ((PetscObject)p)->prefix, &p->el));
   PetscCall(SgElasticitySetFromOptions(p->el, p->dm, &p->settings));
   PetscCall(CheckValuesDimension(p));
-  PetscCall(SgContactCreate(p->el, ((PetscObject)p)->prefix, p->contact.active ? &p->contact : NULL, p->master.active ? &p->master : NULL, p->obstacle, &p->c));
+  PetscCall(SgContactCreate(p->el, ((PetscObject)p)->prefix, p->contact.active ? &p->contact : NULL, p->master.active ? &p->master : NULL, p->obnd.active ? &p->obnd : NULL, p->obstacle, &p->c));
   p->setfromoptions = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
