@@ -53,7 +53,7 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, options/twobody_hertz.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \
-          meshes/tb_far2d.msh meshes/tb_overlap2d.msh meshes/tb_far3d.msh meshes/tb_overlap3d.msh \
+          meshes/tb_stack2d_match.msh meshes/tb_far2d.msh meshes/tb_overlap2d.msh meshes/tb_far3d.msh meshes/tb_overlap3d.msh \
           meshes/tb_cylinders2d_s1.msh meshes/tb_cylinders2d_s2.msh meshes/tb_cylinders2d_s4.msh
 # Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
@@ -195,6 +195,8 @@ meshes/tb_stack3d.msh: meshes/tb_stack3d.geo
 	gmsh -3 $< -o $@ > /dev/null
 # the patch test's blocks 1.5 apart (farther than the pairing distance: a warning, solved without contact) and
 # overlapping by 0.3 at the start (an error)
+meshes/tb_stack2d_match.msh: meshes/tb_stack2d.geo
+	gmsh -2 -setnumber h2 0.1 $< -o $@ > /dev/null
 meshes/tb_far2d.msh: meshes/tb_stack2d.geo
 	gmsh -2 -setnumber g0 1.5 $< -o $@ > /dev/null
 meshes/tb_overlap2d.msh: meshes/tb_stack2d.geo

@@ -3,7 +3,8 @@
 // left sides of the lower and upper block (rollers: a symmetry plane), 10 the lower block's top (master), 20 the upper
 // block's bottom (slave). Pressed by a prescribed top displacement, the exact solution is a uniform compression, which
 // P1 on both meshes and the dual mortar coupling reproduce exactly.
-h1 = 0.1; h2 = 0.07;
+If (!Exists(h1)) h1 = 0.1; EndIf
+If (!Exists(h2)) h2 = 0.07; EndIf // -setnumber h2 0.1: the facing sides match (tb_stack2d_match)
 If (!Exists(g0)) g0 = 0.01; EndIf // -setnumber g0 G: another gap (tb_far2d: apart, tb_overlap2d: overlapping)
 Point(1) = {0, 0, 0, h1}; Point(2) = {1, 0, 0, h1}; Point(3) = {1, 0.5, 0, h1}; Point(4) = {0, 0.5, 0, h1};
 Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
