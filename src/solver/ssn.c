@@ -108,6 +108,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
   if (s->cv.friction) {
     PetscCall(PetscCalloc2(s->cv.n * s->dim, &s->lamhatT, s->cv.n * s->dim, &s->mT));
+    PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
     PetscCall(PetscCalloc4(s->cv.n, &s->fst, s->cv.n, &s->fstjac, s->cv.n * s->dim, &s->tjac, s->cv.n, &s->fforce));
   }
   PetscCall(SNESCreate(s->comm, &s->snes));
@@ -196,6 +197,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree2(s->lamhatT, s->mT));
+  PetscCall(PetscFree2(s->uv, s->ft));
   PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
   PetscCall(PetscFree(s->gfixw));
   PetscCall(KSPDestroy(&s->kspd));
