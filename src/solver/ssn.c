@@ -379,8 +379,10 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     PetscCall(SNESGetConvergedReason(s->snes, reason));
     s->reason = SgSSNReasonOf(s, *reason);
   }
-  /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c) */
-  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
+  /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c), from the
+     solve's initial guess; also after an iterate that overflowed (two bodies with Coulomb friction: inexact steps at a
+     large gamma can blow up before the iteration count runs out) */
+  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_NAN)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
   /* a bound from lam_N (Coulomb): a failure of the coupled Newton iteration (cycling states) gets the fixed point on the frozen bound */
   if (s->cv.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(SgSSNCoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
