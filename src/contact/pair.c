@@ -139,7 +139,7 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
         }
       if (PetscRealPart(Da[j]) > 0) /* a contact vertex: its relative displacement */
         for (PetscInt c = 0; c < dim; c++) {
-          PetscInt    rr = row * dim + c;
+          PetscInt    rr  = row * dim + c;
           PetscScalar one = 1.0;
           PetscCall(MatSetValues(p->R, 1, &rr, 1, &rr, &one, ADD_VALUES));
           for (PetscInt k = 0; k < nc; k++) {
