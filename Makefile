@@ -54,7 +54,8 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, options/twobody_hertz.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \
           meshes/tb_stack2d_match.msh meshes/tb_far2d.msh meshes/tb_overlap2d.msh meshes/tb_far3d.msh meshes/tb_overlap3d.msh \
-          meshes/tb_cylinders2d_s1.msh meshes/tb_cylinders2d_s2.msh meshes/tb_cylinders2d_s4.msh
+          meshes/tb_cylinders2d_s1.msh meshes/tb_cylinders2d_s2.msh meshes/tb_cylinders2d_s4.msh \
+          meshes/tbf_stack2d.msh meshes/tbf_stack3d.msh meshes/tbf_cattaneo_s1.msh meshes/tbf_cattaneo_s2.msh meshes/tbf_cattaneo_s4.msh
 # Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 SRC    := $(wildcard src/*/*.c)
@@ -206,6 +207,12 @@ meshes/tb_far3d.msh: meshes/tb_stack3d.geo
 meshes/tb_overlap3d.msh: meshes/tb_stack3d.geo
 	gmsh -3 -setnumber g0 -0.3 $< -o $@ > /dev/null
 meshes/tb_cylinders2d_s%.msh: meshes/tb_cylinders2d.geo
+	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
+meshes/tbf_stack2d.msh: meshes/tbf_stack2d.geo
+	gmsh -2 $< -o $@ > /dev/null
+meshes/tbf_stack3d.msh: meshes/tbf_stack3d.geo
+	gmsh -3 $< -o $@ > /dev/null
+meshes/tbf_cattaneo_s%.msh: meshes/tbf_cattaneo.geo
 	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
 meshes/tb_blocks2d_r%.msh: meshes/tb_blocks2d.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@

@@ -235,7 +235,8 @@ typedef struct {
   PetscBool        coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
   PetscReal        fgfac;    /* gamma_T = fgfac * gamma: -friction_gamma_factor */
   const PetscReal *yref;     /* friction: the displacement at the start of the load step, n*dim (zeros at the
-                                  first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference) */
+                                  first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference); two
+                                  bodies: of the relative displacements (SgContactVertexDisplacements) */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
@@ -246,7 +247,12 @@ PetscErrorCode SgContactDestroy(SgContact *);
 PetscErrorCode SgContactGap(SgContact, const PetscScalar[], PetscReal[]);
 PetscErrorCode SgContactAddForce(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactAddJacobian(SgContact, const char[], PetscReal, Mat);
-PetscErrorCode SgContactAddBlocks(SgContact, const PetscReal[], Mat); /* J += a dim x dim block per contact vertex */
+PetscErrorCode SgContactAddBlocks(SgContact, const PetscReal[], Mat); /* J += a dim x dim block per contact vertex (two bodies: on its relative displacement, R^T B R) */
+/* friction's view of a contact vertex: its displacement (n dim numbers from the local part of a global vector; two
+   bodies: the relative displacement of the slave vertex against the master, R y, pair.h) and the nodal forces acting
+   on it (F += f, two bodies: R^T f on both sides, equal and opposite) */
+PetscErrorCode SgContactVertexDisplacements(SgContact, const PetscScalar[], PetscReal[]);
+PetscErrorCode SgContactAddVertexForces(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
 /* SgContactKKT: measures of the original problem (P) for a displacement y and the multiplier lam_i = -(K y - b)_i.n_i / w_i, each
    dimensionless (the same for any load level, material scale and unit system), with the force scale F (the largest

@@ -399,6 +399,7 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscCall(VecDestroy(&(*c)->pw));
   PetscCall(VecDestroy(&(*c)->pf));
   PetscCall(VecDestroy(&(*c)->pl));
+  PetscCall(VecDestroy(&(*c)->pr));
   PetscCall(SgContactPairDestroy(&(*c)->pair));
   PetscCall(SgContactLawDestroy(&(*c)->law));
   PetscCall(PetscFree((*c)->prefix));
@@ -474,19 +475,50 @@ PetscErrorCode SgContactAddJacobian(SgContact c, const char active[], PetscReal 
 }
 
 /* J += B_i on the diagonal block of every contact vertex (blk: n blocks of dim x dim, row-major; J assembled by the
-   caller) */
+   caller); two bodies: R^T diag(B_i) R, on the relative displacements */
 PetscErrorCode SgContactAddBlocks(SgContact c, const PetscReal blk[], Mat J)
 {
   const PetscInt dim = c->dim;
   PetscInt       rstart;
 
   PetscFunctionBeginUser;
+  if (c->pair) {
+    PetscCall(SgContactPairBlocks(c, blk, J));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatGetOwnershipRange(J, &rstart, NULL));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscScalar b[9];
     for (PetscInt k = 0; k < dim * dim; k++) b[k] = blk[i * dim * dim + k];
     PetscCall(AddVertexBlock(c, J, rstart, i, b));
   }
+  PetscFunctionReturn(0);
+}
+
+/* u_i = y_i at every contact vertex, dim numbers each (ya: the local part of a global displacement vector); two
+   bodies: the relative displacement (R y)_i of the slave vertex against the master surface */
+PetscErrorCode SgContactVertexDisplacements(SgContact c, const PetscScalar ya[], PetscReal u[])
+{
+  PetscFunctionBeginUser;
+  if (c->pair) {
+    PetscCall(SgContactPairRelative(c, ya, u));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) u[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
+  PetscFunctionReturn(0);
+}
+
+/* F += f_i at every contact vertex (dim numbers each); two bodies: R^T f (the slave vertex and, opposite, the master's) */
+PetscErrorCode SgContactAddVertexForces(SgContact c, const PetscReal f[], PetscScalar Fa[])
+{
+  PetscFunctionBeginUser;
+  if (c->pair) {
+    PetscCall(SgContactPairTangentialForce(c, f, Fa));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) Fa[c->off[i] + k] += f[i * c->dim + k];
   PetscFunctionReturn(0);
 }
 
@@ -713,7 +745,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
        part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
        |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed components the displacement
        is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a traction on it. */
-    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm;
+    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm, *uv, *ft = NULL;
     const PetscScalar *ul = NULL, *rfa = NULL;
     Vec                yloc = NULL, Rf = NULL;
     if (c->haspartial) {
@@ -731,6 +763,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     }
     unoise *= 1e-10;
     PetscCall(VecGetArrayRead(y, &ya));
+    /* the vertices' displacements (two bodies: relative, R y) and, for a pair, the friction forces w lam_T on them */
+    PetscCall(PetscMalloc1(c->n * dim + 1, &uv));
+    PetscCall(SgContactVertexDisplacements(c, ya, uv));
+    if (c->pair) PetscCall(PetscCalloc1(c->n * dim + 1, &ft));
     for (PetscInt i = 0; i < c->n; i++) {
       const PetscReal noise = ForceNoise(c, &sc, i);
       const PetscInt  v     = c->vert[i];
@@ -739,7 +775,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       for (PetscInt k = 0; k < dim; k++) {
         const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
         r[k]                  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
-        dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k];
+        dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : uv[i * dim + k] - c->yref[i * dim + k];
         if (ul && !c->norecord) {
           c->ypfull[i * dim + k]          = PetscRealPart(ul[c->mesh->loff[v] + k]);
           c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
@@ -754,7 +790,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
         c->kslip[i * dim + k] = u[k];
       }
       c->kst[i] = st;
-      { /* what the friction balances: the tangential residual on the free components */
+      if (ft) /* two bodies: the friction force acts on both sides (taken out below, R^T w lam_T) */
+        for (PetscInt k = 0; k < dim; k++) ft[i * dim + k] = c->w[i] * lt[k];
+      else { /* what the friction balances: the tangential residual on the free components */
         PetscReal rn = 0;
         for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
         for (PetscInt k = 0; k < dim; k++)
@@ -777,6 +815,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
       f[6] += c->w[i] * err * err;
     }
     PetscCall(VecRestoreArrayRead(y, &ya));
+    if (ft) PetscCall(SgContactAddVertexForces(c, ft, ra)); /* at the slave vertex: leaves its normal residual, as above */
+    PetscCall(PetscFree(ft));
+    PetscCall(PetscFree(uv));
     if (yloc) {
       PetscCall(VecRestoreArrayRead(yloc, &ul));
       PetscCall(DMRestoreLocalVector(c->dm, &yloc));
@@ -993,8 +1034,7 @@ PetscErrorCode SgContactComputeSlipReference(SgContact c, Vec y, PetscReal ref[]
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++)
-    for (PetscInt k = 0; k < c->dim; k++) ref[i * c->dim + k] = PetscRealPart(ya[c->off[i] + k]);
+  PetscCall(SgContactVertexDisplacements(c, ya, ref)); /* two bodies: the relative displacements */
   if (c->haspartial) {
     /* prescribed components: the data of the step y solved, recorded by its SgContactKKT (by now the problem may
        hold the next step's data); otherwise the problem's current data */

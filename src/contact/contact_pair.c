@@ -12,7 +12,7 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
 
   PetscFunctionBeginUser;
   c->master.what = "contact_master";
-  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless, or with -friction_type on the relative slip; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
   if (set) c->master.nids = n, c->master.active = PETSC_TRUE;
   n            = c->obnd.nids; /* given through the interface (SG_BOUNDARY_CONTACT_OBSTACLE), or 0 */
   c->obnd.what = "contact_obstacle";
@@ -28,7 +28,6 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
   PetscCheck(c->bnd.nids > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids needs -contact_ids (the slave side): without it every value of '%s' would be the slave side, the master's too", c->bnd.label);
   for (PetscInt a = 0; a < c->master.nids; a++)
     for (PetscInt b = 0; b < c->bnd.nids; b++) PetscCheck(c->master.ids[a] != c->bnd.ids[b], PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_master_ids: the value %" PetscInt_FMT " is in -contact_ids too: a side is either slave or master", c->master.ids[a]);
-  PetscCheck(!c->friction, PetscOptionsObject->comm, PETSC_ERR_SUP, "-contact_master_ids: two-body contact is frictionless for now (-friction_type %s is not available with it)", c->law->type);
   { /* a rigid obstacle besides the pair: the faces that may touch it are named apart from the pair's sides */
     PetscBool obst = (PetscBool)(c->obstype[0] != 0);
     if (!obst) PetscCall(PetscOptionsHasName(PetscOptionsObject->options, PetscOptionsObject->prefix, "-obstacle_type", &obst));
@@ -47,6 +46,8 @@ static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
 {
   return (PetscBool)(PetscRealPart(D) > 0 && (n[0] != 0 || n[1] != 0 || (dim == 3 && n[2] != 0)));
 }
+
+static PetscErrorCode PairBlocksProduct(SgContact, const PetscReal[], Mat *);
 
 /* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
    owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
@@ -103,8 +104,10 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(VecRestoreArrayRead(c->pair->g0, &ga));
   PetscCall(VecRestoreArrayRead(c->pair->N, &Na));
   PetscCall(PetscFree(vof));
-  /* the Jacobian's pattern: K's and B^T B's */
-  PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
+  /* the Jacobian's pattern: K's and B^T B's (with friction that of R^T diag(B_i) R with full dim x dim blocks B_i,
+     which holds B^T B's: B = diag(D) N^T R) */
+  if (c->friction) PetscCall(PairBlocksProduct(c, NULL, &BtB));
+  else PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
   PetscCall(MatZeroEntries(BtB));
   {
     /* MatAXPY with a new pattern replaces K's data and header, and PETSc 3.18 loses (leaks) the near null space
@@ -126,6 +129,92 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(VecCreateMPIWithArray(c->comm, 1, nrow * dim, PETSC_DETERMINE, NULL, &c->pw));
   PetscCall(VecDuplicate(c->pw, &c->pf));
   PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));
+  if (c->friction) {
+    /* the friction arrays of contact.c (PrescribedSetUp for an obstacle): the slip reference is the relative
+       displacement R y at the start of the load step; no vertex has prescribed tangential motion (the components a
+       support fixes are out of R) */
+    PetscCall(MatCreateVecs(c->pair->R, NULL, &c->pr));
+    PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->yref));
+    PetscCall(PetscCalloc4(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask));
+    PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->ypfull));
+    c->ypref      = c->yref + c->n * dim;
+    c->haspartial = c->hasdface = PETSC_FALSE;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies with friction: the relative displacement (R y)_i of every contact vertex, dim numbers each (ya: the
+   local part of a global displacement vector) */
+PetscErrorCode SgContactPairRelative(SgContact c, const PetscScalar ya[], PetscReal u[])
+{
+  const PetscScalar *ra;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecPlaceArray(c->pw, ya));
+  PetscCall(MatMult(c->pair->R, c->pw, c->pr));
+  PetscCall(VecResetArray(c->pw));
+  PetscCall(VecGetArrayRead(c->pr, &ra));
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) u[i * c->dim + k] = PetscRealPart(ra[c->prow[i] * c->dim + k]);
+  PetscCall(VecRestoreArrayRead(c->pr, &ra));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies with friction: F += R^T f for the nodal forces f (dim per contact vertex) that act on the relative
+   displacement: f on the slave vertex, -M_jk / D_j f on the master's (equal and opposite) */
+PetscErrorCode SgContactPairTangentialForce(SgContact c, const PetscReal f[], PetscScalar Fa[])
+{
+  PetscScalar *ra;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(c->pr));
+  PetscCall(VecGetArray(c->pr, &ra));
+  for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt k = 0; k < c->dim; k++) ra[c->prow[i] * c->dim + k] = f[i * c->dim + k];
+  PetscCall(VecRestoreArray(c->pr, &ra));
+  PetscCall(VecPlaceArray(c->pf, Fa));
+  PetscCall(MatMultTransposeAdd(c->pair->R, c->pr, c->pf, c->pf));
+  PetscCall(VecResetArray(c->pf));
+  PetscFunctionReturn(0);
+}
+
+/* R^T diag(B_i) R for dim x dim blocks B_i per contact vertex (row-major; NULL: blocks of ones, for the pattern) */
+static PetscErrorCode PairBlocksProduct(SgContact c, const PetscReal blk[], Mat *C)
+{
+  const PetscInt dim = c->dim;
+  PetscInt       rstart, nloc;
+  Mat            Bd;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetLocalSize(c->pair->R, &nloc, NULL));
+  PetscCall(MatGetOwnershipRange(c->pair->R, &rstart, NULL));
+  PetscCall(MatCreateAIJ(c->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, dim, NULL, 0, NULL, &Bd));
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscInt    idx[3];
+    PetscScalar b[9];
+    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + c->prow[i] * dim + a;
+    for (PetscInt k = 0; k < dim * dim; k++) b[k] = blk ? blk[i * dim * dim + k] : 1.0;
+    PetscCall(MatSetValues(Bd, dim, idx, dim, idx, b, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(Bd, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Bd, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatPtAP(Bd, c->pair->R, MAT_INITIAL_MATRIX, PETSC_DEFAULT, C));
+  PetscCall(MatDestroy(&Bd));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies with friction: J += R^T diag(blk_i) R for dim x dim blocks blk_i per contact vertex (row-major; J has the
+   pattern of R^T diag(1) R: PairSetUp). J is assembled here. */
+PetscErrorCode SgContactPairBlocks(SgContact c, const PetscReal blk[], Mat J)
+{
+  Mat C;
+
+  PetscFunctionBeginUser;
+  PetscCall(PairBlocksProduct(c, blk, &C));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAXPY(J, 1.0, C, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatDestroy(&C));
   PetscFunctionReturn(0);
 }
 

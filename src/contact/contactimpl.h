@@ -115,6 +115,7 @@ struct _n_SgContact {
   PetscBool *obsrow;
   char       obsdesc[160]; /* the obstacle's description then (SgContactGetObstacleType) */
   Vec        pw, pf, pl;   /* work: displacement and force wrappers (no array), B's row vector */
+  Vec        pr;           /* with friction: R's row vector (pair.h: the relative displacements) */
 };
 
 /* contact_pair.c: the contact object as a two-body pair (its fields master, pairdist, pair, prow, pw, pf, pl) */
@@ -123,6 +124,9 @@ PetscErrorCode SgContactPairSetUp(SgContact, PetscInt, const PetscInt[], const P
 PetscErrorCode SgContactPairGap(SgContact, const PetscScalar[], PetscReal[]);
 PetscErrorCode SgContactPairForce(SgContact, const PetscReal[], PetscScalar[]);
 PetscErrorCode SgContactPairJacobian(SgContact, const char[], PetscReal, Mat);
+PetscErrorCode SgContactPairRelative(SgContact, const PetscScalar[], PetscReal[]);
+PetscErrorCode SgContactPairTangentialForce(SgContact, const PetscReal[], PetscScalar[]);
+PetscErrorCode SgContactPairBlocks(SgContact, const PetscReal[], Mat);
 
 /* A PetscObject (class SG_PROBLEM_CLASSID): its header holds the reference count (the caller's handle and each
    controller's PetscObjectReference), the options prefix and the name; PetscObjectView/ViewFromOptions reach

@@ -111,6 +111,11 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
   PetscCall(MatSetType(p->B, MATAIJ));
   PetscCall(MatSeqAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL));
   PetscCall(MatMPIAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL, (maxc + 1) * dim, NULL));
+  PetscCall(MatCreate(p->comm, &p->R));
+  PetscCall(MatSetSizes(p->R, nloc * dim, nloc * dim, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(p->R, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(p->R, maxc + 1, NULL));
+  PetscCall(MatMPIAIJSetPreallocation(p->R, maxc + 1, NULL, maxc + 1, NULL));
   PetscCall(VecGetArrayRead(p->D, &Da));
   PetscCall(VecGetArrayRead(p->N, &Na));
   for (PetscInt j = 0; j < nloc; j++) {
@@ -132,6 +137,17 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
           PetscScalar v   = -vals[k] * n[c];
           PetscCall(MatSetValues(p->B, 1, &row, 1, &col, &v, ADD_VALUES));
         }
+      if (PetscRealPart(Da[j]) > 0) /* a contact vertex: its relative displacement */
+        for (PetscInt c = 0; c < dim; c++) {
+          PetscInt    rr  = row * dim + c;
+          PetscScalar one = 1.0;
+          PetscCall(MatSetValues(p->R, 1, &rr, 1, &rr, &one, ADD_VALUES));
+          for (PetscInt k = 0; k < nc; k++) {
+            PetscInt    col = cols[k] * dim + c;
+            PetscScalar v   = -vals[k] / Da[j];
+            PetscCall(MatSetValues(p->R, 1, &rr, 1, &col, &v, ADD_VALUES));
+          }
+        }
     }
     PetscCall(MatRestoreRow(Ms, row, &nc, &cols, &vals));
   }
@@ -140,6 +156,9 @@ static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
   PetscCall(MatAssemblyBegin(p->B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(p->B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatDiagonalScale(p->B, NULL, free));
+  PetscCall(MatAssemblyBegin(p->R, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(p->R, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatDiagonalScale(p->R, free, free));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->nslave, 1, MPIU_INT, MPI_SUM, p->comm));
   PetscFunctionReturn(0);
 }
@@ -337,6 +356,7 @@ PetscErrorCode SgContactPairDestroy(SgContactPair *pair)
   PetscCall(VecDestroy(&(*pair)->N));
   PetscCall(MatDestroy(&(*pair)->B));
   PetscCall(PetscFree((*pair)->obsrow));
+  PetscCall(MatDestroy(&(*pair)->R));
   PetscCall(PetscFree(*pair));
   PetscFunctionReturn(0);
 }

@@ -16,6 +16,11 @@ typedef struct _n_SgContactPair *SgContactPair;
      B         Mat, one row per free vertex and one column per free dof: row j = n_j^T (D_j e_j - sum_k M_jk e_k), so
                that (B y)_j - g0_j ... is the weighted normal jump: (B y)_j = n_j . (D_j y_j - sum_k M_jk y_k), < 0 when
                the slave moves toward the master
+     R         Mat, dim rows per free vertex and one column per free dof: the relative displacement of the slave vertex j
+               against the master surface opposite, (R y)_j = y_j - sum_k (M_jk / D_j) y_k, on the rows of the contact
+               vertices (D_j > 0 and a normal; the other rows are empty), so that (B y)_j = D_j n_j . (R y)_j; its rows
+               and columns of fixed components (rollers) are zeroed like B's columns (friction: the tangential slip of
+               the pair, T_j (R y)_j; a component held by a support carries no friction)
    Master vertices of a Dirichlet part that fixes all their components have no dof: their columns are left out (they
    do not move). */
 struct _n_SgContactPair {
@@ -26,7 +31,7 @@ struct _n_SgContactPair {
   PetscBool *obsrow;  /* per owned free vertex: its row is an obstacle row (SgPairObstacleRows), or NULL */
   PetscInt   nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
   Vec        D, g0, N;
-  Mat        B;
+  Mat        B, R;
 };
 
 /* Nodal conditions against a rigid obstacle given to the pair as rows of their own (a rigid obstacle besides the

@@ -3,11 +3,12 @@
    correction of Newton steps whose slips were linearized as stick (or sticks as slip). */
 #include "solver/ssnimpl.h"
 
-/* Friction at contact vertex i (ya: the local part of y, mN: the regularized normal multiplier there):
+/* Friction at contact vertex i (uv: the contact vertices' displacements, SgContactVertexDisplacements: y_i, for two
+   bodies the relative displacement (R y)_i; mN: the regularized normal multiplier there):
    z = T_i (lamhat_T,i + gamma_T u), u = T_i (y_i - yref_i) the slip since the start of the load step (yref = 0 at the
    first: quasi-static incremental friction), bound g = s (Tresca) or F mN (Coulomb), lam_T = P_g(z) the projection
    onto the ball of radius g; t = z/|z| (0 if z = 0). The state: free (g = 0), stick (|z| <= g), slip (|z| > g). */
-static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
+static char FrictionAt(SgSSN s, PetscInt i, const PetscReal uv[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
@@ -15,7 +16,7 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
   PetscReal            un = 0, zdn = 0, z[3], nz = 0, dy[3];
 
   for (PetscInt k = 0; k < dim; k++) {
-    dy[k] = PetscRealPart(ya[c->off[i] + k]) - c->yref[i * dim + k]; /* the load step's increment */
+    dy[k] = uv[i * dim + k] - c->yref[i * dim + k]; /* the load step's increment */
     un += n[k] * dy[k];
   }
   for (PetscInt k = 0; k < dim; k++) {
@@ -47,19 +48,22 @@ static char FrictionAt(SgSSN s, PetscInt i, const PetscScalar ya[], PetscReal mN
 /* F += sum_i w_i lam_T,i at y, with the normal multipliers mN; the states, the counts and, for the path values, the
    sums w_i (lam_T.u - |lam_T - lamhat_T|^2/(2 gamma_T)) (the regularized Tresca term of J(gamma, y): the value of
    sup_{|mu| <= g} mu.u - |mu - lamhat_T|^2/(2 gamma_T), whose gradient in u is lam_T) and its derivative in gamma,
-   c w_i |lam_T - lamhat_T|^2 / (2 gamma_T^2) (for Coulomb the same terms with the bound frozen: no potential) */
-void SgSSNFrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
+   c w_i |lam_T - lamhat_T|^2 / (2 gamma_T^2) (for Coulomb the same terms with the bound frozen: no potential). Two
+   bodies: the forces w_i lam_T,i act on the relative displacements (R^T, on both sides). */
+PetscErrorCode SgSSNFrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
 {
   const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscReal      gT  = c->fgfac * s->gamma;
 
+  PetscFunctionBeginUser;
+  PetscCall(SgContactVertexDisplacements(s->c, ya, s->uv));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal *lt = &s->mT[i * dim], u[3], t[3], zn, gb, lu = 0;
-    const char st = FrictionAt(s, i, ya, mN[i], lt, u, t, &zn, &gb);
+    const char st = FrictionAt(s, i, s->uv, mN[i], lt, u, t, &zn, &gb);
     s->fst[i]     = st;
     for (PetscInt k = 0; k < dim; k++) {
-      fa[c->off[i] + k] += c->w[i] * lt[k];
+      s->ft[i * dim + k] = c->w[i] * lt[k];
       lu += lt[k] * u[k];
     }
     {
@@ -83,7 +87,7 @@ void SgSSNFrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[]
       if (changed) { /* a change beyond round-off: |z| and the bound g differ by more than the round-off of forming them */
         PetscReal ymax = 0, lh = 0, ro;
         for (PetscInt k = 0; k < dim; k++) {
-          ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+          ymax = PetscMax(ymax, PetscAbsReal(s->uv[i * dim + k]) + PetscAbsReal(c->yref[i * dim + k]));
           lh   = PetscMax(lh, PetscAbsReal(s->lamhatT[i * dim + k]));
         }
         const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i];
@@ -96,6 +100,8 @@ void SgSSNFrictionResidual(SgSSN s, const PetscScalar ya[], const PetscReal mN[]
       }
     }
   }
+  PetscCall(SgContactAddVertexForces(s->c, s->ft, fa));
+  PetscFunctionReturn(0);
 }
 
 /* The generalized derivative of sum_i w_i lam_T,i at y (s->actjac: the normal active set of this Jacobian):
@@ -117,12 +123,13 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN s, Vec y, Mat P)
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   s->nforce = 0;
   PetscCall(VecGetArrayRead(y, &ya));
+  PetscCall(SgContactVertexDisplacements(s->c, ya, s->uv));
   if (s->stagnant) PetscCall(VecGetArrayRead(s->r, &fa)); /* F(y): SNES evaluated it at y before this Jacobian */
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscReal *n  = &c->normal[i * dim];
     const PetscReal  mN = s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0;
     PetscReal        lt[3], u[3], t[3], zn, gb, *B = &blk[i * dim * dim];
-    char             st = FrictionAt(s, i, ya, mN, lt, u, t, &zn, &gb);
+    char             st = FrictionAt(s, i, s->uv, mN, lt, u, t, &zn, &gb);
     /* a slip that reversed its direction since the last Jacobian of this solve is linearized as stick: with the slip
        derivative (0 in 2D) Newton can flip such a vertex between +g and -g forever when its solution sticks */
     if (s->nhash > 1 && st == SG_FRICTION_SLIP && s->fstjac[i] == SG_FRICTION_SLIP) { /* not the first Jacobian of the solve */
@@ -144,7 +151,7 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN s, Vec y, Mat P)
         le[k]             = lt[k] - r;
         ln += le[k] * le[k];
         rt += r * r;
-        ym = PetscMax(ym, PetscMax(PetscAbsReal(PetscRealPart(ya[c->off[i] + k])), PetscAbsReal(c->yref[i * dim + k])));
+        ym = PetscMax(ym, PetscMax(PetscAbsReal(s->uv[i * dim + k]), PetscAbsReal(c->yref[i * dim + k])));
       }
       ln = PetscSqrtReal(ln);
       if (ln > gb && PetscSqrtReal(rt) <= 4 * PETSC_MACHINE_EPSILON * gT * ym) {
@@ -207,16 +214,19 @@ PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch ls, Vec X, Vec Y, PetscBool 
   if (!s->wpre) PetscCall(VecDuplicateVecs(X, 2, &s->wpre));
   PetscCall(VecZeroEntries(s->wpre[0]));
   PetscCall(VecGetArrayRead(X, &xa));
-  PetscCall(VecGetArray(s->wpre[0], &ra));
+  PetscCall(SgContactVertexDisplacements(s->c, xa, s->uv));
+  PetscCall(PetscArrayzero(s->ft, c->n * dim));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal lt[3], u[3], t[3], zn, gb;
     if (!s->fforce[i]) continue;
-    (void)FrictionAt(s, i, xa, s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0, lt, u, t, &zn, &gb);
+    (void)FrictionAt(s, i, s->uv, s->actjac[i] ? s->lamhat[i] + s->gamma * s->g[i] : 0, lt, u, t, &zn, &gb);
     if (s->fforce[i] == 2) /* a stick linearized as slip: its model is g t_jac, not z = lam_T */
-      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (gb * s->tjac[i * dim + k] - lt[k]);
+      for (PetscInt k = 0; k < dim; k++) s->ft[i * dim + k] = c->w[i] * (gb * s->tjac[i * dim + k] - lt[k]);
     else
-      for (PetscInt k = 0; k < dim; k++) ra[c->off[i] + k] = c->w[i] * (zn * t[k] - lt[k]);
+      for (PetscInt k = 0; k < dim; k++) s->ft[i * dim + k] = c->w[i] * (zn * t[k] - lt[k]);
   }
+  PetscCall(VecGetArray(s->wpre[0], &ra));
+  PetscCall(SgContactAddVertexForces(s->c, s->ft, ra)); /* two bodies: on both sides */
   PetscCall(VecRestoreArray(s->wpre[0], &ra));
   PetscCall(VecRestoreArrayRead(X, &xa));
   PetscCall(SNESGetKSP(s->snes, &ksp));

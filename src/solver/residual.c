@@ -94,7 +94,7 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscCall(SgContactAddForce(s->c, s->m, fa));
   if (c->friction) {
     PetscCall(VecGetArrayRead(y, &ya));
-    SgSSNFrictionResidual(s, ya, s->m, fa, floc);
+    PetscCall(SgSSNFrictionResidual(s, ya, s->m, fa, floc));
     PetscCall(VecRestoreArrayRead(y, &ya));
   }
   /* r1 is the dual norm of K y - b + B^T W lam_jac = F - B^T W (m - lam_jac): only contact dofs differ from F */
@@ -172,7 +172,7 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal
   if (c->friction) {
     PetscReal floc[6] = {0}, fl = 0;
     PetscCall(VecGetArrayRead(y, &ya));
-    SgSSNFrictionResidual(s, ya, m, fa, floc);
+    PetscCall(SgSSNFrictionResidual(s, ya, m, fa, floc));
     /* the round-off of gamma_T T y on the stick set */
     for (PetscInt i = 0; i < c->n; i++) {
       PetscReal yn = 0;

@@ -108,6 +108,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
   if (s->cv.friction) {
     PetscCall(PetscCalloc2(s->cv.n * s->dim, &s->lamhatT, s->cv.n * s->dim, &s->mT));
+    PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
     PetscCall(PetscCalloc4(s->cv.n, &s->fst, s->cv.n, &s->fstjac, s->cv.n * s->dim, &s->tjac, s->cv.n, &s->fforce));
   }
   PetscCall(SNESCreate(s->comm, &s->snes));
@@ -196,6 +197,7 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
   PetscCall(PetscFree2(s->lamhatT, s->mT));
+  PetscCall(PetscFree2(s->uv, s->ft));
   PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
   PetscCall(PetscFree(s->gfixw));
   PetscCall(KSPDestroy(&s->kspd));
@@ -377,8 +379,10 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     PetscCall(SNESGetConvergedReason(s->snes, reason));
     s->reason = SgSSNReasonOf(s, *reason);
   }
-  /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c) */
-  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
+  /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c), from the
+     solve's initial guess; also after an iterate that overflowed (two bodies with Coulomb friction: inexact steps at a
+     large gamma can blow up before the iteration count runs out) */
+  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_NAN)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
   /* a bound from lam_N (Coulomb): a failure of the coupled Newton iteration (cycling states) gets the fixed point on the frozen bound */
   if (s->cv.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(SgSSNCoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */

@@ -56,6 +56,7 @@ struct _n_SgSSN {
   PetscReal        *gy;          /* gaps of a prospective iterate (SgSSNCountSetChanges) */
   /* friction (cv.friction: the law has a tangential part): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
   PetscReal *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
+  PetscReal *uv, *ft;      /* work, n*dim: the contact vertices' displacements (two bodies: relative) and forces on them */
   char      *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
   PetscReal *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
   char      *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
@@ -82,7 +83,7 @@ PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, S
 PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);
 PetscErrorCode SgSSNReasonView(SNES, void *);
 SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES reason (a failure our test did not name: PETSc's) */
-void           SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
+PetscErrorCode SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
 PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
