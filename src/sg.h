@@ -412,7 +412,8 @@ PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], 
 PetscErrorCode SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
 PetscErrorCode SgFrameDetachKSP(SgFrame, KSP);
 
-/* ------------------------------------------------------------------ cont: cont.c (the object and the outer loop),
-   report.c (views, summary, fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */
+/* ------------------------------------------------------------------ cont: cont.c (the object), cont_options.c,
+   cont_step.c, cont_loop.c (the outer loop), cont_solve.c (SgContSolve, load steps), report.c (views, summary,
+   fields), none.c, alm.c, pf.c, ipf.c, pdas.c, vi.c: see cont/contimpl.h */
 PetscErrorCode SgContRegisterAll(void);
 PetscErrorCode SgObstacleRegisterAll(void);

@@ -1,8 +1,10 @@
 /* cont/contimpl.h: the controller object and the interface a controller type implements; included by the files of src/cont
    only. A new controller is one file with its SgContCreate_<Type> (filling ops), one SgContRegister line in
-   SgContRegisterAll (cont.c) and one options file.
+   SgContRegisterAll (cont.c) and one options file. The object's files: cont.c (registry, life cycle, setters and
+   getters), cont_options.c, cont_step.c (what the hooks call), cont_loop.c (the outer loop and its verdicts),
+   cont_solve.c (SgContSolve and the load steps), report.c, state.c, nested.c.
 
-   Continuation controllers (none of ops->solve set) run the outer loop of SgContSolve (cont.c):
+   Continuation controllers (none of ops->solve set) run the outer loop of SgContSolve (cont_loop.c):
      ops->start     before the first step (not on a restart): the first gamma into ct->gamma and the shift lamhat
      -- the unconstrained solution y0 and V(0) = J(0, y0) --
      ops->started   after it (not on a restart), optional
@@ -140,6 +142,7 @@ PetscErrorCode           SgContFail(SgCont, const char[], ...);
 PetscErrorCode           SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
 PetscErrorCode           SgContCheck(SgCont, PetscBool *);
 PetscErrorCode           SgContCheckBaseline(SgCont);
+PetscErrorCode           SgContSolveContinuation(SgCont);                                            /* cont_loop.c: the outer loop of the types without ops->solve */
 PetscErrorCode           SgContBoundFrame(SgCont, const char[], SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
 PetscErrorCode           SgContCheckpointWrite(SgCont);
 PetscErrorCode           SgContCheckpointWriteStepEnd(SgCont);

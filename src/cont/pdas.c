@@ -207,205 +207,375 @@ static PetscErrorCode PdasFrameFree(SgFrame *f, Mat *Af, Vec b, Vec *bw, Vec *yw
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode Solve_PDAS(SgCont ct)
+/* The working data of one Solve_PDAS. The working coordinates: the contact frames where a normal is not an axis
+   (SgContBoundFrame), else the original ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component
+   on the axis dof. A: the system of an iteration (ct->J, or Af in the frames). */
+typedef struct {
+  PetscInt         dim;
+  Mat              A, K, Kw, Af;
+  Vec              b, bw, yw, rhs, x;
+  SgFrame          f;
+  PetscInt        *axis, *rows, rstart, nhash;
+  PetscReal       *sign, *g, *nax, *yrf, dmean;
+  const PetscReal *yref;
+  PetscInt64      *hash; /* the normal sets' hashes, one per iteration: cycling */
+  char            *act, *next;
+  PetscReal        kktprev; /* Coulomb, coupled: the KKT residual of the last iterate */
+  PetscBool        fr;
+  PetscBool        coupled;     /* a bound linear in lam_N: dg lam_N */
+  char            *fst, *fnext; /* friction state: 0 free, 1 stick, 2 slip */
+  PetscReal       *tdir, *gb;   /* slip direction (n*dim) and bound of the next solve */
+  PetscReal       *zn, *blk;    /* |z| at the state test; the slip blocks (3D) */
+  Vec              R;           /* friction: the residual K y - b of the iterate */
+} PdasWork;
+
+/* The arrays of the sets, the working coordinates (the contact frames where a normal is not an axis) and the default
+   constant c of the active-set test, E / contact mesh size */
+static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
 {
   PDAS                *pd = (PDAS *)ct->data;
   const SgContactView *c  = &ct->cv;
   PetscInt             dim;
-  Mat                  A = ct->J, K;
-  Vec                  b;
-  PetscReal            E;
-  KSP                  ksp = ct->ksp;
-  Vec                  rhs, x, diag;
-  PetscInt            *axis, *rows, rstart, N, k, nhash = 0;
-  PetscReal           *sign, *g, dmean, hc = 0;
-  PetscInt64          *hash;
-  char                *act, *next;
-  PetscBool            done    = PETSC_FALSE, ok;
-  PetscReal            kktprev = PETSC_MAX_REAL; /* Coulomb, coupled: the KKT residual of the last iterate */
-  const PetscBool      fr      = c->friction;
-  const PetscBool      coupled = (PetscBool)(c->coupled && pd->coupled); /* a bound linear in lam_N: dg lam_N */
-  char                *fst = NULL, *fnext = NULL;                        /* friction state: 0 free, 1 stick, 2 slip */
-  PetscReal           *tdir = NULL, *gb = NULL;                          /* slip direction (n*dim) and bound of the next solve */
-  PetscReal           *zn = NULL, *blk = NULL;                           /* |z| at the state test; the slip blocks (3D) */
-  Vec                  R = NULL;
-  /* the working coordinates: the contact frames where a normal is not an axis (SgContBoundFrame), else the original
-     ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component on the axis dof */
-  SgFrame          f = NULL;
-  Mat              Kw, Af = NULL;
-  Vec              bw, yw;
-  PetscReal       *nax, *yrf = NULL;
-  const PetscReal *yref;
+  PetscReal            E, hc = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(w, sizeof(*w)));
+  w->A       = ct->J;
+  w->kktprev = PETSC_MAX_REAL;
+  w->fr      = c->friction;
+  w->coupled = (PetscBool)(c->coupled && pd->coupled);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  PetscCall(SgElasticityGetOperators(ct->prob, &K, &b));
+  w->dim = dim;
+  PetscCall(SgElasticityGetOperators(ct->prob, &w->K, &w->b));
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc6(c->n, &axis, c->n, &sign, c->n, &g, c->n, &act, c->n, &next, c->n * dim, &rows)); /* rows: the stick vertices' tangential ones too */
-  PetscCall(PetscMalloc1(pd->maxit + 1, &hash));
-  PetscCall(PetscMalloc1(c->n, &nax));
-  PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &f, axis, sign));
-  Kw   = K;
-  bw   = b;
-  yw   = ct->y;
-  yref = c->yref;
-  if (f) {
+  PetscCall(PetscMalloc6(c->n, &w->axis, c->n, &w->sign, c->n, &w->g, c->n, &w->act, c->n, &w->next, c->n * dim, &w->rows)); /* rows: the stick vertices' tangential ones too */
+  PetscCall(PetscMalloc1(pd->maxit + 1, &w->hash));
+  PetscCall(PetscMalloc1(c->n, &w->nax));
+  PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &w->f, w->axis, w->sign));
+  w->Kw   = w->K;
+  w->bw   = w->b;
+  w->yw   = ct->y;
+  w->yref = c->yref;
+  if (w->f) {
     const PetscBool *rot;
     MatNullSpace     nsp;
-    PetscCall(SgFrameGetStiffness(f, &Kw));
-    PetscCall(SgFrameGetAxes(f, NULL, NULL, &rot));
-    for (PetscInt i = 0; i < c->n; i++) nax[i] = rot[i] ? sign[i] : c->normal[i * dim + axis[i]];
-    PetscCall(MatDuplicate(Kw, MAT_COPY_VALUES, &Af));
-    PetscCall(MatPropagateSymmetryOptions(K, Af));
-    PetscCall(MatGetNearNullSpace(Kw, &nsp));
-    if (nsp) PetscCall(MatSetNearNullSpace(Af, nsp));
-    PetscCall(MatSetOption(Af, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-    A = Af;
-    PetscCall(VecDuplicate(b, &bw));
-    PetscCall(VecCopy(b, bw));
-    PetscCall(SgFrameToLocal(f, bw));
-    PetscCall(VecDuplicate(b, &yw));
-    if (fr) {
-      PetscCall(PetscMalloc1(c->n * dim, &yrf));
-      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(f, i, &c->yref[i * dim], &yrf[i * dim]);
-      yref = yrf;
+    PetscCall(SgFrameGetStiffness(w->f, &w->Kw));
+    PetscCall(SgFrameGetAxes(w->f, NULL, NULL, &rot));
+    for (PetscInt i = 0; i < c->n; i++) w->nax[i] = rot[i] ? w->sign[i] : c->normal[i * dim + w->axis[i]];
+    PetscCall(MatDuplicate(w->Kw, MAT_COPY_VALUES, &w->Af));
+    PetscCall(MatPropagateSymmetryOptions(w->K, w->Af));
+    PetscCall(MatGetNearNullSpace(w->Kw, &nsp));
+    if (nsp) PetscCall(MatSetNearNullSpace(w->Af, nsp));
+    PetscCall(MatSetOption(w->Af, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+    w->A = w->Af;
+    PetscCall(VecDuplicate(w->b, &w->bw));
+    PetscCall(VecCopy(w->b, w->bw));
+    PetscCall(SgFrameToLocal(w->f, w->bw));
+    PetscCall(VecDuplicate(w->b, &w->yw));
+    if (w->fr) {
+      PetscCall(PetscMalloc1(c->n * dim, &w->yrf));
+      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(w->f, i, &c->yref[i * dim], &w->yrf[i * dim]);
+      w->yref = w->yrf;
     }
   } else
-    for (PetscInt i = 0; i < c->n; i++) nax[i] = c->normal[i * dim + axis[i]];
+    for (PetscInt i = 0; i < c->n; i++) w->nax[i] = c->normal[i * dim + w->axis[i]];
   for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
   hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
   if (pd->c == 0) pd->c = E / hc;
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(SgContStart(ct, &ok));
-  if (!ok) {
-    PetscCall(PdasFrameFree(&f, &Af, b, &bw, &yw, &nax, &yrf));
-    PetscCall(PetscFree6(axis, sign, g, act, next, rows));
-    PetscCall(PetscFree(hash));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecDuplicate(b, &rhs));
-  PetscCall(VecDuplicate(b, &x));
-  PetscCall(VecDuplicate(b, &diag));
-  PetscCall(MatGetDiagonal(Kw, diag));
+/* After the start (SgContStart): the vectors of the iterations, the mean diagonal of K (the eliminated rows' diagonal),
+   the first normal set and friction states */
+static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
+{
+  PDAS                *pd  = (PDAS *)ct->data;
+  const SgContactView *c   = &ct->cv;
+  const PetscInt       dim = w->dim;
+  Vec                  diag;
+  PetscInt             N;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(w->b, &w->rhs));
+  PetscCall(VecDuplicate(w->b, &w->x));
+  PetscCall(VecDuplicate(w->b, &diag));
+  PetscCall(MatGetDiagonal(w->Kw, diag));
   PetscCall(VecGetSize(diag, &N));
-  PetscCall(VecSum(diag, &dmean));
-  dmean /= N;
+  PetscCall(VecSum(diag, &w->dmean));
+  w->dmean /= N;
   PetscCall(VecDestroy(&diag));
-  PetscCall(MatGetOwnershipRange(A, &rstart, NULL));
-  PetscCall(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  if (fr) {
-    PetscCall(PetscCalloc4(c->n, &fst, c->n, &fnext, c->n * dim, &tdir, c->n, &gb));
-    PetscCall(PetscCalloc2(c->n, &zn, c->n * dim * dim, &blk));
-    PetscCall(VecDuplicate(b, &R));
+  PetscCall(MatGetOwnershipRange(w->A, &w->rstart, NULL));
+  PetscCall(MatSetOption(w->A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  if (w->fr) {
+    PetscCall(PetscCalloc4(c->n, &w->fst, c->n, &w->fnext, c->n * dim, &w->tdir, c->n, &w->gb));
+    PetscCall(PetscCalloc2(c->n, &w->zn, c->n * dim * dim, &w->blk));
+    PetscCall(VecDuplicate(w->b, &w->R));
   }
-  if (f) { /* the start in the frames */
-    PetscCall(VecCopy(ct->y, yw));
-    PetscCall(SgFrameToLocal(f, yw));
+  if (w->f) { /* the start in the frames */
+    PetscCall(VecCopy(ct->y, w->yw));
+    PetscCall(SgFrameToLocal(w->f, w->yw));
   }
-  PetscCall(Gap(ct, f, axis, sign, yw, g));
+  PetscCall(Gap(ct, w->f, w->axis, w->sign, w->yw, w->g));
   for (PetscInt i = 0; i < c->n; i++) {
     /* a load step starts from the last step's active set test (its multiplier and the gap at the new load) */
-    act[i]     = ct->warm ? (char)(ct->lam[i] + pd->c * g[i] > 0) : (char)(g[i] > 0);
+    w->act[i]  = ct->warm ? (char)(ct->lam[i] + pd->c * w->g[i] > 0) : (char)(w->g[i] > 0);
     ct->lam[i] = 0;
   }
-  if (fr && ct->warm) { /* a load step: the states from the last step's solution under the new load */
+  if (w->fr && ct->warm) { /* a load step: the states from the last step's solution under the new load */
+    PetscCall(MatMult(w->Kw, w->yw, w->R));
+    PetscCall(VecAXPY(w->R, -1.0, w->bw));
+    PetscCall(FrictionStates(ct, pd->c, w->axis, w->nax, w->yref, w->yw, w->R, w->act, w->gb, w->tdir, w->zn, w->fst, NULL));
+  } else if (w->fr) PetscCall(FrictionStates(ct, pd->c, w->axis, w->nax, w->yref, w->yw, NULL, w->act, w->gb, w->tdir, w->zn, w->fst, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* The system of an iteration into A, rhs and x: K with the active normal components eliminated symmetrically (fixed
+   at tau_N y = d), with friction the stick vertices' tangential components too (fixed at T y = T yref), the slip
+   vertices' forces (and their springs across the slip direction in 3D) */
+static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
+{
+  PDAS                *pd  = (PDAS *)ct->data;
+  const SgContactView *c   = &ct->cv;
+  const PetscInt       dim = w->dim, rstart = w->rstart;
+  const PetscBool      fr = w->fr, coupled = w->coupled;
+  const PetscInt      *axis = w->axis;
+  const PetscReal     *sign = w->sign, *nax = w->nax, *yref = w->yref, *gb = w->gb, *zn = w->zn, *tdir = w->tdir;
+  const char          *act = w->act, *fst = w->fst;
+  const PetscReal      dmean = w->dmean;
+  PetscReal           *blk   = w->blk;
+  PetscInt            *rows  = w->rows;
+  Mat                  A = w->A, Kw = w->Kw;
+  Vec                  bw = w->bw, rhs = w->rhs, x = w->x;
+  PetscInt             nrows = 0, ncoupled = 0;
+  PetscScalar         *xa;
+
+  PetscFunctionBeginUser;
+  /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
+  PetscCall(MatCopy(Kw, A, SAME_NONZERO_PATTERN));
+  if (fr && dim == 3) {
+    /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
+       along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
+       without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal *B = &blk[i * dim * dim], a, beta;
+      for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
+      if (fst[i] != 2) continue;
+      a    = PetscMin(gb[i] / zn[i], 1 - 1e-8);
+      beta = pd->c * a / (1 - a);
+      for (PetscInt p = 0; p < dim; p++)
+        for (PetscInt q = 0; q < dim; q++) {
+          if (p == axis[i] || q == axis[i]) continue;
+          B[p * dim + q] = c->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
+        }
+    }
+    PetscCall(SgContactAddBlocks(ct->c, blk, A));
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(VecCopy(bw, rhs));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < c->n; i++)
+    if (act[i]) {
+      rows[nrows++]           = rstart + c->off[i] + axis[i];
+      xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
+    }
+  if (fr) {
+    PetscScalar *ra;
+    PetscCall(VecGetArray(rhs, &ra));
+    for (PetscInt i = 0; i < c->n; i++)
+      for (PetscInt j = 0; j < dim; j++) {
+        if (j == axis[i]) continue;
+        if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
+          rows[nrows++]     = rstart + c->off[i] + j;
+          xa[c->off[i] + j] = yref[i * dim + j];
+        } else if (fst[i] == 2) {
+          if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
+            const PetscInt ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
+            PetscReal      gi, dg;
+            SgContactLawBound(c->law, i, 0, &gi, &dg);
+            const PetscReal    fc = dg * tdir[i * dim + j] * nax[i];
+            const PetscScalar *va;
+            const PetscInt    *ca;
+            PetscInt           nc;
+            PetscScalar       *vv;
+            const PetscScalar *ba;
+            PetscCall(MatGetRow(Kw, ra_, &nc, &ca, &va));
+            PetscCall(PetscMalloc1(nc, &vv));
+            for (PetscInt q = 0; q < nc; q++) vv[q] = -fc * va[q];
+            PetscCall(MatSetValues(A, 1, &rj, nc, ca, vv, ADD_VALUES));
+            PetscCall(PetscFree(vv));
+            PetscCall(MatRestoreRow(Kw, ra_, &nc, &ca, &va));
+            PetscCall(VecGetArrayRead(bw, &ba));
+            ra[c->off[i] + j] -= fc * ba[c->off[i] + axis[i]];
+            PetscCall(VecRestoreArrayRead(bw, &ba));
+            ncoupled++;
+          } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+          if (dim == 3)                                                    /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
+            for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
+        }
+      }
+    PetscCall(VecRestoreArray(rhs, &ra));
+    if (coupled) {
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncoupled, 1, MPIU_INT, MPI_SUM, ct->comm));
+      if (ncoupled) {
+        PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+        PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+      }
+    }
+  }
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
+  PetscFunctionReturn(0);
+}
+
+/* After a solve: the multiplier from the equilibrium on the active set, the next normal set (nact, entered, left: its
+   size and changes) and, with friction, the next states (their changes counted as entered) */
+static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt *nact_, PetscInt *entered_, PetscInt *left_)
+{
+  PDAS                *pd   = (PDAS *)ct->data;
+  const SgContactView *c    = &ct->cv;
+  const PetscBool      fr   = w->fr;
+  const PetscInt      *axis = w->axis;
+  const PetscReal     *sign = w->sign, *nax = w->nax, *yref = w->yref;
+  PetscReal           *g = w->g, *gb = w->gb, *tdir = w->tdir, *zn = w->zn;
+  char                *act = w->act, *next = w->next, *fst = w->fst, *fnext = w->fnext;
+  SgFrame              f  = w->f;
+  Mat                  Kw = w->Kw;
+  Vec                  yw = w->yw, bw = w->bw, R = w->R;
+  PetscInt             nact = 0, entered = 0, left = 0;
+
+  PetscFunctionBeginUser;
+  /* multiplier from the equilibrium on the active set, then the next active set */
+  PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
+  PetscCall(Gap(ct, f, axis, sign, yw, g));
+  for (PetscInt i = 0; i < c->n; i++) {
+    if (!act[i]) ct->lam[i] = 0;
+    next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
+  }
+  PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
+  if (fr) {
+    PetscInt fchanged;
     PetscCall(MatMult(Kw, yw, R));
     PetscCall(VecAXPY(R, -1.0, bw));
-    PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, act, gb, tdir, zn, fst, NULL));
-  } else if (fr) PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, NULL, act, gb, tdir, zn, fst, NULL));
+    PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, next, gb, tdir, zn, fnext, &fchanged));
+    PetscCall(PetscArraycpy(fst, fnext, c->n));
+    if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
+    entered += fchanged; /* counted as changes of the sets */
+  }
+  *nact_    = nact;
+  *entered_ = entered;
+  *left_    = left;
+  PetscFunctionReturn(0);
+}
+
+/* The history row of iteration k (kind 's': the active set, its changes, the energy) and the monitor's line */
+static PetscErrorCode RecordIteration_PDAS(SgCont ct, PetscInt k, PetscInt nact, PetscInt entered, PetscInt left, PetscInt kits)
+{
+  PDAS          *pd = (PDAS *)ct->data;
+  SgHistoryRow   row;
+  PetscLogDouble t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t));
+  PetscCall(SgHistoryRowInit(&row));
+  row.kind    = 's';
+  row.outer   = 1;
+  row.gamma   = SG_NAN;
+  row.it      = k;
+  row.active  = nact;
+  row.entered = entered;
+  row.left    = left;
+  PetscCall(SgElasticityEnergy(ct->prob, ct->y, &row.V));
+  row.ksp_its = kits;
+  row.time    = t - ct->t0;
+  PetscCall(SgHistoryAdd(ct->hist, &row));
+  if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) V %.10e KSP %" PetscInt_FMT "\n", k, nact, entered, left, (double)row.V, kits));
+  PetscFunctionReturn(0);
+}
+
+/* The verdict after iteration k: converged (the sets settled, or the KKT tolerance met while they change on round-off),
+   failed (an active set came back: cycling), or the next set becomes the active one (*done = PETSC_FALSE) */
+static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt entered, PetscInt left, PetscBool *done_)
+{
+  const SgContactView *c  = &ct->cv;
+  const PetscBool      fr = w->fr, coupled = w->coupled;
+  const PetscReal     *g     = w->g;
+  const PetscInt64    *hash  = w->hash;
+  const PetscInt       nhash = w->nhash;
+  char                *act = w->act, *next = w->next;
+  PetscReal            kktprev = w->kktprev;
+  PetscBool            done    = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (entered + left == 0) {
+    done          = PETSC_TRUE;
+    ct->converged = PETSC_TRUE;
+    PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
+  } else if (KKTMet(ct, k, act, next, g, entered + left)) {
+    /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
+       body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
+    done = PETSC_TRUE;
+  } else if (coupled && k > 1) {
+    /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
+       slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
+       that meets the KKT tolerance of (P), and no longer halves it, has converged whatever they do */
+    PetscCall(SgContMeasure(ct));
+    if (ct->kkt.residual <= ct->kkt_tol && !(ct->kkt.residual < 0.5 * kktprev)) { /* and no longer improving */
+      done          = PETSC_TRUE;
+      ct->converged = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
+    } else PetscCall(PetscArraycpy(act, next, c->n));
+    kktprev = ct->kkt.residual;
+  } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
+    PetscInt64 h;
+    PetscCall(SgContactActiveSetHash(ct->c, next, &h));
+    for (PetscInt j = 0; j < nhash - 1; j++)
+      if (hash[j] == h) {
+        PetscCall(SgContFail(ct, "PDAS_ACTIVE_SET_CYCLING: the active set of iteration %" PetscInt_FMT " came back after iteration %" PetscInt_FMT, j + 1, k));
+        done = PETSC_TRUE;
+      }
+    PetscCall(PetscArraycpy(act, next, c->n));
+  } else PetscCall(PetscArraycpy(act, next, c->n));
+  w->kktprev = kktprev;
+  *done_     = done;
+  PetscFunctionReturn(0);
+}
+
+/* The primal-dual active set iterations: a linear solve per iteration with the sets of the last one, until they settle */
+static PetscErrorCode Solve_PDAS(SgCont ct)
+{
+  PDAS     *pd = (PDAS *)ct->data;
+  PdasWork  w;
+  KSP       ksp = ct->ksp;
+  PetscInt  k;
+  PetscBool done = PETSC_FALSE, ok;
+
+  PetscFunctionBeginUser;
+  PetscCall(SetUpWork_PDAS(ct, &w));
+  PetscCall(SgContStart(ct, &ok));
+  if (!ok) {
+    PetscCall(PdasFrameFree(&w.f, &w.Af, w.b, &w.bw, &w.yw, &w.nax, &w.yrf));
+    PetscCall(PetscFree6(w.axis, w.sign, w.g, w.act, w.next, w.rows));
+    PetscCall(PetscFree(w.hash));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(StartSets_PDAS(ct, &w));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
-    PetscInt           nrows = 0, nact = 0, entered = 0, left = 0, kits, ncoupled = 0;
+    PetscInt           nact = 0, entered = 0, left = 0, kits;
     KSPConvergedReason kr;
-    PetscScalar       *xa;
-    SgHistoryRow       row;
-    PetscLogDouble     t;
 
-    PetscCall(SgContactActiveSetHash(ct->c, act, &hash[nhash++]));
-    /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
-    PetscCall(MatCopy(Kw, A, SAME_NONZERO_PATTERN));
-    if (fr && dim == 3) {
-      /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
-         along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
-         without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
-      for (PetscInt i = 0; i < c->n; i++) {
-        PetscReal *B = &blk[i * dim * dim], a, beta;
-        for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
-        if (fst[i] != 2) continue;
-        a    = PetscMin(gb[i] / zn[i], 1 - 1e-8);
-        beta = pd->c * a / (1 - a);
-        for (PetscInt p = 0; p < dim; p++)
-          for (PetscInt q = 0; q < dim; q++) {
-            if (p == axis[i] || q == axis[i]) continue;
-            B[p * dim + q] = c->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
-          }
-      }
-      PetscCall(SgContactAddBlocks(ct->c, blk, A));
-      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-    }
-    PetscCall(VecCopy(bw, rhs));
-    PetscCall(VecGetArray(x, &xa));
-    for (PetscInt i = 0; i < c->n; i++)
-      if (act[i]) {
-        rows[nrows++]           = rstart + c->off[i] + axis[i];
-        xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
-      }
-    if (fr) {
-      PetscScalar *ra;
-      PetscCall(VecGetArray(rhs, &ra));
-      for (PetscInt i = 0; i < c->n; i++)
-        for (PetscInt j = 0; j < dim; j++) {
-          if (j == axis[i]) continue;
-          if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
-            rows[nrows++]     = rstart + c->off[i] + j;
-            xa[c->off[i] + j] = yref[i * dim + j];
-          } else if (fst[i] == 2) {
-            if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
-              const PetscInt ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
-              PetscReal      gi, dg;
-              SgContactLawBound(c->law, i, 0, &gi, &dg);
-              const PetscReal    fc = dg * tdir[i * dim + j] * nax[i];
-              const PetscScalar *va;
-              const PetscInt    *ca;
-              PetscInt           nc;
-              PetscScalar       *vv;
-              const PetscScalar *ba;
-              PetscCall(MatGetRow(Kw, ra_, &nc, &ca, &va));
-              PetscCall(PetscMalloc1(nc, &vv));
-              for (PetscInt q = 0; q < nc; q++) vv[q] = -fc * va[q];
-              PetscCall(MatSetValues(A, 1, &rj, nc, ca, vv, ADD_VALUES));
-              PetscCall(PetscFree(vv));
-              PetscCall(MatRestoreRow(Kw, ra_, &nc, &ca, &va));
-              PetscCall(VecGetArrayRead(bw, &ba));
-              ra[c->off[i] + j] -= fc * ba[c->off[i] + axis[i]];
-              PetscCall(VecRestoreArrayRead(bw, &ba));
-              ncoupled++;
-            } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
-            if (dim == 3)                                                    /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
-              for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
-          }
-        }
-      PetscCall(VecRestoreArray(rhs, &ra));
-      if (coupled) {
-        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncoupled, 1, MPIU_INT, MPI_SUM, ct->comm));
-        if (ncoupled) {
-          PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-          PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-        }
-      }
-    }
-    PetscCall(VecRestoreArray(x, &xa));
-    PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
+    PetscCall(SgContactActiveSetHash(ct->c, w.act, &w.hash[w.nhash++]));
+    PetscCall(AssembleSystem_PDAS(ct, &w));
     PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
-    PetscCall(KSPSetOperators(ksp, A, A));
-    PetscCall(KSPSolve(ksp, rhs, yw));
+    PetscCall(KSPSetOperators(ksp, w.A, w.A));
+    PetscCall(KSPSolve(ksp, w.rhs, w.yw));
     PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
-    if (f) { /* the iterate in the original coordinates (the contact layer's, the energy, the measures) */
-      PetscCall(VecCopy(yw, ct->y));
-      PetscCall(SgFrameToGlobal(f, ct->y));
+    if (w.f) { /* the iterate in the original coordinates (the contact layer's, the energy, the measures) */
+      PetscCall(VecCopy(w.yw, ct->y));
+      PetscCall(SgFrameToGlobal(w.f, ct->y));
     }
     PetscCall(KSPGetIterationNumber(ksp, &kits));
     PetscCall(KSPGetConvergedReason(ksp, &kr));
@@ -415,79 +585,22 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
       PetscCall(SgContFail(ct, "PDAS_LINEAR_SOLVE_FAILED: KSP %s in iteration %" PetscInt_FMT, KSPConvergedReasons[kr], k));
       break;
     }
-    /* multiplier from the equilibrium on the active set, then the next active set */
-    PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
-    PetscCall(Gap(ct, f, axis, sign, yw, g));
-    for (PetscInt i = 0; i < c->n; i++) {
-      if (!act[i]) ct->lam[i] = 0;
-      next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
-    }
-    PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
-    if (fr) {
-      PetscInt fchanged;
-      PetscCall(MatMult(Kw, yw, R));
-      PetscCall(VecAXPY(R, -1.0, bw));
-      PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, next, gb, tdir, zn, fnext, &fchanged));
-      PetscCall(PetscArraycpy(fst, fnext, c->n));
-      if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
-      entered += fchanged; /* counted as changes of the sets */
-    }
-    PetscCall(PetscTime(&t));
-    PetscCall(SgHistoryRowInit(&row));
-    row.kind    = 's';
-    row.outer   = 1;
-    row.gamma   = SG_NAN;
-    row.it      = k;
-    row.active  = nact;
-    row.entered = entered;
-    row.left    = left;
-    PetscCall(SgElasticityEnergy(ct->prob, ct->y, &row.V));
-    row.ksp_its = kits;
-    row.time    = t - ct->t0;
-    PetscCall(SgHistoryAdd(ct->hist, &row));
-    if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) V %.10e KSP %" PetscInt_FMT "\n", k, nact, entered, left, (double)row.V, kits));
-    if (entered + left == 0) {
-      done          = PETSC_TRUE;
-      ct->converged = PETSC_TRUE;
-      PetscCall(PetscStrcpy(ct->reason, "PDAS_ACTIVE_SET_SETTLED"));
-    } else if (KKTMet(ct, k, act, next, g, entered + left)) {
-      /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
-         body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
-      done = PETSC_TRUE;
-    } else if (coupled && k > 1) {
-      /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
-         slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
-         that meets the KKT tolerance of (P), and no longer halves it, has converged whatever they do */
-      PetscCall(SgContMeasure(ct));
-      if (ct->kkt.residual <= ct->kkt_tol && !(ct->kkt.residual < 0.5 * kktprev)) { /* and no longer improving */
-        done          = PETSC_TRUE;
-        ct->converged = PETSC_TRUE;
-        PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
-      } else PetscCall(PetscArraycpy(act, next, c->n));
-      kktprev = ct->kkt.residual;
-    } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
-      PetscInt64 h;
-      PetscCall(SgContactActiveSetHash(ct->c, next, &h));
-      for (PetscInt j = 0; j < nhash - 1; j++)
-        if (hash[j] == h) {
-          PetscCall(SgContFail(ct, "PDAS_ACTIVE_SET_CYCLING: the active set of iteration %" PetscInt_FMT " came back after iteration %" PetscInt_FMT, j + 1, k));
-          done = PETSC_TRUE;
-        }
-      PetscCall(PetscArraycpy(act, next, c->n));
-    } else PetscCall(PetscArraycpy(act, next, c->n));
+    PetscCall(NextSets_PDAS(ct, &w, k, &nact, &entered, &left));
+    PetscCall(RecordIteration_PDAS(ct, k, nact, entered, left, kits));
+    PetscCall(Decide_PDAS(ct, &w, k, entered, left, &done));
   }
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
   PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its, NULL));
   PetscCall(SgContCheckBaseline(ct));
-  PetscCall(VecDestroy(&rhs));
-  PetscCall(VecDestroy(&x));
-  PetscCall(VecDestroy(&R));
-  PetscCall(PetscFree4(fst, fnext, tdir, gb));
-  PetscCall(PetscFree2(zn, blk));
-  PetscCall(PdasFrameFree(&f, &Af, b, &bw, &yw, &nax, &yrf));
-  PetscCall(PetscFree6(axis, sign, g, act, next, rows));
-  PetscCall(PetscFree(hash));
+  PetscCall(VecDestroy(&w.rhs));
+  PetscCall(VecDestroy(&w.x));
+  PetscCall(VecDestroy(&w.R));
+  PetscCall(PetscFree4(w.fst, w.fnext, w.tdir, w.gb));
+  PetscCall(PetscFree2(w.zn, w.blk));
+  PetscCall(PdasFrameFree(&w.f, &w.Af, w.b, &w.bw, &w.yw, &w.nax, &w.yrf));
+  PetscCall(PetscFree6(w.axis, w.sign, w.g, w.act, w.next, w.rows));
+  PetscCall(PetscFree(w.hash));
   PetscFunctionReturn(0);
 }
 

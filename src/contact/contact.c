@@ -684,6 +684,119 @@ static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
   return PetscMax(1e-12 * sc->F, 4 * sc->rnoise) / c->w[i];
 }
 
+/* The friction part of SgContactKKT. friction: lam_T balances the tangential residual; measured are the bound
+   |lam_T| <= g (a force, with the dual part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip
+   u_T = a lam_T with a >= 0 where |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed
+   components the displacement is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a
+   traction on it. In: ra = K y - b (the rollers' fixed components zeroed), lam the normal multipliers, ynrm
+   ||y||_inf. Out: the numbers per contact vertex (klt, kslip, kst), the friction summary fsum, s[3] (this rank's slip
+   part of the complementarity^2), and ra without the tangential residual of the free components (what the friction
+   balances). */
+static PetscErrorCode KKTFrictionMeasures(SgContact c, Vec y, PetscScalar ra[], const PetscReal lam[], PetscReal ynrm, const KKTScales *sc, PetscReal s[])
+{
+  const PetscInt     dim = c->dim;
+  const PetscScalar *ya;
+  PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm, *uv, *ft = NULL;
+  const PetscScalar *ul = NULL, *rfa = NULL;
+  Vec                yloc = NULL, Rf = NULL;
+
+  PetscFunctionBeginUser;
+  if (c->haspartial) {
+    PetscCall(DMGetLocalVector(c->dm, &yloc));
+    PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
+    PetscCall(VecGetArrayRead(yloc, &ul));
+    for (PetscInt i = 0; i < c->n; i++)
+      for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
+  }
+  if (c->hasdface) {
+    PetscCall(VecDuplicate(y, &Rf));
+    PetscCall(SgElasticityFixedResidual(c->prob, y, Rf));
+    PetscCall(VecGetArrayRead(Rf, &rfa));
+  }
+  unoise *= 1e-10;
+  PetscCall(VecGetArrayRead(y, &ya));
+  /* the vertices' displacements (two bodies: relative, R y) and, for a pair, the friction forces w lam_T on them */
+  PetscCall(PetscMalloc1(c->n * dim + 1, &uv));
+  PetscCall(SgContactVertexDisplacements(c, ya, uv));
+  if (c->pair) PetscCall(PetscCalloc1(c->n * dim + 1, &ft));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscReal noise = ForceNoise(c, sc, i);
+    const PetscInt  v     = c->vert[i];
+    PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
+    char            st;
+    for (PetscInt k = 0; k < dim; k++) {
+      const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
+      r[k]                  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
+      dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : uv[i * dim + k] - c->yref[i * dim + k];
+      if (ul && !c->norecord) {
+        c->ypfull[i * dim + k]          = PetscRealPart(ul[c->mesh->loff[v] + k]);
+        c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
+      }
+    }
+    st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb, &ntfree);
+    for (PetscInt k = 0; k < dim; k++) {
+      nt += lt[k] * lt[k];
+      un += u[k] * u[k];
+      f[2 + k] += c->w[i] * lt[k];
+      c->klt[i * dim + k]   = lt[k];
+      c->kslip[i * dim + k] = u[k];
+    }
+    c->kst[i] = st;
+    if (ft) /* two bodies: the friction force acts on both sides (taken out below, R^T w lam_T) */
+      for (PetscInt k = 0; k < dim; k++) ft[i * dim + k] = c->w[i] * lt[k];
+    else { /* what the friction balances: the tangential residual on the free components */
+      PetscReal rn = 0;
+      for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+      for (PetscInt k = 0; k < dim; k++)
+        if (!(c->haspartial && SgMeshFixed(c->mesh, v, k))) ra[c->off[i] + k] = rn * c->normal[i * dim + k];
+    }
+    nt    = PetscSqrtReal(nt);
+    un    = PetscSqrtReal(un);
+    fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
+    fm[1] = PetscMax(fm[1], un);
+    f[5] += c->w[i] * nt;
+    if (st == SG_FRICTION_STICK) err = un;
+    else if (st == SG_FRICTION_SLIP && gb > noise) { /* a bound at the noise level (Coulomb, F lam_N tiny): no direction to measure */
+      for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
+      a = PetscMax(0, a);
+      for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
+      err = PetscSqrtReal(err);
+    }
+    f[0] += (st == SG_FRICTION_STICK);
+    f[1] += (st == SG_FRICTION_SLIP);
+    f[6] += c->w[i] * err * err;
+  }
+  PetscCall(VecRestoreArrayRead(y, &ya));
+  if (ft) PetscCall(SgContactAddVertexForces(c, ft, ra)); /* at the slave vertex: leaves its normal residual, as above */
+  PetscCall(PetscFree(ft));
+  PetscCall(PetscFree(uv));
+  if (yloc) {
+    PetscCall(VecRestoreArrayRead(yloc, &ul));
+    PetscCall(DMRestoreLocalVector(c->dm, &yloc));
+    if (!c->norecord) c->haverecord = PETSC_TRUE; /* the next load step's slip reference from this y takes these data */
+  }
+  if (Rf) {
+    PetscCall(VecRestoreArrayRead(Rf, &rfa));
+    PetscCall(VecDestroy(&Rf));
+  }
+  s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
+  c->fsum.nstick     = (PetscInt)f[0];
+  c->fsum.nslip      = (PetscInt)f[1];
+  c->fsum.force_norm = 0;
+  for (PetscInt k = 0; k < 3; k++) {
+    c->fsum.force[k] = k < dim ? f[2 + k] : 0;
+    c->fsum.force_norm += PetscSqr(c->fsum.force[k]);
+  }
+  c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
+  c->fsum.traction   = f[5];
+  c->fsum.slip_max   = fm[1];
+  c->fsum.bound      = SafeRatio(fm[0], sc->F);
+  PetscFunctionReturn(0);
+}
+
 /* KKT measures of the original problem (P) for a displacement y. The multiplier is the one that balances the normal
    residual at the contact vertices, lam_i = -(K y - b)_i.n_i / w_i: for the methods' own multipliers it agrees up to
    round-off, but it does not carry the round-off of gamma (tau_N y - d) at large gamma into the equilibrium measure.
@@ -740,108 +853,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     c->klam[i] = lam[i];
     c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], ForceNoise(c, &sc, i)) && !(rf < rg));
   }
-  if (c->friction) {
-    /* friction: lam_T balances the tangential residual; measured are the bound |lam_T| <= g (a force, with the dual
-       part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip u_T = a lam_T with a >= 0 where
-       |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed components the displacement
-       is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a traction on it. */
-    PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm, *uv, *ft = NULL;
-    const PetscScalar *ul = NULL, *rfa = NULL;
-    Vec                yloc = NULL, Rf = NULL;
-    if (c->haspartial) {
-      PetscCall(DMGetLocalVector(c->dm, &yloc));
-      PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
-      PetscCall(VecGetArrayRead(yloc, &ul));
-      for (PetscInt i = 0; i < c->n; i++)
-        for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
-    }
-    if (c->hasdface) {
-      PetscCall(VecDuplicate(y, &Rf));
-      PetscCall(SgElasticityFixedResidual(c->prob, y, Rf));
-      PetscCall(VecGetArrayRead(Rf, &rfa));
-    }
-    unoise *= 1e-10;
-    PetscCall(VecGetArrayRead(y, &ya));
-    /* the vertices' displacements (two bodies: relative, R y) and, for a pair, the friction forces w lam_T on them */
-    PetscCall(PetscMalloc1(c->n * dim + 1, &uv));
-    PetscCall(SgContactVertexDisplacements(c, ya, uv));
-    if (c->pair) PetscCall(PetscCalloc1(c->n * dim + 1, &ft));
-    for (PetscInt i = 0; i < c->n; i++) {
-      const PetscReal noise = ForceNoise(c, &sc, i);
-      const PetscInt  v     = c->vert[i];
-      PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
-      char            st;
-      for (PetscInt k = 0; k < dim; k++) {
-        const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
-        r[k]                  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
-        dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : uv[i * dim + k] - c->yref[i * dim + k];
-        if (ul && !c->norecord) {
-          c->ypfull[i * dim + k]          = PetscRealPart(ul[c->mesh->loff[v] + k]);
-          c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
-        }
-      }
-      st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb, &ntfree);
-      for (PetscInt k = 0; k < dim; k++) {
-        nt += lt[k] * lt[k];
-        un += u[k] * u[k];
-        f[2 + k] += c->w[i] * lt[k];
-        c->klt[i * dim + k]   = lt[k];
-        c->kslip[i * dim + k] = u[k];
-      }
-      c->kst[i] = st;
-      if (ft) /* two bodies: the friction force acts on both sides (taken out below, R^T w lam_T) */
-        for (PetscInt k = 0; k < dim; k++) ft[i * dim + k] = c->w[i] * lt[k];
-      else { /* what the friction balances: the tangential residual on the free components */
-        PetscReal rn = 0;
-        for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
-        for (PetscInt k = 0; k < dim; k++)
-          if (!(c->haspartial && SgMeshFixed(c->mesh, v, k))) ra[c->off[i] + k] = rn * c->normal[i * dim + k];
-      }
-      nt    = PetscSqrtReal(nt);
-      un    = PetscSqrtReal(un);
-      fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
-      fm[1] = PetscMax(fm[1], un);
-      f[5] += c->w[i] * nt;
-      if (st == SG_FRICTION_STICK) err = un;
-      else if (st == SG_FRICTION_SLIP && gb > noise) { /* a bound at the noise level (Coulomb, F lam_N tiny): no direction to measure */
-        for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
-        a = PetscMax(0, a);
-        for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
-        err = PetscSqrtReal(err);
-      }
-      f[0] += (st == SG_FRICTION_STICK);
-      f[1] += (st == SG_FRICTION_SLIP);
-      f[6] += c->w[i] * err * err;
-    }
-    PetscCall(VecRestoreArrayRead(y, &ya));
-    if (ft) PetscCall(SgContactAddVertexForces(c, ft, ra)); /* at the slave vertex: leaves its normal residual, as above */
-    PetscCall(PetscFree(ft));
-    PetscCall(PetscFree(uv));
-    if (yloc) {
-      PetscCall(VecRestoreArrayRead(yloc, &ul));
-      PetscCall(DMRestoreLocalVector(c->dm, &yloc));
-      if (!c->norecord) c->haverecord = PETSC_TRUE; /* the next load step's slip reference from this y takes these data */
-    }
-    if (Rf) {
-      PetscCall(VecRestoreArrayRead(Rf, &rfa));
-      PetscCall(VecDestroy(&Rf));
-    }
-    s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
-    c->fsum.nstick     = (PetscInt)f[0];
-    c->fsum.nslip      = (PetscInt)f[1];
-    c->fsum.force_norm = 0;
-    for (PetscInt k = 0; k < 3; k++) {
-      c->fsum.force[k] = k < dim ? f[2 + k] : 0;
-      c->fsum.force_norm += PetscSqr(c->fsum.force[k]);
-    }
-    c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
-    c->fsum.traction   = f[5];
-    c->fsum.slip_max   = fm[1];
-    c->fsum.bound      = SafeRatio(fm[0], sc.F);
-  }
+  if (c->friction) PetscCall(KKTFrictionMeasures(c, y, ra, lam, ynrm, &sc, s));
   PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
