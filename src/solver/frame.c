@@ -21,18 +21,18 @@ struct _n_SgFrame {
   MPI_Comm        comm;
   PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
   PetscInt        nrot_global;
-  const PetscInt *off;  /* dof offset of each contact vertex (the contact view's) */
-  PetscReal      *Q;    /* Q_i row-major: column b is the frame's b-th vector in global components */
-  PetscBool      *rot;  /* Q_i is not the identity */
-  PetscInt       *axis; /* the frame dof of the normal */
-  PetscReal      *sign; /* n = sign Q_i e_axis */
+  const PetscInt *off;    /* dof offset of each contact vertex (the contact view's) */
+  PetscReal      *Q;      /* Q_i row-major: column b is the frame's b-th vector in global components */
+  PetscBool      *rot;    /* Q_i is not the identity */
+  PetscInt       *axis;   /* the frame dof of the normal */
+  PetscReal      *sign;   /* n = sign Q_i e_axis */
   PetscBool       global; /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
   PetscReal       R[9];   /* that frame, row-major like Q_i */
   PetscInt        nb;     /* blocks (vertices) of the local part of a global vector */
   PetscInt       *bq;     /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
-  Mat             Kr;   /* Q^T K Q */
-  MatNullSpace    nsp;  /* the rotated near null space (NULL if the problem has none) */
-  Vec             b;    /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  Mat             Kr;     /* Q^T K Q */
+  MatNullSpace    nsp;    /* the rotated near null space (NULL if the problem has none) */
+  Vec             b;      /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
 };
 
 static PetscLogEvent SG_FrameSetUp;
@@ -75,7 +75,8 @@ static void VertexFrame(PetscInt dim, const PetscReal n[], PetscReal Q[], PetscI
 static inline const PetscReal *BlockFrame(SgFrame f, PetscInt b)
 {
   const PetscInt q = f->bq[b];
-  return q == -1 ? NULL : q == -2 ? f->R : &f->Q[q * f->dim * f->dim];
+  return q == -1 ? NULL : q == -2 ? f->R
+                                  : &f->Q[q * f->dim * f->dim];
 }
 
 /* x_b <- Q_b^T x_b (to the frame) or Q_b x_b (back) at the rotated blocks of a local array */
@@ -165,10 +166,18 @@ static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
    normals differ (or there are none). Collective. */
 static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMesh *m, PetscInt *kn, PetscReal *sn, PetscBool *ok)
 {
-  const PetscInt dim = f->dim;
+  const PetscInt dim   = f->dim;
   PetscReal      ns[4] = {0, 0, 0, 0}, nb[3] = {0, 0, 0}, dev = 0, len = 0, F[9], Q0[9], s0;
-  PetscInt       k0, perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}, np = dim == 2 ? 2 : 6, best = -1;
-  PetscReal      bestscore = -1;
+  PetscInt       k0, perm[6][3] = {
+                         {0, 1, 2},
+                         {0, 2, 1},
+                         {1, 0, 2},
+                         {1, 2, 0},
+                         {2, 0, 1},
+                         {2, 1, 0}
+  },
+               np = dim == 2 ? 2 : 6, best = -1;
+  PetscReal bestscore = -1;
 
   PetscFunctionBeginUser;
   *ok = PETSC_FALSE;
@@ -222,7 +231,11 @@ static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMe
     }
     for (PetscInt a = 0; a < 3; a++) ta[a] = Q0[a * 3 + ia], tb[a] = Q0[a * 3 + ib];
     {
-      const PetscInt    ix[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+      const PetscInt ix[3][3] = {
+          {0, 1, 2},
+          {1, 3, 4},
+          {2, 4, 5}
+      };
       for (PetscInt a = 0; a < 3; a++)
         for (PetscInt b = 0; b < 3; b++) {
           const PetscReal cab = C[ix[a][b]];
