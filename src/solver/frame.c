@@ -14,7 +14,10 @@
      after it (KSPSetPreSolve/PostSolve), so the SNES around it never sees the frames.
    Residuals, iterates, controllers and outputs stay in the original coordinates. At a roller (a fixed component e_f,
    the normal orthogonal to it) the frame keeps e_f in its place, so the Dirichlet rows stay rows of the identity;
-   vertices whose normal is already +-e_k keep the identity. */
+   vertices whose normal is already +-e_k keep the identity.
+   Where every contact normal is the same direction (-ssn_frame_global, GlobalFrame), Q is one rotation R on every
+   vertex of the body (rollers excepted), not only on the contact vertices: a rigidly turned body then gives the AMG
+   the unturned stiffness, not one whose components couple off the axes away from the contact boundary. */
 #include "solver/ssnimpl.h"
 
 struct _n_SgFrame {
