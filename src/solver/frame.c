@@ -157,6 +157,68 @@ static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
   PetscFunctionReturn(0);
 }
 
+/* Q^T K Q in place on a copy of K, block by block: B_IJ <- Q_I^T B_IJ Q_J where Q_I or Q_J is not the identity (one
+   pass over K's values; MatPtAP, its symbolic and numeric products, took 2-7 s at 124k unknowns). For a sequential AIJ
+   K whose rows come in blocks of dim with whole dim x dim blocks of columns (the P1 pattern of SgElasticity); *done
+   false otherwise (MatPtAP then). */
+static PetscErrorCode RotateStiffnessSeq(SgFrame f, Mat K, Mat *Kr, PetscBool *done)
+{
+  const PetscInt  bs = f->dim;
+  const PetscInt *ia, *ja;
+  PetscInt        nr;
+  PetscBool       seq, flg, ok = PETSC_TRUE;
+  PetscScalar    *v;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQAIJ, &seq));
+  if (!seq) PetscFunctionReturn(0);
+  PetscCall(MatGetRowIJ(K, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  if (!flg) PetscFunctionReturn(0);
+  ok = (PetscBool)(nr == f->nb * bs);
+  for (PetscInt ib = 0; ok && ib < f->nb; ib++) {
+    const PetscInt r0 = ib * bs, L = ia[r0 + 1] - ia[r0];
+    if (L % bs) ok = PETSC_FALSE;
+    for (PetscInt a = 0; ok && a < bs; a++) {
+      if (ia[r0 + a + 1] - ia[r0 + a] != L) ok = PETSC_FALSE;
+      for (PetscInt m = 0; ok && m < L; m++)
+        if (ja[ia[r0 + a] + m] != ja[ia[r0] + m - m % bs] + m % bs || ja[ia[r0] + m - m % bs] % bs) ok = PETSC_FALSE;
+    }
+  }
+  PetscCall(MatRestoreRowIJ(K, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  if (!ok) PetscFunctionReturn(0);
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Kr));
+  PetscCall(MatGetRowIJ(*Kr, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  PetscCall(MatSeqAIJGetArray(*Kr, &v));
+  for (PetscInt ib = 0; ib < f->nb; ib++) {
+    const PetscInt   r0 = ib * bs, L = ia[r0 + 1] - ia[r0];
+    const PetscReal *QI = BlockFrame(f, ib);
+    for (PetscInt m = 0; m < L; m += bs) {
+      const PetscReal *QJ = BlockFrame(f, ja[ia[r0] + m] / bs);
+      PetscReal        B[3][3], C[3][3];
+      if (!QI && !QJ) continue;
+      for (PetscInt a = 0; a < bs; a++)
+        for (PetscInt b = 0; b < bs; b++) B[a][b] = PetscRealPart(v[ia[r0 + a] + m + b]);
+      for (PetscInt a = 0; a < bs; a++) /* C = Q_I^T B */
+        for (PetscInt b = 0; b < bs; b++) {
+          C[a][b] = 0;
+          for (PetscInt k = 0; k < bs; k++) C[a][b] += (QI ? QI[k * bs + a] : (PetscReal)(k == a)) * B[k][b];
+        }
+      for (PetscInt a = 0; a < bs; a++) /* C Q_J */
+        for (PetscInt b = 0; b < bs; b++) {
+          PetscReal s = 0;
+          for (PetscInt k = 0; k < bs; k++) s += C[a][k] * (QJ ? QJ[k * bs + b] : (PetscReal)(k == b));
+          v[ia[r0 + a] + m + b] = s;
+        }
+    }
+  }
+  PetscCall(MatSeqAIJRestoreArray(*Kr, &v));
+  PetscCall(MatRestoreRowIJ(*Kr, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  PetscCall(MatSetNearNullSpace(*Kr, NULL));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* -ssn_frame_global: where every contact normal (on every rank) is the same direction n to 1e-8 (a plane obstacle with
    -contact_normal obstacle, a flat contact face with body), one frame R = [r_0, .., r_dim-1] for the whole body, n one
    of its columns: for a body turned rigidly by a rotation T (mesh, obstacle and data turned together) R = T S, S a
@@ -309,7 +371,7 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   MatNullSpace  nsp;
   PetscInt      dim, mloc, kn = -1;
   PetscReal     sn = 1;
-  PetscBool     aligned, ok = PETSC_FALSE;
+  PetscBool     aligned, ok = PETSC_FALSE, done;
 
   PetscFunctionBeginUser;
   *frame = NULL;
@@ -369,10 +431,13 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
     if (f->rot[i]) f->bq[cv.off[i] / dim] = i;
   for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
   PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
-  PetscCall(FrameMatrix(f, K, &Qm));
-  PetscCall(MatPtAP(K, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+  PetscCall(RotateStiffnessSeq(f, K, &f->Kr, &done));
+  if (!done) {
+    PetscCall(FrameMatrix(f, K, &Qm));
+    PetscCall(MatPtAP(K, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+    PetscCall(MatDestroy(&Qm));
+  }
   PetscCall(MatSetBlockSize(f->Kr, dim));
-  PetscCall(MatDestroy(&Qm));
   PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
   if (nsp) { /* the rigid-body modes in the frame (Q is orthogonal: they stay orthonormal) */
     PetscBool  has_const;
