@@ -158,7 +158,9 @@ static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
 }
 
 /* Q^T K Q in place on a copy of K, block by block: B_IJ <- Q_I^T B_IJ Q_J where Q_I or Q_J is not the identity (one
-   pass over K's values; MatPtAP, its symbolic and numeric products, took 2-7 s at 124k unknowns). For a sequential AIJ
+   pass over K's values; MatPtAP, its symbolic and numeric products, took 2-7 s at 124k unknowns), each block's
+   products in MatPtAP's order (B Q_J, then Q_I^T), which gives its numbers to the bit (the solver paths of frictional
+   problems follow round-off). For a sequential AIJ
    K whose rows come in blocks of dim with whole dim x dim blocks of columns (the P1 pattern of SgElasticity); *done
    false otherwise (MatPtAP then). */
 static PetscErrorCode RotateStiffnessSeq(SgFrame f, Mat K, Mat *Kr, PetscBool *done)
@@ -199,15 +201,15 @@ static PetscErrorCode RotateStiffnessSeq(SgFrame f, Mat K, Mat *Kr, PetscBool *d
       if (!QI && !QJ) continue;
       for (PetscInt a = 0; a < bs; a++)
         for (PetscInt b = 0; b < bs; b++) B[a][b] = PetscRealPart(v[ia[r0 + a] + m + b]);
-      for (PetscInt a = 0; a < bs; a++) /* C = Q_I^T B */
+      for (PetscInt a = 0; a < bs; a++) /* C = B Q_J, then Q_I^T C: the order of MatPtAP's products (A P, then P^T) */
         for (PetscInt b = 0; b < bs; b++) {
           C[a][b] = 0;
-          for (PetscInt k = 0; k < bs; k++) C[a][b] += (QI ? QI[k * bs + a] : (PetscReal)(k == a)) * B[k][b];
+          for (PetscInt k = 0; k < bs; k++) C[a][b] += B[a][k] * (QJ ? QJ[k * bs + b] : (PetscReal)(k == b));
         }
-      for (PetscInt a = 0; a < bs; a++) /* C Q_J */
+      for (PetscInt a = 0; a < bs; a++)
         for (PetscInt b = 0; b < bs; b++) {
           PetscReal s = 0;
-          for (PetscInt k = 0; k < bs; k++) s += C[a][k] * (QJ ? QJ[k * bs + b] : (PetscReal)(k == b));
+          for (PetscInt k = 0; k < bs; k++) s += (QI ? QI[k * bs + a] : (PetscReal)(k == a)) * C[k][b];
           v[ia[r0 + a] + m + b] = s;
         }
     }
