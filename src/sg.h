@@ -402,7 +402,7 @@ PetscErrorCode SgTMGCreate(SgSSN, KSP, SgTMG *); /* tmg.c: truncated multigrid o
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
-PetscErrorCode SgFrameCreate(SgElasticity, SgContact, SgFrame *);
+PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
 PetscErrorCode SgFrameDestroy(SgFrame *);
 PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices */
 PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */

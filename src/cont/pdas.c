@@ -46,16 +46,17 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
    -ssn_frame false (the frames turned off) every normal must be an axis: the error names the option. */
 PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], SgFrame *f, PetscInt axis[], PetscReal sign[])
 {
-  PetscBool aligned, frame = PETSC_TRUE;
+  PetscBool aligned, frame = PETSC_TRUE, global = PETSC_TRUE;
 
   PetscFunctionBeginUser;
   *f = NULL;
   PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame", &frame, NULL));
+  PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame_global", &global, NULL));
   PetscCall(SgContactNormalsAxisAligned(ct->c, &aligned));
   if (!aligned && frame) {
     const PetscInt  *fa;
     const PetscReal *fs;
-    PetscCall(SgFrameCreate(ct->prob, ct->c, f));
+    PetscCall(SgFrameCreate(ct->prob, ct->c, global, f));
     PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
     PetscCall(PetscArraycpy(axis, fa, ct->cv.n));
     PetscCall(PetscArraycpy(sign, fs, ct->cv.n));

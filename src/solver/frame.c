@@ -14,21 +14,28 @@
      after it (KSPSetPreSolve/PostSolve), so the SNES around it never sees the frames.
    Residuals, iterates, controllers and outputs stay in the original coordinates. At a roller (a fixed component e_f,
    the normal orthogonal to it) the frame keeps e_f in its place, so the Dirichlet rows stay rows of the identity;
-   vertices whose normal is already +-e_k keep the identity. */
+   vertices whose normal is already +-e_k keep the identity.
+   Where every contact normal is the same direction (-ssn_frame_global, GlobalFrame), Q is one rotation R on every
+   vertex of the body (rollers excepted), not only on the contact vertices: a rigidly turned body then gives the AMG
+   the unturned stiffness, not one whose components couple off the axes away from the contact boundary. */
 #include "solver/ssnimpl.h"
 
 struct _n_SgFrame {
   MPI_Comm        comm;
   PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
   PetscInt        nrot_global;
-  const PetscInt *off;  /* dof offset of each contact vertex (the contact view's) */
-  PetscReal      *Q;    /* Q_i row-major: column b is the frame's b-th vector in global components */
-  PetscBool      *rot;  /* Q_i is not the identity */
-  PetscInt       *axis; /* the frame dof of the normal */
-  PetscReal      *sign; /* n = sign Q_i e_axis */
-  Mat             Kr;   /* Q^T K Q */
-  MatNullSpace    nsp;  /* the rotated near null space (NULL if the problem has none) */
-  Vec             b;    /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  const PetscInt *off;    /* dof offset of each contact vertex (the contact view's) */
+  PetscReal      *Q;      /* Q_i row-major: column b is the frame's b-th vector in global components */
+  PetscBool      *rot;    /* Q_i is not the identity */
+  PetscInt       *axis;   /* the frame dof of the normal */
+  PetscReal      *sign;   /* n = sign Q_i e_axis */
+  PetscBool       global; /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
+  PetscReal       R[9];   /* that frame, row-major like Q_i */
+  PetscInt        nb;     /* blocks (vertices) of the local part of a global vector */
+  PetscInt       *bq;     /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
+  Mat             Kr;     /* Q^T K Q */
+  MatNullSpace    nsp;    /* the rotated near null space (NULL if the problem has none) */
+  Vec             b;      /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
 };
 
 static PetscLogEvent SG_FrameSetUp;
@@ -67,20 +74,28 @@ static void VertexFrame(PetscInt dim, const PetscReal n[], PetscReal Q[], PetscI
   for (PetscInt a = 0; a < dim; a++) Q[a * dim + k] = v[a]; /* the normal's column exactly */
 }
 
-/* x_i <- Q_i^T x_i (to the frame) or Q_i x_i (back) at the rotated vertices of a local array */
+/* the frame of block (vertex) b of the local part of a global vector, NULL for the identity */
+static inline const PetscReal *BlockFrame(SgFrame f, PetscInt b)
+{
+  const PetscInt q = f->bq[b];
+  return q == -1 ? NULL : q == -2 ? f->R
+                                  : &f->Q[q * f->dim * f->dim];
+}
+
+/* x_b <- Q_b^T x_b (to the frame) or Q_b x_b (back) at the rotated blocks of a local array */
 static void RotateArray(SgFrame f, PetscScalar xa[], PetscBool back)
 {
   const PetscInt dim = f->dim;
-  for (PetscInt i = 0; i < f->n; i++) {
-    const PetscReal *Q = &f->Q[i * dim * dim];
+  for (PetscInt i = 0; i < f->nb; i++) {
+    const PetscReal *Q = BlockFrame(f, i);
     PetscReal        x[3], r[3];
-    if (!f->rot[i]) continue;
-    for (PetscInt a = 0; a < dim; a++) x[a] = PetscRealPart(xa[f->off[i] + a]);
+    if (!Q) continue;
+    for (PetscInt a = 0; a < dim; a++) x[a] = PetscRealPart(xa[i * dim + a]);
     for (PetscInt a = 0; a < dim; a++) {
       r[a] = 0;
       for (PetscInt b = 0; b < dim; b++) r[a] += back ? Q[a * dim + b] * x[b] : Q[b * dim + a] * x[b];
     }
-    for (PetscInt a = 0; a < dim; a++) xa[f->off[i] + a] = r[a];
+    for (PetscInt a = 0; a < dim; a++) xa[i * dim + a] = r[a];
   }
 }
 
@@ -120,8 +135,7 @@ void SgFrameVectorToLocal(SgFrame f, PetscInt i, const PetscReal v[], PetscReal 
 /* Q as a matrix (block diagonal, dim x dim blocks) for the product Q^T K Q */
 static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
 {
-  PetscInt  rstart, rend, m, bs = f->dim;
-  PetscInt *rowv;
+  PetscInt rstart, rend, m, bs = f->dim;
 
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(K, &rstart, &rend));
@@ -129,34 +143,237 @@ static PetscErrorCode FrameMatrix(SgFrame f, Mat K, Mat *Qm)
   PetscCall(MatCreateAIJ(f->comm, m, m, PETSC_DETERMINE, PETSC_DETERMINE, bs, NULL, 0, NULL, Qm));
   PetscCall(MatSetBlockSize(*Qm, bs));
   PetscCall(MatSetOption(*Qm, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(PetscCalloc1(m, &rowv));
-  for (PetscInt i = 0; i < f->n; i++) rowv[f->off[i]] = i + 1; /* which contact vertex starts at this local dof */
   for (PetscInt r = 0; r < m; r += bs) {
-    PetscInt    idx[3];
-    PetscScalar v[9];
+    const PetscReal *Q = BlockFrame(f, r / bs);
+    PetscInt         idx[3];
+    PetscScalar      v[9];
     for (PetscInt a = 0; a < bs; a++) idx[a] = rstart + r + a;
     for (PetscInt a = 0; a < bs; a++)
-      for (PetscInt b = 0; b < bs; b++) v[a * bs + b] = (a == b);
-    if (rowv[r] && f->rot[rowv[r] - 1])
-      for (PetscInt k = 0; k < bs * bs; k++) v[k] = f->Q[(rowv[r] - 1) * bs * bs + k];
+      for (PetscInt b = 0; b < bs; b++) v[a * bs + b] = Q ? Q[a * bs + b] : (a == b);
     PetscCall(MatSetValues(*Qm, bs, idx, bs, idx, v, INSERT_VALUES));
   }
-  PetscCall(PetscFree(rowv));
   PetscCall(MatAssemblyBegin(*Qm, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*Qm, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
+/* Q^T K Q in place on a copy of K, block by block: B_IJ <- Q_I^T B_IJ Q_J where Q_I or Q_J is not the identity (one
+   pass over K's values; MatPtAP, its symbolic and numeric products, took 2-7 s at 124k unknowns), each block's
+   products in MatPtAP's order (B Q_J, then Q_I^T), which gives its numbers to the bit (the solver paths of frictional
+   problems follow round-off). For a sequential AIJ
+   K whose rows come in blocks of dim with whole dim x dim blocks of columns (the P1 pattern of SgElasticity); *done
+   false otherwise (MatPtAP then). */
+static PetscErrorCode RotateStiffnessSeq(SgFrame f, Mat K, Mat *Kr, PetscBool *done)
+{
+  const PetscInt  bs = f->dim;
+  const PetscInt *ia, *ja;
+  PetscInt        nr;
+  PetscBool       seq, flg, ok = PETSC_TRUE;
+  PetscScalar    *v;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)K, MATSEQAIJ, &seq));
+  if (!seq) PetscFunctionReturn(0);
+  PetscCall(MatGetRowIJ(K, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  if (!flg) PetscFunctionReturn(0);
+  ok = (PetscBool)(nr == f->nb * bs);
+  for (PetscInt ib = 0; ok && ib < f->nb; ib++) {
+    const PetscInt r0 = ib * bs, L = ia[r0 + 1] - ia[r0];
+    if (L % bs) ok = PETSC_FALSE;
+    for (PetscInt a = 0; ok && a < bs; a++) {
+      if (ia[r0 + a + 1] - ia[r0 + a] != L) ok = PETSC_FALSE;
+      for (PetscInt m = 0; ok && m < L; m++)
+        if (ja[ia[r0 + a] + m] != ja[ia[r0] + m - m % bs] + m % bs || ja[ia[r0] + m - m % bs] % bs) ok = PETSC_FALSE;
+    }
+  }
+  PetscCall(MatRestoreRowIJ(K, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  if (!ok) PetscFunctionReturn(0);
+  PetscCall(MatDuplicate(K, MAT_COPY_VALUES, Kr));
+  PetscCall(MatGetRowIJ(*Kr, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  PetscCall(MatSeqAIJGetArray(*Kr, &v));
+  for (PetscInt ib = 0; ib < f->nb; ib++) {
+    const PetscInt   r0 = ib * bs, L = ia[r0 + 1] - ia[r0];
+    const PetscReal *QI = BlockFrame(f, ib);
+    for (PetscInt m = 0; m < L; m += bs) {
+      const PetscReal *QJ = BlockFrame(f, ja[ia[r0] + m] / bs);
+      PetscReal        B[3][3], C[3][3];
+      if (!QI && !QJ) continue;
+      for (PetscInt a = 0; a < bs; a++)
+        for (PetscInt b = 0; b < bs; b++) B[a][b] = PetscRealPart(v[ia[r0 + a] + m + b]);
+      for (PetscInt a = 0; a < bs; a++) /* C = B Q_J, then Q_I^T C: the order of MatPtAP's products (A P, then P^T) */
+        for (PetscInt b = 0; b < bs; b++) {
+          C[a][b] = 0;
+          for (PetscInt k = 0; k < bs; k++) C[a][b] += B[a][k] * (QJ ? QJ[k * bs + b] : (PetscReal)(k == b));
+        }
+      for (PetscInt a = 0; a < bs; a++)
+        for (PetscInt b = 0; b < bs; b++) {
+          PetscReal s = 0;
+          for (PetscInt k = 0; k < bs; k++) s += (QI ? QI[k * bs + a] : (PetscReal)(k == a)) * C[k][b];
+          v[ia[r0 + a] + m + b] = s;
+        }
+    }
+  }
+  PetscCall(MatSeqAIJRestoreArray(*Kr, &v));
+  PetscCall(MatRestoreRowIJ(*Kr, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &flg));
+  PetscCall(MatSetNearNullSpace(*Kr, NULL));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* -ssn_frame_global: where every contact normal (on every rank) is the same direction n to 1e-8 (a plane obstacle with
+   -contact_normal obstacle, a flat contact face with body), one frame R = [r_0, .., r_dim-1] for the whole body, n one
+   of its columns: for a body turned rigidly by a rotation T (mesh, obstacle and data turned together) R = T S, S a
+   signed permutation, so that Q^T K Q is the stiffness of the unturned body (S^T K_0 S: its unknowns in another order,
+   some negated), which an unknown-based AMG treats as the unturned one; per contact vertex frames (R at the contact
+   vertices only) leave the AMG a body whose components couple off the axes. The tangential axes in 3D are the
+   principal axes of the body's second moments about its centroid, projected onto the plane normal to n (they turn
+   with the body); where those two moments agree to 1e-6 (a body round about n) the minimal rotation of VertexFrame.
+   Of the 2^dim dim! signed orders of the columns the one closest to the identity (largest trace). *ok false: the
+   normals differ (or there are none). Collective. */
+static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMesh *m, PetscInt *kn, PetscReal *sn, PetscBool *ok)
+{
+  const PetscInt dim   = f->dim;
+  PetscReal      ns[4] = {0, 0, 0, 0}, nb[3] = {0, 0, 0}, dev = 0, len = 0, F[9], Q0[9], s0;
+  PetscInt       k0, perm[6][3] = {
+                         {0, 1, 2},
+                         {0, 2, 1},
+                         {1, 0, 2},
+                         {1, 2, 0},
+                         {2, 0, 1},
+                         {2, 1, 0}
+  },
+               np = dim == 2 ? 2 : 6, best = -1;
+  PetscReal bestscore = -1;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_FALSE;
+  for (PetscInt i = 0; i < cv->n; i++) {
+    for (PetscInt a = 0; a < dim; a++) ns[a] += cv->normal[i * dim + a];
+    ns[3] += 1;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ns, 4, MPIU_REAL, MPIU_SUM, f->comm));
+  for (PetscInt a = 0; a < dim; a++) len += ns[a] * ns[a];
+  len = PetscSqrtReal(len);
+  if (ns[3] < 1 || len < 0.5 * ns[3]) PetscFunctionReturn(0);
+  for (PetscInt a = 0; a < dim; a++) nb[a] = ns[a] / len;
+  for (PetscInt i = 0; i < cv->n; i++)
+    for (PetscInt a = 0; a < dim; a++) dev = PetscMax(dev, PetscAbsReal(cv->normal[i * dim + a] - nb[a]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dev, 1, MPIU_REAL, MPIU_MAX, f->comm));
+  if (dev > 1e-8) PetscFunctionReturn(0);
+  VertexFrame(dim, nb, Q0, &k0, &s0);
+  /* F: the columns (tangents..., n) */
+  if (dim == 2) {
+    for (PetscInt a = 0; a < 2; a++) F[a * 2 + 0] = Q0[a * 2 + (1 - k0)], F[a * 2 + 1] = nb[a];
+  } else {
+    PetscReal mom[4] = {0, 0, 0, 0}, C[6] = {0, 0, 0, 0, 0, 0}, ctr[3], ta[3], tb[3], M00 = 0, M01 = 0, M11 = 0;
+    PetscInt  ia = (k0 + 1) % 3, ib = (k0 + 2) % 3;
+    for (PetscInt pass = 0; pass < 2; pass++) { /* the centroid, then the second moments about it (P1 simplices exactly) */
+      for (PetscInt c = 0; c < m->nc; c++) {
+        const PetscInt *cv4 = &m->cellv[c * 4];
+        PetscReal       x[4][3], e[3][3], vol, s[3] = {0, 0, 0};
+        for (PetscInt j = 0; j < 4; j++)
+          for (PetscInt a = 0; a < 3; a++) x[j][a] = m->x[cv4[j] * 3 + a] - (pass ? ctr[a] : 0);
+        for (PetscInt j = 0; j < 3; j++)
+          for (PetscInt a = 0; a < 3; a++) e[j][a] = x[j + 1][a] - x[0][a];
+        vol = PetscAbsReal(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) / 6;
+        for (PetscInt j = 0; j < 4; j++)
+          for (PetscInt a = 0; a < 3; a++) s[a] += x[j][a];
+        if (!pass) {
+          mom[3] += vol;
+          for (PetscInt a = 0; a < 3; a++) mom[a] += vol * s[a] / 4;
+        } else
+          for (PetscInt a = 0, l = 0; a < 3; a++)
+            for (PetscInt b = a; b < 3; b++, l++) {
+              PetscReal xx = s[a] * s[b];
+              for (PetscInt j = 0; j < 4; j++) xx += x[j][a] * x[j][b];
+              C[l] += vol * xx / 20;
+            }
+      }
+      if (!pass) {
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mom, 4, MPIU_REAL, MPIU_SUM, f->comm));
+        if (!(mom[3] > 0)) PetscFunctionReturn(0);
+        for (PetscInt a = 0; a < 3; a++) ctr[a] = mom[a] / mom[3];
+      } else PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, C, 6, MPIU_REAL, MPIU_SUM, f->comm));
+    }
+    for (PetscInt a = 0; a < 3; a++) ta[a] = Q0[a * 3 + ia], tb[a] = Q0[a * 3 + ib];
+    {
+      const PetscInt ix[3][3] = {
+          {0, 1, 2},
+          {1, 3, 4},
+          {2, 4, 5}
+      };
+      for (PetscInt a = 0; a < 3; a++)
+        for (PetscInt b = 0; b < 3; b++) {
+          const PetscReal cab = C[ix[a][b]];
+          M00 += ta[a] * cab * ta[b];
+          M01 += ta[a] * cab * tb[b];
+          M11 += tb[a] * cab * tb[b];
+        }
+    }
+    if (PetscAbsReal(M00 - M11) + 2 * PetscAbsReal(M01) > 1e-6 * (M00 + M11)) { /* the principal axes in the plane */
+      const PetscReal th = 0.5 * PetscAtan2Real(2 * M01, M00 - M11), cs = PetscCosReal(th), sn = PetscSinReal(th);
+      for (PetscInt a = 0; a < 3; a++) {
+        const PetscReal u = cs * ta[a] + sn * tb[a], v = -sn * ta[a] + cs * tb[a];
+        ta[a] = u, tb[a] = v;
+      }
+    }
+    for (PetscInt a = 0; a < 3; a++) F[a * 3 + 0] = ta[a], F[a * 3 + 1] = tb[a], F[a * 3 + 2] = nb[a];
+  }
+  /* the signed order of the columns closest to the identity: R e_j = sign F e_perm[j] */
+  for (PetscInt p = 0; p < np; p++) {
+    PetscReal score = 0;
+    PetscInt  q[3]  = {perm[p][0], perm[p][1], perm[p][2]};
+    if (dim == 2) q[0] = p, q[1] = 1 - p;
+    for (PetscInt j = 0; j < dim; j++) score += PetscAbsReal(F[j * dim + q[j]]);
+    if (score > bestscore + 1e-12) bestscore = score, best = p;
+  }
+  for (PetscInt j = 0; j < dim; j++) {
+    const PetscInt  q  = dim == 2 ? (j ? 1 - best : best) : perm[best][j];
+    const PetscReal sg = F[j * dim + q] < 0 ? -1 : 1;
+    for (PetscInt a = 0; a < dim; a++) f->R[a * dim + j] = sg * F[a * dim + q];
+    if (q == dim - 1) *kn = j, *sn = sg;
+  }
+  *ok = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* contact vertex i under the global frame: R, its normal column the vertex's own normal exactly (n = sign Q e_k) and
+   the tangential columns R's made orthogonal to it (they differ from R's by the normals' round-off) */
+static void GlobalVertexFrame(SgFrame f, const PetscReal n[], PetscInt k, PetscReal sign, PetscReal Q[])
+{
+  const PetscInt dim = f->dim;
+  PetscInt       prev[3], np = 0;
+
+  for (PetscInt a = 0; a < dim; a++) Q[a * dim + k] = sign * n[a];
+  prev[np++] = k;
+  for (PetscInt j = 0; j < dim; j++) {
+    PetscReal len = 0;
+    if (j == k) continue;
+    for (PetscInt a = 0; a < dim; a++) Q[a * dim + j] = f->R[a * dim + j];
+    for (PetscInt l = 0; l < np; l++) {
+      PetscReal d = 0;
+      for (PetscInt a = 0; a < dim; a++) d += Q[a * dim + j] * Q[a * dim + prev[l]];
+      for (PetscInt a = 0; a < dim; a++) Q[a * dim + j] -= d * Q[a * dim + prev[l]];
+    }
+    for (PetscInt a = 0; a < dim; a++) len += Q[a * dim + j] * Q[a * dim + j];
+    len = PetscSqrtReal(len);
+    for (PetscInt a = 0; a < dim; a++) Q[a * dim + j] /= len;
+    prev[np++] = j;
+  }
+}
+
 /* The frames of the contact vertices, or NULL where every normal (on every rank) is a coordinate axis already. */
-PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
+PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgFrame *frame)
 {
   SgFrame       f;
   SgContactView cv;
   const SgMesh *m;
   Mat           K, Qm;
   MatNullSpace  nsp;
-  PetscInt      dim;
-  PetscBool     aligned;
+  PetscInt      dim, mloc, kn = -1;
+  PetscReal     sn = 1;
+  PetscBool     aligned, ok = PETSC_FALSE, done;
 
   PetscFunctionBeginUser;
   *frame = NULL;
@@ -191,14 +408,38 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
     }
     VertexFrame(dim, n, &f->Q[i * dim * dim], &f->axis[i], &f->sign[i]);
     f->rot[i] = PETSC_TRUE;
-    f->nrot++;
   }
-  PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
-  PetscCall(FrameMatrix(f, K, &Qm));
-  PetscCall(MatPtAP(K, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+  PetscCall(MatGetLocalSize(K, &mloc, NULL));
+  f->nb = mloc / dim;
+  PetscCall(PetscMalloc1(f->nb, &f->bq));
+  if (global) PetscCall(GlobalFrame(f, &cv, m, &kn, &sn, &ok));
+  f->global = ok;
+  for (PetscInt b = 0; b < f->nb; b++) f->bq[b] = ok ? -2 : -1;
+  if (ok) { /* R on every block but at a roller (a partly fixed vertex: its fixed components must stay dofs of their
+               own, the Dirichlet rows rows of the identity): there the frame of the contact vertex as above, else none */
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (m->goff[v] >= 0 && SgMeshPartial(m, v)) f->bq[m->goff[v] / dim] = -1;
+    for (PetscInt i = 0; i < cv.n; i++) {
+      if (f->bq[cv.off[i] / dim] == -1) continue; /* a roller */
+      GlobalVertexFrame(f, &cv.normal[i * dim], kn, sn, &f->Q[i * dim * dim]);
+      f->rot[i]  = PETSC_TRUE;
+      f->axis[i] = kn;
+      f->sign[i] = sn;
+    }
+  }
+  f->nrot = 0;
+  for (PetscInt i = 0; i < cv.n; i++)
+    if (f->rot[i]) f->bq[cv.off[i] / dim] = i;
+  for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
+  PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
+  PetscCall(RotateStiffnessSeq(f, K, &f->Kr, &done));
+  if (!done) {
+    PetscCall(FrameMatrix(f, K, &Qm));
+    PetscCall(MatPtAP(K, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+    PetscCall(MatDestroy(&Qm));
+  }
   PetscCall(MatSetBlockSize(f->Kr, dim));
-  PetscCall(MatDestroy(&Qm));
   PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
   if (nsp) { /* the rigid-body modes in the frame (Q is orthogonal: they stay orthonormal) */
     PetscBool  has_const;
@@ -216,7 +457,9 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, SgFrame *frame)
     PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
   }
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(PetscInfo(NULL, "-ssn_frame: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
+  if (f->global && dim == 2) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g; %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3]));
+  else if (f->global) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g %g; %g %g %g; %g %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3], (double)f->R[4], (double)f->R[5], (double)f->R[6], (double)f->R[7], (double)f->R[8]));
+  else PetscCall(PetscInfo(NULL, "-ssn_frame: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
   *frame = f;
   PetscFunctionReturn(0);
 }
@@ -229,6 +472,7 @@ PetscErrorCode SgFrameDestroy(SgFrame *frame)
   if (!f) PetscFunctionReturn(0);
   *frame = NULL;
   PetscCall(PetscFree4(f->Q, f->rot, f->axis, f->sign));
+  PetscCall(PetscFree(f->bq));
   PetscCall(MatDestroy(&f->Kr));
   PetscCall(MatNullSpaceDestroy(&f->nsp));
   PetscCall(VecDestroy(&f->b));

@@ -19,6 +19,11 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_rtol", "Coulomb: that fixed point ends when |F lam_N - s| <= rtol max F lam_N", &s->fp_rtol, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame", "Solve the linear systems in each contact vertex's frame (n, t1, t2) where its normal is not a coordinate axis (curved or tilted contact): the contact term becomes a diagonal entry, which AMG, the truncated multigrid, condensation and the bound-constrained solvers need", frame, NULL));
+  {
+    PetscBool global = (PetscBool)!s->frame_local;
+    PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame_global", "With -ssn_frame, where every contact normal is the same direction (a plane obstacle, a flat contact face): rotate the whole body into one frame (the normal and the body's principal axes), so that the AMG sees a body turned rigidly as the unturned one; false: the contact vertices alone", &global, NULL));
+    s->frame_local = (PetscBool)!global;
+  }
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscFunctionReturn(0);
 }
@@ -145,7 +150,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   s->Klin = s->K;
-  if (frame && c) PetscCall(SgFrameCreate(p, c, &s->frame));
+  if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");

@@ -39,6 +39,7 @@ struct _n_SgSSN {
   SgCondense        cond;          /* -ssn_condense: linear solves condensed onto the contact dofs */
   SgTMG             tmg;           /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
   SgFrame           frame;         /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
+  PetscBool         frame_local;   /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
   Mat               Klin;          /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
   Mat               Pf;            /* with frames: the Jacobian assembled in them (the KSP's matrices) */
   PetscReal         nbhd_tau;      /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
