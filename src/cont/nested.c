@@ -37,32 +37,27 @@ PetscErrorCode SgContNestedCheck(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* For every local vertex of b's mesh (the next refinement of a's), the two local vertices of a's mesh it is the
-   midpoint of (the same one twice: a vertex of a's mesh). */
-static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
+/* For every local vertex of mesh b (the next refinement of mesh a, dma: a's DM), the two local vertices of a it is
+   the midpoint of (the same one twice: a vertex of a); the transform's options under the prefix. NULL in *map and
+   the number of vertices that do not nest in *bad (on all ranks) if the refinement does not nest. Also the geometric
+   multigrid's interpolations (solver/gmg.c). */
+PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, const char prefix[], PetscInt **map, PetscInt *nbad)
 {
-  DM              dma, dmb;
-  const SgMesh   *ma, *mb;
   DMPlexTransform tr;
-  const char     *prefix;
   PetscInt        eStart, eEnd, dim, bad = 0;
   PetscReal       scale = 0;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dma);
 
   PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
-  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
-  PetscCall(SgElasticityGetMesh(a->prob, &ma));
-  PetscCall(SgElasticityGetMesh(b->prob, &mb));
   dim = ma->dim;
   PetscCall(PetscMalloc1(2 * mb->nv + 1, map));
   PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
   for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, a->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, comm));
   if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
   else {
     /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
-    PetscCall(DMPlexTransformCreate(PetscObjectComm((PetscObject)dma), &tr));
-    PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
+    PetscCall(DMPlexTransformCreate(comm, &tr));
     PetscCall(PetscObjectSetOptionsPrefix((PetscObject)tr, prefix));
     PetscCall(DMPlexTransformSetDM(tr, dma));
     PetscCall(DMPlexTransformSetFromOptions(tr));
@@ -92,8 +87,27 @@ static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
     }
     PetscCall(DMPlexTransformDestroy(&tr));
   }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, a->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, comm));
   if (bad) PetscCall(PetscFree(*map));
+  *nbad = bad;
+  PetscFunctionReturn(0);
+}
+
+/* For every local vertex of b's mesh (the next refinement of a's), the two local vertices of a's mesh it is the
+   midpoint of (the same one twice: a vertex of a's mesh). */
+static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
+{
+  DM            dma;
+  const SgMesh *ma, *mb;
+  const char   *prefix;
+  PetscInt      bad;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetMesh(a->prob, &ma));
+  PetscCall(SgElasticityGetMesh(b->prob, &mb));
+  PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
+  PetscCall(SgMeshRefinementMap(dma, ma, mb, prefix, map, &bad));
   PetscCheck(!bad, a->comm, PETSC_ERR_SUP, "-cont_nested: the mesh of a coarse level, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the distribution or the refinement does not nest here (a partitioner that gives another distribution each time, or a transform that reorders the mesh); run without -cont_nested", bad);
   PetscFunctionReturn(0);
 }

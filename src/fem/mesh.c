@@ -123,21 +123,28 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
    (the same regular refinement of the same distributed mesh: the finest mesh is the one -dm_refine N gives). Each
    coarser mesh is kept with the finest, composed as "SgNestedLevel<k>" (the mesh refined k times fewer), so that the
    coarse levels of the solve have the fine mesh's distribution (a second partitioning of the file, by PT-Scotch on
-   several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it. */
+   several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it.
+   The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
+   each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
+   "SgNestedBase". */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
-  PetscInt  nest = 0, nref = 0;
-  PetscBool nset, rset;
+  PetscInt  nest = 0, nref = 0, interp = 0;
+  PetscBool nset, rset, gset;
   char      opt[PETSC_MAX_PATH_LEN], was[32], now[32];
   DM       *lv;
+  const char *const interps[] = {"amg", "geometric"};
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* a malformed value is reported by its reader */
   if (PetscOptionsGetInt(NULL, prefix, "-cont_nested", &nest, &nset)) nset = PETSC_FALSE;
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
+  if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
-  if (!nset || !rset || nest < 1 || nest > nref) PetscFunctionReturn(0);
+  if (!nset || nest < 1 || nest > nref) nest = 0;
+  if (gset && interp == 1 && rset && nref >= 1) nest = nref;
+  if (!rset || nest < 1) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_refine", prefix ? prefix : ""));
   PetscCall(PetscSNPrintf(was, sizeof(was), "%" PetscInt_FMT, nref));
   PetscCall(PetscSNPrintf(now, sizeof(now), "%" PetscInt_FMT, nref - nest));
@@ -158,12 +165,22 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   }
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)*dm, prefix));
+  if (nref - nest == 0) { /* the unrefined mesh: the geometric multigrid's mark of the bottom of the hierarchy */
+    PetscContainer mark;
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)lv[0]), &mark));
+    PetscCall(PetscObjectCompose((PetscObject)lv[0], "SgNestedBase", (PetscObject)mark));
+    PetscCall(PetscContainerDestroy(&mark));
+  }
   for (PetscInt r = 0; r < nest; r++) {
     char name[64];
     PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nest - r));
     PetscCall(PetscObjectCompose((PetscObject)*dm, name, (PetscObject)lv[r]));
-    PetscCall(DMDestroy(&lv[r])); /* the finest mesh holds it */
+    for (PetscInt q = 0; q < r; q++) { /* its coarser levels, for a coarse level's own multigrid */
+      PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, r - q));
+      PetscCall(PetscObjectCompose((PetscObject)lv[r], name, (PetscObject)lv[q]));
+    }
   }
+  for (PetscInt r = 0; r < nest; r++) PetscCall(DMDestroy(&lv[r])); /* the finer meshes hold them */
   PetscCall(PetscFree(lv));
   *done = PETSC_TRUE;
   PetscFunctionReturn(0);
