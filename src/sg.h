@@ -73,6 +73,7 @@ PetscErrorCode          SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
 PetscErrorCode          SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
 PetscErrorCode          SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode          SgMeshDestroy(SgMesh *);
+PetscErrorCode          SgMeshRefinementMap(DM, const SgMesh *, const SgMesh *, const char[], PetscInt **, PetscInt *); /* mesh.c: a refined mesh's vertices as midpoints of the coarser one's */
 PetscErrorCode          SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
 PetscErrorCode          SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
 static inline PetscBool SgMeshFixed(const SgMesh *m, PetscInt v, PetscInt d) { return (PetscBool)((m->bcmask[v] >> d) & 1); }
@@ -284,7 +285,6 @@ PetscErrorCode SgProblemHasLoadSteps(SgProblem, PetscBool *);
 /* contact/coarse.c: the coarser problems of nested iteration (-cont_nested) */
 PetscErrorCode SgProblemGetRefinement(SgProblem, PetscBool *, PetscInt *); /* mesh from the options?, its -dm_refine */
 PetscErrorCode SgProblemCreateCoarse(SgProblem, PetscInt, SgProblem *);    /* the same problem on the mesh refined k times fewer */
-PetscErrorCode SgMeshRefinementMap(DM, const SgMesh *, const SgMesh *, const char[], PetscInt **, PetscInt *); /* cont/nested.c: a refined mesh's vertices as midpoints of the coarser one's */
 
 /* ------------------------------------------------------------------ io: history.c */
 typedef struct {

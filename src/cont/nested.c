@@ -37,62 +37,6 @@ PetscErrorCode SgContNestedCheck(SgCont ct)
   PetscFunctionReturn(0);
 }
 
-/* For every local vertex of mesh b (the next refinement of mesh a, dma: a's DM), the two local vertices of a it is
-   the midpoint of (the same one twice: a vertex of a); the transform's options under the prefix. NULL in *map and
-   the number of vertices that do not nest in *bad (on all ranks) if the refinement does not nest. Also the geometric
-   multigrid's interpolations (solver/gmg.c). */
-PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, const char prefix[], PetscInt **map, PetscInt *nbad)
-{
-  DMPlexTransform tr;
-  PetscInt        eStart, eEnd, dim, bad = 0;
-  PetscReal       scale = 0;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)dma);
-
-  PetscFunctionBeginUser;
-  dim = ma->dim;
-  PetscCall(PetscMalloc1(2 * mb->nv + 1, map));
-  PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
-  for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, comm));
-  if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
-  else {
-    /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
-    PetscCall(DMPlexTransformCreate(comm, &tr));
-    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)tr, prefix));
-    PetscCall(DMPlexTransformSetDM(tr, dma));
-    PetscCall(DMPlexTransformSetFromOptions(tr));
-    PetscCall(DMPlexTransformSetUp(tr));
-    for (PetscInt v = 0; v < mb->nv; v++) {
-      DMPolytopeType  ct, ctn;
-      PetscInt        p, r, v0 = -1, v1 = -1;
-      const PetscInt *cone;
-      PetscCall(DMPlexTransformGetSourcePoint(tr, mb->vStart + v, &ct, &ctn, &p, &r));
-      if (ct == DM_POLYTOPE_POINT) v0 = v1 = p - ma->vStart;
-      else if (ct == DM_POLYTOPE_SEGMENT) {
-        PetscCall(DMPlexGetCone(dma, p, &cone));
-        v0 = cone[0] - ma->vStart;
-        v1 = cone[1] - ma->vStart;
-      }
-      if (v0 < 0 || v0 >= ma->nv || v1 < 0 || v1 >= ma->nv) {
-        bad++;
-        v0 = v1 = 0;
-      } else
-        for (PetscInt d = 0; d < dim; d++)
-          if (!(PetscAbsReal(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d])) <= 1e-10 * scale)) {
-            bad++;
-            break;
-          }
-      (*map)[2 * v]     = v0;
-      (*map)[2 * v + 1] = v1;
-    }
-    PetscCall(DMPlexTransformDestroy(&tr));
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, comm));
-  if (bad) PetscCall(PetscFree(*map));
-  *nbad = bad;
-  PetscFunctionReturn(0);
-}
-
 /* For every local vertex of b's mesh (the next refinement of a's), the two local vertices of a's mesh it is the
    midpoint of (the same one twice: a vertex of a's mesh). */
 static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
