@@ -73,6 +73,7 @@ PetscErrorCode          SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
 PetscErrorCode          SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
 PetscErrorCode          SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode          SgMeshDestroy(SgMesh *);
+PetscErrorCode          SgMeshRefinementMap(DM, const SgMesh *, const SgMesh *, const char[], PetscInt **, PetscInt *); /* mesh.c: a refined mesh's vertices as midpoints of the coarser one's */
 PetscErrorCode          SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
 PetscErrorCode          SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
 static inline PetscBool SgMeshFixed(const SgMesh *m, PetscInt v, PetscInt d) { return (PetscBool)((m->bcmask[v] >> d) & 1); }
@@ -368,6 +369,7 @@ PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
 PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                         /* -help: the default solver's option */
 PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
+PetscErrorCode SgLinearSolverGeometricMG(const char[], PetscBool *); /* linear.c: -ssn_pc_truncated_mg_interp geometric given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNDestroy(SgSSN *);
@@ -398,7 +400,7 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
 PetscErrorCode SgCondenseDestroy(SgCondense *);
-PetscErrorCode SgTMGCreate(SgSSN, KSP, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG */
+PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG, or on the mesh hierarchy (PETSC_TRUE: gmg.c) */
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */

@@ -41,59 +41,17 @@ PetscErrorCode SgContNestedCheck(SgCont ct)
    midpoint of (the same one twice: a vertex of a's mesh). */
 static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
 {
-  DM              dma, dmb;
-  const SgMesh   *ma, *mb;
-  DMPlexTransform tr;
-  const char     *prefix;
-  PetscInt        eStart, eEnd, dim, bad = 0;
-  PetscReal       scale = 0;
+  DM            dma;
+  const SgMesh *ma, *mb;
+  const char   *prefix;
+  PetscInt      bad;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
-  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
   PetscCall(SgElasticityGetMesh(a->prob, &ma));
   PetscCall(SgElasticityGetMesh(b->prob, &mb));
-  dim = ma->dim;
-  PetscCall(PetscMalloc1(2 * mb->nv + 1, map));
-  PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
-  for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, a->comm));
-  if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
-  else {
-    /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
-    PetscCall(DMPlexTransformCreate(PetscObjectComm((PetscObject)dma), &tr));
-    PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
-    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)tr, prefix));
-    PetscCall(DMPlexTransformSetDM(tr, dma));
-    PetscCall(DMPlexTransformSetFromOptions(tr));
-    PetscCall(DMPlexTransformSetUp(tr));
-    for (PetscInt v = 0; v < mb->nv; v++) {
-      DMPolytopeType  ct, ctn;
-      PetscInt        p, r, v0 = -1, v1 = -1;
-      const PetscInt *cone;
-      PetscCall(DMPlexTransformGetSourcePoint(tr, mb->vStart + v, &ct, &ctn, &p, &r));
-      if (ct == DM_POLYTOPE_POINT) v0 = v1 = p - ma->vStart;
-      else if (ct == DM_POLYTOPE_SEGMENT) {
-        PetscCall(DMPlexGetCone(dma, p, &cone));
-        v0 = cone[0] - ma->vStart;
-        v1 = cone[1] - ma->vStart;
-      }
-      if (v0 < 0 || v0 >= ma->nv || v1 < 0 || v1 >= ma->nv) {
-        bad++;
-        v0 = v1 = 0;
-      } else
-        for (PetscInt d = 0; d < dim; d++)
-          if (!(PetscAbsReal(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d])) <= 1e-10 * scale)) {
-            bad++;
-            break;
-          }
-      (*map)[2 * v]     = v0;
-      (*map)[2 * v + 1] = v1;
-    }
-    PetscCall(DMPlexTransformDestroy(&tr));
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, a->comm));
-  if (bad) PetscCall(PetscFree(*map));
+  PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
+  PetscCall(SgMeshRefinementMap(dma, ma, mb, prefix, map, &bad));
   PetscCheck(!bad, a->comm, PETSC_ERR_SUP, "-cont_nested: the mesh of a coarse level, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the distribution or the refinement does not nest here (a partitioner that gives another distribution each time, or a transform that reorders the mesh); run without -cont_nested", bad);
   PetscFunctionReturn(0);
 }

@@ -174,6 +174,15 @@ PetscErrorCode SgElasticitySetFromOptions(SgElasticity p, DM dm, const SgElastic
     PetscCall(SgMeshCheckDM(comm, "(given to SgProblemSetDM)", dm));
     PetscCall(DMClone(dm, &p->dm));
     PetscCall(PetscObjectSetName((PetscObject)p->dm, "mesh"));
+    for (PetscInt k = 0;; k++) { /* the mesh hierarchy a coarse level of nested iteration comes with (fem/mesh.c) */
+      char        name[64];
+      PetscObject o;
+      if (k) PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, k));
+      else PetscCall(PetscStrncpy(name, "SgNestedBase", sizeof(name)));
+      PetscCall(PetscObjectQuery((PetscObject)dm, name, &o));
+      if (!o && k) break;
+      if (o) PetscCall(PetscObjectCompose((PetscObject)p->dm, name, o));
+    }
   } else PetscCall(SgMeshCreateDM(comm, p->prefix, &p->dm));
   PetscCall(DMGetDimension(p->dm, &p->dim));
   PetscCheck(p->nbody_force == 0 || p->nbody_force == p->dim, comm, PETSC_ERR_USER_INPUT, "-body_force: give %" PetscInt_FMT " numbers for this %" PetscInt_FMT "D mesh, got %" PetscInt_FMT, p->dim, p->dim, p->nbody_force);

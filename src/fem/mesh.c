@@ -1,6 +1,7 @@
 /* mesh.c: the distributed simplex mesh: read from a mesh file (checked first) or made as the box, checked, partitioned
    and distributed. */
 #include "fem/femimpl.h"
+#include <petscdmplextransform.h>
 
 /* Check on rank 0 that a mesh file can be read, so a wrong path is reported with the option that named it. */
 static PetscErrorCode CheckMeshFile(MPI_Comm comm, const char fname[])
@@ -118,26 +119,89 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
   PetscFunctionReturn(0);
 }
 
+/* For every local vertex of mesh b (the next refinement of mesh a, dma: a's DM), the two local vertices of a it is
+   the midpoint of (the same one twice: a vertex of a); the transform's options under the prefix. NULL in *map and
+   the number of vertices that do not nest in *bad (on all ranks) if the refinement does not nest. Nested iteration's
+   transfer (cont/nested.c) and the geometric multigrid's interpolations (solver/gmg.c). */
+PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, const char prefix[], PetscInt **map, PetscInt *nbad)
+{
+  DMPlexTransform tr;
+  PetscInt        eStart, eEnd, dim, bad = 0;
+  PetscReal       scale = 0;
+  MPI_Comm        comm = PetscObjectComm((PetscObject)dma);
+
+  PetscFunctionBeginUser;
+  dim = ma->dim;
+  PetscCall(PetscMalloc1(2 * mb->nv + 1, map));
+  PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
+  for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, comm));
+  if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
+  else {
+    /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
+    PetscCall(DMPlexTransformCreate(comm, &tr));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)tr, prefix));
+    PetscCall(DMPlexTransformSetDM(tr, dma));
+    PetscCall(DMPlexTransformSetFromOptions(tr));
+    PetscCall(DMPlexTransformSetUp(tr));
+    for (PetscInt v = 0; v < mb->nv; v++) {
+      DMPolytopeType  ct, ctn;
+      PetscInt        p, r, v0 = -1, v1 = -1;
+      const PetscInt *cone;
+      PetscCall(DMPlexTransformGetSourcePoint(tr, mb->vStart + v, &ct, &ctn, &p, &r));
+      if (ct == DM_POLYTOPE_POINT) v0 = v1 = p - ma->vStart;
+      else if (ct == DM_POLYTOPE_SEGMENT) {
+        PetscCall(DMPlexGetCone(dma, p, &cone));
+        v0 = cone[0] - ma->vStart;
+        v1 = cone[1] - ma->vStart;
+      }
+      if (v0 < 0 || v0 >= ma->nv || v1 < 0 || v1 >= ma->nv) {
+        bad++;
+        v0 = v1 = 0;
+      } else
+        for (PetscInt d = 0; d < dim; d++)
+          if (!(PetscAbsReal(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d])) <= 1e-10 * scale)) {
+            bad++;
+            break;
+          }
+      (*map)[2 * v]     = v0;
+      (*map)[2 * v + 1] = v1;
+    }
+    PetscCall(DMPlexTransformDestroy(&tr));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, comm));
+  if (bad) PetscCall(PetscFree(*map));
+  *nbad = bad;
+  PetscFunctionReturn(0);
+}
+
 /* Nested iteration (-cont_nested L under the mesh's prefix, with -dm_refine N >= L; cont/nested.c): the mesh refined
    N - L times by DMSetFromOptions (read or boxed, distributed), then L times more by DMRefine as DMSetFromOptions does
    (the same regular refinement of the same distributed mesh: the finest mesh is the one -dm_refine N gives). Each
    coarser mesh is kept with the finest, composed as "SgNestedLevel<k>" (the mesh refined k times fewer), so that the
    coarse levels of the solve have the fine mesh's distribution (a second partitioning of the file, by PT-Scotch on
-   several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it. */
+   several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it.
+   The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
+   each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
+   "SgNestedBase". */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
-  PetscInt  nest = 0, nref = 0;
-  PetscBool nset, rset;
+  PetscInt  nest = 0, nref = 0, interp = 0;
+  PetscBool nset, rset, gset;
   char      opt[PETSC_MAX_PATH_LEN], was[32], now[32];
   DM       *lv;
+  const char *const interps[] = {"amg", "geometric"};
 
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* a malformed value is reported by its reader */
   if (PetscOptionsGetInt(NULL, prefix, "-cont_nested", &nest, &nset)) nset = PETSC_FALSE;
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
+  if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
-  if (!nset || !rset || nest < 1 || nest > nref) PetscFunctionReturn(0);
+  if (!nset || nest < 1 || nest > nref) nest = 0;
+  if (gset && interp == 1 && rset && nref >= 1) nest = nref;
+  if (!rset || nest < 1) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_refine", prefix ? prefix : ""));
   PetscCall(PetscSNPrintf(was, sizeof(was), "%" PetscInt_FMT, nref));
   PetscCall(PetscSNPrintf(now, sizeof(now), "%" PetscInt_FMT, nref - nest));
@@ -158,12 +222,22 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   }
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)*dm, prefix));
+  if (nref - nest == 0) { /* the unrefined mesh: the geometric multigrid's mark of the bottom of the hierarchy */
+    PetscContainer mark;
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)lv[0]), &mark));
+    PetscCall(PetscObjectCompose((PetscObject)lv[0], "SgNestedBase", (PetscObject)mark));
+    PetscCall(PetscContainerDestroy(&mark));
+  }
   for (PetscInt r = 0; r < nest; r++) {
     char name[64];
     PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nest - r));
     PetscCall(PetscObjectCompose((PetscObject)*dm, name, (PetscObject)lv[r]));
-    PetscCall(DMDestroy(&lv[r])); /* the finest mesh holds it */
+    for (PetscInt q = 0; q < r; q++) { /* its coarser levels, for a coarse level's own multigrid */
+      PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, r - q));
+      PetscCall(PetscObjectCompose((PetscObject)lv[r], name, (PetscObject)lv[q]));
+    }
   }
+  for (PetscInt r = 0; r < nest; r++) PetscCall(DMDestroy(&lv[r])); /* the finer meshes hold them */
   PetscCall(PetscFree(lv));
   *done = PETSC_TRUE;
   PetscFunctionReturn(0);

@@ -35,6 +35,24 @@ static PetscErrorCode SetDefault(const char prefix[], const char name[], const c
   PetscFunctionReturn(0);
 }
 
+/* -<prefix>ssn_pc_truncated_mg_interp geometric given (the geometric multigrid, gmg.c; a bad value is reported by
+   the SSN's reader) */
+PetscErrorCode SgLinearSolverGeometricMG(const char prefix[], PetscBool *geo)
+{
+  const char *const list[] = {"amg", "geometric"};
+  char              opt[256];
+  PetscInt          v   = 0;
+  PetscBool         set = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pc_truncated_mg_interp", prefix ? prefix : ""));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  if (PetscOptionsGetEList(NULL, NULL, opt, list, 2, &v, &set)) set = PETSC_FALSE;
+  PetscCall(PetscPopErrorHandler());
+  *geo = (PetscBool)(set && v == 1);
+  PetscFunctionReturn(0);
+}
+
 /* -help without a problem: the option of the default linear solver (SgLinearSolverDefaults reads it) */
 PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
 {
@@ -96,6 +114,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &condense, NULL));
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pc_truncated_mg", prefix ? prefix : ""));
     PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tmg, NULL));
+    if (!tmg) PetscCall(SgLinearSolverGeometricMG(prefix, &tmg)); /* the truncated multigrid on the mesh hierarchy */
     if (condense || tmg) maxdirect = condense ? PETSC_MAX_INT - 1 : 0;
   }
   *iterative = (PetscBool)(dofs > maxdirect);
@@ -178,7 +197,12 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   if (iterative) {
     if (!aligned) PetscFunctionReturn(0);
     PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
-    if (on) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
+    if (on) {
+      PetscBool geo;
+      PetscCall(SgLinearSolverGeometricMG(prefix, &geo));
+      if (geo) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by the geometric multigrid of the mesh hierarchy truncated at the active set (-ssn_pc_truncated_mg_interp geometric)"));
+      else PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
+    }
     PetscFunctionReturn(0);
   }
   ncond = cv.nglobal * (aligned ? 1 : dim); /* axis-aligned normals condense one component (condense.c) */

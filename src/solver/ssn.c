@@ -7,13 +7,21 @@
    point) in fallback.c, the linear solver in ksp.c. */
 #include "solver/ssnimpl.h"
 
-/* The SSN's options, their defaults in s, condense, tmg and frame (also listed by SgSSNPrintHelp) */
-static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, PetscBool *condense, PetscBool *tmg, PetscBool *frame)
+static const char *const SgTMGInterps[] = {"amg", "geometric"};
+
+/* The SSN's options, their defaults in s, condense, tmg (and its interpolations: 0 the AMG's, 1 the mesh
+   hierarchy's) and frame (also listed by SgSSNPrintHelp) */
+static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, PetscBool *condense, PetscBool *tmg, PetscInt *interp, PetscBool *frame)
 {
+  PetscBool tset, iset;
+
   PetscFunctionBeginUser;
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_monitor", "Print active-set size, changes, residuals and KSP iterations per SSN iteration", &s->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_condense", "Condense the linear solves onto the contact dofs: factor K once (MUMPS, with its Schur complement), then only a dense matrix per SSN step (one rank)", condense, NULL));
-  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", tmg, NULL));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg", "Precondition with multigrid on the interpolations of the AMG of the first solve (-pc_type hypre or gamg), the finest one truncated at the active normal dofs, coarse operators by Galerkin products: no new AMG setup per active set", tmg, &tset));
+  PetscCall(PetscOptionsEList("-ssn_pc_truncated_mg_interp", "The truncated multigrid's interpolations: amg (of the KSP's AMG) or geometric (of the mesh hierarchy of -dm_refine N, N >= 1; turns -ssn_pc_truncated_mg on)", NULL, SgTMGInterps, 2, SgTMGInterps[*interp], interp, &iset));
+  PetscCheck(!(iset && *interp == 1 && tset && !*tmg), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg_interp geometric is the truncated multigrid on the mesh hierarchy: it contradicts -ssn_pc_truncated_mg false");
+  if (*interp == 1) *tmg = PETSC_TRUE;
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_max_it", "Coulomb: when the Newton iteration on the coupled law fails, at most this many steps of a fixed point on the Tresca bound s = F lam_N (0: none)", &s->fp_max_it, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
@@ -33,6 +41,7 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
 {
   struct _n_SgSSN s;
   PetscBool       help, condense = PETSC_FALSE, tmg = PETSC_FALSE, frame = PETSC_TRUE;
+  PetscInt        interp = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
@@ -43,7 +52,7 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   s.fp_m      = 8;
   s.fp_rtol   = 1e-13;
   PetscOptionsBegin(comm, prefix, "Semismooth Newton (active set) solver", NULL);
-  PetscCall(SSNOptions(PetscOptionsObject, &s, &condense, &tmg, &frame));
+  PetscCall(SSNOptions(PetscOptionsObject, &s, &condense, &tmg, &interp, &frame));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -87,6 +96,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   SgSSN          s;
   SNESLineSearch ls;
   PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE, frame = PETSC_TRUE;
+  PetscInt       interp = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -133,7 +143,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   s->fp_m      = 8;
   s->fp_rtol   = 1e-13;
   PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
-  PetscCall(SSNOptions(PetscOptionsObject, s, &condense, &tmg, &frame));
+  PetscCall(SSNOptions(PetscOptionsObject, s, &condense, &tmg, &interp, &frame));
   PetscOptionsEnd();
   PetscCall(SgCheckSolverTypes(s->comm, prefix));
   {
@@ -154,7 +164,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");
-  if (tmg) PetscCall(SgTMGCreate(s, ksp, &s->tmg));
+  if (tmg) PetscCall(SgTMGCreate(s, ksp, (PetscBool)(interp == 1), &s->tmg));
   {
     char      name[256];
     PetscBool flg;

@@ -8,7 +8,9 @@
    as a correction of K's Galerkin hierarchy (Update). With the truncation the gamma block drops out of the coarse
    operators: P_t^T J P_t = P_t^T K P_t.
    Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block): any normal is, in
-   the contact frames (-ssn_frame, frame.c), where all of this works on Q^T J Q and Q^T K Q. */
+   the contact frames (-ssn_frame, frame.c), where all of this works on Q^T J Q and Q^T K Q.
+   With -ssn_pc_truncated_mg_interp geometric the interpolations are the mesh hierarchy's (gmg.c) and no AMG is set up;
+   the rest is the same. */
 #include "solver/ssnimpl.h"
 
 struct _n_SgTMG {
@@ -28,6 +30,7 @@ struct _n_SgTMG {
   char      *have; /* the set the coarse operators were made for */
   PetscBool  has_set, fresh;
   PetscBool  gamg; /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
+  PetscBool  geo;  /* the interpolations of the mesh hierarchy (gmg.c), given at creation: no AMG */
 };
 
 static PetscBool     tmg_registered = PETSC_FALSE;
@@ -81,24 +84,27 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
-  /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
-     coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
-  PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
-  {
-    MatNullSpace keep = NULL;
-    PetscCall(RotationsOnly(t, t->ssn->Klin, &keep));
-    PetscCall(PCSetUp(t->amg));
-    if (keep) {
-      PetscCall(MatSetNearNullSpace(t->ssn->Klin, keep));
-      PetscCall(MatNullSpaceDestroy(&keep));
+  if (t->geo) n = t->nlevels;
+  else {
+    /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
+       coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
+    PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
+    {
+      MatNullSpace keep = NULL;
+      PetscCall(RotationsOnly(t, t->ssn->Klin, &keep));
+      PetscCall(PCSetUp(t->amg));
+      if (keep) {
+        PetscCall(MatSetNearNullSpace(t->ssn->Klin, keep));
+        PetscCall(MatNullSpaceDestroy(&keep));
+      }
     }
+    PetscCall(PCGetInterpolations(t->amg, &n, &P));
+    PetscCall(PCDestroy(&t->amg));
+    t->nlevels = n;
+    PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
+    for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
+    PetscCall(PetscFree(P));
   }
-  PetscCall(PCGetInterpolations(t->amg, &n, &P));
-  PetscCall(PCDestroy(&t->amg));
-  t->nlevels = n;
-  PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
-  for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
-  PetscCall(PetscFree(P));
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
   PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
   PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
@@ -125,6 +131,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     PetscCall(PCMGGetSmootherDown(t->mg, l, &sm[0]));
     if (l == 0) {
       PetscCall(KSPSetOperators(sm[0], t->A[0], t->A[0]));
+      if (t->geo) PetscCall(SgGMGCoarseSolver(sm[0]));
       continue;
     }
     PetscCall(PCMGGetSmootherUp(t->mg, l, &sm[1]));
@@ -283,7 +290,7 @@ static PetscErrorCode View_TMG(PC pc, PetscViewer v)
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &t));
-  PetscCall(PetscViewerASCIIPrintf(v, "truncated multigrid (-ssn_pc_truncated_mg): %" PetscInt_FMT " levels, interpolations of the AMG set up once, finest truncated at the active normal dofs\n", t->nlevels));
+  PetscCall(PetscViewerASCIIPrintf(v, "truncated multigrid (-ssn_pc_truncated_mg): %" PetscInt_FMT " levels, interpolations %s, finest truncated at the active normal dofs\n", t->nlevels, t->geo ? "of the mesh hierarchy (-ssn_pc_truncated_mg_interp geometric)" : "of the AMG set up once"));
   if (t->mg) {
     PetscCall(PetscViewerASCIIPushTab(v));
     PetscCall(PCView(t->mg, v));
@@ -292,13 +299,16 @@ static PetscErrorCode View_TMG(PC pc, PetscViewer v)
   PetscFunctionReturn(0);
 }
 
-/* The KSP's configured preconditioner becomes the AMG whose interpolations the truncated multigrid keeps; the KSP
-   gets the truncated multigrid (a PCSHELL) instead. */
-PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
+/* The KSP's configured preconditioner becomes the AMG whose interpolations the truncated multigrid keeps (geometric:
+   the mesh hierarchy's interpolations instead, gmg.c, and the KSP's preconditioner is not used); the KSP gets the
+   truncated multigrid (a PCSHELL) instead. */
+PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
 {
   SgTMG     t;
   PC        pc;
-  PetscBool hypre, gamg;
+  PetscBool hypre = PETSC_FALSE, gamg = PETSC_FALSE;
+  PetscInt  ngeo = 0;
+  Mat      *Pgeo = NULL;
 
   PetscFunctionBeginUser;
   if (!tmg_registered) {
@@ -307,9 +317,10 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
     tmg_registered = PETSC_TRUE;
   }
   PetscCall(KSPGetPC(ksp, &pc));
+  if (geometric) PetscCall(SgGMGInterpolations(s, &ngeo, &Pgeo));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
-  PetscCheck(hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
+  PetscCheck(ngeo || hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
   PetscCall(PetscNew(&t));
   t->ssn   = s;
   t->gamg  = gamg;
@@ -327,8 +338,17 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, SgTMG *tmg)
     PetscCall(SgContactIsPair(s->c, &pair));
     PetscCall(SgContactAxisAligned(s->c, pair ? "-ssn_pc_truncated_mg" : "-ssn_pc_truncated_mg with the contact frames turned off (-ssn_frame false)", t->axis, t->sign)); /* collective */
   }
-  PetscCall(PetscObjectReference((PetscObject)pc));
-  t->amg = pc;
+  if (ngeo) {
+    t->geo     = PETSC_TRUE;
+    t->gamg    = PETSC_FALSE;
+    t->nlevels = ngeo;
+    PetscCall(PetscCalloc3(ngeo, &t->P, ngeo, &t->AK, ngeo, &t->A));
+    for (PetscInt l = 1; l < ngeo; l++) t->P[l] = Pgeo[l];
+    PetscCall(PetscFree(Pgeo));
+  } else {
+    PetscCall(PetscObjectReference((PetscObject)pc));
+    t->amg = pc;
+  }
   PetscCall(PCCreate(s->comm, &pc));
   PetscCall(PCSetType(pc, PCSHELL));
   PetscCall(PCShellSetContext(pc, t));

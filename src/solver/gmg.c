@@ -1,0 +1,173 @@
+/* gmg.c: geometric multigrid on the mesh hierarchy (-ssn_pc_truncated_mg_interp geometric, issue 27): the
+   interpolations of the truncated multigrid (tmg.c) taken from the refinement hierarchy of the mesh instead of an AMG.
+   The mesh refined N times after distribution (-dm_refine N) keeps its coarser meshes (fem/mesh.c, "SgNestedLevel<k>",
+   the same distribution); between two levels a fine vertex is a coarse vertex or the midpoint of a coarse edge
+   (SgMeshRefinementMap, the transfer of nested iteration), so the P1 interpolation has one or two entries per row.
+   The linear systems are on the free dofs (Dirichlet vertices left out), so P maps a coarse level's free dofs (its
+   layout made as the problem's: SgMeshSetUp with the same Dirichlet boundary) to the finer one's; a fixed component of
+   a partly fixed vertex (a decoupled unknown that stays 0) receives nothing from a free one, only from the same fixed
+   component of the coinciding coarse vertex (so the coarse operators keep a positive diagonal there). In the contact
+   frames (-ssn_frame) the finest P is Q^T P (rows of the rotated vertices turned into their frames); the coarser
+   levels stay in the global coordinates. tmg.c then truncates the finest P at the active normal dofs and forms the
+   coarse operators by Galerkin products, as for the AMG's interpolations. */
+#include "solver/ssnimpl.h"
+
+/* The mesh hierarchy's DMs under dm, coarsest first: (*lv)[0..L-1], L in *nlv (0: none). */
+static PetscErrorCode Hierarchy(DM dm, PetscInt *nlv, DM **lv)
+{
+  PetscInt L = 0;
+
+  PetscFunctionBeginUser;
+  for (;;) {
+    PetscObject o;
+    char        name[64];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, L + 1));
+    PetscCall(PetscObjectQuery((PetscObject)dm, name, &o));
+    if (!o) break;
+    L++;
+  }
+  *nlv = L;
+  PetscCall(PetscMalloc1(L + 1, lv));
+  for (PetscInt k = 1; k <= L; k++) {
+    PetscObject o;
+    char        name[64];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, k));
+    PetscCall(PetscObjectQuery((PetscObject)dm, name, &o));
+    (*lv)[L - k] = (DM)o;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The interpolation from the free dofs of mesh c to those of mesh f (the next refinement; map from
+   SgMeshRefinementMap); with a frame, the rows of the rotated contact vertices in their frames. */
+static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh *f, const PetscInt map[], SgFrame frame, const SgContactView *cv, Mat *P)
+{
+  const PetscInt   dim = f->dim;
+  PetscInt         nr = 0, nc = 0, *cidx = NULL;
+  const PetscBool *rot = NULL;
+
+  PetscFunctionBeginUser;
+  for (PetscInt v = 0; v < f->nv; v++)
+    if (f->goff[v] >= 0) nr += dim;
+  for (PetscInt v = 0; v < c->nv; v++)
+    if (c->goff[v] >= 0) nc += dim;
+  PetscCall(MatCreateAIJ(comm, nr, nc, PETSC_DETERMINE, PETSC_DETERMINE, 2 * dim, NULL, 2 * dim, NULL, P));
+  if (frame) {
+    PetscCall(SgFrameGetAxes(frame, NULL, NULL, &rot));
+    PetscCall(PetscMalloc1(f->nv, &cidx));
+    for (PetscInt v = 0; v < f->nv; v++) cidx[v] = -1;
+    for (PetscInt i = 0; i < cv->n; i++)
+      if (rot[i]) cidx[cv->vert[i]] = i;
+  }
+  for (PetscInt v = 0; v < f->nv; v++) {
+    const PetscInt v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
+    const PetscReal w = v0 == v1 ? 1.0 : 0.5;
+    PetscInt        cols[2][3]; /* the Cartesian row of component d: the column of parent k, or -1 */
+    PetscReal       vals[2][3];
+    if (f->goff[v] < 0) continue;
+    for (PetscInt d = 0; d < dim; d++)
+      for (PetscInt k = 0; k < 2; k++) {
+        const PetscInt p = par[k];
+        cols[k][d]       = -1;
+        vals[k][d]       = 0;
+        if (k >= np || c->gblock[p] < 0) continue;
+        if (SgMeshFixed(f, v, d) != SgMeshFixed(c, p, d)) continue; /* free from free, fixed from the same fixed one */
+        if (SgMeshFixed(f, v, d) && np > 1) continue;
+        cols[k][d] = c->gblock[p] * dim + d;
+        vals[k][d] = w;
+      }
+    if (cidx && cidx[v] >= 0) { /* row a of Q_i^T P: sum_d (Q_i^T)_{ad} (row d) */
+      PetscReal qt[3][3];
+      for (PetscInt d = 0; d < dim; d++) {
+        PetscReal e[3] = {0, 0, 0}, r[3];
+        e[d] = 1;
+        SgFrameVectorToLocal(frame, cidx[v], e, r);
+        for (PetscInt a = 0; a < dim; a++) qt[a][d] = r[a];
+      }
+      for (PetscInt a = 0; a < dim; a++) {
+        const PetscInt row = f->gblock[v] * dim + a;
+        for (PetscInt k = 0; k < np; k++)
+          for (PetscInt d = 0; d < dim; d++)
+            if (cols[k][d] >= 0 && qt[a][d] != 0) PetscCall(MatSetValue(*P, row, cols[k][d], qt[a][d] * vals[k][d], INSERT_VALUES));
+      }
+      continue;
+    }
+    for (PetscInt d = 0; d < dim; d++)
+      for (PetscInt k = 0; k < np; k++)
+        if (cols[k][d] >= 0) PetscCall(MatSetValue(*P, f->gblock[v] * dim + d, cols[k][d], vals[k][d], INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(*P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*P, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscFree(cidx));
+  PetscFunctionReturn(0);
+}
+
+/* The interpolations of the hierarchy in PCMG's numbering: (*P)[l] from level l-1 to l, l = 1 .. n-1 ((*P)[0] NULL),
+   level n-1 the problem's mesh. *n = 0 (nothing made) on the unrefined mesh of a hierarchy (the coarsest level of
+   nested iteration, -cont_nested): the caller takes an AMG there. A mesh without a hierarchy is refused. */
+PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
+{
+  DM                dm, *lv, *dmc;
+  PetscInt          L = 0;
+  SgMesh           *m;
+  const SgBoundary *bd;
+  const char       *prefix;
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  *P = NULL;
+  PetscCall(SgElasticityGetDMs(s->prob, &dm, NULL, NULL, NULL));
+  PetscCall(Hierarchy(dm, &L, &lv));
+  if (!L) {
+    PetscObject base;
+    PetscCall(PetscFree(lv));
+    PetscCall(PetscObjectQuery((PetscObject)dm, "SgNestedBase", &base));
+    PetscCheck(base, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg_interp geometric: the mesh has no refinement hierarchy; the geometric multigrid needs a mesh made from the options (-dm_plex_filename or -box_*) and refined after distribution (-dm_refine N, N >= 1); otherwise use -ssn_pc_truncated_mg_interp amg");
+    PetscCall(PetscInfo(dm, "geometric multigrid: the unrefined mesh of the hierarchy, the AMG's interpolations instead\n"));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(SgElasticityGetDirichletBoundary(s->prob, &bd));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)dm, &prefix));
+  PetscCall(PetscCalloc2(L + 1, &m, L + 1, &dmc));
+  PetscCall(PetscCalloc1(L + 1, P));
+  for (PetscInt l = 0; l < L; l++) { /* each coarse level's layout on its own copy of the mesh (the section is the copy's) */
+    PetscCall(DMClone(lv[l], &dmc[l]));
+    PetscCall(SgMeshSetUp(dmc[l], bd, &m[l]));
+  }
+  m[L] = *s->mesh;
+  for (PetscInt l = 1; l <= L; l++) {
+    PetscInt *map, bad;
+    PetscCall(SgMeshRefinementMap(dmc[l - 1], &m[l - 1], &m[l], prefix, &map, &bad));
+    PetscCheck(!bad, s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg_interp geometric: the mesh refined %" PetscInt_FMT " times fewer, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the refinement does not nest here; use -ssn_pc_truncated_mg_interp amg", L - l + 1, bad);
+    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L ? s->frame : NULL, &s->cv, &(*P)[l]));
+    PetscCall(PetscFree(map));
+  }
+  {
+    PetscInt nrow, nfine;
+    PetscCall(MatGetLocalSize((*P)[L], &nrow, NULL));
+    PetscCall(VecGetLocalSize(s->b, &nfine));
+    PetscCheck(nrow == nfine, PETSC_COMM_SELF, PETSC_ERR_PLIB, "geometric multigrid: the finest interpolation has %" PetscInt_FMT " rows here, the problem %" PetscInt_FMT " unknowns", nrow, nfine);
+  }
+  for (PetscInt l = 0; l < L; l++) {
+    PetscCall(SgMeshDestroy(&m[l]));
+    PetscCall(DMDestroy(&dmc[l]));
+  }
+  PetscCall(PetscFree2(m, dmc));
+  PetscCall(PetscFree(lv));
+  *n = L + 1;
+  PetscFunctionReturn(0);
+}
+
+/* The coarsest level's solver: sparse Cholesky (MUMPS; its ordering keeps the fill of a 3D mesh small, and it runs
+   on every rank), refactored for every active set; -tmg_mg_coarse_* (under the KSP's prefix) override. */
+PetscErrorCode SgGMGCoarseSolver(KSP ksp)
+{
+  PC pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscFunctionReturn(0);
+}
