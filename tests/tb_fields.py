@@ -13,9 +13,13 @@ Checks, reported in a JSON summary:
     master_pressure at the master's vertices on that plane (master_dev, master_on_plane: their number, master_set:
     how many of them have a value); the projected force sum_k W_k p_k over the master's facets on the plane
     (master_force, W_k the lumped facet weights);
-  - max_slave, max_master: the largest pressures on either side (a Hertz run: the peak pressure seen from both).
+  - max_slave, max_master: the largest pressures on either side; p0_slave, p0_master: each side's pressure at the
+    vertex nearest the origin where it is not 0 (a Hertz run touching there: the peak pressure seen from both sides);
+  - with --step K (a run with load steps): the fields of load step K (datasets <name>_stepK_...);
+  - has_body, has_master_pressure: whether the fields are there at all (a run without a pair has neither: the rest
+    is then left out).
 
-usage: tb_fields.py --out OUT.json [--split Z] [--pressure P] RESULT.h5
+usage: tb_fields.py --out OUT.json [--split Z] [--pressure P] [--step K] RESULT.h5
 """
 import argparse
 import json
@@ -61,6 +65,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--split", type=float)
     ap.add_argument("--pressure", type=float)
+    ap.add_argument("--step", type=int)
     ap.add_argument("result")
     a = ap.parse_args()
     xmf = os.path.splitext(a.result)[0] + ".xmf"
@@ -69,13 +74,20 @@ def main():
     attrs = {(at.get("Name"), at.get("Center")) for at in ET.parse(xmf).getroot().iter("Attribute")}
     res["xmf_body"] = ("body", "Cell") in attrs
     res["xmf_master_pressure"] = ("master_pressure", "Node") in attrs
+    sfx = "_step%d" % a.step if a.step is not None else ""
     with h5py.File(a.result, "r") as f:
+        res["has_body"] = any(k.startswith("body" + sfx + "_") for k in f["cell_fields"])
+        res["has_master_pressure"] = any(k.startswith("master_pressure" + sfx + "_") for k in f["vertex_fields"])
+        if not (res["has_body"] and res["has_master_pressure"]):
+            with open(a.out, "w") as g:
+                json.dump(res, g, indent=1)
+            return
         x = f["geometry/vertices"][()]
         cells = f["viz/topology/cells"][()].astype(int)
-        body = dataset(f["cell_fields"], "body").ravel()
-        p = dataset(f["vertex_fields"], "contact_pressure").ravel()
-        mp = dataset(f["vertex_fields"], "master_pressure").ravel()
-        act = dataset(f["vertex_fields"], "active").ravel() > 0.5
+        body = dataset(f["cell_fields"], "body" + sfx).ravel()
+        p = dataset(f["vertex_fields"], "contact_pressure" + sfx).ravel()
+        mp = dataset(f["vertex_fields"], "master_pressure" + sfx).ravel()
+        act = dataset(f["vertex_fields"], "active" + sfx).ravel() > 0.5
     dim = x.shape[1]
     comp = components(cells, len(x))
     parts = np.unique(comp)
@@ -90,6 +102,9 @@ def main():
     res["max_slave"] = float(p.max())
     res["max_master"] = float(mp.max())
     res["master_nonzero"] = int(np.count_nonzero(mp))
+    near = np.argsort(np.linalg.norm(x, axis=1))
+    res["p0_slave"] = float(next((p[i] for i in near if p[i] != 0), 0.0))
+    res["p0_master"] = float(next((mp[i] for i in near if mp[i] != 0), 0.0))
     if a.pressure is not None:
         assert a.split is not None, "--pressure needs --split"
         P = a.pressure
