@@ -111,7 +111,7 @@ table1: all
 reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
-	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo
+	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo,twobody
 # Benchmarks (not tests): bench/results.md and bench/results.json; two to three and a half hours on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
