@@ -281,15 +281,16 @@ static PetscErrorCode PairFieldsCreate(SgElasticity p, PetscInt *nv, Vec vf[], P
   PetscFunctionReturn(0);
 }
 
-/* the pair's fields of PairFieldsCreate at y: the last vertex field and the third cell field (none without a pair) */
-static PetscErrorCode PairFieldsFill(SgCont ct, Vec y, Vec vf[], Vec cf[])
+/* the pair's fields of PairFieldsCreate at y: the last of the nv vertex fields and the third cell field (none without
+   a pair) */
+static PetscErrorCode PairFieldsFill(SgCont ct, Vec y, PetscInt nv, Vec vf[], Vec cf[])
 {
   PetscBool pair = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   if (ct->c) PetscCall(SgContactIsPair(ct->c, &pair));
   if (!pair) PetscFunctionReturn(0);
-  PetscCall(SgContactPairMasterPressure(ct->c, y, vf[ct->cv.friction ? 9 : 6]));
+  PetscCall(SgContactPairMasterPressure(ct->c, y, vf[nv - 1]));
   PetscCall(SgElasticityBodyField(ct->prob, cf[2], NULL));
   PetscFunctionReturn(0);
 }
@@ -344,14 +345,14 @@ static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[10], PetscInt
 }
 
 /* the fields of the displacement y with the multiplier lam, at the problem's current load factor */
-static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], Vec vf[], Vec cf[])
+static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], PetscInt nv, Vec vf[], Vec cf[])
 {
   PetscFunctionBeginUser;
   PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
   PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
   if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
   if (ct->c && ct->cv.friction) PetscCall(SgContactFrictionFields(ct->c, y, vf[6], vf[7], vf[8]));
-  PetscCall(PairFieldsFill(ct, y, vf, cf));
+  PetscCall(PairFieldsFill(ct, y, nv, vf, cf));
   PetscFunctionReturn(0);
 }
 
@@ -379,7 +380,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
       PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->cv.n * dim));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
-  PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
+  PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], nv, vf, cf));
   PetscFunctionReturn(0);
 }
 
@@ -437,7 +438,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     PetscCall(PetscFree(dv));
     PetscCall(PetscFree3(idx, num, times));
   } else {
-    PetscCall(FieldsFill(ct, ct->y, ct->lam, vf, cf));
+    PetscCall(FieldsFill(ct, ct->y, ct->lam, nv, vf, cf));
     PetscCall(SgOutputWrite(ct->prob, file, nv, vf, nc, cf, magnification));
   }
   for (PetscInt i = 0; i < nv; i++) PetscCall(VecDestroy(&vf[i]));
