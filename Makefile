@@ -51,11 +51,13 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
-# Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, options/twobody_hertz.opts); _r25: turned by 25 degrees
+# Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, tests/tbout.ini, options/twobody_hertz.opts,
+# options/twobody_sphere.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \
           meshes/tb_stack2d_match.msh meshes/tb_far2d.msh meshes/tb_overlap2d.msh meshes/tb_far3d.msh meshes/tb_overlap3d.msh \
           meshes/tb_cylinders2d_s1.msh meshes/tb_cylinders2d_s2.msh meshes/tb_cylinders2d_s4.msh \
-          meshes/tbf_stack2d.msh meshes/tbf_stack3d.msh meshes/tbf_cattaneo_s1.msh meshes/tbf_cattaneo_s2.msh meshes/tbf_cattaneo_s4.msh
+          meshes/tbf_stack2d.msh meshes/tbf_stack3d.msh meshes/tbf_cattaneo_s1.msh meshes/tbf_cattaneo_s2.msh meshes/tbf_cattaneo_s4.msh \
+          meshes/tb_sphere_s1.msh meshes/tb_sphere_s2.msh
 # Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 SRC    := $(wildcard src/*/*.c)
@@ -111,7 +113,7 @@ table1: all
 reproduce: all
 	$(PYTHON) scripts/reproduce.py
 figures: all
-	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo
+	$(PYTHON) scripts/figures.py --only ex1,ex2,loadsteps,punch,friction,cattaneo,twobody
 # Benchmarks (not tests): bench/results.md and bench/results.json; two to three and a half hours on 2 cores
 bench: all meshes/ex2_s2.msh meshes/ex2_s4.2.msh
 	$(PYTHON) scripts/bench.py $(BENCH_FLAGS)
@@ -214,6 +216,8 @@ meshes/tbf_stack3d.msh: meshes/tbf_stack3d.geo
 	gmsh -3 $< -o $@ > /dev/null
 meshes/tbf_cattaneo_s%.msh: meshes/tbf_cattaneo.geo
 	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
+meshes/tb_sphere_s%.msh: meshes/tb_sphere.geo
+	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 meshes/tb_blocks2d_r%.msh: meshes/tb_blocks2d.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
 # rigidly turned copies (the rotation-invariance checks and bench/perf_curved.py): 2D about z, Example 2 by 30 degrees

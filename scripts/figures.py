@@ -17,8 +17,11 @@
             normal pressure, the tangential traction in the band |lam_T| <= F lam_N, the stick/slip/free states
   friction_ex2.png  Example 2 with Coulomb F = 0.3 (options/ex2_friction.opts): the contact face, vertices coloured by
             state, tangential traction arrows (both with --only friction; scripts/plot_friction.py draws them)
+  twobody.png  two elastic cylinders (options/twobody_hertz.opts on meshes/tb_cylinders2d_s2.msh): the bodies near the
+            contact coloured by von Mises, and the pressure on the slave side (contact_pressure) and on the master side
+            (master_pressure) against Hertz's at the run's force (with --only twobody; scripts/plot_twobody.py)
 
-usage: figures.py [--only ex1,ex2,loadsteps,punch,friction,cattaneo]
+usage: figures.py [--only ex1,ex2,loadsteps,punch,friction,cattaneo,twobody]
 """
 import argparse
 import os
@@ -151,6 +154,18 @@ def friction():
         subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_friction.py"), os.path.join(RUNS, name + ".h5"), os.path.join(RES, name + ".png"),
                         "--coefficient", "%g" % s["friction_coefficient"], "--title", title], check=True)
         print("wrote results/%s.png" % name)
+
+
+def twobody():
+    s, _ = sgrun.run("-options_file options/twobody_hertz.opts -dm_plex_filename meshes/tb_cylinders2d_s2.msh", "twobody", RUNS, fields=True)
+    if not s.get("converged"):
+        raise sgrun.RunError("twobody did not converge (%s), see results/runs/twobody.log" % s.get("reason"))
+    # Hertz for two equal cylinders of radius 1 (R = 1/2, 1/E* = 2 (1 - nu^2) / E) at the whole pair's force, twice the half's
+    estar = 1 / (2 * (1 - s["nu"] ** 2) / s["E"])
+    subprocess.run([PY, os.path.join(sgrun.ROOT, "scripts", "plot_twobody.py"), os.path.join(RUNS, "twobody.h5"), os.path.join(RES, "twobody.png"),
+                    "--estar", repr(estar), "--rhertz", "0.5", "--force", repr(2 * s["pair_force"]), "--window", "0.1",
+                    "--title", "Two elastic cylinders (dual mortar, non-matching meshes)"], check=True)
+    print("wrote results/twobody.png")
 
 
 CATTANEO_MESHES = (1, 2, 4)  # meshes/cattaneo_s<k>.msh: vertex spacing 0.004 / k at the contact
@@ -292,7 +307,7 @@ def main():
     ap.add_argument("--only", default="ex1")
     opt = ap.parse_args()
     for part in opt.only.split(","):
-        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch, "friction": friction, "cattaneo": cattaneo}[part]()
+        {"ex1": ex1, "ex2": ex2, "loadsteps": loadsteps, "punch": punch, "friction": friction, "cattaneo": cattaneo, "twobody": twobody}[part]()
 
 
 if __name__ == "__main__":

@@ -4,8 +4,9 @@
                                            [--size 1200 600] [--list]
 
 RESULT.xmf is the XDMF file written beside -output_file RESULT.h5 (any name: spaces, dots, other directories).
---field      a vertex field (displacement, contact_pressure, gap, penetration, active, obstacle_offset, and with
-             friction tangential_traction, slip, friction_state) or a cell field (von_mises, shear_energy_density);
+--field      a vertex field (displacement, contact_pressure, gap, penetration, active, obstacle_offset, with
+             friction tangential_traction, slip, friction_state, with two bodies master_pressure) or a cell field
+             (von_mises, shear_energy_density, with two bodies body);
              a vector field is coloured by its magnitude (default: von_mises)
 --scale      the displacement magnification of the picture (default: the one stored in the file,
              -output_magnification, 20 unless given; 0 draws the undeformed body)

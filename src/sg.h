@@ -126,6 +126,8 @@ PetscErrorCode SgElasticityCellFields(SgElasticity, Vec, Vec, Vec);
 PetscErrorCode SgElasticityMMSErrors(SgElasticity, Vec, PetscReal *, PetscReal *);
 PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
+/* the connected bodies of the mesh: a cell field 1, 2, ... (NULL: none) and their number (rigid.c) */
+PetscErrorCode SgElasticityBodyField(SgElasticity, Vec, PetscInt *);
 PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
 PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
 PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest components, resultant, l1 sum */
@@ -277,6 +279,10 @@ PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscRe
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactIsPair(SgContact, PetscBool *);      /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
 PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *); /* two bodies: |B^T 1| on the master side, NULL without a pair */
+/* two bodies (pair_fields.c): y -> the slave's pressure projected on the master side (a vertex field); y -> sum D lam,
+   the forces on the slave body and on the master body */
+PetscErrorCode SgContactPairMasterPressure(SgContact, Vec, Vec);
+PetscErrorCode SgContactPairForces(SgContact, Vec, PetscReal *, PetscReal[3], PetscReal[3]);
 PetscErrorCode SgContactSetLoadFactor(SgContact, PetscReal); /* the obstacle at t times its translation, the gaps d anew */
 PetscErrorCode SgContactGetObstacleTranslation(SgContact, PetscReal[3]);
 PetscErrorCode SgContactGapSum(SgContact, PetscReal, PetscReal *);          /* sum_i w_i d_i with the obstacle at a placement t */

@@ -60,6 +60,30 @@ static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies (a contact pair): the number of bodies of the mesh and the forces of the pair (SgContactPairForces) */
+static PetscErrorCode SummaryPair(SgCont ct, SgSummary sum, PetscInt dim)
+{
+  PetscBool pair;
+  PetscReal fn, Fs[3], Fm[3], bal = 0, mag = 0;
+  PetscInt  nb;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContactIsPair(ct->c, &pair));
+  if (!pair) PetscFunctionReturn(0);
+  PetscCall(SgElasticityBodyField(ct->prob, NULL, &nb));
+  PetscCall(SgContactPairForces(ct->c, ct->y, &fn, Fs, Fm));
+  for (PetscInt k = 0; k < dim; k++) {
+    bal += PetscSqr(Fs[k] + Fm[k]);
+    mag += PetscSqr(Fs[k]);
+  }
+  PetscCall(SgSummarySetInt(sum, "bodies", nb));
+  PetscCall(SgSummarySetReal(sum, "pair_force", fn));
+  PetscCall(SgSummarySetRealArray(sum, "pair_force_slave", dim, Fs));
+  PetscCall(SgSummarySetRealArray(sum, "pair_force_master", dim, Fm));
+  PetscCall(SgSummarySetReal(sum, "pair_force_balance", mag > 0 ? PetscSqrtReal(bal / mag) : 0));
+  PetscFunctionReturn(0);
+}
+
 /* Every key of the summary: the run's result, the problem's data and sizes, times and memory. */
 static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
 {
@@ -148,6 +172,7 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
       PetscCall(SgSummarySetRealArray(sum, "contact_force_vector", dim, F));
       PetscCall(SgSummarySetRealArray(sum, "reaction_force", dim, R));
     }
+    PetscCall(SummaryPair(ct, sum, dim));
     PetscCall(SummaryPath(ct, sum));
   }
   PetscCall(SummaryLoadSteps(ct, sum));
@@ -239,8 +264,39 @@ PetscErrorCode SgContWriteHistory(SgCont ct, const char file[])
   PetscFunctionReturn(0);
 }
 
+/* Two bodies (a contact pair): the vertex field master_pressure (the slave's contact pressure projected on the
+   master side: SgContactPairMasterPressure) after the others, and the cell field body (SgElasticityBodyField) */
+static PetscErrorCode PairFieldsCreate(SgElasticity p, PetscInt *nv, Vec vf[], PetscInt *nc, Vec cf[])
+{
+  DM dmCell, dmVert;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDMs(p, NULL, &dmVert, NULL, &dmCell));
+  PetscCall(DMCreateGlobalVector(dmVert, &vf[*nv]));
+  PetscCall(PetscObjectSetName((PetscObject)vf[*nv], "master_pressure"));
+  (*nv)++;
+  PetscCall(DMCreateGlobalVector(dmCell, &cf[*nc]));
+  PetscCall(PetscObjectSetName((PetscObject)cf[*nc], "body"));
+  (*nc)++;
+  PetscFunctionReturn(0);
+}
+
+/* the pair's fields of PairFieldsCreate at y: the last of the nv vertex fields and the third cell field (none without
+   a pair) */
+static PetscErrorCode PairFieldsFill(SgCont ct, Vec y, PetscInt nv, Vec vf[], Vec cf[])
+{
+  PetscBool pair = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (ct->c) PetscCall(SgContactIsPair(ct->c, &pair));
+  if (!pair) PetscFunctionReturn(0);
+  PetscCall(SgContactPairMasterPressure(ct->c, y, vf[nv - 1]));
+  PetscCall(SgElasticityBodyField(ct->prob, cf[2], NULL));
+  PetscFunctionReturn(0);
+}
+
 /* The work vectors of the fields: vf displacement and (with contact) the contact fields, cf the cell fields */
-static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[9], Vec cf[2])
+static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[10], PetscInt *nc, Vec cf[3])
 {
   SgElasticity p = ct->prob;
   PetscInt     dim;
@@ -279,17 +335,24 @@ static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[9], Vec cf[2]
       *nv = 9;
     }
   }
+  *nc = 2;
+  {
+    PetscBool pair = PETSC_FALSE;
+    if (ct->c) PetscCall(SgContactIsPair(ct->c, &pair));
+    if (pair) PetscCall(PairFieldsCreate(p, nv, vf, nc, cf));
+  }
   PetscFunctionReturn(0);
 }
 
 /* the fields of the displacement y with the multiplier lam, at the problem's current load factor */
-static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], Vec vf[], Vec cf[])
+static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], PetscInt nv, Vec vf[], Vec cf[])
 {
   PetscFunctionBeginUser;
   PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
   PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
   if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
   if (ct->c && ct->cv.friction) PetscCall(SgContactFrictionFields(ct->c, y, vf[6], vf[7], vf[8]));
+  PetscCall(PairFieldsFill(ct, y, nv, vf, cf));
   PetscFunctionReturn(0);
 }
 
@@ -317,19 +380,19 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
       PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->cv.n * dim));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
-  PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], vf, cf));
+  PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], nv, vf, cf));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
 {
-  Vec       vf[9], cf[2];
-  PetscInt  nv = 0, nkept = 0;
+  Vec       vf[10], cf[3];
+  PetscInt  nv = 0, nc = 2, nkept = 0;
   PetscBool loadsteps;
 
   PetscFunctionBeginUser;
   PetscCall(SgContUseSlipReference(ct)); /* the slip of this controller's step, whoever solved the problem last */
-  PetscCall(FieldsCreate(ct, &nv, vf, cf));
+  PetscCall(FieldsCreate(ct, &nv, vf, &nc, cf));
   PetscCall(SgProblemHasLoadSteps(ct->problem_obj, &loadsteps));
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
   if (loadsteps && nkept) {
@@ -361,7 +424,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       }
     sc.ct  = ct;
     sc.idx = idx;
-    PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, 2, cf, magnification));
+    PetscCall(SgOutputWriteSteps(ct->prob, file, nkept, num, times, FillStep, &sc, nv, vf, nc, cf, magnification));
     PetscCall(SgProblemSetLoadFactor(ct->problem_obj, t));
     if (ct->dvsteps) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dset ? dv : NULL)); /* the problem's values restored too */
     if (yr) {
@@ -375,11 +438,11 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     PetscCall(PetscFree(dv));
     PetscCall(PetscFree3(idx, num, times));
   } else {
-    PetscCall(FieldsFill(ct, ct->y, ct->lam, vf, cf));
-    PetscCall(SgOutputWrite(ct->prob, file, nv, vf, 2, cf, magnification));
+    PetscCall(FieldsFill(ct, ct->y, ct->lam, nv, vf, cf));
+    PetscCall(SgOutputWrite(ct->prob, file, nv, vf, nc, cf, magnification));
   }
   for (PetscInt i = 0; i < nv; i++) PetscCall(VecDestroy(&vf[i]));
-  for (PetscInt i = 0; i < 2; i++) PetscCall(VecDestroy(&cf[i]));
+  for (PetscInt i = 0; i < nc; i++) PetscCall(VecDestroy(&cf[i]));
   PetscFunctionReturn(0);
 }
 

@@ -128,7 +128,7 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
   DMPlexTransform tr;
   PetscInt        eStart, eEnd, dim, bad = 0;
   PetscReal       scale = 0;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)dma);
+  MPI_Comm        comm  = PetscObjectComm((PetscObject)dma);
 
   PetscFunctionBeginUser;
   dim = ma->dim;
@@ -186,10 +186,10 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    "SgNestedBase". */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
-  PetscInt  nest = 0, nref = 0, interp = 0;
-  PetscBool nset, rset, gset;
-  char      opt[PETSC_MAX_PATH_LEN], was[32], now[32];
-  DM       *lv;
+  PetscInt          nest = 0, nref = 0, interp = 0;
+  PetscBool         nset, rset, gset;
+  char              opt[PETSC_MAX_PATH_LEN], was[32], now[32];
+  DM               *lv;
   const char *const interps[] = {"amg", "geometric"};
 
   PetscFunctionBeginUser;

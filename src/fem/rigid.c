@@ -491,3 +491,70 @@ PetscErrorCode SgElasticityCreateNearNullSpace(SgElasticity p)
   PetscCall(VecDestroy(&xg));
   PetscFunctionReturn(0);
 }
+
+/* The body of each cell as a cell field (output of a run with several bodies, e.g. a two-body contact pair): the
+   connected parts of the mesh (MeshBodies) numbered 1, 2, ... in an order that does not depend on the partition: by
+   the smallest value of the cell label -material_label (default "Cell Sets": gmsh's physical volumes; a cell without
+   a value counts after every value) among the body's cells, then by the lowest corner of the body's bounding box
+   (x first). A mesh of one physical volume per body, numbered 1..n, gets the volumes' numbers. cf: a global vector
+   of the cell DM (NULL: only the count); nbodies: their number (NULL: not wanted). */
+PetscErrorCode SgElasticityBodyField(SgElasticity p, Vec cf, PetscInt *nbodies)
+{
+  const SgMesh  *m   = &p->mesh;
+  const PetscInt dim = p->dim, nv = dim + 1;
+  PetscInt       ncomp, *comp, *order;
+  PetscBool     *rep;
+  PetscReal     *key; /* per body: smallest label value, then the bounding box's lowest corner (dim) */
+  DMLabel        label = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(m->nv, &comp, m->nv, &rep));
+  PetscCall(MeshBodies(p->dm, m, &ncomp, comp, rep));
+  PetscCall(PetscMalloc2(4 * ncomp + 1, &key, ncomp + 1, &order));
+  for (PetscInt i = 0; i < 4 * ncomp; i++) key[i] = PETSC_MAX_REAL;
+  PetscCall(DMGetLabel(p->dm, p->matlabel[0] ? p->matlabel : "Cell Sets", &label));
+  for (PetscInt c = 0; c < m->nc && label; c++) {
+    PetscInt val;
+    PetscCall(DMLabelGetValue(label, m->cStart + c, &val));
+    if (val >= 0) key[4 * comp[m->cellv[c * nv]]] = PetscMin(key[4 * comp[m->cellv[c * nv]]], (PetscReal)val);
+  }
+  for (PetscInt v = 0; v < m->nv; v++)
+    for (PetscInt d = 0; d < dim; d++) key[4 * comp[v] + 1 + d] = PetscMin(key[4 * comp[v] + 1 + d], m->x[v * dim + d]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, key, 4 * ncomp, MPIU_REAL, MPIU_MIN, p->comm));
+  /* order[k]: the body at place k (a insertion sort: a mesh has few bodies) */
+  for (PetscInt k = 0; k < ncomp; k++) {
+    PetscInt j = k;
+    for (; j > 0; j--) {
+      const PetscReal *a = &key[4 * order[j - 1]], *b = &key[4 * k];
+      PetscInt         i = 0;
+      while (i < 4 && a[i] == b[i]) i++;
+      if (i == 4 || a[i] < b[i]) break;
+      order[j] = order[j - 1];
+    }
+    order[j] = k;
+  }
+  if (cf) {
+    Vec          cl;
+    PetscScalar *ca;
+    PetscSection cs;
+    PetscInt    *place;
+    PetscCall(PetscMalloc1(ncomp + 1, &place));
+    for (PetscInt k = 0; k < ncomp; k++) place[order[k]] = k + 1;
+    PetscCall(DMGetLocalSection(p->dmCell, &cs));
+    PetscCall(DMGetLocalVector(p->dmCell, &cl));
+    PetscCall(VecGetArray(cl, &ca));
+    for (PetscInt c = 0; c < m->nc; c++) {
+      PetscInt off;
+      PetscCall(PetscSectionGetOffset(cs, m->cStart + c, &off));
+      ca[off] = (PetscReal)place[comp[m->cellv[c * nv]]];
+    }
+    PetscCall(VecRestoreArray(cl, &ca));
+    PetscCall(DMLocalToGlobal(p->dmCell, cl, INSERT_VALUES, cf));
+    PetscCall(DMRestoreLocalVector(p->dmCell, &cl));
+    PetscCall(PetscFree(place));
+  }
+  if (nbodies) *nbodies = ncomp;
+  PetscCall(PetscFree2(key, order));
+  PetscCall(PetscFree2(comp, rep));
+  PetscFunctionReturn(0);
+}

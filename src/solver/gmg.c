@@ -60,7 +60,7 @@ static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh
       if (rot[i]) cidx[cv->vert[i]] = i;
   }
   for (PetscInt v = 0; v < f->nv; v++) {
-    const PetscInt v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
+    const PetscInt  v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
     const PetscReal w = v0 == v1 ? 1.0 : 0.5;
     PetscInt        cols[2][3]; /* the Cartesian row of component d: the column of parent k, or -1 */
     PetscReal       vals[2][3];
@@ -80,7 +80,7 @@ static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh
       PetscReal qt[3][3];
       for (PetscInt d = 0; d < dim; d++) {
         PetscReal e[3] = {0, 0, 0}, r[3];
-        e[d] = 1;
+        e[d]           = 1;
         SgFrameVectorToLocal(frame, cidx[v], e, r);
         for (PetscInt a = 0; a < dim; a++) qt[a][d] = r[a];
       }

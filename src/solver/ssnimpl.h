@@ -89,5 +89,5 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
 PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgGMGInterpolations(SgSSN, PetscInt *, Mat **); /* gmg.c: the mesh hierarchy's interpolations between free-dof spaces */
-PetscErrorCode SgGMGCoarseSolver(KSP);                          /* gmg.c: the coarsest level's solver */
+PetscErrorCode SgGMGCoarseSolver(KSP);                         /* gmg.c: the coarsest level's solver */
 PetscErrorCode SgSSNCoulombFixedPoint(SgSSN, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
