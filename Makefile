@@ -60,6 +60,8 @@ TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blo
           meshes/tb_sphere_s1.msh meshes/tb_sphere_s2.msh
 # Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
+# The user guide's own-mesh example of a body resting on its support (options/newuser_holeplate.opts)
+MESHES += meshes/newuser_holeplate.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -188,6 +190,8 @@ meshes/mat_%3d.msh: meshes/mat_%3d.geo
 	gmsh -3 $< -o $@ > /dev/null
 meshes/cv_block2d.msh: meshes/cv_tilt2d.geo
 	gmsh -2 -setnumber angle 0 $< -o $@ > /dev/null
+meshes/newuser_holeplate.msh: meshes/newuser_holeplate.geo
+	gmsh -3 $< -o $@ > /dev/null
 meshes/tb_blocks2d.msh: meshes/tb_blocks2d.geo
 	gmsh -2 $< -o $@ > /dev/null
 meshes/tb_blocks3d.msh: meshes/tb_blocks3d.geo

@@ -895,7 +895,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
 }
 
 /* Vertex fields for output: contact pressure, gap d - tau_N y, penetration max(0, tau_N y - d), active flag, and
-   the vector d n from each contact vertex to the obstacle (zero elsewhere; pictures draw the obstacle from it). */
+   the vector d n from each contact vertex to the obstacle (zero elsewhere; pictures draw the obstacle from it).
+   Where the vertex's ray misses the obstacle (d = PETSC_MAX_REAL: a CAD or meshed obstacle of finite extent, a plane
+   parallel to the normal) the gap and the vector are NaN, "no obstacle along the normal": 1.8e308 made ParaView hang
+   on the gap's colour range and the pictures draw the obstacle thousands of lengths away. */
 /* The per-vertex numbers of SgContactKKT at y (klam, kact, klt, kslip, kst) without touching the friction summary or
    the record of the last solve: the fields and the summary's vectors come from the same definitions as its measures. */
 static PetscErrorCode ContactStateAt(SgContact c, Vec y)
@@ -949,7 +952,7 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
     PetscInt off;
     PetscCall(PetscSectionGetOffset(s, c->mesh->vStart + c->vert[i], &off));
     la[0][off] = c->klam[i];
-    la[1][off] = -g[i];
+    la[1][off] = c->d[i] < PETSC_MAX_REAL ? -g[i] : SG_NAN;
     la[2][off] = PetscMax(0, g[i]);
     la[3][off] = c->kact[i] ? 1 : 0;
   }
@@ -973,7 +976,7 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
     for (PetscInt i = 0; i < c->n; i++) {
       PetscInt off;
       PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
-      for (PetscInt k = 0; k < dim; k++) oa[off + k] = PetscMin(c->d[i], 1e3 * c->area) * c->normal[i * dim + k];
+      for (PetscInt k = 0; k < dim; k++) oa[off + k] = c->d[i] < PETSC_MAX_REAL ? PetscMin(c->d[i], 1e3 * c->area) * c->normal[i * dim + k] : SG_NAN;
     }
     PetscCall(VecRestoreArray(ol, &oa));
     PetscCall(VecZeroEntries(obst));
