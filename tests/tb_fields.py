@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The fields of a two-body run (tests/tbout.ini): its .h5 and the .xmf beside it, read back as ParaView would.
+"""The fields of a two-body run (tests/*/twobody_fields.ini): its .h5 and the .xmf beside it, read back as ParaView would.
 
 Checks, reported in a JSON summary:
   - the .xmf is valid and names its datasets right (check_xdmf.check_xmf), with the attributes "body" (a cell field)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Friction between two elastic bodies (tests/tbfric.ini), checked from the output fields of the slave side.
+"""Friction between two elastic bodies (tests/*/twobody_friction.ini), checked from the output fields of the slave side.
 
 patch: the blocks of meshes/tbf_stack2d.geo / tbf_stack3d.geo (the slave side the plane of the last coordinate = --zs)
 under a uniform stress with normal pressure -p and shear q (along x) across the contact: every slave vertex is
