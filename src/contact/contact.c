@@ -227,23 +227,18 @@ static PetscErrorCode PairSetUp(SgContact c)
   PetscFunctionReturn(0);
 }
 
-/* The nodal conditions on the faces of bnd against the obstacle: the contact vertices (n, vert, off, normal, w, d) */
-static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
+/* The lumped weights w_v = sum over the facets at v of |f| / nv(f) and the area-weighted normal sums sum |f| / nv(f)
+   n_f of the nfac facets of this rank, summed over the ranks that share a vertex, into the local vectors wl (of
+   dmVert) and nl (of dmVec); *area += the facets' measure summed over the ranks (NULL: not wanted) */
+PetscErrorCode SgContactLumpedSurface(SgContact c, PetscInt nfac, const PetscInt facets[], Vec wl, Vec nl, PetscReal *area)
 {
-  const SgMesh *m   = c->mesh;
-  PetscInt      dim = c->dim;
-  PetscInt      nfac, *facets, *part, nloc = 0, nfglob;
-  Vec           wl, nl, wg, ng;
+  const SgMesh *m = c->mesh;
+  PetscReal     a = 0;
   PetscScalar  *wa, *na;
   PetscSection  ws, ns;
+  Vec           wg, ng;
 
   PetscFunctionBeginUser;
-  PetscCall(SgBoundaryGetFacets(c->dm, bnd, &nfac, &facets, &part));
-  nfglob = nfac;
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, c->comm));
-  PetscCheck(nfglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-%s_label/-%s_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.what, bnd->what, bnd->label);
-  PetscCall(DMGetLocalVector(c->dmVert, &wl));
-  PetscCall(DMGetLocalVector(c->dmVec, &nl));
   PetscCall(VecZeroEntries(wl));
   PetscCall(VecZeroEntries(nl));
   PetscCall(DMGetLocalSection(c->dmVert, &ws));
@@ -252,20 +247,22 @@ static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
   PetscCall(VecGetArray(nl, &na));
   for (PetscInt f = 0; f < nfac; f++) {
     PetscInt  fv[3], nfv, off;
-    PetscReal area, nrm[3];
-    PetscCall(SgFacetGeometry(c->dm, m, facets[f], &nfv, fv, &area, nrm));
-    c->area += area;
-    for (PetscInt a = 0; a < nfv; a++) {
-      PetscCall(PetscSectionGetOffset(ws, m->vStart + fv[a], &off));
-      wa[off] += area / nfv;
-      PetscCall(PetscSectionGetOffset(ns, m->vStart + fv[a], &off));
-      for (PetscInt k = 0; k < dim; k++) na[off + k] += area / nfv * nrm[k];
+    PetscReal meas, nrm[3];
+    PetscCall(SgFacetGeometry(c->dm, m, facets[f], &nfv, fv, &meas, nrm));
+    a += meas;
+    for (PetscInt v = 0; v < nfv; v++) {
+      PetscCall(PetscSectionGetOffset(ws, m->vStart + fv[v], &off));
+      wa[off] += meas / nfv;
+      PetscCall(PetscSectionGetOffset(ns, m->vStart + fv[v], &off));
+      for (PetscInt k = 0; k < c->dim; k++) na[off + k] += meas / nfv * nrm[k];
     }
   }
   PetscCall(VecRestoreArray(wl, &wa));
   PetscCall(VecRestoreArray(nl, &na));
-  PetscCall(PetscFree2(facets, part));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &c->area, 1, MPIU_REAL, MPI_SUM, c->comm));
+  if (area) {
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &a, 1, MPIU_REAL, MPI_SUM, c->comm));
+    *area += a;
+  }
   /* sum over ranks, then every rank reads the totals of its vertices */
   PetscCall(DMGetGlobalVector(c->dmVert, &wg));
   PetscCall(DMGetGlobalVector(c->dmVec, &ng));
@@ -277,6 +274,30 @@ static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
   PetscCall(DMGlobalToLocal(c->dmVec, ng, INSERT_VALUES, nl));
   PetscCall(DMRestoreGlobalVector(c->dmVert, &wg));
   PetscCall(DMRestoreGlobalVector(c->dmVec, &ng));
+  PetscFunctionReturn(0);
+}
+
+/* The nodal conditions on the faces of bnd against the obstacle: the contact vertices (n, vert, off, normal, w, d) */
+static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
+{
+  const SgMesh *m   = c->mesh;
+  PetscInt      dim = c->dim;
+  PetscInt      nfac, *facets, *part, nloc = 0, nfglob;
+  Vec           wl, nl;
+  PetscScalar  *wa, *na;
+  PetscSection  ws, ns;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgBoundaryGetFacets(c->dm, bnd, &nfac, &facets, &part));
+  nfglob = nfac;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfglob, 1, MPIU_INT, MPI_SUM, c->comm));
+  PetscCheck(nfglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-%s_label/-%s_ids: label '%s' marks no boundary facets: the contact boundary is empty", c->bnd.what, bnd->what, bnd->label);
+  PetscCall(DMGetLocalVector(c->dmVert, &wl));
+  PetscCall(DMGetLocalVector(c->dmVec, &nl));
+  PetscCall(SgContactLumpedSurface(c, nfac, facets, wl, nl, &c->area));
+  PetscCall(PetscFree2(facets, part));
+  PetscCall(DMGetLocalSection(c->dmVert, &ws));
+  PetscCall(DMGetLocalSection(c->dmVec, &ns));
 
   PetscCall(VecGetArray(wl, &wa));
   PetscCall(VecGetArray(nl, &na));

@@ -118,6 +118,9 @@ struct _n_SgContact {
   Vec        pr;           /* with friction: R's row vector (pair.h: the relative displacements) */
 };
 
+/* contact.c: a surface's lumped weights and area-weighted normal sums, summed over the ranks (local vectors) */
+PetscErrorCode SgContactLumpedSurface(SgContact, PetscInt, const PetscInt[], Vec, Vec, PetscReal *);
+
 /* contact_pair.c: the contact object as a two-body pair (its fields master, pairdist, pair, prow, pw, pf, pl) */
 PetscErrorCode SgContactPairFromOptions(PetscOptionItems *, SgContact);
 PetscErrorCode SgContactPairSetUp(SgContact, PetscInt, const PetscInt[], const PetscReal[], const PetscReal[], const PetscReal[]);

@@ -74,9 +74,9 @@ PetscErrorCode SgContactPairMasterPressure(SgContact c, Vec y, Vec mp)
 {
   const PetscInt     dim = c->dim;
   const SgMesh      *m   = c->mesh;
-  Vec                f, wl, wg, nl, ng, pl;
+  Vec                f, wl, nl, pl;
   const PetscScalar *fa, *wa, *na;
-  PetscScalar       *wla, *nla, *pa;
+  PetscScalar       *pa;
   PetscInt          *facets, *part, nf;
   PetscSection       ss, vs;
 
@@ -89,35 +89,9 @@ PetscErrorCode SgContactPairMasterPressure(SgContact c, Vec y, Vec mp)
   PetscCall(DMGetLocalSection(c->dmVec, &vs));
   PetscCall(DMGetLocalVector(c->dmVert, &wl));
   PetscCall(DMGetLocalVector(c->dmVec, &nl));
-  PetscCall(DMGetGlobalVector(c->dmVert, &wg));
-  PetscCall(DMGetGlobalVector(c->dmVec, &ng));
-  PetscCall(VecZeroEntries(wl));
-  PetscCall(VecZeroEntries(nl));
-  PetscCall(VecGetArray(wl, &wla));
-  PetscCall(VecGetArray(nl, &nla));
   PetscCall(SgBoundaryGetFacets(c->dm, &c->master, &nf, &facets, &part));
-  for (PetscInt i = 0; i < nf; i++) {
-    PetscInt  fv[3], nfv, so, vo;
-    PetscReal meas, nrm[3];
-    PetscCall(SgFacetGeometry(c->dm, m, facets[i], &nfv, fv, &meas, nrm));
-    for (PetscInt a = 0; a < nfv; a++) {
-      PetscCall(PetscSectionGetOffset(ss, m->vStart + fv[a], &so));
-      PetscCall(PetscSectionGetOffset(vs, m->vStart + fv[a], &vo));
-      wla[so] += meas / nfv;
-      for (PetscInt k = 0; k < dim; k++) nla[vo + k] += meas / nfv * nrm[k];
-    }
-  }
+  PetscCall(SgContactLumpedSurface(c, nf, facets, wl, nl, NULL));
   PetscCall(PetscFree2(facets, part));
-  PetscCall(VecRestoreArray(wl, &wla));
-  PetscCall(VecRestoreArray(nl, &nla));
-  PetscCall(VecZeroEntries(wg));
-  PetscCall(VecZeroEntries(ng));
-  PetscCall(DMLocalToGlobal(c->dmVert, wl, ADD_VALUES, wg));
-  PetscCall(DMLocalToGlobal(c->dmVec, nl, ADD_VALUES, ng));
-  PetscCall(DMGlobalToLocal(c->dmVert, wg, INSERT_VALUES, wl));
-  PetscCall(DMGlobalToLocal(c->dmVec, ng, INSERT_VALUES, nl));
-  PetscCall(DMRestoreGlobalVector(c->dmVert, &wg));
-  PetscCall(DMRestoreGlobalVector(c->dmVec, &ng));
   /* p_k at the owned free master vertices (the others add zeros: the owner's value stays) */
   PetscCall(DMGetLocalVector(c->dmVert, &pl));
   PetscCall(VecZeroEntries(pl));
