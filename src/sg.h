@@ -372,8 +372,8 @@ typedef struct _n_SgFrame    *SgFrame;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
-PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                         /* -help: the default solver's option */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                                    /* -help: the default solver's option */
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
 PetscErrorCode SgLinearSolverGeometricMG(const char[], PetscBool *); /* linear.c: -ssn_pc_truncated_mg_interp geometric given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);

@@ -130,7 +130,11 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   /* the linear solver first (its default depends on the problem's size), then the controller's default from it:
      fast (one capped (P_gamma), inexact steps) in 3D and for iterative solves, ipf in 2D with exact solves, where fast
      can take many more steps (nearly incompressible: 31 against 18; bench/perf_notes.md) */
-  PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  {
+    PetscBool pair = PETSC_FALSE;
+    if (ct->c) PetscCall(SgContactIsPair(ct->c, &pair));
+    PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), pair, &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  }
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */

@@ -71,7 +71,7 @@ PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
 /* Enter the default solver's options unless -<prefix>ksp_type or -<prefix>pc_type is given. defaulted: the default
    was entered; iterative: the solver that will run is a Krylov method with a preconditioner (not preonly: the
    controller's default depends on it); desc says what was chosen and why (for the run's first lines). */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool nonsym, PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
+PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool nonsym, PetscBool pair, PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
 {
   char        opt[256], ktype[64] = "";
   PetscBool   kset, pset;
@@ -85,6 +85,10 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   PetscCall(SgElasticityGetDimension(el, &dim));
   PetscCall(SgElasticityGetInfo(el, &dofs, NULL, NULL, NULL));
   maxdirect = dim == 2 ? (size == 1 ? PETSC_MAX_INT : 20000) : 5000;
+  /* two bodies: MUMPS at every size; CG + BoomerAMG on K + gamma B^T diag(act / D) B takes many more SSN steps on the
+     flat pair (33 against 3) and does not converge on a curved 3D one (the sphere on a block from 4.4e3 unknowns on,
+     bench/results.md "Two bodies") */
+  if (pair) maxdirect = PETSC_MAX_INT;
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
   PetscOptionsEnd();
@@ -145,6 +149,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
     PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
     PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): %s + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg", nonsym ? "BiCGStab (Coulomb friction: nonsymmetric)" : "CG"));
   }
+  if (pair && !*iterative && maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for two bodies (-contact_master_ids) at any size (-cont_direct_max_unknowns changes it): sparse %s (MUMPS)", nonsym ? "LU" : "Cholesky"));
   PetscFunctionReturn(0);
 }
 
