@@ -218,10 +218,132 @@ static PetscErrorCode Pair3D(const SgMortarSurface *s, PetscInt f, const SgMorta
   PetscFunctionReturn(0);
 }
 
+/* A uniform grid of buckets over the master facets' bounding boxes, so that a slave facet meets only the master
+   facets near it (those whose box meets its own box grown by dmax: every partner, which has a point within dmax of
+   the slave facet along its normal, is among them) */
+typedef struct {
+  PetscInt   dim, n[3], *start, *item; /* bucket b holds item[start[b] .. start[b+1]) */
+  PetscReal  lo[3], h;
+  PetscReal *box;  /* per master facet: lo[dim], hi[dim] */
+  PetscInt  *mark; /* per master facet: the last slave facet that took it (no duplicates) */
+} Grid;
+
+static void FacetBox(const SgMortarSurface *x, PetscInt f, PetscReal grow, PetscReal lo[], PetscReal hi[])
+{
+  for (PetscInt c = 0; c < x->dim; c++) lo[c] = PETSC_MAX_REAL, hi[c] = -PETSC_MAX_REAL;
+  for (PetscInt i = 0; i < x->dim; i++)
+    for (PetscInt c = 0; c < x->dim; c++) {
+      PetscReal v = x->x[x->dim * x->facets[x->dim * f + i] + c];
+      lo[c]       = PetscMin(lo[c], v - grow);
+      hi[c]       = PetscMax(hi[c], v + grow);
+    }
+}
+
+static void Cells(const Grid *g, const PetscReal lo[], const PetscReal hi[], PetscInt a[], PetscInt b[])
+{
+  for (PetscInt c = 0; c < 3; c++) a[c] = b[c] = 0;
+  for (PetscInt c = 0; c < g->dim; c++) {
+    a[c] = (PetscInt)PetscFloorReal((lo[c] - g->lo[c]) / g->h);
+    b[c] = (PetscInt)PetscFloorReal((hi[c] - g->lo[c]) / g->h);
+    a[c] = PetscMin(PetscMax(a[c], 0), g->n[c] - 1);
+    b[c] = PetscMin(PetscMax(b[c], 0), g->n[c] - 1);
+  }
+}
+
+static PetscErrorCode GridCreate(const SgMortarSurface *m, Grid *g)
+{
+  const PetscInt dim   = m->dim;
+  PetscReal      hi[3] = {0, 0, 0}, ext = 0;
+  PetscInt       nb, a[3], b[3], *cnt;
+
+  PetscFunctionBeginUser;
+  g->dim = dim;
+  PetscCall(PetscMalloc2(2 * dim * m->nf + 1, &g->box, m->nf + 1, &g->mark));
+  for (PetscInt c = 0; c < 3; c++) g->lo[c] = PETSC_MAX_REAL, hi[c] = -PETSC_MAX_REAL, g->n[c] = 1;
+  for (PetscInt e = 0; e < m->nf; e++) {
+    PetscReal *lo = g->box + 2 * dim * e, *up = lo + dim;
+    FacetBox(m, e, 0, lo, up);
+    g->mark[e] = -1;
+    for (PetscInt c = 0; c < dim; c++) {
+      g->lo[c] = PetscMin(g->lo[c], lo[c]);
+      hi[c]    = PetscMax(hi[c], up[c]);
+      ext      = PetscMax(ext, up[c] - lo[c]);
+    }
+  }
+  /* buckets of the largest facet's size, at most about 8 per facet in all */
+  g->h = ext > 0 ? ext : 1;
+  for (;;) {
+    nb = 1;
+    for (PetscInt c = 0; c < dim; c++) nb *= (g->n[c] = m->nf ? (PetscInt)((hi[c] - g->lo[c]) / g->h) + 1 : 1);
+    if (nb <= 8 * m->nf + 8) break;
+    g->h *= 2;
+  }
+  PetscCall(PetscCalloc1(nb + 1, &g->start));
+  PetscCall(PetscCalloc1(nb + 1, &cnt));
+  for (PetscInt pass = 0; pass < 2; pass++) {
+    if (pass) {
+      for (PetscInt k = 0; k < nb; k++) g->start[k + 1] = g->start[k] + cnt[k], cnt[k] = 0;
+      PetscCall(PetscMalloc1(g->start[nb] + 1, &g->item));
+    }
+    for (PetscInt e = 0; e < m->nf; e++) {
+      Cells(g, g->box + 2 * dim * e, g->box + 2 * dim * e + dim, a, b);
+      for (PetscInt i = a[0]; i <= b[0]; i++)
+        for (PetscInt j = a[1]; j <= b[1]; j++)
+          for (PetscInt k = a[2]; k <= b[2]; k++) {
+            PetscInt q = (k * g->n[1] + j) * g->n[0] + i;
+            if (pass) g->item[g->start[q] + cnt[q]] = e;
+            cnt[q]++;
+          }
+    }
+  }
+  PetscCall(PetscFree(cnt));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GridDestroy(Grid *g)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree2(g->box, g->mark));
+  PetscCall(PetscFree(g->start));
+  PetscCall(PetscFree(g->item));
+  PetscFunctionReturn(0);
+}
+
+/* the master facets near slave facet f (its box grown by dmax), in increasing order (the integrals add in the order
+   of the full scan) */
+static PetscErrorCode GridQuery(Grid *g, const SgMortarSurface *s, PetscInt f, PetscReal dmax, PetscInt *n, PetscInt cand[])
+{
+  PetscReal lo[3], hi[3];
+  PetscInt  a[3], b[3];
+
+  PetscFunctionBeginUser;
+  *n = 0;
+  FacetBox(s, f, dmax, lo, hi);
+  Cells(g, lo, hi, a, b);
+  for (PetscInt i = a[0]; i <= b[0]; i++)
+    for (PetscInt j = a[1]; j <= b[1]; j++)
+      for (PetscInt k = a[2]; k <= b[2]; k++) {
+        PetscInt q = (k * g->n[1] + j) * g->n[0] + i;
+        for (PetscInt r = g->start[q]; r < g->start[q + 1]; r++) {
+          PetscInt         e   = g->item[r];
+          const PetscReal *elo = g->box + 2 * g->dim * e, *ehi = elo + g->dim;
+          PetscBool        hit = (PetscBool)(g->mark[e] != f);
+          for (PetscInt c = 0; c < g->dim && hit; c++) hit = (PetscBool)(elo[c] <= hi[c] && ehi[c] >= lo[c]);
+          if (!hit) continue;
+          g->mark[e]   = f;
+          cand[(*n)++] = e;
+        }
+      }
+  PetscCall(PetscSortInt(*n, cand));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search)
 {
   Triplets       t  = {0, 0, NULL, NULL, NULL, 0, PETSC_FALSE};
   SgMortarSearch sr = {0, -1, 0};
+  Grid           grid;
+  PetscInt      *cand, nc;
 
   PetscFunctionBeginUser;
   PetscCheck(s && m && s->dim == m->dim && (s->dim == 2 || s->dim == 3), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgMortarIntegrals: the two surfaces must be given, of the same dimension 2 or 3");
@@ -229,15 +351,22 @@ PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface
   PetscCall(PetscArrayzero(D, s->nv));
   PetscCall(PetscArrayzero(g0, s->nv));
   *area = 0;
-  /* every pair: the surfaces are one rank's contact zone; a bounding-box tree is the next step for large ones */
+  PetscCall(GridCreate(m, &grid));
+  PetscCall(PetscMalloc1(m->nf + 1, &cand));
   for (PetscInt f = 0; f < s->nf; f++) {
     PetscReal a0 = *area;
     t.behind = 0, t.beyond = PETSC_FALSE;
-    for (PetscInt e = 0; e < m->nf; e++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, e, dmax, D, g0, &t, area));
+    PetscCall(GridQuery(&grid, s, f, dmax, &nc, cand));
+    for (PetscInt i = 0; i < nc; i++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, cand[i], dmax, D, g0, &t, area));
     if (*area > a0) continue; /* a partner within dmax */
+    /* none: every master facet, for what lies farther than dmax (the report on the bodies' placement; it adds
+       nothing to the integrals: no partner within dmax exists) */
+    for (PetscInt e = 0; e < m->nf; e++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, e, dmax, D, g0, &t, area));
     if (t.beyond) sr.nbeyond++;
     if (-t.behind > sr.overlap) sr.overlap = -t.behind, sr.foverlap = f;
   }
+  PetscCall(PetscFree(cand));
+  PetscCall(GridDestroy(&grid));
   *nM = t.n, *Mrow = t.row, *Mcol = t.col, *Mval = t.val;
   if (search) *search = sr;
   PetscFunctionReturn(0);
