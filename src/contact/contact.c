@@ -665,9 +665,10 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
     PetscReal f[3], rn = 0, a = 0;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
     for (PetscInt k = 0; k < dim; k++) {
-      f[k] = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
-      cs[k] += f[k];
-      cs[3] += PetscAbsReal(f[k]);
+      const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
+      f[k]                  = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
+      if (!inner) cs[k] += f[k]; /* between the bodies: no part of the resultant on the whole mesh */
+      cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
       a += f[k] * f[k];
     }
     cm = PetscMax(cm, c->friction ? PetscSqrtReal(a) : c->w[i] * PetscAbsReal(lam[i]));
