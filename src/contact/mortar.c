@@ -243,10 +243,10 @@ static void Cells(const Grid *g, const PetscReal lo[], const PetscReal hi[], Pet
 {
   for (PetscInt c = 0; c < 3; c++) a[c] = b[c] = 0;
   for (PetscInt c = 0; c < g->dim; c++) {
-    a[c] = (PetscInt)PetscFloorReal((lo[c] - g->lo[c]) / g->h);
-    b[c] = (PetscInt)PetscFloorReal((hi[c] - g->lo[c]) / g->h);
-    a[c] = PetscMin(PetscMax(a[c], 0), g->n[c] - 1);
-    b[c] = PetscMin(PetscMax(b[c], 0), g->n[c] - 1);
+    /* clamped before the conversion: a box far outside the grid (or an empty master) stays a finite cell index */
+    PetscReal x = PetscFloorReal((lo[c] - g->lo[c]) / g->h), y = PetscFloorReal((hi[c] - g->lo[c]) / g->h), top = (PetscReal)(g->n[c] - 1);
+    a[c] = (PetscInt)PetscMin(PetscMax(x, 0), top);
+    b[c] = (PetscInt)PetscMin(PetscMax(y, 0), top);
   }
 }
 
