@@ -200,6 +200,9 @@ PetscErrorCode SgContactSetUp(SgContact c)
     PetscFunctionReturn(0);
   }
   PetscCall(ObstacleVertices(c, &c->bnd));
+  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement (a
+     pair allocates its own: contact_pair.c) */
+  if (c->friction) PetscCall(PetscCalloc1(2 * c->n * c->dim + 1, &c->yref));
   PetscCall(VerticesDone(c));
   if (c->friction) PetscCall(PrescribedSetUp(c));
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
@@ -326,8 +329,6 @@ static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
   }
   c->n = nloc;
   PetscCall(PetscMalloc5(nloc, &c->vert, nloc, &c->off, nloc * dim, &c->normal, nloc, &c->w, nloc, &c->d));
-  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement */
-  if (c->friction) PetscCall(PetscCalloc1(2 * nloc * dim + 1, &c->yref));
   nloc = 0;
   for (PetscInt v = 0; v < m->nv; v++) {
     PetscInt  off, noff;
