@@ -57,7 +57,7 @@ TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blo
           meshes/tb_stack2d_match.msh meshes/tb_far2d.msh meshes/tb_overlap2d.msh meshes/tb_far3d.msh meshes/tb_overlap3d.msh \
           meshes/tb_cylinders2d_s1.msh meshes/tb_cylinders2d_s2.msh meshes/tb_cylinders2d_s4.msh \
           meshes/tbf_stack2d.msh meshes/tbf_stack3d.msh meshes/tbf_cattaneo_s1.msh meshes/tbf_cattaneo_s2.msh meshes/tbf_cattaneo_s4.msh \
-          meshes/tb_sphere_s1.msh meshes/tb_sphere_s2.msh
+          meshes/tb_sphere_s1.msh meshes/tb_sphere_s2.msh meshes/tb_mirror2d.msh meshes/tb_mirror3d.msh
 # Several materials and bodies in one mesh (tests/*/materials.ini)
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 # The user guide's own-mesh example of a body resting on its support (options/newuser_holeplate.opts)
@@ -222,6 +222,13 @@ meshes/tbf_cattaneo_s%.msh: meshes/tbf_cattaneo.geo
 	gmsh -2 -setnumber scale $* $< -o $@ > /dev/null
 meshes/tb_sphere_s%.msh: meshes/tb_sphere.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
+# two equal bodies, mirror images of each other with their meshes (the symmetry check, tests/verification/twobody_mirror.ini)
+meshes/tb_mirror2d.msh: meshes/tb_mirror2d.geo
+	gmsh -2 $< -o $@ > /dev/null
+meshes/tb_mirror3d.msh: meshes/tb_mirror3d.geo tests/mirror_msh.py
+	gmsh -3 -format msh22 $< -o $@.upper > /dev/null
+	/usr/bin/python3 tests/mirror_msh.py --tags 20:10,2:1,6:7,8:9,2v:1 $@.upper $@
+	rm -f $@.upper
 meshes/tb_blocks2d_r%.msh: meshes/tb_blocks2d.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 0,0,1 --angle $* $< $@
 # rigidly turned copies (the rotation-invariance checks and bench/perf_curved.py): 2D about z, Example 2 by 30 degrees

@@ -822,7 +822,7 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   dim = m->dim;
-  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, NULL, &pair));
+  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, PETSC_FALSE, NULL, &pair));
   /* Y = A x and T = a translation, in the free dofs */
   PetscCall(MatCreateVecs(K, &Y, NULL));
   PetscCall(VecDuplicate(Y, &T));

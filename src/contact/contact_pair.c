@@ -22,6 +22,13 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-contact_pair_distance", "Two bodies: the largest distance along the slave normal at which a master facet faces a slave facet (default: a tenth of the mesh's diameter; larger than the initial gap, smaller than a body's thickness)", &c->pairdist, &set));
   PetscCheck(!set || c->pairdist > 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance: must be positive, got %g", (double)c->pairdist);
   PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_distance is given without -contact_master_ids (two-body contact)");
+  {
+    const char *const kinds[] = {"slave", "average"};
+    PetscInt          k       = c->pairavg ? 1 : 0;
+    PetscCall(PetscOptionsEList("-contact_pair_normal", "Two bodies: the direction of the pair's condition at a slave vertex: slave (the slave's normal) or average (the mean of the slave's normal and the master's opposite one: symmetric in the two sides)", NULL, kinds, 2, kinds[k], &k, &set));
+    PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_normal is given without -contact_master_ids (two-body contact)");
+    c->pairavg = (PetscBool)(k == 1);
+  }
   if (!c->master.nids) PetscFunctionReturn(0);
   PetscCheck(!c->obnd.label[0] || !strcmp(c->obnd.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the obstacle's faces' label '%s' is not the contact part's '%s' (the faces are values of one label)", c->obnd.label, c->bnd.label);
   PetscCheck(!c->master.label[0] || !strcmp(c->master.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the master side's label '%s' is not the contact part's '%s' (both sides are values of one label)", c->master.label, c->bnd.label);
@@ -70,7 +77,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
     PetscCall(SgElasticityGetDataScales(c->prob, NULL, NULL, NULL, NULL, &diam));
     c->pairdist = 0.1 * diam;
   }
-  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, c->obnd.nids ? &obst : NULL, &c->pair));
+  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, c->pairavg, c->obnd.nids ? &obst : NULL, &c->pair));
   c->area = c->pair->area;
   PetscCall(MatGetOwnershipRange(c->pair->B, &rstart, &rend));
   nrow = rend - rstart;

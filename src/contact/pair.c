@@ -191,6 +191,68 @@ static PetscErrorCode NormalizeNormals(SgContactPair p, Vec free)
   PetscFunctionReturn(0);
 }
 
+/* -contact_pair_normal average: the direction of each pair row j is the mean of the slave's unit normal n_j and the
+   master's opposite one, -m_j, with m_j the master's vertex normals (facet normals averaged by area) averaged by the
+   row's mortar weights, m_j ~ sum_k M_jk n_k: for two bodies mirrored about their interface the direction is the
+   interface's normal, which the slave's normal alone is not (it leans by the angle of the slave's surface, an
+   asymmetry of the order of the contact zone over the radius of curvature that does not shrink with h). Rows against
+   a rigid obstacle and rows without a master partner keep theirs. On entry N holds the slave's area-weighted sums;
+   NormalizeNormals follows. */
+static PetscErrorCode AverageNormals(SgContactPair p, Mat Ms, const Side *ml)
+{
+  const PetscInt     dim = p->dim;
+  Vec                Nm, comp, mcomp, Mbar;
+  PetscScalar       *Na;
+  const PetscScalar *Ma;
+  PetscInt           n, rstart;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecSetBlockSize(p->N, dim));
+  PetscCall(VecDuplicate(p->N, &Nm));
+  PetscCall(VecDuplicate(p->N, &Mbar));
+  PetscCall(VecSet(Nm, 0));
+  for (PetscInt f = 0; f < ml->nf; f++)
+    for (PetscInt a = 0; a < dim; a++) {
+      PetscInt b = ml->blk[f * dim + a];
+      if (b < 0) continue; /* a fixed master vertex has no column of M */
+      for (PetscInt c = 0; c < dim; c++) PetscCall(VecSetValue(Nm, b * dim + c, ml->meas[f] / dim * ml->nrm[f * dim + c], ADD_VALUES));
+    }
+  PetscCall(VecAssemblyBegin(Nm));
+  PetscCall(VecAssemblyEnd(Nm));
+  PetscCall(VecDuplicate(p->D, &comp));
+  PetscCall(VecDuplicate(p->D, &mcomp));
+  for (PetscInt c = 0; c < dim; c++) { /* Mbar = M Nm, component by component */
+    PetscCall(VecStrideGather(Nm, c, comp, INSERT_VALUES));
+    PetscCall(MatMult(Ms, comp, mcomp));
+    PetscCall(VecStrideScatter(mcomp, c, Mbar, INSERT_VALUES));
+  }
+  PetscCall(MatGetOwnershipRange(Ms, &rstart, NULL));
+  PetscCall(VecGetLocalSize(p->D, &n));
+  PetscCall(VecGetArray(p->N, &Na));
+  PetscCall(VecGetArrayRead(Mbar, &Ma));
+  for (PetscInt j = 0; j < n; j++) {
+    PetscScalar *ns = Na + j * dim;
+    PetscReal    ls = 0, lm = 0, d[3], ld = 0;
+    if (p->obsrow && p->obsrow[j]) continue;
+    for (PetscInt c = 0; c < dim; c++) ls += PetscSqr(PetscRealPart(ns[c])), lm += PetscSqr(PetscRealPart(Ma[j * dim + c]));
+    ls = PetscSqrtReal(ls), lm = PetscSqrtReal(lm);
+    if (!(ls > 0) || !(lm > 0)) continue; /* off the slave surface, or no master partner */
+    for (PetscInt c = 0; c < dim; c++) {
+      d[c] = PetscRealPart(ns[c]) / ls - PetscRealPart(Ma[j * dim + c]) / lm;
+      ld += d[c] * d[c];
+    }
+    if (!(ld > 3)) continue; /* n_j and -m_j more than 60 degrees apart: the sides do not face each other, keep n_j */
+    for (PetscInt c = 0; c < dim; c++) ns[c] = d[c] / PetscSqrtReal(ld);
+  }
+  PetscCall(VecRestoreArrayRead(Mbar, &Ma));
+  PetscCall(VecRestoreArray(p->N, &Na));
+  PetscCall(VecDestroy(&comp));
+  PetscCall(VecDestroy(&mcomp));
+  PetscCall(VecDestroy(&Nm));
+  PetscCall(VecDestroy(&Mbar));
+  PetscFunctionReturn(0);
+}
+
 /* "a,b,c": a side's values (for the messages) */
 static void IdList(const SgBoundary *b, char buf[], size_t len)
 {
@@ -256,7 +318,7 @@ static PetscErrorCode ObstacleRows(SgContactPair p, Mat Ms, PetscInt nloc, const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgPairObstacleRows *obst, SgContactPair *pair)
+PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, const SgPairObstacleRows *obst, SgContactPair *pair)
 {
   SgContactPair   p;
   DM              dm;
@@ -317,6 +379,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
   if (obst) PetscCall(ObstacleRows(p, Ms, nloc, obst));
+  if (average) PetscCall(AverageNormals(p, Ms, &ml));
   {
     Vec          free;
     PetscScalar *fa;

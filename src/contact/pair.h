@@ -11,8 +11,9 @@ typedef struct _n_SgContactPair *SgContactPair;
    gblock, Dirichlet vertices left out):
      D, g0     Vecs of one entry per free vertex: int psi_j over the covered slave surface and the weighted initial gap
                int psi_j g (mortar.h); 0 off the slave surface
-     N         Vec of dim entries per free vertex: the slave vertex's unit normal (facet normals averaged by area,
-               outward of the slave body), 0 off the slave surface
+     N         Vec of dim entries per free vertex: the row's unit direction: the slave vertex's normal (facet normals
+               averaged by area, outward of the slave body), or with -contact_pair_normal average the mean of it and
+               the master's opposite normal there; 0 off the slave surface
      B         Mat, one row per free vertex and one column per free dof: row j = n_j^T (D_j e_j - sum_k M_jk e_k), so
                that (B y)_j - g0_j ... is the weighted normal jump: (B y)_j = n_j . (D_j y_j - sum_k M_jk y_k), < 0 when
                the slave moves toward the master
@@ -45,7 +46,8 @@ typedef struct {
 } SgPairObstacleRows;
 
 /* slave, master: the two sides (label and values); dmax: the largest distance along the slave normal at which a
-   master facet is a partner (larger than the initial gap, smaller than the bodies' thickness); obst: rows against a
-   rigid obstacle, or NULL */
-PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgPairObstacleRows *obst, SgContactPair *);
+   master facet is a partner (larger than the initial gap, smaller than the bodies' thickness); average: the rows'
+   directions the mean of the slave's normal and the master's opposite one (-contact_pair_normal average), else the
+   slave's; obst: rows against a rigid obstacle, or NULL */
+PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, const SgPairObstacleRows *obst, SgContactPair *);
 PetscErrorCode SgContactPairDestroy(SgContactPair *);
