@@ -566,7 +566,13 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
     PetscFunctionReturn(0);
   }
   if (ct->c) {
-    PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s. %s; %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations; KKT residual %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); active %" PetscInt_FMT "/%" PetscInt_FMT " vertices; contact force %.6e; energy %.12e\n", ct->type, SgContVerdict(ct), ct->reason, ct->outer, ct->ssn_its, (double)ct->kkt.residual,
+    char steps[160] = "";
+    if (ct->nsteps > 1) { /* the counts are the last load step's: say so, and give the run's */
+      PetscInt outer = 0, ssn = 0;
+      for (PetscInt k = 0; k < ct->nsteps; k++) outer += ct->steps[k].outer, ssn += ct->steps[k].ssn_its;
+      PetscCall(PetscSNPrintf(steps, sizeof(steps), " in load step %" PetscInt_FMT " (all %" PetscInt_FMT " load steps: %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations)", ct->nsteps, ct->nsteps, outer, ssn));
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s. %s; %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations%s; KKT residual %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); active %" PetscInt_FMT "/%" PetscInt_FMT " vertices; contact force %.6e; energy %.12e\n", ct->type, SgContVerdict(ct), ct->reason, ct->outer, ct->ssn_its, steps, (double)ct->kkt.residual,
                                      (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium, ct->kkt.nactive, ct->cv.nglobal, (double)ct->kkt.force, (double)ct->V));
   } else PetscCall(PetscViewerASCIIPrintf(viewer, "elasticity: %s; energy %.12e\n", ct->reason, (double)ct->V));
   PetscFunctionReturn(0);
