@@ -206,6 +206,14 @@ PetscErrorCode           SgContactLawGetParameters(SgContactLaw, PetscInt *, con
 PetscErrorCode           SgContactLawGetDescription(SgContactLaw, const char **);                          /* "Coulomb F = 0.3", for messages */
 PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
 PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
+PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **); /* the law's: 2 n dim (NULL without a tangential part) */
+/* the tangential state a solver keeps over the law's vertices (lamhat_T, lam_T, the states now and at the last Jacobian,
+   the slip directions there): made and sized by the law, empty (NULL arrays) without a tangential part */
+typedef struct _n_SgContactLawState *SgContactLawState;
+PetscErrorCode                       SgContactLawStateCreate(SgContactLaw, SgContactLawState *);
+PetscErrorCode                       SgContactLawStateGetArrays(SgContactLawState, PetscReal **, PetscReal **, char **); /* lamhat_T, lam_T (n dim), states (n) */
+PetscErrorCode                       SgContactLawStateGetJacobianArrays(SgContactLawState, char **, PetscReal **);       /* the states and slip directions at the last Jacobian */
+PetscErrorCode                       SgContactLawStateDestroy(SgContactLawState *);
 enum { SG_FRICTION_FREE  = 0,
        SG_FRICTION_STICK = 1,
        SG_FRICTION_SLIP  = 2 }; /* the state of a contact vertex */

@@ -256,12 +256,70 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
   PetscFunctionReturn(0);
 }
 
-/* the owned contact vertices (n) and their coordinates (n dim, kept by the contact object): a law may depend on x */
+/* the owned contact vertices (n) and their coordinates (n dim, kept by the contact object): a law may depend on x;
+   with a tangential part the law (re)allocates its slip reference for them (zeros: the first load step's start) */
 PetscErrorCode SgContactLawSetVertices(SgContactLaw law, PetscInt n, const PetscReal x[])
 {
   PetscFunctionBeginUser;
+  if (law->friction && (!law->yref || n != law->n)) {
+    PetscCall(PetscFree(law->yref));
+    PetscCall(PetscCalloc1(2 * n * law->dim + 1, &law->yref));
+  }
   law->n = n;
   law->x = x;
+  PetscFunctionReturn(0);
+}
+
+/* the slip reference (SgContactLawSetVertices): the unknowns' part (n dim), then the full displacement's (n dim) */
+PetscErrorCode SgContactLawGetSlipReference(SgContactLaw law, PetscReal **yref)
+{
+  PetscFunctionBeginUser;
+  *yref = law->yref;
+  PetscFunctionReturn(0);
+}
+
+/* A solver's tangential state over the law's vertices (after SgContactLawSetVertices): zeros; no arrays without a
+   tangential part */
+PetscErrorCode SgContactLawStateCreate(SgContactLaw law, SgContactLawState *st)
+{
+  SgContactLawState t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&t));
+  if (law->friction) {
+    t->n   = law->n;
+    t->dim = law->dim;
+    PetscCall(PetscCalloc2(t->n * t->dim, &t->lamhatT, t->n * t->dim, &t->lamT));
+    PetscCall(PetscCalloc3(t->n, &t->state, t->n, &t->statejac, t->n * t->dim, &t->tjac));
+  }
+  *st = t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateGetArrays(SgContactLawState st, PetscReal **lamhatT, PetscReal **lamT, char **state)
+{
+  PetscFunctionBeginUser;
+  if (lamhatT) *lamhatT = st->lamhatT;
+  if (lamT) *lamT = st->lamT;
+  if (state) *state = st->state;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateGetJacobianArrays(SgContactLawState st, char **statejac, PetscReal **tjac)
+{
+  PetscFunctionBeginUser;
+  if (statejac) *statejac = st->statejac;
+  if (tjac) *tjac = st->tjac;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateDestroy(SgContactLawState *st)
+{
+  PetscFunctionBeginUser;
+  if (!*st) PetscFunctionReturn(0);
+  PetscCall(PetscFree2((*st)->lamhatT, (*st)->lamT));
+  PetscCall(PetscFree3((*st)->state, (*st)->statejac, (*st)->tjac));
+  PetscCall(PetscFree(*st));
   PetscFunctionReturn(0);
 }
 
@@ -377,6 +435,7 @@ PetscErrorCode SgContactLawDestroy(SgContactLaw *law)
   if (!*law) PetscFunctionReturn(0);
   if ((*law)->ops.destroy) PetscCall((*law)->ops.destroy(*law));
   PetscCall(PetscFree((*law)->data));
+  PetscCall(PetscFree((*law)->yref));
   PetscCall(PetscFree(*law));
   PetscFunctionReturn(0);
 }

@@ -122,9 +122,11 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(PetscMalloc5(s->cv.n, &s->g, s->cv.n, &s->m, s->cv.n, &s->act, s->cv.n, &s->actjac, s->cv.n, &s->lamhat));
   for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
   if (s->cv.friction) {
-    PetscCall(PetscCalloc2(s->cv.n * s->dim, &s->lamhatT, s->cv.n * s->dim, &s->mT));
+    PetscCall(SgContactLawStateCreate(s->cv.law, &s->lst)); /* the law's tangential state, sized by it */
+    PetscCall(SgContactLawStateGetArrays(s->lst, &s->lamhatT, &s->mT, &s->fst));
+    PetscCall(SgContactLawStateGetJacobianArrays(s->lst, &s->fstjac, &s->tjac));
     PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
-    PetscCall(PetscCalloc4(s->cv.n, &s->fst, s->cv.n, &s->fstjac, s->cv.n * s->dim, &s->tjac, s->cv.n, &s->fforce));
+    PetscCall(PetscCalloc1(s->cv.n, &s->fforce));
   }
   PetscCall(SNESCreate(s->comm, &s->snes));
   PetscCall(SNESSetOptionsPrefix(s->snes, prefix));
@@ -211,9 +213,9 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
-  PetscCall(PetscFree2(s->lamhatT, s->mT));
+  PetscCall(SgContactLawStateDestroy(&s->lst));
   PetscCall(PetscFree2(s->uv, s->ft));
-  PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  PetscCall(PetscFree(s->fforce));
   PetscCall(PetscFree(s->gfixw));
   PetscCall(KSPDestroy(&s->kspd));
   PetscCall(VecDestroy(&s->y0));
