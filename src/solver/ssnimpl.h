@@ -56,25 +56,26 @@ struct _n_SgSSN {
   PetscBool         pc_same_set; /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
   PetscReal        *gy;          /* gaps of a prospective iterate (SgSSNCountSetChanges) */
   /* friction (cv.friction: the law has a tangential part): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
-  SgContactLawState lst;          /* the law's tangential state of this solver, whose arrays these are: */
-  PetscReal        *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
-  PetscReal        *uv, *ft;      /* work, n*dim: the contact vertices' displacements (two bodies: relative) and forces on them */
-  char             *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
-  PetscReal        *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
-  char             *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
+  PetscReal *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
+  PetscReal *uv, *ft;      /* work, n*dim: the contact vertices' displacements (two bodies: relative) and forces on them */
+  char      *fst, *fstjac; /* friction state (SG_FRICTION_FREE/STICK/SLIP) there and at the last Jacobian */
+  PetscReal *tjac;         /* the slip direction z/|z| at the last Jacobian, n*dim */
+  char      *fforce;       /* 1: slips that reversed, linearized as stick at the last Jacobian; 2: sticks whose
                                  equilibrium force exceeds the bound, linearized as slip (SgSSNFrictionJacobian) */
-  PetscBool         iterative;    /* the linear solver is not preonly */
-  KSP               kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
-  Vec               y0;           /* the initial guess of the solve, kept for that repetition */
-  PetscReal         gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
-  PetscBool         stagnant;     /* friction: the last Newton step did not halve ||F|| (SgSSNConverged) */
-  PetscInt          nforce;       /* their number, on all ranks */
-  Vec              *wpre;         /* two work vectors of the step's correction for them (SgSSNFrictionPreCheck) */
-  PetscInt          nstick, nslip, nfchanged;
-  PetscReal        *gfix;  /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (SgSSNCoulombFixedPoint) */
-  PetscReal        *gfixw; /* its storage, n */
-  PetscInt          fp_max_it, fp_m;
-  PetscReal         fp_omega, fp_rtol;
+  PetscBool  iterative;    /* the linear solver is not preonly */
+  KSP        kspd;         /* friction: sparse LU (MUMPS), made when an iterative solve fails (SgSSNSolve) */
+  Vec        y0;           /* the initial guess of the solve, kept for that repetition */
+  PetscReal  gamma_direct; /* the gamma of the first such repetition (0: none): solves at or above it use kspd */
+  PetscBool  stagnant;     /* friction: the last Newton step did not halve ||F|| (SgSSNConverged) */
+  PetscInt   nforce;       /* their number, on all ranks */
+  Vec       *wpre;         /* two work vectors of the step's correction for them (SgSSNFrictionPreCheck) */
+  PetscInt   nstick, nslip, nfchanged;
+  PetscReal *gfix;  /* Coulomb: the bound F lam_N frozen per vertex (a Tresca problem) while not NULL (SgSSNCoulombFixedPoint) */
+  PetscReal *gfixw; /* its storage, n */
+  PetscInt   fp_max_it, fp_m;
+  PetscReal  fp_omega, fp_rtol;
+  /* the law's tangential state of this solver (SgContactLawStateCreate), whose arrays lamhatT, mT, fst, fstjac, tjac are */
+  SgContactLawState lst;
 };
 
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
