@@ -39,7 +39,16 @@ typedef struct {
   PetscErrorCode (*getparameters)(SgContactLaw, PetscInt *, const char *const **, const PetscReal **);
   PetscErrorCode (*view)(SgContactLaw, PetscViewer);
   PetscErrorCode (*destroy)(SgContactLaw); /* NULL, or frees what data holds (data itself is freed after it) */
+  /* the tangential terms of the SSN (SgContactLawResidual, SgContactLawJacobian, SgContactLawStepCorrection,
+     SgContactLawFloor of sg.h, which describes them): NULL without a tangential part; a type with one that sets none
+     gets the regularized friction of its bound (law_regularized.c) */
+  PetscErrorCode (*residual)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
+  PetscErrorCode (*jacobian)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);
+  PetscErrorCode (*stepcorrection)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscReal[]);
+  PetscReal (*floor)(SgContactLaw, const SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscInt, PetscBool);
 } SgContactLawOps;
+
+PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */
 
 struct _n_SgContactLaw {
   MPI_Comm         comm;

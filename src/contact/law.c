@@ -253,6 +253,7 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
     PetscCall(PetscFree(all));
   }
   if (law->ops.setup) PetscCall(law->ops.setup(law));
+  if (law->friction) PetscCall(SgContactLawSetRegularizedOps(law)); /* the terms the type does not set itself */
   PetscFunctionReturn(0);
 }
 
@@ -342,6 +343,35 @@ PetscErrorCode SgContactLawBoundMax(SgContactLaw law, PetscReal lamN, PetscReal 
   }
   PetscCallMPI(MPI_Allreduce(&g, gmax, 1, MPIU_REAL, MPIU_MAX, law->comm));
   PetscFunctionReturn(0);
+}
+
+/* The law's tangential terms in the SSN (its ops; nothing without a tangential part, where st has no arrays, or
+   without a law: no contact boundary) */
+PetscErrorCode SgContactLawResidual(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.residual) PetscCall(law->ops.residual(law, in, st, ya, mN, fa, loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawJacobian(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscScalar fa[], Mat P)
+{
+  PetscFunctionBeginUser;
+  in->nforce = 0;
+  if (law && law->ops.jacobian) PetscCall(law->ops.jacobian(law, in, st, ya, fa, P));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStepCorrection(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar xa[], PetscReal ft[])
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.stepcorrection) PetscCall(law->ops.stepcorrection(law, in, st, xa, ft));
+  PetscFunctionReturn(0);
+}
+
+PetscReal SgContactLawFloor(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
+{
+  return law && law->ops.floor ? law->ops.floor(law, in, st, ya, i, equil) : 0;
 }
 
 const char *SgLawName(SgContactLaw law)

@@ -86,6 +86,7 @@ PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, S
 PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);
 PetscErrorCode SgSSNReasonView(SNES, void *);
 SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES reason (a failure our test did not name: PETSc's) */
+PetscErrorCode SgSSNLawInput(SgSSN, SgContactLawInput *); /* friction.c: what the law's tangential terms read of the SSN */
 PetscErrorCode SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
