@@ -259,6 +259,24 @@ PetscErrorCode SgContactLawResidual(SgContactLaw, SgContactLawInput *, SgContact
 PetscErrorCode SgContactLawJacobian(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);                       /* P += their generalized derivative at y (F(y) when stagnant) */
 PetscErrorCode SgContactLawStepCorrection(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscReal[]);                              /* the forces w (z - P_g(z)) of the vertices linearized against their state */
 PetscReal      SgContactLawFloor(SgContactLaw, const SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscInt, PetscBool);                         /* the round-off of the tangential force at vertex i (PETSC_TRUE: of the equilibrium error) */
+/* The checkpoint of the law and its state (SgContactLawSave, SgContactLawLoad): the controller hands the functions of
+   its checkpoint writer or reader (the io layer's) with their context; the law names what it writes */
+typedef struct {
+  void *ctx;
+  PetscErrorCode (*attribute)(void *, const char[], PetscDataType, const void *);
+  PetscErrorCode (*contact)(void *, const char[], PetscInt, const PetscReal[]); /* dim per contact vertex (NULL: zeros) */
+} SgContactLawWriter;
+typedef struct {
+  void       *ctx;
+  const char *file; /* for messages */
+  PetscErrorCode (*hasattribute)(void *, const char[], PetscBool *);
+  PetscErrorCode (*hasdataset)(void *, const char[], PetscBool *);
+  PetscErrorCode (*attribute)(void *, const char[], PetscDataType, void *);
+  PetscErrorCode (*contact)(void *, const char[], PetscInt, const char[], PetscReal[]); /* its name, dim, a description for messages */
+  PetscErrorCode (*abandon)(void *);                                                    /* the reader freed before a refusal */
+} SgContactLawReader;
+PetscErrorCode SgContactLawSave(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);            /* the law (NULL: none), its parameters, lamhat_T (NULL: zeros) and a slip reference (2 n dim) */
+PetscErrorCode SgContactLawLoad(SgContactLaw, MPI_Comm, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *); /* checks the file's law and parameters against this one; lamhat_T, the slip reference; whether the file held its full part */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */

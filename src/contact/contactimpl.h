@@ -46,6 +46,10 @@ typedef struct {
   PetscErrorCode (*jacobian)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);
   PetscErrorCode (*stepcorrection)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscReal[]);
   PetscReal (*floor)(SgContactLaw, const SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscInt, PetscBool);
+  /* the checkpoint of its tangential state (lamhat_T, the slip reference; SgContactLawSave/Load write and check the
+     type and its parameters): NULL without one; a type with a tangential part that sets none gets law_regularized.c's */
+  PetscErrorCode (*save)(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);
+  PetscErrorCode (*load)(SgContactLaw, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *);
 } SgContactLawOps;
 
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */

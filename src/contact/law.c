@@ -3,7 +3,9 @@
    owns its parameters (its options, its checks, its summary and checkpoint names) and supplies through its ops the
    bound g_i(lam_N) of |lam_T| at a contact vertex and its derivative in lam_N; the SSN, PDAS, the controllers and the
    output ask the law for them. What the law shares with every type: -friction_gamma_factor c (gamma_T = c gamma, the
-   regularization of the tangential term in the SSN). */
+   regularization of the tangential term in the SSN). The law owns its tangential state (the slip reference of its
+   vertices, and each solver's SgContactLawState) and supplies the SSN's tangential terms through its ops
+   (SgContactLawResidual etc.; law_regularized.c for a law with a bound, none for the frictionless law). */
 #include "contact/contactimpl.h"
 
 PetscFunctionList SgContactLawList = NULL;
@@ -372,6 +374,61 @@ PetscErrorCode SgContactLawStepCorrection(SgContactLaw law, SgContactLawInput *i
 PetscReal SgContactLawFloor(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
 {
   return law && law->ops.floor ? law->ops.floor(law, in, st, ya, i, equil) : 0;
+}
+
+/* The checkpoint's part of the law: its number in the registry (friction_type, 0 without friction or a law), its
+   parameters by their names and, with a tangential part, its state (the op save) */
+PetscErrorCode SgContactLawSave(SgContactLaw law, const PetscReal lamhatT[], const PetscReal yref[], SgContactLawWriter *w)
+{
+  PetscInt    id = 0, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS];
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS];
+
+  PetscFunctionBeginUser;
+  if (!law || !law->friction) PetscFunctionReturn(0);
+  PetscCall(SgContactLawGetId(law, &id)); /* the law's number in the registry, its parameters by their names */
+  PetscCall(SgContactLawGetParameters(law, &np, pn, pv));
+  if (law->ops.save) PetscCall(law->ops.save(law, lamhatT, yref, w));
+  PetscCall(w->attribute(w->ctx, "friction_type", PETSC_INT, &id));
+  for (PetscInt i = 0; i < np; i++) PetscCall(w->attribute(w->ctx, pn[i], PETSC_REAL, &pv[i]));
+  PetscFunctionReturn(0);
+}
+
+/* The law of the file must be this one (law NULL: no contact boundary, as none), with the same parameters (a restart
+   solves the same problem); then its state, into lamhatT (NULL: not kept) and yref. *full: the file held the full
+   displacement's slip reference. */
+PetscErrorCode SgContactLawLoad(SgContactLaw law, MPI_Comm comm, PetscReal lamhatT[], PetscReal yref[], SgContactLawReader *r, PetscBool *full)
+{
+  PetscInt    now = 0, id = 0, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS], *name = NULL, *nowname = SGLAWNONE;
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS], fp;
+  PetscBool   has, ok;
+  char        f[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  *full = PETSC_FALSE;
+  if (law) {
+    nowname = law->type;
+    if (law->friction) now = law->id;
+    PetscCall(SgContactLawGetParameters(law, &np, pn, pv));
+  }
+  PetscCall(PetscStrncpy(f, r->file, sizeof(f))); /* (the reader's, freed by abandon) */
+  PetscCall(r->hasattribute(r->ctx, "friction_type", &has));
+  if (has) PetscCall(r->attribute(r->ctx, "friction_type", PETSC_INT, &id));
+  ok = (PetscBool)(id == now);
+  if (!ok) {
+    PetscCall(SgContactLawGetTypeName(id, &name));
+    PetscCall(r->abandon(r->ctx));
+  }
+  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, name ? name : "(damaged)", nowname);
+  for (PetscInt i = 0; now && i < np; i++) { /* the law's parameters, by the names it gives them */
+    PetscCall(r->attribute(r->ctx, pn[i], PETSC_REAL, &fp));
+    ok = (PetscBool)(PetscAbsReal(pv[i] - fp) <= 1e-12 * PetscMax(PetscAbsReal(pv[i]), PetscAbsReal(fp)));
+    if (!ok) PetscCall(r->abandon(r->ctx));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, pn[i], (double)fp, (double)pv[i]);
+  }
+  if (now && law->ops.load) PetscCall(law->ops.load(law, lamhatT, yref, r, full));
+  PetscFunctionReturn(0);
 }
 
 const char *SgLawName(SgContactLaw law)

@@ -264,6 +264,31 @@ static PetscReal Floor_Regularized(SgContactLaw law, const SgContactLawInput *in
   return law->gfac * in->gamma * c->w[i] * 2 * ymax;
 }
 
+/* The checkpoint of the tangential state: the tangential shift lamhat_T (NULL: zeros, a controller without an SSN)
+   and the slip reference, of the unknowns and of the full displacement (2 dim per contact vertex) */
+static PetscErrorCode Save_Regularized(SgContactLaw law, const PetscReal lamhatT[], const PetscReal yref[], SgContactLawWriter *w)
+{
+  PetscFunctionBeginUser;
+  PetscCall(w->contact(w->ctx, "lamhat_t", law->dim, lamhatT));
+  PetscCall(w->contact(w->ctx, "slip_reference", law->dim, yref));
+  PetscCall(w->contact(w->ctx, "slip_reference_full", law->dim, yref ? yref + law->n * law->dim : NULL));
+  PetscFunctionReturn(0);
+}
+
+/* *full: the file held the full displacement's slip reference (older files did not: then a copy of the unknowns') */
+static PetscErrorCode Load_Regularized(SgContactLaw law, PetscReal lamhatT[], PetscReal yref[], SgContactLawReader *r, PetscBool *full)
+{
+  const PetscInt dim = law->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(r->contact(r->ctx, "lamhat_t", dim, "a tangential shift lamhat_t", lamhatT));
+  PetscCall(r->contact(r->ctx, "slip_reference", dim, "a slip reference", yref));
+  PetscCall(r->hasdataset(r->ctx, "slip_reference_full", full));
+  if (*full) PetscCall(r->contact(r->ctx, "slip_reference_full", dim, "a slip reference of the full displacement", yref ? yref + law->n * dim : NULL));
+  else if (yref) PetscCall(PetscArraycpy(yref + law->n * dim, yref, law->n * dim)); /* exact without prescribed components */
+  PetscFunctionReturn(0);
+}
+
 /* the ops of a law with a bound (law.c installs them for a type with a tangential part that sets none of its own) */
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw law)
 {
@@ -272,5 +297,7 @@ PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw law)
   if (!law->ops.jacobian) law->ops.jacobian = Jacobian_Regularized;
   if (!law->ops.stepcorrection) law->ops.stepcorrection = StepCorrection_Regularized;
   if (!law->ops.floor) law->ops.floor = Floor_Regularized;
+  if (!law->ops.save) law->ops.save = Save_Regularized;
+  if (!law->ops.load) law->ops.load = Load_Regularized;
   PetscFunctionReturn(0);
 }
