@@ -196,7 +196,7 @@ static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool st
   SgContactLawWriter lw = {w, WriterAttribute, WriterContact};
 
   PetscFunctionBeginUser;
-  if (!ct->c || !ct->cv.friction) PetscFunctionReturn(0);
+  if (!ct->c) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
   if (!step_open && yref) {
@@ -204,7 +204,7 @@ static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool st
     PetscCall(SgContactComputeSlipReference(ct->c, ct->y, next));
     yref = next;
   }
-  PetscCall(SgContactLawSave(ct->cv.law, lhT, yref, &lw)); /* the law, its parameters and state */
+  PetscCall(SgContactLawSave(ct->cv.law, lhT, yref, &lw)); /* the law, its parameters and state (nothing without friction) */
   PetscCall(PetscFree(next));
   PetscFunctionReturn(0);
 }
@@ -254,7 +254,7 @@ static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *f
 
   PetscFunctionBeginUser;
   PetscCall(SgCheckpointReaderGetFile(r, &lr.file));
-  if (ct->ssn && ct->c && ct->cv.friction) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
+  if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL)); /* (NULL without friction) */
   PetscCall(SgContactLawLoad(ct->c ? ct->cv.law : NULL, ct->comm, lhT, ct->yref, &lr, full)); /* checks the file's law, reads its state */
   PetscFunctionReturn(0);
 }
