@@ -254,7 +254,7 @@ static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *f
 
   PetscFunctionBeginUser;
   PetscCall(SgCheckpointReaderGetFile(r, &lr.file));
-  if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL)); /* (NULL without friction) */
+  if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));                        /* (NULL without friction) */
   PetscCall(SgContactLawLoad(ct->c ? ct->cv.law : NULL, ct->comm, lhT, ct->yref, &lr, full)); /* checks the file's law, reads its state */
   PetscFunctionReturn(0);
 }
