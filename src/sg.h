@@ -206,6 +206,7 @@ PetscErrorCode           SgContactLawGetParameters(SgContactLaw, PetscInt *, con
 PetscErrorCode           SgContactLawGetDescription(SgContactLaw, const char **);                          /* "Coulomb F = 0.3", for messages */
 PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
 PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
+PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **); /* the law's: 2 n dim (NULL without a tangential part) */
 enum { SG_FRICTION_FREE  = 0,
        SG_FRICTION_STICK = 1,
        SG_FRICTION_SLIP  = 2 }; /* the state of a contact vertex */
@@ -223,6 +224,59 @@ PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec);     /* y 
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec);                  /* the start of a load step's slip increment (NULL: zero) */
 PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
 PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **);         /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
+
+/* the tangential state a solver keeps over the law's vertices (lamhat_T, lam_T, the states now and at the last Jacobian,
+   the slip directions there): made and sized by the law, empty (NULL arrays) without a tangential part */
+typedef struct _n_SgContactLawState *SgContactLawState;
+
+PetscErrorCode SgContactLawStateCreate(SgContactLaw, SgContactLawState *);
+PetscErrorCode SgContactLawStateGetArrays(SgContactLawState, PetscReal **, PetscReal **, char **); /* lamhat_T, lam_T (n dim), states (n) */
+PetscErrorCode SgContactLawStateGetJacobianArrays(SgContactLawState, char **, PetscReal **);       /* the states and slip directions at the last Jacobian */
+PetscErrorCode SgContactLawStateDestroy(SgContactLawState *);
+/* What the law's tangential terms in the SSN read of it and write for it (SgContactLawResidual, SgContactLawJacobian,
+   SgContactLawStepCorrection, SgContactLawFloor): the normal part at the contact vertices and the Newton bookkeeping;
+   the SSN fills it before each call. The frictionless law's terms do nothing. */
+typedef struct {
+  SgContact        c;
+  PetscReal        gamma;        /* of the normal term; gamma_T = c gamma (the law's -friction_gamma_factor) */
+  const PetscReal *lamhat, *g;   /* the normal shift, the gaps at the last residual (n) */
+  const char      *actjac;       /* the normal active set of the last Jacobian */
+  const PetscReal *gfix;         /* Coulomb's fixed point: the bound frozen per vertex, or NULL */
+  PetscBool        havejac;      /* a Jacobian of this solve exists */
+  PetscBool        stagnant;     /* the last Newton step did not halve ||F|| */
+  PetscInt         njac;         /* the Jacobians of this solve, the next one included */
+  PetscReal        kroff, udata; /* the round-off of K y at a vertex; the problem's displacement data */
+  PetscReal       *uv, *ft;      /* work, n dim: the vertices' displacements (two bodies: relative) and forces */
+  char            *fforce;       /* per vertex: 1 a reversed slip linearized as stick, 2 a stick linearized as slip */
+  PetscInt         nforce;       /* their number on all ranks (set by SgContactLawJacobian) */
+  const PetscInt  *faxis;        /* -ssn_frame: the normal's axis, its sign, the rotated vertices (NULL: none) */
+  const PetscReal *fsign;
+  const PetscBool *frot;
+  void            *frame; /* and t -> Q_i^T t at vertex i */
+  void (*tolocal)(void *, PetscInt, const PetscReal[], PetscReal[]);
+} SgContactLawInput;
+PetscErrorCode SgContactLawResidual(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]); /* F += the tangential forces at y for the normal multipliers; the sums over all ranks */
+PetscErrorCode SgContactLawJacobian(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);                       /* P += their generalized derivative at y (F(y) when stagnant) */
+PetscErrorCode SgContactLawStepCorrection(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscReal[]);                              /* the forces w (z - P_g(z)) of the vertices linearized against their state */
+PetscReal      SgContactLawFloor(SgContactLaw, const SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscInt, PetscBool);                         /* the round-off of the tangential force at vertex i (PETSC_TRUE: of the equilibrium error) */
+/* The checkpoint of the law and its state (SgContactLawSave, SgContactLawLoad): the controller hands the functions of
+   its checkpoint writer or reader (the io layer's) with their context; the law names what it writes */
+typedef struct {
+  void *ctx;
+  PetscErrorCode (*attribute)(void *, const char[], PetscDataType, const void *);
+  PetscErrorCode (*contact)(void *, const char[], PetscInt, const PetscReal[]); /* dim per contact vertex (NULL: zeros) */
+} SgContactLawWriter;
+typedef struct {
+  void       *ctx;
+  const char *file; /* for messages */
+  PetscErrorCode (*hasattribute)(void *, const char[], PetscBool *);
+  PetscErrorCode (*hasdataset)(void *, const char[], PetscBool *);
+  PetscErrorCode (*attribute)(void *, const char[], PetscDataType, void *);
+  PetscErrorCode (*contact)(void *, const char[], PetscInt, const char[], PetscReal[]); /* its name, dim, a description for messages */
+  PetscErrorCode (*abandon)(void *);                                                    /* the reader freed before a refusal */
+} SgContactLawReader;
+PetscErrorCode SgContactLawSave(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);            /* the law (NULL: none), its parameters, lamhat_T (NULL: zeros) and a slip reference (2 n dim) */
+PetscErrorCode SgContactLawLoad(SgContactLaw, MPI_Comm, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *); /* checks the file's law and parameters against this one; lamhat_T, the slip reference; whether the file held its full part */
 /* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   PetscInt         n, nglobal; /* owned here, in all */

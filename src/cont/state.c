@@ -175,17 +175,28 @@ static PetscErrorCode LoadBase(SgCont ct, SgCheckpointReader r, PetscBool step_e
    the full displacement (2 dim per contact vertex). At a load step's end the next step's reference, with the data of
    the step solved: prescribed components of the contact vertices take the next step's data once the problem changes,
    so a restart could not recompute it. */
+static PetscErrorCode WriterAttribute(void *w, const char name[], PetscDataType t, const void *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointWriterAttribute((SgCheckpointWriter)w, name, t, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriterContact(void *w, const char name[], PetscInt bs, const PetscReal a[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointWriterContact((SgCheckpointWriter)w, name, bs, a));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool step_open)
 {
-  PetscInt    law = 0, np = 0;
-  const char *pn[SG_LAW_MAX_PARAMETERS];
-  PetscReal   pv[SG_LAW_MAX_PARAMETERS], *lhT = NULL, *yref = ct->yref, *next = NULL;
-  PetscInt    dim;
+  PetscReal         *lhT = NULL, *yref = ct->yref, *next = NULL;
+  PetscInt           dim;
+  SgContactLawWriter lw = {w, WriterAttribute, WriterContact};
 
   PetscFunctionBeginUser;
-  if (!ct->c || !ct->cv.friction) PetscFunctionReturn(0);
-  PetscCall(SgContactLawGetId(ct->cv.law, &law)); /* the law's number in the registry, its parameters by their names */
-  PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv));
+  if (!ct->c) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
   if (!step_open && yref) {
@@ -193,57 +204,58 @@ static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool st
     PetscCall(SgContactComputeSlipReference(ct->c, ct->y, next));
     yref = next;
   }
-  PetscCall(SgCheckpointWriterContact(w, "lamhat_t", dim, lhT));
-  PetscCall(SgCheckpointWriterContact(w, "slip_reference", dim, yref));
-  PetscCall(SgCheckpointWriterContact(w, "slip_reference_full", dim, yref ? yref + ct->cv.n * dim : NULL));
+  PetscCall(SgContactLawSave(ct->cv.law, lhT, yref, &lw)); /* the law, its parameters and state (nothing without friction) */
   PetscCall(PetscFree(next));
-  PetscCall(SgCheckpointWriterAttribute(w, "friction_type", PETSC_INT, &law));
-  for (PetscInt i = 0; i < np; i++) PetscCall(SgCheckpointWriterAttribute(w, pn[i], PETSC_REAL, &pv[i]));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReaderHasAttribute(void *r, const char name[], PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderHasAttribute((SgCheckpointReader)r, name, has));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReaderHasDataset(void *r, const char name[], PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderHasDataset((SgCheckpointReader)r, name, has));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReaderAttribute(void *r, const char name[], PetscDataType t, void *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderAttribute((SgCheckpointReader)r, name, t, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReaderContact(void *r, const char name[], PetscInt bs, const char desc[], PetscReal a[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderContact((SgCheckpointReader)r, name, bs, PETSC_FALSE, desc, a));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReaderAbandon(void *r)
+{
+  SgCheckpointReader rd = (SgCheckpointReader)r;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderAbandon(&rd));
   PetscFunctionReturn(0);
 }
 
 /* *full: the file held the full displacement's slip reference (older files did not: then a copy of the unknowns') */
 static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *full)
 {
-  PetscInt    now = 0, law = 0, dim, np = 0;
-  const char *pn[SG_LAW_MAX_PARAMETERS], *lawname = NULL, *nowname = "none";
-  PetscReal   pv[SG_LAW_MAX_PARAMETERS], fp;
-  PetscBool   has, ok;
-  PetscReal  *lhT = NULL;
-  const char *file;
-  char        f[PETSC_MAX_PATH_LEN];
+  PetscReal         *lhT = NULL;
+  SgContactLawReader lr  = {r, NULL, ReaderHasAttribute, ReaderHasDataset, ReaderAttribute, ReaderContact, ReaderAbandon};
 
   PetscFunctionBeginUser;
-  *full = PETSC_FALSE;
-  if (ct->c) {
-    PetscCall(SgContactLawGetType(ct->cv.law, &nowname));
-    if (ct->cv.friction) PetscCall(SgContactLawGetId(ct->cv.law, &now));
-    PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv));
-  }
-  PetscCall(SgCheckpointReaderGetFile(r, &file));
-  PetscCall(PetscStrncpy(f, file, sizeof(f)));
-  PetscCall(SgCheckpointReaderHasAttribute(r, "friction_type", &has));
-  if (has) PetscCall(SgCheckpointReaderAttribute(r, "friction_type", PETSC_INT, &law));
-  ok = (PetscBool)(law == now);
-  if (!ok) {
-    PetscCall(SgContactLawGetTypeName(law, &lawname));
-    PetscCall(SgCheckpointReaderAbandon(&r));
-  }
-  PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, lawname ? lawname : "(damaged)", nowname);
-  for (PetscInt i = 0; now && i < np; i++) { /* the law's parameters, by the names it gives them */
-    PetscCall(SgCheckpointReaderAttribute(r, pn[i], PETSC_REAL, &fp));
-    ok = (PetscBool)(PetscAbsReal(pv[i] - fp) <= 1e-12 * PetscMax(PetscAbsReal(pv[i]), PetscAbsReal(fp)));
-    if (!ok) PetscCall(SgCheckpointReaderAbandon(&r));
-    PetscCheck(ok, ct->comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, pn[i], (double)fp, (double)pv[i]);
-  }
-  if (!now) PetscFunctionReturn(0);
-  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
-  PetscCall(SgCheckpointReaderContact(r, "lamhat_t", dim, PETSC_FALSE, "a tangential shift lamhat_t", lhT));
-  PetscCall(SgCheckpointReaderContact(r, "slip_reference", dim, PETSC_FALSE, "a slip reference", ct->yref));
-  PetscCall(SgCheckpointReaderHasDataset(r, "slip_reference_full", full));
-  if (*full) PetscCall(SgCheckpointReaderContact(r, "slip_reference_full", dim, PETSC_FALSE, "a slip reference of the full displacement", ct->yref ? ct->yref + ct->cv.n * dim : NULL));
-  else if (ct->yref) PetscCall(PetscArraycpy(ct->yref + ct->cv.n * dim, ct->yref, ct->cv.n * dim)); /* exact without prescribed components */
+  PetscCall(SgCheckpointReaderGetFile(r, &lr.file));
+  if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));                        /* (NULL without friction) */
+  PetscCall(SgContactLawLoad(ct->c ? ct->cv.law : NULL, ct->comm, lhT, ct->yref, &lr, full)); /* checks the file's law, reads its state */
   PetscFunctionReturn(0);
 }
 

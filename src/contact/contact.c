@@ -106,7 +106,6 @@ static PetscErrorCode PrescribedSetUp(SgContact c)
 
   PetscFunctionBeginUser;
   PetscCall(PetscCalloc4(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask));
-  c->ypref = c->yref + c->n * dim;
   PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->ypfull));
   for (PetscInt i = 0; i < c->n; i++) loc[0] += SgMeshPartial(m, c->vert[i]) ? 1 : 0;
   PetscCall(SgElasticityGetDirichletBoundary(c->prob, &db));
@@ -170,6 +169,8 @@ static PetscErrorCode VerticesDone(SgContact c)
   for (PetscInt i = 0; i < c->n; i++)
     for (PetscInt k = 0; k < dim; k++) c->xc[i * dim + k] = c->mesh->x[c->vert[i] * dim + k];
   PetscCall(SgContactLawSetVertices(c->law, c->n, c->xc));
+  PetscCall(SgContactLawGetSlipReference(c->law, &c->yref)); /* the law's (NULL without friction) */
+  if (c->yref) c->ypref = c->yref + c->n * dim;
   nglob = c->n;
   PetscCallMPI(MPI_Allreduce(&nglob, &c->nglobal, 1, MPIU_INT, MPI_SUM, c->comm));
   PetscCheck(c->nglobal > 0 || c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
@@ -200,9 +201,8 @@ PetscErrorCode SgContactSetUp(SgContact c)
     PetscFunctionReturn(0);
   }
   PetscCall(ObstacleVertices(c, &c->bnd));
-  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement (a
-     pair allocates its own: contact_pair.c) */
-  if (c->friction) PetscCall(PetscCalloc1(2 * c->n * c->dim + 1, &c->yref));
+  /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement:
+     the law's (VerticesDone) */
   PetscCall(VerticesDone(c));
   if (c->friction) PetscCall(PrescribedSetUp(c));
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
@@ -414,7 +414,6 @@ PetscErrorCode SgContactDestroy(SgContact *c)
   PetscCall(PetscFree2((*c)->klam, (*c)->kact));
   PetscCall(PetscFree4((*c)->klt, (*c)->kslip, (*c)->kst, (*c)->dmask));
   PetscCall(PetscFree((*c)->ypfull));
-  PetscCall(PetscFree((*c)->yref));
   PetscCall(PetscFree((*c)->xc));
   PetscCall(PetscFree((*c)->prow));
   PetscCall(PetscFree((*c)->obsrow));

@@ -138,13 +138,11 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));
   if (c->friction) {
     /* the friction arrays of contact.c (PrescribedSetUp for an obstacle): the slip reference is the relative
-       displacement R y at the start of the load step; no vertex has prescribed tangential motion (the components a
-       support fixes are out of R) */
+       displacement R y at the start of the load step (the law's, allocated in VerticesDone); no vertex has prescribed
+       tangential motion (the components a support fixes are out of R) */
     PetscCall(MatCreateVecs(c->pair->R, NULL, &c->pr));
-    PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->yref));
     PetscCall(PetscCalloc4(c->n * dim + 1, &c->klt, c->n * dim + 1, &c->kslip, c->n + 1, &c->kst, c->n + 1, &c->dmask));
     PetscCall(PetscCalloc1(2 * c->n * dim + 1, &c->ypfull));
-    c->ypref      = c->yref + c->n * dim;
     c->haspartial = c->hasdface = PETSC_FALSE;
   }
   PetscFunctionReturn(0);

@@ -39,7 +39,20 @@ typedef struct {
   PetscErrorCode (*getparameters)(SgContactLaw, PetscInt *, const char *const **, const PetscReal **);
   PetscErrorCode (*view)(SgContactLaw, PetscViewer);
   PetscErrorCode (*destroy)(SgContactLaw); /* NULL, or frees what data holds (data itself is freed after it) */
+  /* the tangential terms of the SSN (SgContactLawResidual, SgContactLawJacobian, SgContactLawStepCorrection,
+     SgContactLawFloor of sg.h, which describes them): NULL without a tangential part; a type with one that sets none
+     gets the regularized friction of its bound (law_regularized.c) */
+  PetscErrorCode (*residual)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
+  PetscErrorCode (*jacobian)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);
+  PetscErrorCode (*stepcorrection)(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscReal[]);
+  PetscReal (*floor)(SgContactLaw, const SgContactLawInput *, SgContactLawState, const PetscScalar[], PetscInt, PetscBool);
+  /* the checkpoint of its tangential state (lamhat_T, the slip reference; SgContactLawSave/Load write and check the
+     type and its parameters): NULL without one; a type with a tangential part that sets none gets law_regularized.c's */
+  PetscErrorCode (*save)(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);
+  PetscErrorCode (*load)(SgContactLaw, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *);
 } SgContactLawOps;
+
+PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */
 
 struct _n_SgContactLaw {
   MPI_Comm         comm;
@@ -53,6 +66,19 @@ struct _n_SgContactLaw {
   PetscBool        coupled;  /* the bound depends on lam_N: nonsymmetric Jacobians, Coulomb's fallbacks */
   SgContactLawOps  ops;
   void            *data; /* the type's parameters */
+  PetscReal       *yref; /* with a tangential part: the slip reference, 2 n dim (+1): the displacement (two bodies: the
+                            relative one) at the start of the load step at the vertices' unknowns, then of the full
+                            displacement (zeros at the first step); the contact object's working array */
+};
+
+/* the tangential state of a solver over the law's vertices (SgContactLawStateCreate): sized and freed by the law, one
+   per solver (controllers sharing a contact object keep their own); empty without a tangential part */
+struct _n_SgContactLawState {
+  PetscInt   n, dim;
+  PetscReal *lamhatT, *lamT; /* the tangential shift lamhat_T and multiplier lam_T, n dim */
+  char      *state;          /* SG_FRICTION_FREE/STICK/SLIP at the last residual */
+  char      *statejac;       /* and at the last Jacobian */
+  PetscReal *tjac;           /* the slip direction z/|z| at the last Jacobian, n dim */
 };
 
 struct _n_SgContact {
@@ -82,7 +108,7 @@ struct _n_SgContact {
   PetscReal         fgfac;    /* -friction_gamma_factor c: gamma_T = c gamma (the law's) */
   PetscReal        *xc;       /* the coordinates of the contact vertices, n dim (for the law) */
   SgFrictionSummary fsum;     /* of the last SgContactKKT */
-  PetscReal        *yref;     /* friction: the displacement at the start of the load step, n*dim (0 at the first): the
+  PetscReal        *yref;     /* friction: the law's slip reference (SgContactLawGetSlipReference), the displacement at the start of the load step, n*dim (0 at the first): the
                                 tangential law acts on the slip increment T_i (y_i - yref_i) */
   /* prescribed tangential motion (friction): the fixed components of partly fixed contact vertices hold Dirichlet
      data, not unknowns; their slip is the data's increment, and where a Dirichlet facet is a contact facet too its

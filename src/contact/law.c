@@ -3,7 +3,9 @@
    owns its parameters (its options, its checks, its summary and checkpoint names) and supplies through its ops the
    bound g_i(lam_N) of |lam_T| at a contact vertex and its derivative in lam_N; the SSN, PDAS, the controllers and the
    output ask the law for them. What the law shares with every type: -friction_gamma_factor c (gamma_T = c gamma, the
-   regularization of the tangential term in the SSN). */
+   regularization of the tangential term in the SSN). The law owns its tangential state (the slip reference of its
+   vertices, and each solver's SgContactLawState) and supplies the SSN's tangential terms through its ops
+   (SgContactLawResidual etc.; law_regularized.c for a law with a bound, none for the frictionless law). */
 #include "contact/contactimpl.h"
 
 PetscFunctionList SgContactLawList = NULL;
@@ -253,15 +255,74 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
     PetscCall(PetscFree(all));
   }
   if (law->ops.setup) PetscCall(law->ops.setup(law));
+  if (law->friction) PetscCall(SgContactLawSetRegularizedOps(law)); /* the terms the type does not set itself */
   PetscFunctionReturn(0);
 }
 
-/* the owned contact vertices (n) and their coordinates (n dim, kept by the contact object): a law may depend on x */
+/* the owned contact vertices (n) and their coordinates (n dim, kept by the contact object): a law may depend on x;
+   with a tangential part the law (re)allocates its slip reference for them (zeros: the first load step's start) */
 PetscErrorCode SgContactLawSetVertices(SgContactLaw law, PetscInt n, const PetscReal x[])
 {
   PetscFunctionBeginUser;
+  if (law->friction && (!law->yref || n != law->n)) {
+    PetscCall(PetscFree(law->yref));
+    PetscCall(PetscCalloc1(2 * n * law->dim + 1, &law->yref));
+  }
   law->n = n;
   law->x = x;
+  PetscFunctionReturn(0);
+}
+
+/* the slip reference (SgContactLawSetVertices): the unknowns' part (n dim), then the full displacement's (n dim) */
+PetscErrorCode SgContactLawGetSlipReference(SgContactLaw law, PetscReal **yref)
+{
+  PetscFunctionBeginUser;
+  *yref = law->yref;
+  PetscFunctionReturn(0);
+}
+
+/* A solver's tangential state over the law's vertices (after SgContactLawSetVertices): zeros; no arrays without a
+   tangential part */
+PetscErrorCode SgContactLawStateCreate(SgContactLaw law, SgContactLawState *st)
+{
+  SgContactLawState t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&t));
+  if (law->friction) {
+    t->n   = law->n;
+    t->dim = law->dim;
+    PetscCall(PetscCalloc2(t->n * t->dim, &t->lamhatT, t->n * t->dim, &t->lamT));
+    PetscCall(PetscCalloc3(t->n, &t->state, t->n, &t->statejac, t->n * t->dim, &t->tjac));
+  }
+  *st = t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateGetArrays(SgContactLawState st, PetscReal **lamhatT, PetscReal **lamT, char **state)
+{
+  PetscFunctionBeginUser;
+  if (lamhatT) *lamhatT = st->lamhatT;
+  if (lamT) *lamT = st->lamT;
+  if (state) *state = st->state;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateGetJacobianArrays(SgContactLawState st, char **statejac, PetscReal **tjac)
+{
+  PetscFunctionBeginUser;
+  if (statejac) *statejac = st->statejac;
+  if (tjac) *tjac = st->tjac;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateDestroy(SgContactLawState *st)
+{
+  PetscFunctionBeginUser;
+  if (!*st) PetscFunctionReturn(0);
+  PetscCall(PetscFree2((*st)->lamhatT, (*st)->lamT));
+  PetscCall(PetscFree3((*st)->state, (*st)->statejac, (*st)->tjac));
+  PetscCall(PetscFree(*st));
   PetscFunctionReturn(0);
 }
 
@@ -283,6 +344,90 @@ PetscErrorCode SgContactLawBoundMax(SgContactLaw law, PetscReal lamN, PetscReal 
     g = PetscMax(g, gi);
   }
   PetscCallMPI(MPI_Allreduce(&g, gmax, 1, MPIU_REAL, MPIU_MAX, law->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The law's tangential terms in the SSN (its ops; nothing without a tangential part, where st has no arrays, or
+   without a law: no contact boundary) */
+PetscErrorCode SgContactLawResidual(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscReal mN[], PetscScalar fa[], PetscReal loc[6])
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.residual) PetscCall(law->ops.residual(law, in, st, ya, mN, fa, loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawJacobian(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscScalar fa[], Mat P)
+{
+  PetscFunctionBeginUser;
+  in->nforce = 0;
+  if (law && law->ops.jacobian) PetscCall(law->ops.jacobian(law, in, st, ya, fa, P));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStepCorrection(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar xa[], PetscReal ft[])
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.stepcorrection) PetscCall(law->ops.stepcorrection(law, in, st, xa, ft));
+  PetscFunctionReturn(0);
+}
+
+PetscReal SgContactLawFloor(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
+{
+  return law && law->ops.floor ? law->ops.floor(law, in, st, ya, i, equil) : 0;
+}
+
+/* The checkpoint's part of the law: its number in the registry (friction_type, 0 without friction or a law), its
+   parameters by their names and, with a tangential part, its state (the op save) */
+PetscErrorCode SgContactLawSave(SgContactLaw law, const PetscReal lamhatT[], const PetscReal yref[], SgContactLawWriter *w)
+{
+  PetscInt    id = 0, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS];
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS];
+
+  PetscFunctionBeginUser;
+  if (!law || !law->friction) PetscFunctionReturn(0);
+  PetscCall(SgContactLawGetId(law, &id)); /* the law's number in the registry, its parameters by their names */
+  PetscCall(SgContactLawGetParameters(law, &np, pn, pv));
+  if (law->ops.save) PetscCall(law->ops.save(law, lamhatT, yref, w));
+  PetscCall(w->attribute(w->ctx, "friction_type", PETSC_INT, &id));
+  for (PetscInt i = 0; i < np; i++) PetscCall(w->attribute(w->ctx, pn[i], PETSC_REAL, &pv[i]));
+  PetscFunctionReturn(0);
+}
+
+/* The law of the file must be this one (law NULL: no contact boundary, as none), with the same parameters (a restart
+   solves the same problem); then its state, into lamhatT (NULL: not kept) and yref. *full: the file held the full
+   displacement's slip reference. */
+PetscErrorCode SgContactLawLoad(SgContactLaw law, MPI_Comm comm, PetscReal lamhatT[], PetscReal yref[], SgContactLawReader *r, PetscBool *full)
+{
+  PetscInt    now = 0, id = 0, np = 0;
+  const char *pn[SG_LAW_MAX_PARAMETERS], *name = NULL, *nowname = SGLAWNONE;
+  PetscReal   pv[SG_LAW_MAX_PARAMETERS], fp;
+  PetscBool   has, ok;
+  char        f[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  *full = PETSC_FALSE;
+  if (law) {
+    nowname = law->type;
+    if (law->friction) now = law->id;
+    PetscCall(SgContactLawGetParameters(law, &np, pn, pv));
+  }
+  PetscCall(PetscStrncpy(f, r->file, sizeof(f))); /* (the reader's, freed by abandon) */
+  PetscCall(r->hasattribute(r->ctx, "friction_type", &has));
+  if (has) PetscCall(r->attribute(r->ctx, "friction_type", PETSC_INT, &id));
+  ok = (PetscBool)(id == now);
+  if (!ok) {
+    PetscCall(SgContactLawGetTypeName(id, &name));
+    PetscCall(r->abandon(r->ctx));
+  }
+  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written with -friction_type %s, this run has -friction_type %s", f, name ? name : "(damaged)", nowname);
+  for (PetscInt i = 0; now && i < np; i++) { /* the law's parameters, by the names it gives them */
+    PetscCall(r->attribute(r->ctx, pn[i], PETSC_REAL, &fp));
+    ok = (PetscBool)(PetscAbsReal(pv[i] - fp) <= 1e-12 * PetscMax(PetscAbsReal(pv[i]), PetscAbsReal(fp)));
+    if (!ok) PetscCall(r->abandon(r->ctx));
+    PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-restart_file: '%s' was written for another problem: -%s differs (%.17g in the checkpoint, %.17g in this run); a restart must solve the same problem", f, pn[i], (double)fp, (double)pv[i]);
+  }
+  if (now && law->ops.load) PetscCall(law->ops.load(law, lamhatT, yref, r, full));
   PetscFunctionReturn(0);
 }
 
@@ -377,6 +522,7 @@ PetscErrorCode SgContactLawDestroy(SgContactLaw *law)
   if (!*law) PetscFunctionReturn(0);
   if ((*law)->ops.destroy) PetscCall((*law)->ops.destroy(*law));
   PetscCall(PetscFree((*law)->data));
+  PetscCall(PetscFree((*law)->yref));
   PetscCall(PetscFree(*law));
   PetscFunctionReturn(0);
 }

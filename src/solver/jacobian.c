@@ -64,7 +64,7 @@ PetscErrorCode SgSSNJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
   PetscCall(MatCopy(s->Klin, P, SAME_NONZERO_PATTERN));
   if (s->frame) PetscCall(FrameContactJacobian(s, P));
   else PetscCall(SgContactAddJacobian(s->c, s->actjac, s->gamma, P));
-  if (c->friction) PetscCall(SgSSNFrictionJacobian(s, y, P));
+  PetscCall(SgSSNFrictionJacobian(s, y, P)); /* the law's tangential term (none without friction) */
   PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(SG_Jacobian, 0, 0, 0, 0));

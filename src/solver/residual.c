@@ -9,26 +9,22 @@
    ||F||. A Newton step on a settled set that leaves ||F|| at this floor has nothing more to gain. */
 static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
 {
-  const SgContactView *c   = &s->cv;
-  const PetscInt       dim = s->dim;
+  const SgContactView *c = &s->cv;
   const PetscScalar   *ya;
   PetscReal            fl2 = 0;
+  SgContactLawInput    in;
 
   PetscFunctionBeginUser;
+  PetscCall(SgSSNLawInput(s, &in));
   PetscCall(VecGetArrayRead(y, &ya));
   for (PetscInt i = 0; i < c->n; i++) {
-    PetscReal t = 0, ymax = 0;
+    PetscReal t = 0;
     if (s->lamhat[i] + s->gamma * s->g[i] > 0) {
       PetscReal gi, dg = 0;
       if (c->coupled) SgContactLawBound(c->law, i, s->m[i], &gi, &dg); /* the bound dg lam_N */
       t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata) * (1 + (c->coupled ? dg : 0));
     }
-    /* at stick lam_T = z; at slip g z/|z| is well-conditioned, except for the landing of a Newton step from another
-       state on |z| = g (a stick linearization that lands at the slip bound) */
-    if (c->friction && (s->fst[i] == SG_FRICTION_STICK || (s->havejac && s->fst[i] == SG_FRICTION_SLIP && s->fstjac[i] != SG_FRICTION_SLIP))) {
-      for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
-      t += c->fgfac * s->gamma * c->w[i] * 2 * ymax;
-    }
+    t += SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_FALSE); /* the law's tangential term (0 without) */
     fl2 += t * t;
   }
   PetscCall(VecRestoreArrayRead(y, &ya));
@@ -92,11 +88,9 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscCall(PetscLogEventEnd(SG_ActiveSet, 0, 0, 0, 0));
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, s->m, fa));
-  if (c->friction) {
-    PetscCall(VecGetArrayRead(y, &ya));
-    PetscCall(SgSSNFrictionResidual(s, ya, s->m, fa, floc));
-    PetscCall(VecRestoreArrayRead(y, &ya));
-  }
+  PetscCall(VecGetArrayRead(y, &ya)); /* the law's tangential forces (none without friction) */
+  PetscCall(SgSSNFrictionResidual(s, ya, s->m, fa, floc));
+  PetscCall(VecRestoreArrayRead(y, &ya));
   /* r1 is the dual norm of K y - b + B^T W lam_jac = F - B^T W (m - lam_jac): only contact dofs differ from F */
   r1corr2 = 0;
   {
@@ -125,15 +119,12 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   s->nhard    = (PetscInt)glob[7];
   s->V        = 0.5 * PetscRealPart(dots[0]) - PetscRealPart(dots[1]) + s->energy_shift + glob[0] / (2 * s->gamma);
   s->dVdg     = glob[1] / s->gamma - glob[0] / (2 * s->gamma * s->gamma);
-  if (c->friction) {
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, floc, 6, MPIU_REAL, MPI_SUM, s->comm));
-    s->V += floc[0];
-    s->dVdg += floc[1];
-    s->nstick    = (PetscInt)floc[2];
-    s->nslip     = (PetscInt)floc[3];
-    s->nfchanged = (PetscInt)floc[4];
-    s->nhard += (PetscInt)floc[5];
-  }
+  s->V += floc[0]; /* the law's terms, summed over the ranks (0 without friction) */
+  s->dVdg += floc[1];
+  s->nstick    = (PetscInt)floc[2];
+  s->nslip     = (PetscInt)floc[3];
+  s->nfchanged = (PetscInt)floc[4];
+  s->nhard += (PetscInt)floc[5];
   PetscCall(PetscLogEventEnd(SG_Residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -169,17 +160,14 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->comm));
   PetscCall(VecGetArray(F, &fa));
   PetscCall(SgContactAddForce(s->c, m, fa));
-  if (c->friction) {
-    PetscReal floc[6] = {0}, fl = 0;
+  {
+    PetscReal         floc[6] = {0}, fl = 0;
+    SgContactLawInput in;
     PetscCall(VecGetArrayRead(y, &ya));
-    PetscCall(SgSSNFrictionResidual(s, ya, m, fa, floc));
+    PetscCall(SgSSNFrictionResidual(s, ya, m, fa, floc)); /* the law's tangential forces (none without friction) */
     /* the round-off of gamma_T T y on the stick set */
-    for (PetscInt i = 0; i < c->n; i++) {
-      PetscReal yn = 0;
-      if (s->fst[i] != SG_FRICTION_STICK) continue;
-      for (PetscInt k = 0; k < s->dim; k++) yn = PetscMax(yn, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
-      fl = PetscMax(fl, c->fgfac * s->gamma * c->w[i] * 2 * yn);
-    }
+    PetscCall(SgSSNLawInput(s, &in));
+    for (PetscInt i = 0; i < c->n; i++) fl = PetscMax(fl, SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_TRUE));
     PetscCall(VecRestoreArrayRead(y, &ya));
     fl *= 4 * PETSC_MACHINE_EPSILON;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl, 1, MPIU_REAL, MPI_MAX, s->comm));

@@ -121,11 +121,13 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(VecDuplicate(s->b, &s->r));
   PetscCall(PetscMalloc5(s->cv.n, &s->g, s->cv.n, &s->m, s->cv.n, &s->act, s->cv.n, &s->actjac, s->cv.n, &s->lamhat));
   for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
-  if (s->cv.friction) {
-    PetscCall(PetscCalloc2(s->cv.n * s->dim, &s->lamhatT, s->cv.n * s->dim, &s->mT));
-    PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
-    PetscCall(PetscCalloc4(s->cv.n, &s->fst, s->cv.n, &s->fstjac, s->cv.n * s->dim, &s->tjac, s->cv.n, &s->fforce));
+  if (c) { /* the law's tangential state, sized by it (no arrays without friction) */
+    PetscCall(SgContactLawStateCreate(s->cv.law, &s->lst));
+    PetscCall(SgContactLawStateGetArrays(s->lst, &s->lamhatT, &s->mT, &s->fst));
+    PetscCall(SgContactLawStateGetJacobianArrays(s->lst, &s->fstjac, &s->tjac));
   }
+  PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
+  PetscCall(PetscCalloc1(s->cv.n + 1, &s->fforce));
   PetscCall(SNESCreate(s->comm, &s->snes));
   PetscCall(SNESSetOptionsPrefix(s->snes, prefix));
   PetscCall(SNESSetKSP(s->snes, ksp));
@@ -135,7 +137,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SNESSetFunction(s->snes, s->r, SgSSNResidual, s));
   PetscCall(SNESSetJacobian(s->snes, s->J, s->J, SgSSNJacobian, s));
   PetscCall(SNESSetConvergenceTest(s->snes, SgSSNConverged, s, NULL));
-  if (s->cv.friction) PetscCall(SNESLineSearchSetPreCheck(ls, SgSSNFrictionPreCheck, s));
+  PetscCall(SNESLineSearchSetPreCheck(ls, SgSSNFrictionPreCheck, s)); /* the law's step correction (none without friction) */
   PetscCall(SNESMonitorSet(s->snes, SgSSNMonitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
   s->fp_max_it = 50;
@@ -211,9 +213,9 @@ PetscErrorCode SgSSNDestroy(SgSSN *ssn)
   PetscCall(VecDestroy(&s->r));
   PetscCall(PetscFree5(s->g, s->m, s->act, s->actjac, s->lamhat));
   PetscCall(PetscFree(s->gy));
-  PetscCall(PetscFree2(s->lamhatT, s->mT));
+  PetscCall(SgContactLawStateDestroy(&s->lst));
   PetscCall(PetscFree2(s->uv, s->ft));
-  PetscCall(PetscFree4(s->fst, s->fstjac, s->tjac, s->fforce));
+  PetscCall(PetscFree(s->fforce));
   PetscCall(PetscFree(s->gfixw));
   PetscCall(KSPDestroy(&s->kspd));
   PetscCall(VecDestroy(&s->y0));

@@ -74,6 +74,8 @@ struct _n_SgSSN {
   PetscReal *gfixw; /* its storage, n */
   PetscInt   fp_max_it, fp_m;
   PetscReal  fp_omega, fp_rtol;
+  /* the law's tangential state of this solver (SgContactLawStateCreate), whose arrays lamhatT, mT, fst, fstjac, tjac are */
+  SgContactLawState lst;
 };
 
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
@@ -84,6 +86,7 @@ PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, S
 PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);
 PetscErrorCode SgSSNReasonView(SNES, void *);
 SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES reason (a failure our test did not name: PETSc's) */
+PetscErrorCode SgSSNLawInput(SgSSN, SgContactLawInput *); /* friction.c: what the law's tangential terms read of the SSN */
 PetscErrorCode SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
