@@ -279,6 +279,7 @@ PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscRe
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
 PetscErrorCode SgContactIsPair(SgContact, PetscBool *);      /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
 PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *); /* two bodies: |B^T 1| on the master side, NULL without a pair */
+PetscErrorCode SgContactPairTransform(SgContact, Mat *, Mat *); /* two bodies: the dual-mortar basis transformation T (u = T v: the pair's conditions nodal in v) and T^-1 */
 /* two bodies (pair_fields.c): y -> the slave's pressure projected on the master side (a vertex field); y -> sum D lam,
    the forces on the slave body and on the master body */
 PetscErrorCode SgContactPairMasterPressure(SgContact, Vec, Vec);
@@ -411,6 +412,8 @@ PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
 PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
+PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform) */
+PetscBool      SgFramePairTransform(SgFrame);                        /* the frame carries that transformation */
 PetscErrorCode SgFrameDestroy(SgFrame *);
 PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices */
 PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */

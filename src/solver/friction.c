@@ -191,7 +191,7 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN s, Vec y, Mat P)
   PetscCall(VecRestoreArrayRead(y, &ya));
   if (fa) PetscCall(VecRestoreArrayRead(s->r, &fa));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->nforce, 1, MPIU_INT, MPI_SUM, s->comm));
-  PetscCall(SgContactAddBlocks(s->c, blk, P));
+  PetscCall(SgSSNAddBlocks(s, blk, P)); /* two bodies transformed: nodal (jacobian.c) */
   PetscCall(PetscFree(blk));
   PetscFunctionReturn(0);
 }

@@ -40,6 +40,7 @@ struct _n_SgSSN {
   SgTMG             tmg;           /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
   SgFrame           frame;         /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
   PetscBool         frame_local;   /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
+  PetscBool         pair_transform; /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
   Mat               Klin;          /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
   Mat               Pf;            /* with frames: the Jacobian assembled in them (the KSP's matrices) */
   PetscReal         nbhd_tau;      /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
@@ -86,6 +87,7 @@ PetscErrorCode SgSSNReasonView(SNES, void *);
 SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES reason (a failure our test did not name: PETSc's) */
 PetscErrorCode SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
+PetscErrorCode SgSSNAddBlocks(SgSSN, const PetscReal[], Mat); /* jacobian.c: contact blocks, nodal under -ssn_pair_transform */
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
 PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgGMGInterpolations(SgSSN, PetscInt *, Mat **); /* gmg.c: the mesh hierarchy's interpolations between free-dof spaces */
