@@ -88,7 +88,13 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   /* two bodies: MUMPS at every size; CG + BoomerAMG on K + gamma B^T diag(act / D) B takes many more SSN steps on the
      flat pair (33 against 3) and does not converge on a curved 3D one (the sphere on a block from 4.4e3 unknowns on,
      bench/results.md "Two bodies") */
-  if (pair) maxdirect = PETSC_MAX_INT;
+  if (pair) { /* ... unless the SSN solves in the dual-mortar basis (-ssn_pair_transform, on unless turned off: frame.c),
+                 where every pair condition is nodal: then the one-body limits */
+    PetscBool tx = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pair_transform", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tx, NULL));
+    if (!tx) maxdirect = PETSC_MAX_INT;
+  }
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
   PetscOptionsEnd();

@@ -41,6 +41,7 @@ struct _n_SgSSN {
   SgFrame           frame;         /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
   PetscBool         frame_local;   /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
   PetscBool         pair_transform; /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
+  PetscBool         pair_transform_set; /* given (else on for a pair solved iteratively) */
   Mat               Klin;          /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
   Mat               Pf;            /* with frames: the Jacobian assembled in them (the KSP's matrices) */
   PetscReal         nbhd_tau;      /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
