@@ -192,7 +192,15 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscCall(SgContactGetView(c, &cv));
   if (cv.friction) PetscFunctionReturn(0); /* neither condensation nor the truncated multigrid is built for friction */
   PetscCall(SgContactIsPair(c, &on));
-  if (on) PetscFunctionReturn(0); /* nor for two bodies (a condition couples both sides) */
+  if (on) { /* nor for two bodies (a condition couples both sides); iterative: the SSN's dual-mortar basis (ssn.c) */
+    char      opt[256];
+    PetscBool tx = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pair_transform", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tx, NULL));
+    PetscCall(PetscStrlen(desc, &n));
+    if (iterative && tx) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps in the pair's dual-mortar basis (-ssn_pair_transform)"));
+    PetscFunctionReturn(0);
+  }
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
