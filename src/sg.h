@@ -415,8 +415,8 @@ PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* 
 PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform) */
 PetscBool      SgFramePairTransform(SgFrame);                        /* the frame carries that transformation */
 PetscErrorCode SgFrameDestroy(SgFrame *);
-PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices */
-PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */
+PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
+PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
 void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
 PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
