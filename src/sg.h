@@ -254,6 +254,9 @@ typedef struct {
   const PetscBool *frot;
   void            *frame; /* and t -> Q_i^T t at vertex i */
   void (*tolocal)(void *, PetscInt, const PetscReal[], PetscReal[]);
+  void *addctx; /* the Jacobian's dim x dim blocks per contact vertex into P (NULL: SgContactAddBlocks; two bodies
+                   in the SSN's dual-mortar basis: on the slave vertex's own dofs) */
+  PetscErrorCode (*addblocks)(void *, const PetscReal[], Mat);
 } SgContactLawInput;
 PetscErrorCode SgContactLawResidual(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]); /* F += the tangential forces at y for the normal multipliers; the sums over all ranks */
 PetscErrorCode SgContactLawJacobian(SgContactLaw, SgContactLawInput *, SgContactLawState, const PetscScalar[], const PetscScalar[], Mat);                       /* P += their generalized derivative at y (F(y) when stagnant) */
@@ -331,8 +334,9 @@ PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i lam_i n_i with SgContactKKT's multiplier */
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
-PetscErrorCode SgContactIsPair(SgContact, PetscBool *);      /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
-PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *); /* two bodies: |B^T 1| on the master side, NULL without a pair */
+PetscErrorCode SgContactIsPair(SgContact, PetscBool *);         /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
+PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *);    /* two bodies: |B^T 1| on the master side, NULL without a pair */
+PetscErrorCode SgContactPairTransform(SgContact, Mat *, Mat *); /* two bodies: the dual-mortar basis transformation T (u = T v: the pair's conditions nodal in v) and T^-1 */
 /* two bodies (pair_fields.c): y -> the slave's pressure projected on the master side (a vertex field); y -> sum D lam,
    the forces on the slave body and on the master body */
 PetscErrorCode SgContactPairMasterPressure(SgContact, Vec, Vec);
@@ -465,9 +469,11 @@ PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
 PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
+PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, SgFrame *);        /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform) */
+PetscBool      SgFramePairTransform(SgFrame);                                /* the frame carries that transformation */
 PetscErrorCode SgFrameDestroy(SgFrame *);
-PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices */
-PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i */
+PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
+PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
 void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
 PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);

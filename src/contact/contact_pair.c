@@ -309,3 +309,57 @@ PetscErrorCode SgContactPairForce(SgContact c, const PetscReal lam[], PetscScala
   PetscCall(VecResetArray(c->pf));
   PetscFunctionReturn(0);
 }
+
+/* Two bodies: the dual-mortar basis transformation (-ssn_pair_transform) and its inverse. T is the identity but on the
+   free components of the contact vertices, where u_j = v_j + sum_k (M_jk / D_j) v_k (the master vertices k opposite);
+   then (R T v)_j = v_j and (B T v)_j = D_j n_j . v_j: in v every condition of the pair is nodal, as against a rigid
+   obstacle. T^-1 has -M_jk / D_j there (T = I + E with E^2 = 0: no master vertex of a contact row is a contact vertex
+   of the pair itself, which is checked: such a mesh is refused). Rows of an obstacle besides the pair (R = e_j) and of
+   slave vertices left out (D_j <= 0: no row of R) stay the identity. The caller destroys both. */
+PetscErrorCode SgContactPairTransform(SgContact c, Mat *T, Mat *Tinv)
+{
+  PetscInt rstart, rend, maxc = 0;
+  Mat      E, E2;
+
+  PetscFunctionBeginUser;
+  PetscCheck(c && c->pair, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no two-body pair");
+  PetscCall(MatGetOwnershipRange(c->pair->R, &rstart, &rend));
+  for (PetscInt r = rstart; r < rend; r++) {
+    PetscInt nc;
+    PetscCall(MatGetRow(c->pair->R, r, &nc, NULL, NULL));
+    maxc = PetscMax(maxc, nc);
+    PetscCall(MatRestoreRow(c->pair->R, r, &nc, NULL, NULL));
+  }
+  PetscCall(MatCreateAIJ(c->comm, rend - rstart, rend - rstart, PETSC_DETERMINE, PETSC_DETERMINE, maxc + 1, NULL, maxc + 1, NULL, &E));
+  for (PetscInt r = rstart; r < rend; r++) {
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscInt           nc;
+    PetscScalar        zero = 0;
+    PetscCall(MatSetValues(E, 1, &r, 1, &r, &zero, INSERT_VALUES)); /* the diagonal's place, for the shifts below */
+    PetscCall(MatGetRow(c->pair->R, r, &nc, &cols, &vals));
+    for (PetscInt k = 0; k < nc; k++)
+      if (cols[k] != r && vals[k] != 0) {
+        PetscScalar v = -vals[k];
+        PetscCall(MatSetValues(E, 1, &r, 1, &cols[k], &v, INSERT_VALUES));
+      }
+    PetscCall(MatRestoreRow(c->pair->R, r, &nc, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(E, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(E, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatMatMult(E, E, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &E2));
+  {
+    PetscReal n2, n1;
+    PetscCall(MatNorm(E2, NORM_INFINITY, &n2));
+    PetscCall(MatNorm(E, NORM_INFINITY, &n1));
+    PetscCall(MatDestroy(&E2));
+    if (n2 > 0) PetscCall(MatDestroy(&E));
+    PetscCheck(n2 == 0, c->comm, PETSC_ERR_SUP, "-ssn_pair_transform: a master vertex of the pair (-contact_master_ids) is also a slave contact vertex (-contact_ids): the dual-mortar transformation needs the two sides apart (|E^2| = %g of |E| = %g); leave -ssn_pair_transform out", (double)n2, (double)n1);
+  }
+  PetscCall(MatDuplicate(E, MAT_COPY_VALUES, T));
+  PetscCall(MatShift(*T, 1.0));
+  PetscCall(MatScale(E, -1.0));
+  PetscCall(MatShift(E, 1.0));
+  *Tinv = E;
+  PetscFunctionReturn(0);
+}

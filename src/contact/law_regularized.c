@@ -214,7 +214,8 @@ static PetscErrorCode Jacobian_Regularized(SgContactLaw law, SgContactLawInput *
     }
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &in->nforce, 1, MPIU_INT, MPI_SUM, law->comm));
-  PetscCall(SgContactAddBlocks(in->c, blk, P));
+  if (in->addblocks) PetscCall(in->addblocks(in->addctx, blk, P));
+  else PetscCall(SgContactAddBlocks(in->c, blk, P));
   PetscCall(PetscFree(blk));
   PetscFunctionReturn(0);
 }

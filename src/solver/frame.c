@@ -24,18 +24,21 @@ struct _n_SgFrame {
   MPI_Comm        comm;
   PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
   PetscInt        nrot_global;
-  const PetscInt *off;    /* dof offset of each contact vertex (the contact view's) */
-  PetscReal      *Q;      /* Q_i row-major: column b is the frame's b-th vector in global components */
-  PetscBool      *rot;    /* Q_i is not the identity */
-  PetscInt       *axis;   /* the frame dof of the normal */
-  PetscReal      *sign;   /* n = sign Q_i e_axis */
-  PetscBool       global; /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
-  PetscReal       R[9];   /* that frame, row-major like Q_i */
-  PetscInt        nb;     /* blocks (vertices) of the local part of a global vector */
-  PetscInt       *bq;     /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
-  Mat             Kr;     /* Q^T K Q */
-  MatNullSpace    nsp;    /* the rotated near null space (NULL if the problem has none) */
-  Vec             b;      /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  const PetscInt *off;     /* dof offset of each contact vertex (the contact view's) */
+  PetscReal      *Q;       /* Q_i row-major: column b is the frame's b-th vector in global components */
+  PetscBool      *rot;     /* Q_i is not the identity */
+  PetscInt       *axis;    /* the frame dof of the normal */
+  PetscReal      *sign;    /* n = sign Q_i e_axis */
+  PetscBool       global;  /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
+  PetscReal       R[9];    /* that frame, row-major like Q_i */
+  PetscInt        nb;      /* blocks (vertices) of the local part of a global vector */
+  PetscInt       *bq;      /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
+  Mat             Kr;      /* Q^T K Q */
+  MatNullSpace    nsp;     /* the rotated near null space (NULL if the problem has none) */
+  Vec             b;       /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  Mat             T, Tinv; /* two bodies (-ssn_pair_transform, SgFrameCreatePair): the dual-mortar basis transformation
+                              u = T v before the rotations (u = T Q z), and its inverse; NULL otherwise */
+  Vec             w;       /* work for them */
 };
 
 static PetscLogEvent SG_FrameSetUp;
@@ -104,6 +107,11 @@ PetscErrorCode SgFrameToLocal(SgFrame f, Vec x)
   PetscScalar *xa;
 
   PetscFunctionBeginUser;
+  if (f->T) { /* a displacement: z = Q^T T^-1 u */
+    if (!f->w) PetscCall(VecDuplicate(x, &f->w));
+    PetscCall(MatMult(f->Tinv, x, f->w));
+    PetscCall(VecCopy(f->w, x));
+  }
   PetscCall(VecGetArray(x, &xa));
   RotateArray(f, xa, PETSC_FALSE);
   PetscCall(VecRestoreArray(x, &xa));
@@ -118,6 +126,28 @@ PetscErrorCode SgFrameToGlobal(SgFrame f, Vec x)
   PetscCall(VecGetArray(x, &xa));
   RotateArray(f, xa, PETSC_TRUE);
   PetscCall(VecRestoreArray(x, &xa));
+  if (f->T) { /* u = T Q z */
+    if (!f->w) PetscCall(VecDuplicate(x, &f->w));
+    PetscCall(MatMult(f->T, x, f->w));
+    PetscCall(VecCopy(f->w, x));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* a right-hand side (a force) into the frames: Q^T T^T b */
+static PetscErrorCode ForceToLocal(SgFrame f, Vec b)
+{
+  PetscScalar *ba;
+
+  PetscFunctionBeginUser;
+  if (f->T) {
+    if (!f->w) PetscCall(VecDuplicate(b, &f->w));
+    PetscCall(MatMultTranspose(f->T, b, f->w));
+    PetscCall(VecCopy(f->w, b));
+  }
+  PetscCall(VecGetArray(b, &ba));
+  RotateArray(f, ba, PETSC_FALSE);
+  PetscCall(VecRestoreArray(b, &ba));
   PetscFunctionReturn(0);
 }
 
@@ -464,6 +494,94 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   PetscFunctionReturn(0);
 }
 
+/* Two bodies (-ssn_pair_transform): the dual-mortar basis transformation T of the pair (SgContactPairTransform), then
+   the frame of each contact vertex's normal: the linear solves see (T Q)^T J (T Q), where every condition of the pair
+   is a diagonal entry on its normal dof (B T Q z = D_j sign_j z_j,axis), as against a rigid obstacle; so the AMG, the
+   truncated multigrid and the friction blocks of the one-body path apply. (T Q)^T K (T Q) is formed once; its near
+   null space is (T Q)^-1 applied to the rigid-body modes. Made even where every normal is an axis (T alone). */
+PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
+{
+  SgFrame       f;
+  SgContactView cv;
+  Mat           K, Qm, G;
+  MatNullSpace  nsp;
+  PetscInt      dim, mloc;
+
+  PetscFunctionBeginUser;
+  *frame = NULL;
+  if (!frame_registered) {
+    PetscCall(PetscLogEventRegister("SgFrameSetUp", MAT_CLASSID, &SG_FrameSetUp));
+    frame_registered = PETSC_TRUE;
+  }
+  PetscCall(PetscLogEventBegin(SG_FrameSetUp, 0, 0, 0, 0));
+  PetscCall(SgContactGetView(c, &cv));
+  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(PetscNew(&f));
+  PetscCall(SgElasticityGetComm(el, &f->comm));
+  f->dim = dim;
+  f->n   = cv.n;
+  f->off = cv.off;
+  PetscCall(PetscMalloc4(cv.n * dim * dim, &f->Q, cv.n, &f->rot, cv.n, &f->axis, cv.n, &f->sign));
+  for (PetscInt i = 0; i < cv.n; i++) {
+    const PetscReal *n = &cv.normal[i * dim];
+    PetscInt         k = -1;
+    for (PetscInt a = 0; a < dim; a++)
+      if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
+    if (k >= 0) {
+      for (PetscInt a = 0; a < dim * dim; a++) f->Q[i * dim * dim + a] = (a % (dim + 1) == 0);
+      f->rot[i]  = PETSC_FALSE;
+      f->axis[i] = k;
+      f->sign[i] = n[k] > 0 ? 1 : -1;
+      continue;
+    }
+    VertexFrame(dim, n, &f->Q[i * dim * dim], &f->axis[i], &f->sign[i]);
+    f->rot[i] = PETSC_TRUE;
+  }
+  PetscCall(SgElasticityGetOperators(el, &K, NULL));
+  PetscCall(MatGetLocalSize(K, &mloc, NULL));
+  f->nb = mloc / dim;
+  PetscCall(PetscMalloc1(f->nb, &f->bq));
+  for (PetscInt b = 0; b < f->nb; b++) f->bq[b] = -1;
+  for (PetscInt i = 0; i < cv.n; i++)
+    if (f->rot[i]) f->bq[cv.off[i] / dim] = i;
+  f->nrot = 0;
+  for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
+  PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
+  PetscCall(SgContactPairTransform(c, &f->T, &f->Tinv));
+  PetscCall(FrameMatrix(f, K, &Qm));
+  PetscCall(MatMatMult(f->T, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
+  PetscCall(MatPtAP(K, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+  PetscCall(MatDestroy(&G));
+  PetscCall(MatDestroy(&Qm));
+  PetscCall(MatSetBlockSize(f->Kr, dim));
+  PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
+  if (nsp) { /* (T Q)^-1 r: no longer orthonormal, which the AMG does not need */
+    PetscBool  has_const;
+    PetscInt   nv;
+    const Vec *v;
+    Vec        rv[6];
+    PetscCall(MatNullSpaceGetVecs(nsp, &has_const, &nv, &v));
+    for (PetscInt k = 0; k < nv; k++) {
+      PetscCall(VecDuplicate(v[k], &rv[k]));
+      PetscCall(VecCopy(v[k], rv[k]));
+      PetscCall(SgFrameToLocal(f, rv[k]));
+    }
+    PetscCall(MatNullSpaceCreate(f->comm, PETSC_FALSE, nv, rv, &f->nsp));
+    for (PetscInt k = 0; k < nv; k++) PetscCall(VecDestroy(&rv[k]));
+    PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
+  }
+  PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
+  PetscCall(PetscInfo(NULL, "-ssn_pair_transform: the pair's dual-mortar transformation, %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
+  *frame = f;
+  PetscFunctionReturn(0);
+}
+
+/* whether the frame carries the pair's transformation (its contact blocks are nodal: SgSSNAddBlocks) */
+PetscBool SgFramePairTransform(SgFrame f)
+{
+  return (PetscBool)(f && f->T);
+}
+
 PetscErrorCode SgFrameDestroy(SgFrame *frame)
 {
   SgFrame f = *frame;
@@ -476,6 +594,9 @@ PetscErrorCode SgFrameDestroy(SgFrame *frame)
   PetscCall(MatDestroy(&f->Kr));
   PetscCall(MatNullSpaceDestroy(&f->nsp));
   PetscCall(VecDestroy(&f->b));
+  PetscCall(MatDestroy(&f->T));
+  PetscCall(MatDestroy(&f->Tinv));
+  PetscCall(VecDestroy(&f->w));
   PetscCall(PetscFree(f));
   PetscFunctionReturn(0);
 }
@@ -506,7 +627,7 @@ static PetscErrorCode PreSolve_Frame(KSP ksp, Vec b, Vec x, void *ctx)
   PetscFunctionBeginUser;
   if (!f->b) PetscCall(VecDuplicate(b, &f->b));
   PetscCall(VecCopy(b, f->b)); /* the caller's right-hand side, given back unchanged after the solve */
-  PetscCall(SgFrameToLocal(f, b));
+  PetscCall(ForceToLocal(f, b));
   PetscCall(SgFrameToLocal(f, x)); /* a nonzero initial guess */
   PetscFunctionReturn(0);
 }

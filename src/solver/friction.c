@@ -10,6 +10,14 @@ static void FrameToLocal(void *frame, PetscInt i, const PetscReal v[], PetscReal
 }
 
 /* the law's view of the SSN now */
+/* the law's Jacobian blocks into P: SgSSNAddBlocks (two bodies transformed: on the slave vertex's own dofs) */
+static PetscErrorCode AddBlocks(void *ctx, const PetscReal blk[], Mat P)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSSNAddBlocks((SgSSN)ctx, blk, P));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNLawInput(SgSSN s, SgContactLawInput *in)
 {
   PetscFunctionBeginUser;
@@ -34,6 +42,8 @@ PetscErrorCode SgSSNLawInput(SgSSN s, SgContactLawInput *in)
     in->frame   = s->frame;
     in->tolocal = FrameToLocal;
   }
+  in->addctx    = s;
+  in->addblocks = AddBlocks;
   PetscFunctionReturn(0);
 }
 

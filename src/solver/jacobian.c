@@ -2,6 +2,36 @@
    -ssn_frame; the active set it uses, and whether the preconditioner is kept. */
 #include "solver/ssnimpl.h"
 
+/* P += the dim x dim blocks blk_i per contact vertex: SgContactAddBlocks, but for two bodies with their dual-mortar
+   transformation (-ssn_pair_transform, frame.c) on the contact vertex's own dofs (its conditions are nodal there),
+   without the rows and columns of fixed components of a roller (the pair leaves them out: R's rows and columns) */
+PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
+{
+  const SgContactView *c   = &s->cv;
+  const PetscInt       dim = s->dim;
+  PetscInt             rstart;
+
+  PetscFunctionBeginUser;
+  if (!SgFramePairTransform(s->frame)) {
+    PetscCall(SgContactAddBlocks(s->c, blk, P));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(MatGetOwnershipRange(P, &rstart, NULL));
+  for (PetscInt i = 0; i < c->n; i++) {
+    const PetscInt v = c->vert[i];
+    PetscInt       idx[3];
+    PetscScalar    b[9];
+    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + c->off[i] + a;
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt k = 0; k < dim; k++) {
+        const PetscBool fixed = (PetscBool)(SgMeshPartial(s->mesh, v) && (SgMeshFixed(s->mesh, v, a) || SgMeshFixed(s->mesh, v, k)));
+        b[a * dim + k]        = fixed ? 0 : blk[i * dim * dim + a * dim + k];
+      }
+    PetscCall(MatSetValues(P, dim, idx, dim, idx, b, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* gamma w_i n_i n_i^T on the active vertices, in the frames: gamma w_i on the normal's diagonal entry at a rotated
    vertex (exactly: nothing of gamma reaches its tangential entries), the block as without frames elsewhere */
 static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
@@ -23,7 +53,7 @@ static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
       for (PetscInt a = 0; a < dim; a++)
         for (PetscInt b = 0; b < dim; b++) B[a * dim + b] = s->gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
   }
-  PetscCall(SgContactAddBlocks(s->c, blk, P));
+  PetscCall(SgSSNAddBlocks(s, blk, P));
   PetscCall(PetscFree(blk));
   PetscFunctionReturn(0);
 }

@@ -32,6 +32,7 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
     PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_frame_global", "With -ssn_frame, where every contact normal is the same direction (a plane obstacle, a flat contact face): rotate the whole body into one frame (the normal and the body's principal axes), so that the AMG sees a body turned rigidly as the unturned one; false: the contact vertices alone", &global, NULL));
     s->frame_local = (PetscBool)!global;
   }
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_transform", "Two bodies (-contact_master_ids): solve the linear systems in the dual-mortar basis u = T v (v_s = u_s - D^-1 M u_m at the slave contact vertices) and the frames of the slave normals, where every condition of the pair is one diagonal entry, as against a rigid obstacle: AMG and the truncated multigrid then apply (default: on with an iterative linear solver, off with a direct one)", &s->pair_transform, &s->pair_transform_set));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscFunctionReturn(0);
 }
@@ -162,7 +163,20 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   s->Klin = s->K;
-  if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
+  if (!s->pair_transform_set) { /* the default: on for a pair solved iteratively (a factorization needs no help) */
+    PetscBool pair, preonly;
+    PetscCall(SgContactIsPair(c, &pair));
+    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+    s->pair_transform = (PetscBool)(pair && !preonly && !condense);
+  }
+  if (s->pair_transform) {
+    PetscBool pair;
+    PetscCall(SgContactIsPair(c, &pair));
+    PetscCheck(pair, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform is for two-body contact (-contact_master_ids): this problem has no pair");
+    PetscCheck(!condense, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform with -ssn_condense: condensation is not available for two bodies; leave -ssn_condense out");
+    PetscCheck(interp != 1, s->comm, PETSC_ERR_SUP, "-ssn_pair_transform with -ssn_pc_truncated_mg_interp geometric: the mesh hierarchy's interpolations do not carry the pair's transformation; use -ssn_pc_truncated_mg_interp amg");
+    PetscCall(SgFrameCreatePair(p, c, &s->frame));
+  } else if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
   PetscCheck(!(tmg && condense), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg is for iterative linear solves, not -ssn_condense");

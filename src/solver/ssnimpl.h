@@ -34,15 +34,17 @@ struct _n_SgSSN {
   PetscBool         prev_settled;
   PetscInt          nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64       *hash;
-  PetscBool         residual_test; /* inexact linear solves: also require a small residual */
-  PetscInt          pc_reuse_its;  /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
-  SgCondense        cond;          /* -ssn_condense: linear solves condensed onto the contact dofs */
-  SgTMG             tmg;           /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
-  SgFrame           frame;         /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
-  PetscBool         frame_local;   /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
-  Mat               Klin;          /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
-  Mat               Pf;            /* with frames: the Jacobian assembled in them (the KSP's matrices) */
-  PetscReal         nbhd_tau;      /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
+  PetscBool         residual_test;      /* inexact linear solves: also require a small residual */
+  PetscInt          pc_reuse_its;       /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
+  SgCondense        cond;               /* -ssn_condense: linear solves condensed onto the contact dofs */
+  SgTMG             tmg;                /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
+  SgFrame           frame;              /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
+  PetscBool         frame_local;        /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
+  PetscBool         pair_transform;     /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
+  PetscBool         pair_transform_set; /* given (else on for a pair solved iteratively) */
+  Mat               Klin;               /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
+  Mat               Pf;                 /* with frames: the Jacobian assembled in them (the KSP's matrices) */
+  PetscReal         nbhd_tau;           /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason       reason;
   PetscBool         monitor;
   PetscBool         progress;      /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */
@@ -89,6 +91,7 @@ SgSSNReason    SgSSNReasonOf(SgSSN, SNESConvergedReason); /* ours for a SNES rea
 PetscErrorCode SgSSNLawInput(SgSSN, SgContactLawInput *); /* friction.c: what the law's tangential terms read of the SSN */
 PetscErrorCode SgSSNFrictionResidual(SgSSN, const PetscScalar[], const PetscReal[], PetscScalar[], PetscReal[6]);
 PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
+PetscErrorCode SgSSNAddBlocks(SgSSN, const PetscReal[], Mat); /* jacobian.c: contact blocks, nodal under -ssn_pair_transform */
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
 PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgGMGInterpolations(SgSSN, PetscInt *, Mat **); /* gmg.c: the mesh hierarchy's interpolations between free-dof spaces */
