@@ -492,7 +492,9 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
   PetscCall(ReaderVertexRows(rp, "coordinates", dim, PETSC_FALSE, "a vertex coordinate", &x));
   /* the file's vertices (coordinates and number) and the mesh's (coordinates) to the ranks of their points */
   PetscCall(PetscCalloc4(size, &fc, size, &qc, size, &rfc, size, &rqc));
-  PetscCall(PetscMalloc3((r->hi - r->lo) * (dim + 1) + 1, &fx, m->nv * dim + 1, &qx, m->nv + 1, &order));
+  PetscCall(PetscMalloc1((r->hi - r->lo) * (dim + 1) + 1, &fx));
+  PetscCall(PetscMalloc1(m->nv * dim + 1, &qx));
+  PetscCall(PetscMalloc1(m->nv + 1, &order));
   for (PetscInt i = 0; i < r->hi - r->lo; i++) fc[PointRank(&x[i * dim], dim, size)]++;
   for (PetscInt v = 0; v < m->nv; v++) qc[PointRank(&m->x[v * dim], dim, size)]++;
   {
@@ -513,7 +515,9 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
   }
   PetscCall(PetscFree(x));
   PetscCall(Exchange(r->comm, MPIU_REAL, sizeof(PetscReal), dim + 1, fc, fx, rfc, &nrf, (void **)&rfx));
+  PetscCall(PetscFree(fx));
   PetscCall(Exchange(r->comm, MPIU_REAL, sizeof(PetscReal), dim, qc, qx, rqc, &nrq, (void **)&rqx));
+  PetscCall(PetscFree(qx));
   /* here: the file's vertices sorted by their coordinates, the mesh vertices sent here looked up among them */
   PetscCall(PetscMalloc4(nrf * dim + 1, &px, nrf + 1, &pg, nrf + 1, &perm, nrq + 1, &ans));
   for (PetscInt i = 0; i < nrf; i++) {
@@ -521,6 +525,7 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
     pg[i]   = (PetscInt)rfx[i * (dim + 1) + dim];
     perm[i] = i;
   }
+  PetscCall(PetscFree(rfx));
   SortX   = px;
   SortDim = dim;
   qsort(perm, nrf, sizeof(PetscInt), CmpIndex);
@@ -535,10 +540,9 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
   PetscCall(PetscMalloc1(m->nv + 1, &r->idx));
   for (PetscInt k = 0; k < m->nv; k++) r->idx[order[k]] = rans[k];
   PetscCall(PetscFree4(px, pg, perm, ans));
-  PetscCall(PetscFree(rfx));
   PetscCall(PetscFree(rqx));
   PetscCall(PetscFree(rans));
-  PetscCall(PetscFree3(fx, qx, order));
+  PetscCall(PetscFree(order));
   PetscCall(PetscFree4(fc, qc, rfc, rqc));
   for (PetscInt v = 0; v < m->nv; v++) {
     if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
