@@ -36,7 +36,7 @@ struct _n_SgCheckpointReader {
   char         file[PETSC_MAX_PATH_LEN];
   PetscViewer  viewer;
   PetscInt     dim, nvert;
-  PetscInt    *idx; /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+  PetscInt    *idx;    /* the file's vertex of each vertex of the mesh (-1: not in the file) */
   PetscInt     lo, hi; /* the file's vertices lo..hi-1: the rows of the vertex datasets this rank reads */
   PetscSF      sf;     /* from those rows (roots) to the mesh's vertices matched in the file (leaves) */
 };
@@ -266,9 +266,9 @@ PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader r, const char name[], 
    refused as damaged, naming what and the first bad number in file order, as on one rank) (allocated here; PetscFree) */
 static PetscErrorCode ReaderVertexRows(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
 {
-  SgCheckpointReader r  = *rp;
-  CkRows             it = {r, name, bs, NULL};
-  const PetscInt     n  = (r->hi - r->lo) * bs;
+  SgCheckpointReader r   = *rp;
+  CkRows             it  = {r, name, bs, NULL};
+  const PetscInt     n   = (r->hi - r->lo) * bs;
   PetscInt           bad = PETSC_MAX_INT;
   PetscReal          val = 0;
   char               w[96];
@@ -471,7 +471,7 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 {
   SgCheckpointReader r = *rp;
   const SgMesh      *m;
-  SgContactView      cv = {0};
+  SgContactView      cv  = {0};
   const PetscInt     dim = r->dim;
   PetscReal         *x, *fx, *qx, *rfx, *rqx, *px;
   PetscInt          *perm, *pg, *ans, *rans, *order, nmiss = 0, nrf, nrq, nr, nleaves = 0, *ilocal;
