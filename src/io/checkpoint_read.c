@@ -4,6 +4,7 @@
    -restart_file. */
 #include "io/ioimpl.h"
 #include <petscviewerhdf5.h>
+#include <petscsf.h>
 
 /* Run f(ctx) with PETSc's and HDF5's error printing off; *ierr is its error code, the same on every rank. */
 static PetscErrorCode Quietly(MPI_Comm comm, PetscErrorCode (*f)(void *), void *ctx, PetscErrorCode *ierr)
@@ -35,7 +36,9 @@ struct _n_SgCheckpointReader {
   char         file[PETSC_MAX_PATH_LEN];
   PetscViewer  viewer;
   PetscInt     dim, nvert;
-  PetscInt    *idx; /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+  PetscInt    *idx;    /* the file's vertex of each vertex of the mesh (-1: not in the file) */
+  PetscInt     lo, hi; /* the file's vertices lo..hi-1: the rows of the vertex datasets this rank reads */
+  PetscSF      sf;     /* from those rows (roots) to the mesh's vertices matched in the file (leaves) */
 };
 
 /* one read of the file, run quietly (a damaged file is reported by the caller) */
@@ -48,6 +51,14 @@ typedef struct {
   Vec                v;
   PetscBool          has;
 } CkItem;
+
+/* one read of this rank's rows of a vertex dataset, run quietly */
+typedef struct {
+  SgCheckpointReader r;
+  const char        *name;
+  PetscInt           bs;  /* numbers per vertex */
+  PetscReal         *buf; /* rows lo..hi-1 */
+} CkRows;
 
 static PetscErrorCode ItemOpen(void *ctx)
 {
@@ -111,6 +122,38 @@ static PetscErrorCode ItemDataset(void *ctx)
   PetscFunctionReturn(0);
 }
 
+/* Rows lo..hi-1 of a vertex dataset (bs numbers per vertex of the file, stored as nvert * bs numbers or nvert rows
+   of bs) into buf: each rank reads its own rows, so that no rank holds a whole dataset. */
+static PetscErrorCode ItemChunk(void *ctx)
+{
+  CkRows            *it = (CkRows *)ctx;
+  SgCheckpointReader r  = it->r;
+  hid_t              fid, dset, space = -1, mem = -1;
+  hsize_t            dims[2] = {0, 0}, start[2] = {0, 0}, count[2] = {0, 0}, n = (hsize_t)((r->hi - r->lo) * it->bs);
+  int                nd = -1;
+  herr_t             st = -1;
+  char               path[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetFileId(r->viewer, &fid));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "/checkpoint/%s", it->name));
+  dset = H5Dopen2(fid, path, H5P_DEFAULT);
+  if (dset >= 0) space = H5Dget_space(dset);
+  if (space >= 0) nd = H5Sget_simple_extent_ndims(space);
+  if ((nd == 1 || nd == 2) && H5Sget_simple_extent_dims(space, dims, NULL) == nd) {
+    if (nd == 1 && dims[0] == (hsize_t)(r->nvert * it->bs)) start[0] = (hsize_t)(r->lo * it->bs), count[0] = n;
+    else if (nd == 2 && dims[0] == (hsize_t)r->nvert && dims[1] == (hsize_t)it->bs) start[0] = (hsize_t)r->lo, count[0] = (hsize_t)(r->hi - r->lo), count[1] = (hsize_t)it->bs;
+    else nd = -1; /* not of the expected size */
+    if (nd > 0 && !n) st = 0;
+    else if (nd > 0 && H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 && (mem = H5Screate_simple(1, &n, NULL)) >= 0) st = H5Dread(dset, sizeof(PetscReal) == sizeof(float) ? H5T_NATIVE_FLOAT : H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, it->buf);
+  }
+  if (mem >= 0) (void)H5Sclose(mem);
+  if (space >= 0) (void)H5Sclose(space);
+  if (dset >= 0) (void)H5Dclose(dset);
+  PetscCheck(st >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "cannot read the dataset %s", path);
+  PetscFunctionReturn(0);
+}
+
 /* Close the file and free the reader, with error printing off (a damaged file can fail at H5Fclose): for a refusal,
    before the error is returned. */
 PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
@@ -123,6 +166,7 @@ PetscErrorCode SgCheckpointReaderAbandon(SgCheckpointReader *rp)
   if (!r) PetscFunctionReturn(0);
   if (r->viewer) PetscCall(Quietly(r->comm, ItemClose, &it, &ierr));
   PetscCall(PetscFree(r->idx));
+  PetscCall(PetscSFDestroy(&r->sf));
   PetscCall(PetscFree(*rp));
   PetscFunctionReturn(0);
 }
@@ -218,21 +262,63 @@ PetscErrorCode SgCheckpointReaderReals(SgCheckpointReader r, const char name[], 
   PetscFunctionReturn(0);
 }
 
-/* a dataset of bs numbers per vertex of the file, all finite (and >= 0 if nonneg; else refused as damaged, naming
-   what), in file order (allocated here; PetscFree) */
-static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
+/* this rank's rows lo..hi-1 of a dataset of bs numbers per vertex of the file, all finite (and >= 0 if nonneg; else
+   refused as damaged, naming what and the first bad number in file order, as on one rank) (allocated here; PetscFree) */
+static PetscErrorCode ReaderVertexRows(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
 {
-  PetscInt bad = -1, n;
+  SgCheckpointReader r   = *rp;
+  CkRows             it  = {r, name, bs, NULL};
+  const PetscInt     n   = (r->hi - r->lo) * bs;
+  PetscInt           bad = PETSC_MAX_INT;
+  PetscReal          val = 0;
+  char               w[96];
 
   PetscFunctionBeginUser;
-  PetscCall(SgCheckpointReaderReals(*rp, name, (*rp)->nvert * bs, &n, a));
-  for (PetscInt i = 0; bad < 0 && i < n; i++)
-    if ((!PetscIsNormalReal((*a)[i]) && (*a)[i] != 0) || (nonneg && !((*a)[i] >= 0))) bad = i;
-  if (bad >= 0) {
-    const PetscReal val = (*a)[bad];
+  PetscCall(PetscMalloc1(n + 1, a));
+  it.buf = *a;
+  PetscCall(PetscSNPrintf(w, sizeof(w), "the dataset %s (of the expected size)", name));
+  {
+    PetscErrorCode ierr;
+    PetscCall(Quietly(r->comm, ItemChunk, &it, &ierr));
+    if (ierr) { /* as ReaderRun reports it */
+      char     file[PETSC_MAX_PATH_LEN];
+      MPI_Comm comm = r->comm;
+      PetscCall(PetscFree(*a));
+      PetscCall(PetscStrncpy(file, r->file, sizeof(file)));
+      PetscCall(SgCheckpointReaderAbandon(rp));
+      SETERRQ(comm, PETSC_ERR_FILE_UNEXPECTED, "-restart_file: '%s' is damaged: cannot read %s", file, w);
+    }
+  }
+  for (PetscInt i = 0; bad == PETSC_MAX_INT && i < n; i++)
+    if ((!PetscIsNormalReal((*a)[i]) && (*a)[i] != 0) || (nonneg && !((*a)[i] >= 0))) bad = r->lo * bs + i, val = (*a)[i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MIN, r->comm));
+  if (bad < PETSC_MAX_INT) {
+    if (!(bad >= r->lo * bs && bad < r->hi * bs)) val = 0; /* the value of the first bad number, from its rank */
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &val, 1, MPIU_REAL, MPIU_SUM, r->comm));
     PetscCall(PetscFree(*a));
     PetscCall(SgCheckpointReaderDamaged(rp, what, val));
   }
+  PetscFunctionReturn(0);
+}
+
+/* a dataset of bs numbers per vertex of the file, checked as ReaderVertexRows, at the vertices of the mesh (m->nv * bs,
+   zeros at a vertex not in the file; allocated here; PetscFree): each rank reads its rows and sends them on */
+static PetscErrorCode ReaderVertexData(SgCheckpointReader *rp, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal **a)
+{
+  const SgMesh *m;
+  PetscReal    *rows;
+  MPI_Datatype  unit;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetMesh((*rp)->el, &m));
+  PetscCall(ReaderVertexRows(rp, name, bs, nonneg, what, &rows));
+  PetscCall(PetscCalloc1(m->nv * bs + 1, a));
+  PetscCallMPI(MPI_Type_contiguous((PetscMPIInt)bs, MPIU_REAL, &unit));
+  PetscCallMPI(MPI_Type_commit(&unit));
+  PetscCall(PetscSFBcastBegin((*rp)->sf, unit, rows, *a, MPI_REPLACE));
+  PetscCall(PetscSFBcastEnd((*rp)->sf, unit, rows, *a, MPI_REPLACE));
+  PetscCallMPI(MPI_Type_free(&unit));
+  PetscCall(PetscFree(rows));
   PetscFunctionReturn(0);
 }
 
@@ -251,7 +337,7 @@ PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char n
   PetscCall(VecGetArray(y, &ya));
   for (PetscInt v = 0; v < m->nv; v++) {
     if (m->goff[v] < 0 || r->idx[v] < 0) continue;
-    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : a[r->idx[v] * dim + d];
+    for (PetscInt d = 0; d < dim; d++) ya[m->goff[v] + d] = SgMeshFixed(m, v, d) ? 0 : a[v * dim + d];
   }
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(PetscFree(a));
@@ -268,7 +354,7 @@ PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[]
   if (r->c) PetscCall(SgContactGetView(r->c, &cv));
   PetscCall(ReaderVertexData(&r, name, bs, nonneg, what, &f));
   for (PetscInt i = 0; a && i < cv.n; i++)
-    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = r->idx[cv.vert[i]] >= 0 ? f[r->idx[cv.vert[i]] * bs + d] : 0;
+    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = f[cv.vert[i] * bs + d]; /* 0 at a vertex not in the file */
   PetscCall(PetscFree(f));
   PetscFunctionReturn(0);
 }
@@ -336,35 +422,151 @@ static void FindVertex(const PetscInt perm[], PetscInt n, const PetscReal x[], P
   }
 }
 
-/* the file's coordinates (all finite) matched with the mesh's vertices: r->idx; every owned and every contact vertex
-   must be in the file */
+/* the rank that matches the vertices at point x (of the file and of the meshes of all ranks): a hash of its
+   coordinates (-0 and 0 alike, as they compare equal) */
+static PetscMPIInt PointRank(const PetscReal x[], PetscInt dim, PetscMPIInt size)
+{
+  unsigned long long h = 1469598103934665603ULL; /* FNV-1a */
+
+  for (PetscInt d = 0; d < dim; d++) {
+    const PetscReal c = x[d] == 0 ? 0 : x[d];
+    unsigned char   b[sizeof(PetscReal)];
+    memcpy(b, &c, sizeof(c));
+    for (size_t k = 0; k < sizeof(c); k++) h = (h ^ b[k]) * 1099511628211ULL;
+  }
+  return (PetscMPIInt)(h % (unsigned long long)size);
+}
+
+/* send cnt[p] items of w numbers (buf, in rank order) to each rank p; *rbuf (allocated here; PetscFree) gets the
+   items sent to this rank, rcnt[p] from rank p, in rank order */
+static PetscErrorCode Exchange(MPI_Comm comm, MPI_Datatype type, size_t tsize, PetscInt w, const PetscMPIInt cnt[], const void *buf, PetscMPIInt rcnt[], PetscInt *nrecv, void **rbuf)
+{
+  PetscMPIInt size, *sc, *sd, *rc, *rd;
+  PetscInt    sn = 0, rn = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Alltoall((void *)cnt, 1, MPI_INT, rcnt, 1, MPI_INT, comm));
+  PetscCall(PetscMalloc4(size, &sc, size, &sd, size, &rc, size, &rd));
+  for (PetscMPIInt p = 0; p < size; p++) {
+    PetscCall(PetscMPIIntCast(cnt[p] * w, &sc[p]));
+    PetscCall(PetscMPIIntCast(rcnt[p] * w, &rc[p]));
+    PetscCall(PetscMPIIntCast(sn, &sd[p]));
+    PetscCall(PetscMPIIntCast(rn, &rd[p]));
+    sn += sc[p];
+    rn += rc[p];
+  }
+  PetscCall(PetscMalloc(tsize * (size_t)(rn + 1), rbuf));
+  PetscCallMPI(MPI_Alltoallv((void *)buf, sc, sd, type, *rbuf, rc, rd, type, comm));
+  PetscCall(PetscFree4(sc, sd, rc, rd));
+  *nrecv = rn / w;
+  PetscFunctionReturn(0);
+}
+
+/* the file's coordinates (all finite) matched with the mesh's vertices: r->idx and r->sf; every owned and every
+   contact vertex must be in the file. Each rank reads the file's vertices lo..hi-1; they and the mesh's vertices
+   meet on the rank their coordinates hash to (PointRank), which answers each mesh vertex with its file vertex, so
+   that no rank holds the whole file. */
 static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 {
   SgCheckpointReader r = *rp;
   const SgMesh      *m;
-  SgContactView      cv = {0};
-  PetscReal         *x;
-  PetscInt          *perm, nmiss = 0;
+  SgContactView      cv  = {0};
+  const PetscInt     dim = r->dim;
+  PetscReal         *x, *fx, *qx, *rfx, *rqx, *px;
+  PetscInt          *perm, *pg, *ans, *rans, *order, nmiss = 0, nrf, nrq, nr, nleaves = 0, *ilocal;
+  PetscMPIInt        size, *fc, *qc, *rfc, *rqc;
+  PetscLayout        layout;
+  const PetscInt    *range;
+  PetscSFNode       *iremote;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMesh(r->el, &m));
   if (r->c) PetscCall(SgContactGetView(r->c, &cv));
-  PetscCall(ReaderVertexData(rp, "coordinates", r->dim, PETSC_FALSE, "a vertex coordinate", &x));
-  PetscCall(PetscMalloc1(r->nvert + 1, &perm));
+  PetscCallMPI(MPI_Comm_size(r->comm, &size));
+  PetscCall(PetscLayoutCreate(r->comm, &layout));
+  PetscCall(PetscLayoutSetSize(layout, r->nvert));
+  PetscCall(PetscLayoutSetUp(layout));
+  PetscCall(PetscLayoutGetRange(layout, &r->lo, &r->hi));
+  PetscCall(PetscLayoutGetRanges(layout, &range));
+  PetscCall(ReaderVertexRows(rp, "coordinates", dim, PETSC_FALSE, "a vertex coordinate", &x));
+  /* the file's vertices (coordinates and number) and the mesh's (coordinates) to the ranks of their points */
+  PetscCall(PetscCalloc4(size, &fc, size, &qc, size, &rfc, size, &rqc));
+  PetscCall(PetscMalloc1((r->hi - r->lo) * (dim + 1) + 1, &fx));
+  PetscCall(PetscMalloc1(m->nv * dim + 1, &qx));
+  PetscCall(PetscMalloc1(m->nv + 1, &order));
+  for (PetscInt i = 0; i < r->hi - r->lo; i++) fc[PointRank(&x[i * dim], dim, size)]++;
+  for (PetscInt v = 0; v < m->nv; v++) qc[PointRank(&m->x[v * dim], dim, size)]++;
+  {
+    PetscInt *fo, *qo;
+    PetscCall(PetscCalloc2(size + 1, &fo, size + 1, &qo));
+    for (PetscMPIInt p = 0; p < size; p++) fo[p + 1] = fo[p] + fc[p], qo[p + 1] = qo[p] + qc[p];
+    for (PetscInt i = 0; i < r->hi - r->lo; i++) {
+      const PetscInt k = fo[PointRank(&x[i * dim], dim, size)]++;
+      for (PetscInt d = 0; d < dim; d++) fx[k * (dim + 1) + d] = x[i * dim + d];
+      fx[k * (dim + 1) + dim] = (PetscReal)(r->lo + i); /* exact below 2^53 */
+    }
+    for (PetscInt v = 0; v < m->nv; v++) {
+      const PetscInt k = qo[PointRank(&m->x[v * dim], dim, size)]++;
+      for (PetscInt d = 0; d < dim; d++) qx[k * dim + d] = m->x[v * dim + d];
+      order[k] = v;
+    }
+    PetscCall(PetscFree2(fo, qo));
+  }
+  PetscCall(PetscFree(x));
+  PetscCall(Exchange(r->comm, MPIU_REAL, sizeof(PetscReal), dim + 1, fc, fx, rfc, &nrf, (void **)&rfx));
+  PetscCall(PetscFree(fx));
+  PetscCall(Exchange(r->comm, MPIU_REAL, sizeof(PetscReal), dim, qc, qx, rqc, &nrq, (void **)&rqx));
+  PetscCall(PetscFree(qx));
+  /* here: the file's vertices sorted by their coordinates, the mesh vertices sent here looked up among them */
+  PetscCall(PetscMalloc4(nrf * dim + 1, &px, nrf + 1, &pg, nrf + 1, &perm, nrq + 1, &ans));
+  for (PetscInt i = 0; i < nrf; i++) {
+    for (PetscInt d = 0; d < dim; d++) px[i * dim + d] = rfx[i * (dim + 1) + d];
+    pg[i]   = (PetscInt)rfx[i * (dim + 1) + dim];
+    perm[i] = i;
+  }
+  PetscCall(PetscFree(rfx));
+  SortX   = px;
+  SortDim = dim;
+  qsort(perm, nrf, sizeof(PetscInt), CmpIndex);
+  for (PetscInt k = 0; k < nrq; k++) {
+    PetscInt i;
+    FindVertex(perm, nrf, &rqx[k * dim], &i);
+    ans[k] = i < 0 ? -1 : pg[i];
+  }
+  SortX = NULL;
+  /* the answers back, in the order of the questions */
+  PetscCall(Exchange(r->comm, MPIU_INT, sizeof(PetscInt), 1, rqc, ans, qc, &nr, (void **)&rans));
   PetscCall(PetscMalloc1(m->nv + 1, &r->idx));
-  for (PetscInt i = 0; i < r->nvert; i++) perm[i] = i;
-  SortX   = x;
-  SortDim = r->dim;
-  qsort(perm, r->nvert, sizeof(PetscInt), CmpIndex);
+  for (PetscInt k = 0; k < m->nv; k++) r->idx[order[k]] = rans[k];
+  PetscCall(PetscFree4(px, pg, perm, ans));
+  PetscCall(PetscFree(rqx));
+  PetscCall(PetscFree(rans));
+  PetscCall(PetscFree(order));
+  PetscCall(PetscFree4(fc, qc, rfc, rqc));
   for (PetscInt v = 0; v < m->nv; v++) {
-    FindVertex(perm, r->nvert, &m->x[v * r->dim], &r->idx[v]);
     if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
+    if (r->idx[v] >= 0) nleaves++;
   }
   for (PetscInt i = 0; i < cv.n; i++)
     if (r->idx[cv.vert[i]] < 0) nmiss++;
-  SortX = NULL;
-  PetscCall(PetscFree(perm));
-  PetscCall(PetscFree(x));
+  /* the rows lo..hi-1 of each rank are the roots, the matched vertices of the mesh the leaves */
+  PetscCall(PetscMalloc1(nleaves + 1, &ilocal));
+  PetscCall(PetscMalloc1(nleaves + 1, &iremote));
+  nleaves = 0;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    PetscMPIInt owner;
+    if (r->idx[v] < 0) continue;
+    PetscCall(PetscLayoutFindOwner(layout, r->idx[v], &owner));
+    ilocal[nleaves]        = v;
+    iremote[nleaves].rank  = owner;
+    iremote[nleaves].index = r->idx[v] - range[owner];
+    nleaves++;
+  }
+  PetscCall(PetscSFCreate(r->comm, &r->sf));
+  PetscCall(PetscSFSetGraph(r->sf, r->hi - r->lo, nleaves, ilocal, PETSC_OWN_POINTER, iremote, PETSC_OWN_POINTER));
+  PetscCall(PetscSFSetUp(r->sf));
+  PetscCall(PetscLayoutDestroy(&layout));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nmiss, 1, MPIU_INT, MPI_SUM, r->comm));
   if (nmiss) {
     char     f[PETSC_MAX_PATH_LEN];
