@@ -183,7 +183,9 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it.
    The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
    each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
-   "SgNestedBase". */
+   "SgNestedBase". Without -cont_nested, a mesh refined with -dm_refine N >= 1 for a contact boundary of one body
+   (-contact_ids or -contact_label, no -contact_master_ids) keeps every level (L = N): nested iteration's default
+   (SgContNestedDefault); -cont_nested 0 keeps none. */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
   PetscInt          nest = 0, nref = 0, interp = 0;
@@ -199,6 +201,16 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
   if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
+  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, for one body in contact */
+    PetscBool ids, label, pair;
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_ids", &ids));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_label", &label));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair));
+    if ((ids || label) && !pair) {
+      nset = PETSC_TRUE;
+      nest = nref;
+    }
+  }
   if (!nset || nest < 1 || nest > nref) nest = 0;
   if (gset && interp == 1 && rset && nref >= 1) nest = nref;
   if (!rset || nest < 1) PetscFunctionReturn(0);
