@@ -66,7 +66,9 @@ def main():
             rows = []
             for r in range(opt.repeat):
                 lv = os.path.join(opt.out, name + ".log_view")
-                s, _ = sgrun.run(options(case, interp) + " " + opt.extra + " -log_view :" + lv, name, opt.out, np=opt.np if opt.np > 1 else None, check=False)
+                # without nested iteration (now the default with -dm_refine) unless --extra asks for it
+                nest = "" if "-cont_nested" in opt.extra else " -cont_nested 0"
+                s, _ = sgrun.run(options(case, interp) + nest + " " + opt.extra + " -log_view :" + lv, name, opt.out, np=opt.np if opt.np > 1 else None, check=False)
                 if "dofs" not in s:
                     break
                 text = open(lv).read()

@@ -19,7 +19,11 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_monitor", "Print a line per outer step (gamma, SSN and KSP iterations, active set, KKT residual, time)", &ct->monitor, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_coulomb_shifted_path", "Coulomb friction: when a regularized solve of pf or ipf fails, or the tolerance lies below the double-precision cap of gamma (PRECISION_LIMIT), solve again from the start on the shifted path (the augmented Lagrangian steps of alm, gamma doubled per step)", &ct->coulomb_shifted, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
-  if (!ct->nested_inner) PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off)", &ct->nested, NULL));
+  if (!ct->nested_inner) {
+    PetscBool set;
+    PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off; default in 3D with -dm_refine N >= 1 and one body in frictionless contact: N, and with an iterative default solver the SSN steps preconditioned by the geometric multigrid of the levels)", &ct->nested, &set));
+    if (set) ct->nested_default = PETSC_FALSE;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -139,6 +143,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
   if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
+  PetscCall(SgContNestedDefault(ct));
   PetscObjectOptionsBegin((PetscObject)ct);
   PetscCall(CommonOptions(ct, PetscOptionsObject));
   PetscCall(PetscFunctionListFind(SgContList, ct->type, &create));
@@ -146,10 +151,11 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   ct->ops.needs_ssn = PETSC_TRUE;
   PetscCall(create(ct));
   PetscCall(PetscObjectChangeTypeName((PetscObject)ct, ct->type));
+  /* the SSN's defaults before the type's options: fast's -cont_fast_ksp_loose follows the geometric multigrid */
+  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(TypeOptions(ct, PetscOptionsObject));
   PetscCall(HelpTypes(ct, ct->type, PetscOptionsObject));
   PetscOptionsEnd();
-  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCheck(PetscIsNormalReal(ct->kkt_tol) && ct->kkt_tol > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_kkt_tol: must be positive and finite, got %g", (double)ct->kkt_tol);
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);

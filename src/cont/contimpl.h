@@ -124,6 +124,7 @@ struct _n_SgCont {
      gamma and shift */
   PetscInt       nested;                         /* -cont_nested: coarse levels (0: none) */
   PetscBool      nested_inner;                   /* the controller of a coarse level: -cont_nested is not read */
+  PetscBool      nested_default;                 /* ct->nested is the default of -dm_refine (SgContNestedDefault) */
   PetscBool      nested_start;                   /* this solve starts from a coarser level (y, nested_lamhat, gamma_warm, V0unit) */
   PetscReal     *nested_lamhat;                  /* the interpolated shift: n, then with friction the tangential one, n dim */
   PetscInt       nested_done;                    /* coarse levels solved */
@@ -161,6 +162,7 @@ PetscErrorCode SgContCreate_IPF(SgCont);
 PetscErrorCode SgContCreate_Fast(SgCont);
 PetscErrorCode SgContCreate_PDAS(SgCont);
 PetscErrorCode SgContCreate_VI(SgCont);
-PetscErrorCode SgContNestedCheck(SgCont);  /* nested.c: -cont_nested against the problem (SgContSetFromOptions) */
-PetscErrorCode SgContNestedStart(SgCont);  /* nested.c: solve the coarse levels, start this solve from them */
-PetscErrorCode SgContNestedResume(SgCont); /* nested.c: after the type's start, the coarse level's gamma and shift */
+PetscErrorCode SgContNestedCheck(SgCont);   /* nested.c: -cont_nested against the problem (SgContSetFromOptions) */
+PetscErrorCode SgContNestedDefault(SgCont); /* nested.c: the default of -cont_nested with -dm_refine (SgContSetFromOptions) */
+PetscErrorCode SgContNestedStart(SgCont);   /* nested.c: solve the coarse levels, start this solve from them */
+PetscErrorCode SgContNestedResume(SgCont);  /* nested.c: after the type's start, the coarse level's gamma and shift */

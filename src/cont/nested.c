@@ -20,6 +20,38 @@
 #include "cont/contimpl.h"
 #include <petscdmplextransform.h>
 
+/* The default of -cont_nested, before the options are read: with -dm_refine N >= 1 the problem is first solved on the
+   unrefined mesh and on each refinement (N coarser levels), where the mesh kept them (fem/mesh.c: 3D, a contact
+   boundary of one body, -cont_nested not given). Not in 2D (with the default condensed MUMPS the coarse levels'
+   factorizations cost what the saved SSN steps save: the same CPU time, 0.98-1.0x, at 1e4 ... 6.2e5 unknowns), not with friction (a 3D
+   Tresca block with ipf, -dm_refine 1, stopped at PRECISION_LIMIT from the nested start, converged without), not for
+   two bodies (not measured), nor a mesh given by the program or a controller of a coarse level. Measured in bench/nested.md ("The
+   default"). */
+PetscErrorCode SgContNestedDefault(SgCont ct)
+{
+  PetscBool   own, pair = PETSC_FALSE, given;
+  PetscInt    nref;
+  DM          dm;
+  PetscObject lv = NULL;
+  char        name[64];
+
+  PetscFunctionBeginUser;
+  ct->nested_default = PETSC_FALSE;
+  if (ct->nested_inner || !ct->c || ct->cv.friction) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsHasName(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-cont_nested", &given));
+  if (given) PetscFunctionReturn(0);
+  PetscCall(SgContactIsPair(ct->c, &pair));
+  PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
+  if (pair || !own || nref < 1) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
+  PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nref));
+  PetscCall(PetscObjectQuery((PetscObject)dm, name, &lv));
+  if (!lv) PetscFunctionReturn(0); /* the mesh kept no hierarchy */
+  ct->nested         = nref;
+  ct->nested_default = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* -cont_nested against the problem (end of SgContSetFromOptions) */
 PetscErrorCode SgContNestedCheck(SgCont ct)
 {
@@ -239,6 +271,7 @@ PetscErrorCode SgContNestedStart(SgCont ct)
   PetscCall(PetscTime(&t1));
   ct->nested_time = t1 - t0;
   PetscCall(SgSummarySetInt(ct->sum, "nested_levels", ct->nested));
+  PetscCall(SgSummarySetBool(ct->sum, "nested_default", ct->nested_default));
   PetscCall(SgSummarySetInt(ct->sum, "nested_levels_solved", ct->nested_done));
   PetscCall(SgSummarySetBool(ct->sum, "nested_used", ok));
   PetscCall(SgSummarySetInt(ct->sum, "nested_coarse_ssn_its", ct->nested_ssn_its));

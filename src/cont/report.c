@@ -563,6 +563,7 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
       PetscCall(LinearSolverName(ct, name, sizeof(name)));
       PetscCall(PetscViewerASCIIPrintf(viewer, "  linear solver: %s, %s%s\n", name, ct->solver_desc, strcmp(ct->solver_desc, "from the options") ? "; -ksp_type, -pc_type or a file of options/solver/ change it" : ""));
     }
+    if (ct->nested) PetscCall(PetscViewerASCIIPrintf(viewer, "  nested iteration: %" PetscInt_FMT " coarser level%s solved first (%s)\n", ct->nested, ct->nested > 1 ? "s" : "", ct->nested_default ? "the default with -dm_refine; -cont_nested 0 turns it off" : "-cont_nested"));
     PetscFunctionReturn(0);
   }
   if (ct->c) {

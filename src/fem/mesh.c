@@ -183,7 +183,9 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    several ranks, can differ). Returns PETSC_FALSE in *done (nothing done) unless both options ask for it.
    The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
    each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
-   "SgNestedBase". */
+   "SgNestedBase". Without -cont_nested, a 3D mesh refined with -dm_refine N >= 1 for a frictionless contact boundary
+   of one body (-contact_ids or -contact_label, no -contact_master_ids, no -friction_type but none) keeps every level (L = N): nested iteration's default
+   (SgContNestedDefault); -cont_nested 0 keeps none. */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
   PetscInt          nest = 0, nref = 0, interp = 0;
@@ -199,6 +201,24 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
   if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
+  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, one body in contact, 3D */
+    PetscBool ids, label, pair;
+    PetscInt  dim;
+    PetscCall(DMGetDimension(*dm, &dim));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_ids", &ids));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_label", &label));
+    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair));
+    { /* not with friction: the 3D Tresca block with ipf stopped at the precision limit from the nested start */
+      char      law[64] = "";
+      PetscBool fset;
+      PetscCall(PetscOptionsGetString(NULL, prefix, "-friction_type", law, sizeof(law), &fset));
+      if (fset && strcmp(law, "none")) pair = PETSC_TRUE;
+    }
+    if (dim == 3 && (ids || label) && !pair) {
+      nset = PETSC_TRUE;
+      nest = nref;
+    }
+  }
   if (!nset || nest < 1 || nest > nref) nest = 0;
   if (gset && interp == 1 && rset && nref >= 1) nest = nref;
   if (!rset || nest < 1) PetscFunctionReturn(0);
