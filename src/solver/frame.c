@@ -393,6 +393,46 @@ static void GlobalVertexFrame(SgFrame f, const PetscReal n[], PetscInt k, PetscR
   }
 }
 
+/* The start of a frame's set-up (the log event begun): the object for the contact vertices of c, each with its own
+   frame from its normal (the identity where the normal is an axis) */
+static PetscErrorCode FrameStart(SgElasticity el, SgContact c, SgContactView *cv, PetscInt *dim, SgFrame *frame)
+{
+  SgFrame f;
+
+  PetscFunctionBeginUser;
+  if (!frame_registered) {
+    PetscCall(PetscLogEventRegister("SgFrameSetUp", MAT_CLASSID, &SG_FrameSetUp));
+    frame_registered = PETSC_TRUE;
+  }
+  PetscCall(PetscLogEventBegin(SG_FrameSetUp, 0, 0, 0, 0));
+  PetscCall(SgContactGetView(c, cv));
+  PetscCall(SgElasticityGetDimension(el, dim));
+  PetscCall(PetscNew(&f));
+  PetscCall(SgElasticityGetComm(el, &f->comm));
+  f->dim = *dim;
+  f->n   = cv->n;
+  f->off = cv->off;
+  PetscCall(PetscMalloc4(cv->n * *dim * *dim, &f->Q, cv->n, &f->rot, cv->n, &f->axis, cv->n, &f->sign));
+  for (PetscInt i = 0; i < cv->n; i++) {
+    const PetscInt   d = *dim;
+    const PetscReal *n = &cv->normal[i * d];
+    PetscInt         k = -1;
+    for (PetscInt a = 0; a < d; a++)
+      if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
+    if (k >= 0) { /* already an axis: the identity, the normal on dof k */
+      for (PetscInt a = 0; a < d * d; a++) f->Q[i * d * d + a] = (a % (d + 1) == 0);
+      f->rot[i]  = PETSC_FALSE;
+      f->axis[i] = k;
+      f->sign[i] = n[k] > 0 ? 1 : -1;
+      continue;
+    }
+    VertexFrame(d, n, &f->Q[i * d * d], &f->axis[i], &f->sign[i]);
+    f->rot[i] = PETSC_TRUE;
+  }
+  *frame = f;
+  PetscFunctionReturn(0);
+}
+
 /* The frames of the contact vertices, or NULL where every normal (on every rank) is a coordinate axis already. */
 PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgFrame *frame)
 {
@@ -410,35 +450,8 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   if (!c) PetscFunctionReturn(0);
   PetscCall(SgContactNormalsAxisAligned(c, &aligned));
   if (aligned) PetscFunctionReturn(0);
-  if (!frame_registered) {
-    PetscCall(PetscLogEventRegister("SgFrameSetUp", MAT_CLASSID, &SG_FrameSetUp));
-    frame_registered = PETSC_TRUE;
-  }
-  PetscCall(PetscLogEventBegin(SG_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(SgContactGetView(c, &cv));
-  PetscCall(SgElasticityGetDimension(el, &dim));
+  PetscCall(FrameStart(el, c, &cv, &dim, &f));
   PetscCall(SgElasticityGetMesh(el, &m));
-  PetscCall(PetscNew(&f));
-  PetscCall(SgElasticityGetComm(el, &f->comm));
-  f->dim = dim;
-  f->n   = cv.n;
-  f->off = cv.off;
-  PetscCall(PetscMalloc4(cv.n * dim * dim, &f->Q, cv.n, &f->rot, cv.n, &f->axis, cv.n, &f->sign));
-  for (PetscInt i = 0; i < cv.n; i++) {
-    const PetscReal *n = &cv.normal[i * dim];
-    PetscInt         k = -1;
-    for (PetscInt a = 0; a < dim; a++)
-      if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
-    if (k >= 0) { /* already an axis: the identity, the normal on dof k */
-      for (PetscInt a = 0; a < dim * dim; a++) f->Q[i * dim * dim + a] = (a % (dim + 1) == 0);
-      f->rot[i]  = PETSC_FALSE;
-      f->axis[i] = k;
-      f->sign[i] = n[k] > 0 ? 1 : -1;
-      continue;
-    }
-    VertexFrame(dim, n, &f->Q[i * dim * dim], &f->axis[i], &f->sign[i]);
-    f->rot[i] = PETSC_TRUE;
-  }
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   PetscCall(MatGetLocalSize(K, &mloc, NULL));
   f->nb = mloc / dim;
@@ -509,34 +522,7 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
 
   PetscFunctionBeginUser;
   *frame = NULL;
-  if (!frame_registered) {
-    PetscCall(PetscLogEventRegister("SgFrameSetUp", MAT_CLASSID, &SG_FrameSetUp));
-    frame_registered = PETSC_TRUE;
-  }
-  PetscCall(PetscLogEventBegin(SG_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(SgContactGetView(c, &cv));
-  PetscCall(SgElasticityGetDimension(el, &dim));
-  PetscCall(PetscNew(&f));
-  PetscCall(SgElasticityGetComm(el, &f->comm));
-  f->dim = dim;
-  f->n   = cv.n;
-  f->off = cv.off;
-  PetscCall(PetscMalloc4(cv.n * dim * dim, &f->Q, cv.n, &f->rot, cv.n, &f->axis, cv.n, &f->sign));
-  for (PetscInt i = 0; i < cv.n; i++) {
-    const PetscReal *n = &cv.normal[i * dim];
-    PetscInt         k = -1;
-    for (PetscInt a = 0; a < dim; a++)
-      if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
-    if (k >= 0) {
-      for (PetscInt a = 0; a < dim * dim; a++) f->Q[i * dim * dim + a] = (a % (dim + 1) == 0);
-      f->rot[i]  = PETSC_FALSE;
-      f->axis[i] = k;
-      f->sign[i] = n[k] > 0 ? 1 : -1;
-      continue;
-    }
-    VertexFrame(dim, n, &f->Q[i * dim * dim], &f->axis[i], &f->sign[i]);
-    f->rot[i] = PETSC_TRUE;
-  }
+  PetscCall(FrameStart(el, c, &cv, &dim, &f));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   PetscCall(MatGetLocalSize(K, &mloc, NULL));
   f->nb = mloc / dim;
