@@ -24,12 +24,14 @@ against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 wit
 SSN steps. A benchmark, not a test: never run by make test.
 
 usage: perf_curved.py [--only hemi,ex2,cyl] [--hemi-scales 4,8.5,18] [--ex2-scales 2,4.2] [--cyl-scale 60] [--repeat N]
+                      [--yard-repeat N] [--yard-configs NAME,...]
                       [--json FILE|none] [--out DIR]
 The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
 """
 import argparse
 import json
 import os
+import resource
 import subprocess
 import sys
 
@@ -64,11 +66,14 @@ def best_of(runs):
     return min(ok, key=lambda s: s["solve_time"]) if ok else (runs[-1] if runs else {})
 
 
-def yardstick(args, tag, repeat, out):
-    """the fastest configured linear solve of the body without contact (minimum of repeat runs, in rounds)"""
+def yardstick(args, tag, repeat, out, only=None):
+    """the fastest configured linear solve of the body without contact (minimum of repeat runs, in rounds); only: the
+    configurations whose names contain one of these strings (None: all of YARDSTICK_3D)"""
     best = {}
     for r in range(repeat):
         for name, opts in YARDSTICK_3D:
+            if only and not any(o in name for o in only):
+                continue
             s, _ = sgrun.run("%s %s %s" % (args, opts, YARD_RTOL), "Y_%s_%s_%d" % (tag, "".join(c for c in name if c.isalnum())[:40], r), out, check=False)
             if s.get("converged") and s.get("linear_solve_time") and (name not in best or s["linear_solve_time"] < best[name]["linear_solve_time"]):
                 best[name] = s
@@ -90,6 +95,10 @@ def main():
     ap.add_argument("--ex2-scales", default="2,4.2")
     ap.add_argument("--cyl-scale", default="60")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--yard-repeat", type=int, default=None, help="rounds of the yardsticks (default: --repeat)")
+    ap.add_argument("--yard-configs", default=None, help="comma-separated parts of the names of the yardstick configurations "
+                    "to run (default: all of scripts/bench.py's YARDSTICK_3D), e.g. PCHMG,l1-Gauss-Seidel where an earlier run "
+                    "showed the others slower on the same mesh")
     ap.add_argument("--json", default=os.path.join(HERE, "results.json"))
     ap.add_argument("--out", default=os.path.join(HERE, "runs", "curved"))
     opt = ap.parse_args()
@@ -112,15 +121,26 @@ def main():
     runs = {k: [] for k, _, _, _ in cases}
     for r in range(opt.repeat):  # rounds: every case once per round
         for key, args, _, np in cases:
+            load, ru = os.getloadavg()[0], resource.getrusage(resource.RUSAGE_CHILDREN)
             s, _ = sgrun.run(args, "%s_%d" % (key, r), opt.out, np=np, check=False)
+            ru2 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            s["load_before"] = load  # the 1-minute load average of the shared machine when the run started
+            # the CPU time of the whole run (all ranks, set-up and output included): less sensitive than the wall time to
+            # the other jobs of a shared machine, though not immune (caches, memory bandwidth)
+            s["cpu_time"] = (ru2.ru_utime + ru2.ru_stime) - (ru.ru_utime + ru.ru_stime)
             runs[key].append(s)
-            sys.stderr.write("%s round %d: %s s, %s\n" % (key, r, s.get("solve_time"), "converged" if s.get("converged") else s.get("reason", "no summary")))
+            sys.stderr.write("%s round %d (load %.1f): %s s, %s\n" % (key, r, load, s.get("solve_time"), "converged" if s.get("converged") else s.get("reason", "no summary")))
     res = {k: {f: best_of(v).get(f) for f in FIELDS} for k, v in runs.items()}
+    for k, v in runs.items():  # every round's time and load, for the medians and the side-by-side ratios
+        res[k]["round_solve_times"] = [s.get("solve_time") if s.get("converged") else None for s in v]
+        res[k]["round_loads"] = [s.get("load_before") for s in v]
+        res[k]["round_cpu_times"] = [s.get("cpu_time") for s in v]
     yards, cost, turned = {}, {}, {}
     for key, _, yargs, _ in cases:
         if yargs is None:
             continue
-        y = yardstick(yargs, key, opt.repeat, opt.out)
+        y = yardstick(yargs, key, opt.repeat if opt.yard_repeat is None else opt.yard_repeat, opt.out,
+                      opt.yard_configs.split(",") if opt.yard_configs else None)
         yards[key] = y
         s = res[key]
         if y["time"] and s.get("converged") and s.get("dofs"):
