@@ -433,6 +433,32 @@ static PetscErrorCode FrameStart(SgElasticity el, SgContact c, SgContactView *cv
   PetscFunctionReturn(0);
 }
 
+/* The near null space of the frame's stiffness Kr: the elasticity's rigid-body modes taken into the frame's unknowns
+   (SgFrameToLocal: Q^T r, orthonormal still as Q is orthogonal; with the pair's basis (T Q)^-1 r, no longer
+   orthonormal, which the AMG does not need); keepconst: keep the space's constant flag, else none */
+static PetscErrorCode FrameNullSpace(SgFrame f, SgElasticity el, PetscBool keepconst)
+{
+  MatNullSpace nsp;
+  PetscBool    has_const;
+  PetscInt     nv;
+  const Vec   *v;
+  Vec          rv[6];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
+  if (!nsp) PetscFunctionReturn(0);
+  PetscCall(MatNullSpaceGetVecs(nsp, &has_const, &nv, &v));
+  for (PetscInt k = 0; k < nv; k++) {
+    PetscCall(VecDuplicate(v[k], &rv[k]));
+    PetscCall(VecCopy(v[k], rv[k]));
+    PetscCall(SgFrameToLocal(f, rv[k]));
+  }
+  PetscCall(MatNullSpaceCreate(f->comm, keepconst && has_const, nv, rv, &f->nsp));
+  for (PetscInt k = 0; k < nv; k++) PetscCall(VecDestroy(&rv[k]));
+  PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
+  PetscFunctionReturn(0);
+}
+
 /* The frames of the contact vertices, or NULL where every normal (on every rank) is a coordinate axis already. */
 PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgFrame *frame)
 {
@@ -440,7 +466,6 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   SgContactView cv;
   const SgMesh *m;
   Mat           K, Qm;
-  MatNullSpace  nsp;
   PetscInt      dim, mloc, kn = -1;
   PetscReal     sn = 1;
   PetscBool     aligned, ok = PETSC_FALSE, done;
@@ -483,22 +508,7 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
     PetscCall(MatDestroy(&Qm));
   }
   PetscCall(MatSetBlockSize(f->Kr, dim));
-  PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
-  if (nsp) { /* the rigid-body modes in the frame (Q is orthogonal: they stay orthonormal) */
-    PetscBool  has_const;
-    PetscInt   nv;
-    const Vec *v;
-    Vec        rv[6];
-    PetscCall(MatNullSpaceGetVecs(nsp, &has_const, &nv, &v));
-    for (PetscInt k = 0; k < nv; k++) {
-      PetscCall(VecDuplicate(v[k], &rv[k]));
-      PetscCall(VecCopy(v[k], rv[k]));
-      PetscCall(SgFrameToLocal(f, rv[k]));
-    }
-    PetscCall(MatNullSpaceCreate(f->comm, has_const, nv, rv, &f->nsp));
-    for (PetscInt k = 0; k < nv; k++) PetscCall(VecDestroy(&rv[k]));
-    PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
-  }
+  PetscCall(FrameNullSpace(f, el, PETSC_TRUE));
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
   if (f->global && dim == 2) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g; %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3]));
   else if (f->global) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g %g; %g %g %g; %g %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3], (double)f->R[4], (double)f->R[5], (double)f->R[6], (double)f->R[7], (double)f->R[8]));
@@ -517,7 +527,6 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
   SgFrame       f;
   SgContactView cv;
   Mat           K, Qm, G;
-  MatNullSpace  nsp;
   PetscInt      dim, mloc;
 
   PetscFunctionBeginUser;
@@ -540,22 +549,7 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
   PetscCall(MatDestroy(&G));
   PetscCall(MatDestroy(&Qm));
   PetscCall(MatSetBlockSize(f->Kr, dim));
-  PetscCall(SgElasticityGetNearNullSpace(el, &nsp));
-  if (nsp) { /* (T Q)^-1 r: no longer orthonormal, which the AMG does not need */
-    PetscBool  has_const;
-    PetscInt   nv;
-    const Vec *v;
-    Vec        rv[6];
-    PetscCall(MatNullSpaceGetVecs(nsp, &has_const, &nv, &v));
-    for (PetscInt k = 0; k < nv; k++) {
-      PetscCall(VecDuplicate(v[k], &rv[k]));
-      PetscCall(VecCopy(v[k], rv[k]));
-      PetscCall(SgFrameToLocal(f, rv[k]));
-    }
-    PetscCall(MatNullSpaceCreate(f->comm, PETSC_FALSE, nv, rv, &f->nsp));
-    for (PetscInt k = 0; k < nv; k++) PetscCall(VecDestroy(&rv[k]));
-    PetscCall(MatSetNearNullSpace(f->Kr, f->nsp));
-  }
+  PetscCall(FrameNullSpace(f, el, PETSC_FALSE)); /* (T Q)^-1 r */
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
   PetscCall(PetscInfo(NULL, "-ssn_pair_transform: the pair's dual-mortar transformation, %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
   *frame = f;
