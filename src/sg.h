@@ -429,13 +429,31 @@ typedef struct _n_SgTMG      *SgTMG;
 typedef struct _n_SgFrame    *SgFrame;
 /* the linear solver of the controller's steps (-<prefix>ksp_*, -<prefix>pc_*), shared by the unconstrained start, the
    SSN steps and the pdas baseline; J is the working matrix (a copy of K with its near null space) */
-PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], KSP *, Mat *);
-PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                                    /* -help: the default solver's option */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool, PetscBool *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
-PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, char[], size_t);
+/* The default linear solver chosen for a problem (linear.c): set on the objects before their SetFromOptions, so that
+   every option still wins and nothing is left in PETSc's options database */
+typedef struct {
+  PetscBool on;        /* the default applies (neither -ksp_type nor -pc_type given) */
+  KSPType   ksp;       /* preonly, cg or bcgs */
+  PCType    pc;        /* cholesky, lu or hypre */
+  PetscBool mumps;     /* the factorization by MUMPS */
+  PetscBool amg;       /* BoomerAMG with the settings of options/solver/hypre_l1gs.opts, -ksp_rtol 1e-8 */
+  PetscBool condense;  /* the SSN's steps condensed (SgSSNSetCondense) */
+  PetscBool tmg;       /* the SSN's truncated multigrid (SgSSNSetTruncatedMG) */
+  PetscBool geometric; /* its interpolations of the mesh hierarchy */
+} SgLinearDefault;
+#define SG_LINEAR_DEFAULT_NAMG 7 /* the BoomerAMG settings (the size of SgLinearSolverSetDefault's entered[]) */
+PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], const SgLinearDefault *, KSP *, Mat *);
+PetscErrorCode SgLinearSolverSetDefault(KSP, const SgLinearDefault *, PetscBool[]); /* before the KSP's (or its SNES's) SetFromOptions ... */
+PetscErrorCode SgLinearSolverEndDefault(KSP, const SgLinearDefault *, PetscBool[]); /* ... and after it (the BoomerAMG options entered for it taken out) */
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                                           /* -help: the default solver's option */
+PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool, SgLinearDefault *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
+PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, SgLinearDefault *, char[], size_t);
 PetscErrorCode SgLinearSolverGeometricMG(const char[], PetscBool *); /* linear.c: -ssn_pc_truncated_mg_interp geometric given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
+PetscErrorCode SgSSNSetCondense(SgSSN, PetscBool);                 /* the default of -ssn_condense (before SgSSNSetFromOptions) */
+PetscErrorCode SgSSNSetTruncatedMG(SgSSN, PetscBool, PetscBool);   /* the defaults of -ssn_pc_truncated_mg and of its interpolations: geometric */
+PetscErrorCode SgSSNSetFromOptions(SgSSN);                         /* the options, then the frames, condensation or truncated multigrid */
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgSSNGetSNES(SgSSN, SNES *);

@@ -4,7 +4,7 @@
    naming what is wrong), never crash or touch freed memory; each right call around them must still work.
 
    -case NAME runs one group of cases (problem, cont, options, files, order, refcount, dm_copy, materials), without it all of
-   them in sequence. PETSc's errors return to us meanwhile (an error handler that records the message). The JSON
+   them in sequence (-case defaults, the default linear solver of two problems, only when named). PETSc's errors return to us meanwhile (an error handler that records the message). The JSON
    summary (-summary_file) holds the number of cases checked ("cases") and of cases that misbehaved ("bad"), and what
    the right calls computed; the program exits nonzero if any case misbehaved. */
 #include <signorini.h>
@@ -833,6 +833,70 @@ static PetscErrorCode CasesMaterials(PetscReal res[4])
 }
 
 /* a JSON number, or null for NaN */
+/* The default linear solver is each problem's own (issue 26): a program that solves a larger problem (above
+   -cont_direct_max_unknowns: CG + BoomerAMG, the truncated multigrid in the SSN steps), then a smaller one (MUMPS,
+   condensed), then each again, gets each problem's default every time, with the same result; nothing of the defaults
+   is left in PETSc's options database (which a later problem would read as the user's). res: the larger problem's
+   energy at its first and its second solve, the smaller one's at both. */
+static PetscErrorCode SolveDefault(PetscInt nx, PetscInt ny, const char want_ksp[], PetscReal *V)
+{
+  const PetscInt     top = 3, bottom = 1;
+  const PetscReal    u[2]     = {0.002, -0.01};
+  const char *const  names[]  = {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type", "-ksp_rtol", "-pc_hypre_type", "-pc_hypre_boomeramg_strong_threshold", "-pc_hypre_boomeramg_relax_type_down", "-ssn_condense", "-ssn_pc_truncated_mg", "-ssn_pc_truncated_mg_interp"};
+  DM                 dm;
+  SgProblem          p;
+  SgCont             c;
+  SNES               snes;
+  KSP                ksp;
+  KSPType            kt;
+  PetscBool          conv, left = PETSC_FALSE, same;
+  char               what[256];
+
+  PetscFunctionBeginUser;
+  PetscCall(MakeBox(nx, ny, &dm));
+  PetscCall(SgProblemCreateFromDM(dm, &p));
+  PetscCall(DMDestroy(&dm));
+  PetscCall(SgProblemSetMaterial(p, 1000, 0.3));
+  PetscCall(SgProblemSetBoundary(p, SG_BOUNDARY_DIRICHLET, "sides", 1, &top, u));
+  PetscCall(SgProblemSetBoundary(p, SG_BOUNDARY_CONTACT, "sides", 1, &bottom, NULL));
+  PetscCall(SgContCreate(p, &c));
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(SgContSetFromOptions(c));
+  PetscCall(SgContSolve(c));
+  PetscCall(SgContGetConvergedReason(c, &conv, NULL));
+  PetscCall(SgContGetEnergy(c, V));
+  PetscCall(SgContGetSNES(c, &snes));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetType(ksp, &kt));
+  PetscCall(PetscStrcmp(kt, want_ksp, &same));
+  PetscCall(PetscSNPrintf(what, sizeof(what), "%" PetscInt_FMT "x%" PetscInt_FMT ": the default Krylov method is %s (got %s), converged", nx, ny, want_ksp, kt));
+  PetscCall(Check(what, (PetscBool)(same && conv)));
+  for (size_t k = 0; k < sizeof(names) / sizeof(names[0]); k++) {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(NULL, NULL, names[k], &has));
+    if (has) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "    %s is in the options database\n", names[k]));
+    left = (PetscBool)(left || has);
+  }
+  PetscCall(PetscSNPrintf(what, sizeof(what), "%" PetscInt_FMT "x%" PetscInt_FMT ": nothing of the default solver left in the options database", nx, ny));
+  PetscCall(Check(what, (PetscBool)!left));
+  PetscCall(SgContDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CasesDefaults(PetscReal res[4])
+{
+  PetscBool small_first = PETSC_FALSE; /* -defaults_small_first: the other order */
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-defaults_small_first", &small_first, NULL));
+  if (small_first) PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[2])); /* 90 unknowns */
+  PetscCall(SolveDefault(24, 12, KSPCG, &res[0]));                     /* 650 */
+  if (!small_first) PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[2]));
+  PetscCall(SolveDefault(24, 12, KSPCG, &res[1]));
+  PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[3]));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode JSONReal(FILE *fp, const char key[], PetscReal v, const char end[])
 {
   PetscFunctionBeginUser;
@@ -845,7 +909,7 @@ int main(int argc, char **argv)
 {
   char      which[64] = "", file[PETSC_MAX_PATH_LEN] = "";
   PetscBool all, is;
-  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN}, matres[4] = {NAN, NAN, NAN, NAN};
+  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN}, matres[4] = {NAN, NAN, NAN, NAN}, defres[4] = {NAN, NAN, NAN, NAN};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-case", which, sizeof(which), NULL));
@@ -859,7 +923,8 @@ int main(int argc, char **argv)
   if (PetscStrcmp(which, "refcount", &is) == 0 && (all || is)) PetscCall(CasesRefcount(&e_ref, &e_ref2));
   if (PetscStrcmp(which, "dm_copy", &is) == 0 && (all || is)) PetscCall(CasesDMCopy(dmres));
   if (PetscStrcmp(which, "materials", &is) == 0 && (all || is)) PetscCall(CasesMaterials(matres));
-  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy, materials)", which);
+  if (PetscStrcmp(which, "defaults", &is) == 0 && is) PetscCall(CasesDefaults(defres)); /* only when asked: it needs -cont_direct_max_unknowns */
+  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy, materials, defaults)", which);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " cases, %" PetscInt_FMT " misbehaved\n", Cases, Bad));
   if (file[0]) {
     FILE *fp;
@@ -877,7 +942,11 @@ int main(int argc, char **argv)
     PetscCall(JSONReal(fp, "energy_materials", matres[0], ", "));
     PetscCall(JSONReal(fp, "energy_materials_options", matres[1], ", "));
     PetscCall(JSONReal(fp, "energy_equal_materials", matres[2], ", "));
-    PetscCall(JSONReal(fp, "energy_one_material", matres[3], "}\n"));
+    PetscCall(JSONReal(fp, "energy_one_material", matres[3], ", "));
+    PetscCall(JSONReal(fp, "energy_default_large", defres[0], ", "));
+    PetscCall(JSONReal(fp, "energy_default_large_again", defres[1], ", "));
+    PetscCall(JSONReal(fp, "energy_default_small", defres[2], ", "));
+    PetscCall(JSONReal(fp, "energy_default_small_again", defres[3], "}\n"));
     PetscCall(PetscFClose(PETSC_COMM_WORLD, fp));
   }
   PetscCall(PetscFinalize());

@@ -191,9 +191,14 @@ PetscErrorCode SgContSetUp(SgCont ct)
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
-  PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->ksp, &ct->J));
+  PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->lin, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {
     PetscCall(SgSSNCreate(ct->prob, ct->c, ((PetscObject)ct)->prefix, ct->ksp, ct->J, &ct->ssn));
+    if (ct->lin.on) { /* the default solver's SSN settings (the options still win) */
+      PetscCall(SgSSNSetCondense(ct->ssn, ct->lin.condense));
+      PetscCall(SgSSNSetTruncatedMG(ct->ssn, ct->lin.tmg, ct->lin.geometric));
+    }
+    PetscCall(SgSSNSetFromOptions(ct->ssn));
     PetscCall(SgSSNGetShift(ct->ssn, &ct->lamhat));
   }
   ct->setup_failed = PETSC_FALSE;

@@ -137,7 +137,11 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   {
     PetscBool pair = PETSC_FALSE;
     if (ct->c) PetscCall(SgContactIsPair(ct->c, &pair));
-    PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), pair, &solver_default, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+    if (ct->lin_inherited) { /* a coarse level of -cont_nested: the finest level's default, SSN settings included */
+      iterative = (PetscBool)strcmp(ct->lin.ksp, KSPPREONLY);
+      PetscCall(PetscSNPrintf(ct->solver_desc, sizeof(ct->solver_desc), "the finest level's default (-cont_nested)"));
+    } else PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), pair, &ct->lin, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+    solver_default = (PetscBool)(ct->lin.on && !ct->lin_inherited);
   }
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
@@ -152,7 +156,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(create(ct));
   PetscCall(PetscObjectChangeTypeName((PetscObject)ct, ct->type));
   /* the SSN's defaults before the type's options: fast's -cont_fast_ksp_loose follows the geometric multigrid */
-  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+  if (solver_default && ct->ops.needs_ssn) PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, iterative, &ct->lin, ct->solver_desc, sizeof(ct->solver_desc)));
   PetscCall(TypeOptions(ct, PetscOptionsObject));
   PetscCall(HelpTypes(ct, ct->type, PetscOptionsObject));
   PetscOptionsEnd();

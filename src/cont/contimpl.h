@@ -54,6 +54,8 @@ struct _n_SgCont {
   PetscBool             monitor;          /* -cont_monitor: a line per outer step */
   PetscBool             type_default;     /* the type is the default for the problem (neither SgContSetType nor -cont_type) */
   char                  solver_desc[256]; /* which linear solver runs, and why (SgLinearSolverDefaults) */
+  SgLinearDefault       lin;              /* the default linear solver for the problem (lin.on: it applies) */
+  PetscBool             lin_inherited;    /* lin is the finest level's (a coarse level of -cont_nested) */
   SgProblem             problem_obj;
   SgElasticity          prob;
   SgContact             c;

@@ -46,6 +46,7 @@ static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOpti
     PetscBool geo; /* one V-cycle of the geometric multigrid already cuts ||r|| about 10x: tested at 0.1 the early stop
                       took steps of 1-2 CG iterations that cycled (2D Example 1, 9,840 unknowns: 38 SSN steps, not 8) */
     PetscCall(SgLinearSolverGeometricMG(PetscOptionsObject->prefix, &geo));
+    if (ct->lin.on && ct->lin.tmg && ct->lin.geometric) geo = PETSC_TRUE; /* the default solver's (linear.c) */
     if (geo) f->loose = PetscMin(f->loose, 1e-2);
   }
   PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_fast_ksp_loose", "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, &o3));

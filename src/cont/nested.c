@@ -245,6 +245,10 @@ PetscErrorCode SgContNestedStart(SgCont ct)
     PetscCall(SgContSetType(cc, ct->type));
     PetscCall(SgContSetMonitor(cc, ct->monitor));
     PetscCall(SgContSetTolerances(cc, ct->kkt_tol, ct->max_outer));
+    if (ct->lin.on) { /* the finest level's default linear solver on every level (its size does not choose another) */
+      cc->lin           = ct->lin;
+      cc->lin_inherited = PETSC_TRUE;
+    }
     PetscCall(SgContSetFromOptions(cc));
     cc->ckfile[0] = cc->rsfile[0] = 0; /* the finest level's files */
     PetscCall(SgContSetUp(cc));

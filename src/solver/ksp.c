@@ -76,14 +76,16 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm comm, const char prefix[])
 }
 
 /* The linear solver of every step of a controller: a KSP with the options under the prefix on J, a working copy of K
-   (with the rigid-body near null space if asked for); the types are checked first, and a combination that fails in
+   (with the rigid-body near null space if asked for), def the problem's default solver (NULL: none); the types are
+   checked first, and a combination that fails in
    KSPSetFromOptions is reported naming the solver options. */
-PetscErrorCode SgLinearSolverCreate(SgElasticity el, const char prefix[], KSP *ksp, Mat *J)
+PetscErrorCode SgLinearSolverCreate(SgElasticity el, const char prefix[], const SgLinearDefault *def, KSP *ksp, Mat *J)
 {
   MPI_Comm       comm;
   Mat            K;
   MatNullSpace   nsp;
   PetscErrorCode ierr;
+  PetscBool      entered[SG_LINEAR_DEFAULT_NAMG];
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetComm(el, &comm));
@@ -96,9 +98,11 @@ PetscErrorCode SgLinearSolverCreate(SgElasticity el, const char prefix[], KSP *k
   PetscCall(KSPSetOptionsPrefix(*ksp, prefix));
   PetscCall(KSPSetOperators(*ksp, *J, *J));
   PetscCall(SgCheckSolverTypes(comm, prefix));
+  PetscCall(SgLinearSolverSetDefault(*ksp, def, entered)); /* the problem's default solver (linear.c), if it applies */
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = KSPSetFromOptions(*ksp);
   PetscCall(PetscPopErrorHandler());
+  PetscCall(SgLinearSolverEndDefault(*ksp, def, entered));
   PetscCall(SgSolverConfigured(comm, ierr));
   PetscFunctionReturn(0);
 }

@@ -9,8 +9,10 @@
                about 2e4 unknowns;
      3D: with the truncated multigrid in the SSN steps, CG + BoomerAMG ties condensed MUMPS at 2,733 unknowns and
                takes 0.5-0.6x its time at 17,307 (3 interleaved rounds), so MUMPS is kept up to 5,000.
-   Each default is entered into the options database only where the user gave no value, so every -ksp_* / -pc_*
-   option or options file still wins. */
+   The default is set on the objects (SgLinearSolverSetDefault: KSPSetType, PCSetType, PCFactorSetMatSolverType,
+   KSPSetTolerances; the SSN's through SgSSNSetCondense/SgSSNSetTruncatedMG) before their SetFromOptions, so that every
+   -ksp_* / -pc_* / -ssn_* option or options file still wins and nothing stays in PETSc's options database: a program
+   that solves two problems gets each one's own default. */
 #include "sg.h"
 
 /* condensation keeps a dense Schur complement on the contact dofs: not beyond this many of them */
@@ -23,33 +25,96 @@ static PetscErrorCode DirectMaxOption(PetscOptionItems *PetscOptionsObject, Pets
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetDefault(const char prefix[], const char name[], const char value[])
+/* BoomerAMG's settings of the default (options/solver/hypre_l1gs.opts). PETSc 3.18's PCHYPRE has no setters for
+   them: it reads them in PCSetFromOptions only, from the PC's options database. They are entered into the global
+   database (where the user gave no value) for the one SetFromOptions that configures the KSP and taken out right after
+   it (SgLinearSolverEndDefault); the PC keeps them, a later SetFromOptions (the SSN's SNES reads its KSP's options
+   again) keeps what it finds set. An options object of the KSP's own (PetscObjectSetOptions) would replace the global
+   database for it, not add to it: the user's -pc_hypre_* options would no longer reach the PC. */
+static const char *const AMGDefaults[][2] = {
+  {"pc_hypre_boomeramg_strong_threshold", "0.5"                     },
+  {"pc_hypre_boomeramg_coarsen_type",     "HMIS"                    },
+  {"pc_hypre_boomeramg_interp_type",      "ext+i"                   },
+  {"pc_hypre_boomeramg_P_max",            "4"                       },
+  {"pc_hypre_boomeramg_agg_nl",           "1"                       },
+  {"pc_hypre_boomeramg_relax_type_down",  "l1-Gauss-Seidel"         },
+  {"pc_hypre_boomeramg_relax_type_up",    "backward-l1-Gauss-Seidel"}
+};
+#define SG_NAMG SG_LINEAR_DEFAULT_NAMG
+_Static_assert(sizeof(AMGDefaults) / sizeof(AMGDefaults[0]) == SG_LINEAR_DEFAULT_NAMG, "SG_LINEAR_DEFAULT_NAMG");
+
+/* The default def (none unless def->on) set on ksp before its SetFromOptions (or that of the SNES holding it);
+   entered[SG_NAMG]: which BoomerAMG settings were entered into the options database for it (SgLinearSolverEndDefault
+   takes them out). */
+PetscErrorCode SgLinearSolverSetDefault(KSP ksp, const SgLinearDefault *def, PetscBool entered[])
 {
-  char      opt[256];
-  PetscBool set;
+  PC          pc;
+  const char *prefix;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", name));
-  PetscCall(PetscOptionsHasName(NULL, NULL, opt, &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, opt, value));
+  for (PetscInt k = 0; k < SG_NAMG; k++) entered[k] = PETSC_FALSE;
+  if (!def || !def->on) PetscFunctionReturn(0);
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(KSPSetType(ksp, def->ksp));
+  PetscCall(PCSetType(pc, def->pc));
+  if (def->mumps) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  if (!def->amg) PetscFunctionReturn(0);
+  PetscCall(KSPSetTolerances(ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  for (PetscInt k = 0; k < SG_NAMG; k++) { /* BoomerAMG is PCHYPRE's default type (-pc_hypre_type still wins) */
+    char      opt[256];
+    PetscBool set;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", AMGDefaults[k][0]));
+    PetscCall(PetscOptionsHasName(NULL, NULL, opt, &set));
+    if (!set) PetscCall(PetscOptionsSetValue(NULL, opt, AMGDefaults[k][1]));
+    entered[k] = (PetscBool)!set;
+  }
   PetscFunctionReturn(0);
 }
 
-/* -<prefix>ssn_pc_truncated_mg_interp geometric given (the geometric multigrid, gmg.c; a bad value is reported by
-   the SSN's reader) */
-PetscErrorCode SgLinearSolverGeometricMG(const char prefix[], PetscBool *geo)
+/* After that SetFromOptions (also after its error): the settings entered for it taken out of the options database */
+PetscErrorCode SgLinearSolverEndDefault(KSP ksp, const SgLinearDefault *def, PetscBool entered[])
+{
+  const char *prefix;
+
+  PetscFunctionBeginUser;
+  if (!def || !def->on || !def->amg) PetscFunctionReturn(0);
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  for (PetscInt k = 0; k < SG_NAMG; k++) {
+    char opt[256];
+    if (!entered[k]) continue;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", AMGDefaults[k][0]));
+    PetscCall(PetscOptionsClearValue(NULL, opt));
+    entered[k] = PETSC_FALSE;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -<prefix>ssn_pc_truncated_mg_interp given (set) and geometric (the geometric multigrid, gmg.c; a bad value is
+   reported by the SSN's reader) */
+static PetscErrorCode InterpOption(const char prefix[], PetscBool *set, PetscBool *geo)
 {
   const char *const list[] = {"amg", "geometric"};
   char              opt[256];
-  PetscInt          v   = 0;
-  PetscBool         set = PETSC_FALSE;
+  PetscInt          v = 0;
 
   PetscFunctionBeginUser;
+  *set = PETSC_FALSE;
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pc_truncated_mg_interp", prefix ? prefix : ""));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  if (PetscOptionsGetEList(NULL, NULL, opt, list, 2, &v, &set)) set = PETSC_FALSE;
+  if (PetscOptionsGetEList(NULL, NULL, opt, list, 2, &v, set)) *set = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
-  *geo = (PetscBool)(set && v == 1);
+  *geo = (PetscBool)(*set && v == 1);
+  PetscFunctionReturn(0);
+}
+
+/* -<prefix>ssn_pc_truncated_mg_interp geometric given */
+PetscErrorCode SgLinearSolverGeometricMG(const char prefix[], PetscBool *geo)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(InterpOption(prefix, &set, geo));
   PetscFunctionReturn(0);
 }
 
@@ -68,10 +133,9 @@ PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* Enter the default solver's options unless -<prefix>ksp_type or -<prefix>pc_type is given. defaulted: the default
-   was entered; iterative: the solver that will run is a Krylov method with a preconditioner (not preonly: the
+/* The default solver def (def->on) unless -<prefix>ksp_type or -<prefix>pc_type is given; iterative: the solver that will run is a Krylov method with a preconditioner (not preonly: the
    controller's default depends on it); desc says what was chosen and why (for the run's first lines). */
-PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool nonsym, PetscBool pair, PetscBool *defaulted, PetscBool *iterative, char desc[], size_t len)
+PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], PetscBool nonsym, PetscBool pair, SgLinearDefault *def, PetscBool *iterative, char desc[], size_t len)
 {
   char        opt[256], ktype[64] = "";
   PetscBool   kset, pset;
@@ -80,6 +144,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   MPI_Comm    comm;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(def, sizeof(*def)));
   PetscCall(SgElasticityGetComm(el, &comm));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(SgElasticityGetDimension(el, &dim));
@@ -104,8 +169,8 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   if (kset) PetscCall(PetscOptionsGetString(NULL, NULL, opt, ktype, sizeof(ktype), NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%spc_type", prefix ? prefix : ""));
   PetscCall(PetscOptionsHasName(NULL, NULL, opt, &pset));
-  *defaulted = (PetscBool) !(kset || pset);
-  if (!*defaulted) {
+  def->on = (PetscBool) !(kset || pset);
+  if (!def->on) {
     *iterative = (PetscBool)strcmp(ktype, KSPPREONLY); /* PETSc's default Krylov method is GMRES */
     if (nonsym) {                                      /* Coulomb friction: the SSN's matrices are nonsymmetric */
       char ptype[64] = "";
@@ -129,45 +194,36 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
   }
   *iterative = (PetscBool)(dofs > maxdirect);
   if (!*iterative && nonsym) { /* Coulomb friction: nonsymmetric Jacobians */
-    PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
-    PetscCall(SetDefault(prefix, "pc_type", "lu"));
-    PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
+    def->ksp   = KSPPREONLY;
+    def->pc    = PCLU;
+    def->mumps = PETSC_TRUE;
     if (maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for %" PetscInt_FMT "D on one rank with Coulomb friction (nonsymmetric Jacobians): sparse LU (MUMPS)", dim));
     else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns) with Coulomb friction (nonsymmetric Jacobians): sparse LU (MUMPS)", maxdirect));
   } else if (!*iterative) {
-    PetscCall(SetDefault(prefix, "ksp_type", "preonly"));
-    PetscCall(SetDefault(prefix, "pc_type", "cholesky"));
-    PetscCall(SetDefault(prefix, "pc_factor_mat_solver_type", "mumps"));
+    def->ksp   = KSPPREONLY;
+    def->pc    = PCCHOLESKY;
+    def->mumps = PETSC_TRUE;
     if (maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for %" PetscInt_FMT "D on one rank: sparse Cholesky (MUMPS)", dim));
     else if (maxdirect == PETSC_MAX_INT - 1) PetscCall(PetscSNPrintf(desc, len, "default with -ssn_condense: sparse Cholesky (MUMPS)"));
     else PetscCall(PetscSNPrintf(desc, len, "default up to %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns): sparse Cholesky (MUMPS)", maxdirect));
   } else {
-    PetscCall(SetDefault(prefix, "ksp_type", nonsym ? "bcgs" : "cg"));
-    PetscCall(SetDefault(prefix, "ksp_rtol", "1e-8"));
-    PetscCall(SetDefault(prefix, "pc_type", "hypre"));
-    PetscCall(SetDefault(prefix, "pc_hypre_type", "boomeramg"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_strong_threshold", "0.5"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_coarsen_type", "HMIS"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_interp_type", "ext+i"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_P_max", "4"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_agg_nl", "1"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_down", "l1-Gauss-Seidel"));
-    PetscCall(SetDefault(prefix, "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"));
+    def->ksp = nonsym ? KSPBCGS : KSPCG;
+    def->pc  = PCHYPRE;
+    def->amg = PETSC_TRUE;
     PetscCall(PetscSNPrintf(desc, len, "default above %" PetscInt_FMT " unknowns (-cont_direct_max_unknowns%s): %s + BoomerAMG (options/solver/hypre_l1gs.opts)", maxdirect, maxdirect ? "" : " or -ssn_pc_truncated_mg", nonsym ? "BiCGStab (Coulomb friction: nonsymmetric)" : "CG"));
   }
   if (pair && !*iterative && maxdirect == PETSC_MAX_INT) PetscCall(PetscSNPrintf(desc, len, "default for two bodies (-contact_master_ids) at any size (-cont_direct_max_unknowns changes it): sparse %s (MUMPS)", nonsym ? "LU" : "Cholesky"));
   PetscFunctionReturn(0);
 }
 
-/* Enter a default SSN option unless given; PETSC_TRUE if it is on (the user may have said false). */
+/* A default SSN option that is on unless given: PETSC_TRUE if it is on (the user may have said false). */
 static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], PetscBool *on)
 {
   char opt[256];
 
   PetscFunctionBeginUser;
-  PetscCall(SetDefault(prefix, name, "true"));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", prefix ? prefix : "", name));
-  *on = PETSC_FALSE;
+  *on = PETSC_TRUE;
   PetscCall(PetscOptionsGetBool(NULL, NULL, opt, on, NULL));
   PetscFunctionReturn(0);
 }
@@ -176,13 +232,16 @@ static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], Pets
    mesh kept every level of -dm_refine (fem/mesh.c: nested iteration's default or -cont_nested N = -dm_refine), unless
    the option is given. Ex2 at 144,666 unknowns: 0.5x the CG iterations of BoomerAMG's, no AMG setup; with nested
    iteration 3 SSN / 26 CG on the finest level against 3 / 51 (bench/nested.md). */
-static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[])
+static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], PetscBool *geo)
 {
   DM          dm;
   PetscObject lv = (PetscObject)NULL, base = NULL;
   char        name[64];
+  PetscBool   set;
 
   PetscFunctionBeginUser;
+  PetscCall(InterpOption(prefix, &set, geo));
+  if (set) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
   for (PetscInt k = 1;; k++) { /* the coarsest level kept */
     PetscObject q = NULL;
@@ -192,7 +251,7 @@ static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[])
     lv = q;
   }
   if (lv) PetscCall(PetscObjectQuery(lv, "SgNestedBase", &base));
-  if (base) PetscCall(SetDefault(prefix, "ssn_pc_truncated_mg_interp", "geometric"));
+  *geo = (PetscBool)(base != NULL);
   PetscFunctionReturn(0);
 }
 
@@ -202,7 +261,7 @@ static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[])
    - iterative (BoomerAMG): the truncated multigrid (-ssn_pc_truncated_mg, tmg.c: one AMG setup on K, no new one per
      active set; 0.61x the contact solve's time of a BoomerAMG setup per set on 124,128 unknowns, bench/perf_notes.md
      part D) where the contact normals are coordinate axes, which it needs. */
-PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char prefix[], PetscBool iterative, char desc[], size_t len)
+PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char prefix[], PetscBool iterative, SgLinearDefault *def, char desc[], size_t len)
 {
   PetscMPIInt   size;
   MPI_Comm      comm;
@@ -225,6 +284,7 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
     /* there every pair condition is nodal: the truncated multigrid applies (sphere on a block, 117,693 unknowns:
        4 SSN steps and 37 s against 7 and 72 s with a BoomerAMG setup per step, bench/results.md "Two bodies") */
     PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
+    def->tmg = on;
     PetscCall(PetscStrlen(desc, &n));
     PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps in the pair's dual-mortar basis (-ssn_pair_transform)%s", on ? " preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)" : ""));
     PetscFunctionReturn(0);
@@ -244,10 +304,11 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   if (iterative) {
     if (!aligned) PetscFunctionReturn(0);
     PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
+    def->tmg = on;
     if (on) {
       PetscBool geo;
-      PetscCall(DefaultGeometricMG(el, prefix));
-      PetscCall(SgLinearSolverGeometricMG(prefix, &geo));
+      PetscCall(DefaultGeometricMG(el, prefix, &geo));
+      def->geometric = geo;
       if (geo) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by the geometric multigrid of the mesh hierarchy truncated at the active set (-ssn_pc_truncated_mg_interp geometric)"));
       else PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
     }
@@ -256,6 +317,7 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   ncond = cv.nglobal * (aligned ? 1 : dim); /* axis-aligned normals condense one component (condense.c) */
   if (size > 1 || ncond > SG_CONDENSE_MAX_DOFS) PetscFunctionReturn(0);
   PetscCall(SetDefaultSSN(prefix, "ssn_condense", &on));
+  def->condense = on;
   if (on) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps condensed onto the %" PetscInt_FMT " contact dofs (-ssn_condense)", ncond));
   PetscFunctionReturn(0);
 }

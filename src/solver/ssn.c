@@ -91,13 +91,12 @@ PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN s, Vec x)
 }
 
 /* The SSN solver of (P_gamma) on the contact boundary c, its SNES (options under the prefix) solving with the linear
-   solver ksp on the working matrix J (SgLinearSolverCreate). */
+   solver ksp on the working matrix J (SgLinearSolverCreate); its options are read by SgSSNSetFromOptions, after the
+   program's defaults (SgSSNSetCondense, SgSSNSetTruncatedMG). */
 PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP ksp, Mat J, SgSSN *ssn)
 {
   SgSSN          s;
   SNESLineSearch ls;
-  PetscBool      condense = PETSC_FALSE, tmg = PETSC_FALSE, frame = PETSC_TRUE;
-  PetscInt       interp = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -145,6 +144,46 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   s->fp_omega  = 1;
   s->fp_m      = 8;
   s->fp_rtol   = 1e-13;
+  *ssn         = s;
+  PetscFunctionReturn(0);
+}
+
+/* The default of -ssn_condense (the default linear solver's, linear.c); before SgSSNSetFromOptions */
+PetscErrorCode SgSSNSetCondense(SgSSN s, PetscBool condense)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!s->snes_setfromoptions, s->comm, PETSC_ERR_ORDER, "SgSSNSetCondense: call it before SgSSNSetFromOptions");
+  s->condense_default = condense;
+  PetscFunctionReturn(0);
+}
+
+/* The defaults of -ssn_pc_truncated_mg and of -ssn_pc_truncated_mg_interp (geometric: the mesh hierarchy's); before
+   SgSSNSetFromOptions */
+PetscErrorCode SgSSNSetTruncatedMG(SgSSN s, PetscBool tmg, PetscBool geometric)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!s->snes_setfromoptions, s->comm, PETSC_ERR_ORDER, "SgSSNSetTruncatedMG: call it before SgSSNSetFromOptions");
+  s->tmg_default    = tmg;
+  s->interp_default = geometric ? 1 : 0;
+  PetscFunctionReturn(0);
+}
+
+/* The SSN's options (their defaults as set), then what they choose: the contact frames, condensation or the
+   truncated multigrid on the KSP */
+PetscErrorCode SgSSNSetFromOptions(SgSSN s)
+{
+  PetscBool   condense = s->condense_default, tmg = s->tmg_default, frame = PETSC_TRUE;
+  PetscInt    interp = s->interp_default;
+  SgElasticity p     = s->prob;
+  SgContact   c      = s->c;
+  const char *prefix;
+  KSP         ksp;
+
+  PetscFunctionBeginUser;
+  PetscCheck(!s->snes_setfromoptions, s->comm, PETSC_ERR_ORDER, "SgSSNSetFromOptions: called twice");
+  s->snes_setfromoptions = PETSC_TRUE;
+  PetscCall(SNESGetOptionsPrefix(s->snes, &prefix));
+  PetscCall(SNESGetKSP(s->snes, &ksp));
   PetscOptionsBegin(s->comm, prefix, "Semismooth Newton (active set) solver", NULL);
   PetscCall(SSNOptions(PetscOptionsObject, s, &condense, &tmg, &interp, &frame));
   PetscOptionsEnd();
@@ -200,7 +239,6 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
     PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
   }
-  *ssn = s;
   PetscFunctionReturn(0);
 }
 

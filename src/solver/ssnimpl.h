@@ -38,6 +38,10 @@ struct _n_SgSSN {
   PetscInt          pc_reuse_its;       /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
   SgCondense        cond;               /* -ssn_condense: linear solves condensed onto the contact dofs */
   SgTMG             tmg;                /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
+  PetscBool         condense_default;   /* the defaults of -ssn_condense and -ssn_pc_truncated_mg (SgSSNSetCondense, */
+  PetscBool         tmg_default;        /* SgSSNSetTruncatedMG: the default linear solver's, linear.c) and of its */
+  PetscInt          interp_default;     /* interpolations (1: geometric) */
+  PetscBool         snes_setfromoptions; /* SgSSNSetFromOptions was called */
   SgFrame           frame;              /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
   PetscBool         frame_local;        /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
   PetscBool         pair_transform;     /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
