@@ -280,15 +280,17 @@ typedef struct {
 } SgContactLawReader;
 PetscErrorCode SgContactLawSave(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);            /* the law (NULL: none), its parameters, lamhat_T (NULL: zeros) and a slip reference (2 n dim) */
 PetscErrorCode SgContactLawLoad(SgContactLaw, MPI_Comm, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *); /* checks the file's law and parameters against this one; lamhat_T, the slip reference; whether the file held its full part */
-/* The contact vertices owned by this rank, a read-only view for the loops of the solvers (SgContactGetView). */
+/* The contact vertices owned by this rank, read-only (NULL for what is not wanted; the arrays are the contact
+   object's, valid while it lives): their number here and in all, local vertex numbers and the offsets of their first
+   dofs in the local part of a global displacement vector; the lumped boundary weights int_Gamma_c phi_i; the outward
+   unit normals (n*dim); the gaps to the obstacle along the normals (at its current placement); |Gamma_c|. */
+PetscErrorCode SgContactGetVertices(SgContact, PetscInt *, PetscInt *, const PetscInt *[], const PetscInt *[]);
+PetscErrorCode SgContactGetWeights(SgContact, const PetscReal *[]);
+PetscErrorCode SgContactGetNormals(SgContact, const PetscReal *[]);
+PetscErrorCode SgContactGetGaps(SgContact, const PetscReal *[]);
+PetscErrorCode SgContactGetArea(SgContact, PetscReal *);
+/* The contact law on Gamma_c, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
-  PetscInt         n, nglobal; /* owned here, in all */
-  const PetscInt  *vert;       /* local vertex number */
-  const PetscInt  *off;        /* offset of its first dof in the local part of a global displacement vector */
-  const PetscReal *w;          /* lumped boundary weights int_Gamma_c phi_i */
-  const PetscReal *normal;     /* outward unit normals, n*dim */
-  const PetscReal *d;          /* initial gap to the obstacle along the normal */
-  PetscReal        area;       /* |Gamma_c| */
   /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
   SgContactLaw     law;
   PetscBool        friction; /* the law has a tangential part */

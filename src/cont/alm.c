@@ -25,13 +25,13 @@ static PetscErrorCode Start_ALM(SgCont ct)
 
   PetscFunctionBeginUser;
   ct->gamma = alm->gamma;
-  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0; /* lam^0 = 0 */
+  for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0; /* lam^0 = 0 */
   if (ct->cv.friction) {
     PetscReal *lhT;
     PetscInt   dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
-    PetscCall(PetscArrayzero(lhT, ct->cv.n * dim));
+    PetscCall(PetscArrayzero(lhT, ct->n * dim));
   }
   PetscFunctionReturn(0);
 }
@@ -42,14 +42,14 @@ static PetscErrorCode Update_ALM(SgCont ct, PetscReal *next)
   ALM *alm = (ALM *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->cv.n));
+  PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->n));
   if (ct->cv.friction) { /* lamhat_T^{l+1} = P_g(lamhat_T^l + gamma_T T y), the SSN's tangential multiplier */
     PetscReal       *lhT;
     const PetscReal *mT;
     PetscInt         dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(SgSSNGetFriction(ct->ssn, &lhT, &mT, NULL));
-    PetscCall(PetscArraycpy(lhT, mT, ct->cv.n * dim));
+    PetscCall(PetscArraycpy(lhT, mT, ct->n * dim));
   }
   *next = ct->gamma * alm->factor;
   PetscFunctionReturn(0);

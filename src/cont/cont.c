@@ -185,11 +185,11 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
-  PetscCall(PetscCalloc1(ct->cv.n, &ct->lam));
+  PetscCall(PetscCalloc1(ct->n, &ct->lam));
   if (ct->c && ct->cv.friction) { /* this controller's slip reference: zero, the first load step's start */
     PetscInt dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
+    PetscCall(PetscCalloc1(2 * ct->n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
   PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->lin, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {

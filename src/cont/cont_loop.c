@@ -69,9 +69,9 @@ static PetscErrorCode KeepBest(SgCont ct)
   if (!PetscIsNormalReal(ct->kkt.residual) && ct->kkt.residual != 0) PetscFunctionReturn(0);
   if (ct->outerbest > 0 && !(ct->kkt.residual < ct->kktbest)) PetscFunctionReturn(0);
   if (!ct->ybest) PetscCall(VecDuplicate(ct->y, &ct->ybest));
-  if (!ct->lambest) PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lambest));
+  if (!ct->lambest) PetscCall(PetscMalloc1(ct->n + 1, &ct->lambest));
   PetscCall(VecCopy(ct->y, ct->ybest));
-  PetscCall(PetscArraycpy(ct->lambest, ct->lam, ct->cv.n));
+  PetscCall(PetscArraycpy(ct->lambest, ct->lam, ct->n));
   ct->kktbest   = ct->kkt.residual;
   ct->outerbest = ct->outer;
   PetscFunctionReturn(0);
@@ -102,7 +102,7 @@ static PetscErrorCode RestoreBest(SgCont ct)
     PetscFunctionReturn(0);
   }
   PetscCall(VecCopy(ct->ybest, ct->y));
-  PetscCall(PetscArraycpy(ct->lam, ct->lambest, ct->cv.n));
+  PetscCall(PetscArraycpy(ct->lam, ct->lambest, ct->n));
   PetscCall(SgContMeasure(ct));
   {
     char was[sizeof(ct->reason)];
@@ -141,8 +141,8 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
   PetscCall(PetscPrintf(ct->comm, "  %s with Coulomb friction: %.200s; solved again from the start on the shifted path (lamhat = the last multipliers, gamma doubled per step from %g)\n", ct->type, was, (double)gamma));
   PetscCall(SgSSNSetNeighbourhood(ct->ssn, 0)); /* exact solves */
   PetscCall(VecCopy(ct->ystart, ct->y));
-  PetscCall(PetscArrayzero(ct->lamhat, ct->cv.n));
-  PetscCall(PetscArrayzero(lhT, ct->cv.n * dim));
+  PetscCall(PetscArrayzero(ct->lamhat, ct->n));
+  PetscCall(PetscArrayzero(lhT, ct->n * dim));
   ct->converged = PETSC_FALSE;
   ct->best_kkt  = PETSC_MAX_REAL;
   ct->best_step = ct->outer;
@@ -158,15 +158,15 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
       PetscCall(AcceptFailedSSN(ct));
       break;
     }
-    PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->cv.n));
+    PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->n));
     PetscCall(SgSSNGetFriction(ct->ssn, &lhT, &mT, NULL));
-    PetscCall(PetscArraycpy(lhT, mT, ct->cv.n * dim));
+    PetscCall(PetscArraycpy(lhT, mT, ct->n * dim));
     gamma *= 2;
     ct->gamma = gamma;
     PetscCall(SgContCheck(ct, &stop));
   }
-  PetscCall(PetscArrayzero(ct->lamhat, ct->cv.n));
-  PetscCall(PetscArrayzero(lhT, ct->cv.n * dim));
+  PetscCall(PetscArrayzero(ct->lamhat, ct->n));
+  PetscCall(PetscArrayzero(lhT, ct->n * dim));
   if (ct->converged) {
     char now[sizeof(ct->reason)];
     PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));

@@ -127,7 +127,14 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCall(SgProblemSetUp(p));
   PetscCall(SgProblemGetElasticity(p, &ct->prob));
   PetscCall(SgProblemGetContact(p, &ct->c));
-  if (ct->c) PetscCall(SgContactGetView(ct->c, &ct->cv));
+  if (ct->c) {
+    PetscCall(SgContactGetView(ct->c, &ct->cv));
+    PetscCall(SgContactGetVertices(ct->c, &ct->n, &ct->nglobal, &ct->vert, &ct->off));
+    PetscCall(SgContactGetWeights(ct->c, &ct->w));
+    PetscCall(SgContactGetNormals(ct->c, &ct->normal));
+    PetscCall(SgContactGetGaps(ct->c, &ct->d));
+    PetscCall(SgContactGetArea(ct->c, &ct->area));
+  }
   ct->problem = ct->c ? "P" : "elasticity";
   /* the default solves the problem given: the contact problem (P) with the default controller, or the elasticity
      problem alone (none) without a contact boundary */

@@ -96,14 +96,14 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
   if (ct->store_steps) {
     PetscCall(VecDuplicate(ct->y, &ct->ysteps[ct->nsteps]));
     PetscCall(VecCopy(ct->y, ct->ysteps[ct->nsteps]));
-    PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[ct->nsteps]));
-    PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->cv.n));
+    PetscCall(PetscMalloc1(ct->n + 1, &ct->lamsteps[ct->nsteps]));
+    PetscCall(PetscArraycpy(ct->lamsteps[ct->nsteps], ct->lam, ct->n));
     if (ct->yref) { /* the step's slip reference, for its slip field */
       PetscInt dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       if (!ct->yrsteps) PetscCall(PetscCalloc1(ct->capsteps, &ct->yrsteps));
-      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &ct->yrsteps[ct->nsteps])); /* of the unknowns, then of the full displacement */
-      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], ct->yref, 2 * ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->n * dim + 1, &ct->yrsteps[ct->nsteps])); /* of the unknowns, then of the full displacement */
+      PetscCall(PetscArraycpy(ct->yrsteps[ct->nsteps], ct->yref, 2 * ct->n * dim));
     }
   }
   {
@@ -144,7 +144,7 @@ static PetscErrorCode CheckResult(SgCont ct)
   if (ct->converged && !ct->cv.friction && !strcmp(ct->problem, "P")) {
     PetscReal dmin = PETSC_MAX_REAL, V0, margin;
     PetscInt  ndofs;
-    for (PetscInt i = 0; i < ct->cv.n; i++) dmin = PetscMin(dmin, ct->cv.d[i]);
+    for (PetscInt i = 0; i < ct->n; i++) dmin = PetscMin(dmin, ct->d[i]);
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dmin, 1, MPIU_REAL, MPI_MIN, ct->comm));
     if (dmin < 0) PetscFunctionReturn(0);
     PetscCall(SgElasticityGetEnergyShift(ct->prob, &V0)); /* V(0) */
@@ -187,7 +187,7 @@ PetscErrorCode SgContSolve(SgCont ct)
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(SgContactSetSlipReference(ct->c, ct->y)); /* with the prescribed components' data of the step y solved */
     PetscCall(SgContactGetSlipReference(ct->c, &yref));
-    PetscCall(PetscArraycpy(ct->yref, yref, 2 * ct->cv.n * dim)); /* this controller's */
+    PetscCall(PetscArraycpy(ct->yref, yref, 2 * ct->n * dim)); /* this controller's */
   }
   PetscCall(SgContUseSlipReference(ct)); /* this controller's, not the last one's that solved the problem */
   /* nested iteration: the first solve starts from the coarse levels' solution (a coarse level's controller from the

@@ -36,7 +36,6 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
 /* kn[i] = n_i^T K_ii n_i, the normal diagonal stiffness of each contact vertex: kn / w has the units of gamma */
 PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
 {
-  const SgContactView *c = &ct->cv;
   PetscInt             dim, rstart;
   Mat                  K;
 
@@ -46,11 +45,11 @@ PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
   PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
   /* n^T K_ii n with the vertex's whole diagonal block: the same for the problem turned rigidly (with only the
      diagonal entries, sum_k n_k^2 K_kk, it was not: a turned problem got another gamma) */
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal *n = &c->normal[i * dim];
+  for (PetscInt i = 0; i < ct->n; i++) {
+    const PetscReal *n = &ct->normal[i * dim];
     PetscInt         idx[3];
     PetscScalar      B[9];
-    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + c->off[i] + a;
+    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + ct->off[i] + a;
     PetscCall(MatGetValues(K, dim, idx, dim, idx, B));
     kn[i] = 0;
     for (PetscInt a = 0; a < dim; a++)
@@ -68,9 +67,9 @@ static PetscErrorCode DefaultGammaMax(SgCont ct)
 
   PetscFunctionBeginUser;
   if (ct->gamma_max_set || !ct->c) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(ct->cv.n, &kn));
+  PetscCall(PetscMalloc1(ct->n, &kn));
   PetscCall(SgContNormalStiffness(ct, kn));
-  for (PetscInt i = 0; i < ct->cv.n; i++) s = PetscMax(s, kn[i] / ct->cv.w[i]);
+  for (PetscInt i = 0; i < ct->n; i++) s = PetscMax(s, kn[i] / ct->w[i]);
   PetscCall(PetscFree(kn));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_MAX, ct->comm));
   if (PetscIsNormalReal(s) && s > 0 && PetscIsNormalReal(1e14 * s)) ct->gamma_max = 1e14 * s;
@@ -180,7 +179,7 @@ PetscErrorCode SgContSSN(SgCont ct, PetscReal gamma, PetscBool *ok)
   ct->ssn_its += its;
   ct->ksp_its += kits;
   PetscCall(SgSSNGetMultiplier(ct->ssn, &m));
-  PetscCall(PetscArraycpy(ct->lam, m, ct->cv.n));
+  PetscCall(PetscArraycpy(ct->lam, m, ct->n));
   *ok = (PetscBool)(r > 0);
   if (!*ok) {
     SgSSNReason sr;
@@ -202,7 +201,7 @@ PetscErrorCode SgContUseSlipReference(SgCont ct)
   if (!ct->yref) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(SgContactGetSlipReference(ct->c, &yref));
-  PetscCall(PetscArraycpy(yref, ct->yref, 2 * ct->cv.n * dim));
+  PetscCall(PetscArraycpy(yref, ct->yref, 2 * ct->n * dim));
   PetscFunctionReturn(0);
 }
 
@@ -242,7 +241,7 @@ PetscErrorCode SgContOuterRow(SgCont ct, PetscInt ssn_its, const SgHistoryRow *m
   if (ct->monitor) {
     char g[32] = "-";
     if (!PetscIsNanReal(row.gamma)) PetscCall(PetscSNPrintf(g, sizeof(g), "%.3e", (double)row.gamma));
-    PetscCall(PetscPrintf(ct->comm, "  %s step %2" PetscInt_FMT ": gamma %s, SSN %" PetscInt_FMT " (total %" PetscInt_FMT "), KSP total %" PetscInt_FMT ", active %" PetscInt_FMT "/%" PetscInt_FMT ", KKT residual %.3e, %.2f s\n", ct->type, ct->outer, g, ssn_its, ct->ssn_its, ct->ksp_its, ct->kkt.nactive, ct->cv.nglobal, (double)ct->kkt.residual, (double)row.time));
+    PetscCall(PetscPrintf(ct->comm, "  %s step %2" PetscInt_FMT ": gamma %s, SSN %" PetscInt_FMT " (total %" PetscInt_FMT "), KSP total %" PetscInt_FMT ", active %" PetscInt_FMT "/%" PetscInt_FMT ", KKT residual %.3e, %.2f s\n", ct->type, ct->outer, g, ssn_its, ct->ssn_its, ct->ksp_its, ct->kkt.nactive, ct->nglobal, (double)ct->kkt.residual, (double)row.time));
   }
   PetscFunctionReturn(0);
 }
@@ -290,12 +289,12 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(VecGetArrayRead(ct->y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal yi = 0;
     if (!(ct->lam[i] > 0)) continue;
-    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
+    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[ct->off[i] + k])));
     v[0] = PetscMax(v[0], ct->lam[i]);
-    v[1] = PetscMax(v[1], yi + PetscAbsReal(c->d[i]));
+    v[1] = PetscMax(v[1], yi + PetscAbsReal(ct->d[i]));
     v[2] = PetscMax(v[2], yi);
   }
   PetscCall(VecRestoreArrayRead(ct->y, &ya));

@@ -152,20 +152,19 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
 /* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i */
 static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
 {
-  const SgContactView *c = &ct->cv;
   const PetscScalar   *ya;
   PetscReal            s = 0, *g, *kn, E;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc2(c->n, &g, c->n, &kn));
+  PetscCall(PetscMalloc2(ct->n, &g, ct->n, &kn));
   PetscCall(SgContNormalStiffness(ct, kn));
   PetscCall(VecGetArrayRead(ct->y, &ya));
   PetscCall(SgContactGap(ct->c, ya, g));
   PetscCall(VecRestoreArrayRead(ct->y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal l = kn[i] * PetscMax(0, g[i]) / c->w[i];
-    s += c->w[i] * l * l;
+  for (PetscInt i = 0; i < ct->n; i++) {
+    const PetscReal l = kn[i] * PetscMax(0, g[i]) / ct->w[i];
+    s += ct->w[i] * l * l;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
   PetscCall(PetscFree2(g, kn));
@@ -193,7 +192,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
     f->early     = PETSC_FALSE;
     f->last_full = PETSC_TRUE;
   }
-  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
+  for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0;
   PetscCall(KSPGetTolerances(ksp, &rtol, &atol, &dtol, &maxits));
   PetscCall(KSPSetTolerances(ksp, PetscMax(rtol, f->start_rtol), atol, dtol, maxits));
   ct->gamma = f->gamma > 0 ? f->gamma : 1; /* checked against -cont_gamma_max by SgContStart */
@@ -244,7 +243,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
     else if (ct->kkt.residual > ct->kkt_tol && sr == SG_SSN_SETTLED) {
       /* gamma too small: IPF's cap from the multiplier found */
       PetscReal l2 = 0, cap;
-      for (PetscInt i = 0; i < ct->cv.n; i++) l2 += ct->cv.w[i] * PetscSqr(ct->lam[i]);
+      for (PetscInt i = 0; i < ct->n; i++) l2 += ct->w[i] * PetscSqr(ct->lam[i]);
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &l2, 1, MPIU_REAL, MPI_SUM, ct->comm));
       ct->gamma = PetscMax(10 * gamma, SgContGammaCap(ct, PetscSqrtReal(l2), &cap) ? cap : 10 * gamma);
       PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));

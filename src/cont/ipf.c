@@ -39,7 +39,7 @@ static PetscErrorCode Start_IPF(SgCont ct)
   PetscFunctionBeginUser;
   ct->gamma     = ipf->gamma1;
   ipf->state[1] = ipf->tau; /* the neighbourhood tau (0: the last problem, solved exactly) */
-  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
+  for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }
 

@@ -102,9 +102,9 @@ static PetscErrorCode ContactField(SgCont a, DM dmv, PetscInt bs, const PetscRea
   PetscCall(DMGetLocalSection(dmv, &s));
   PetscCall(VecZeroEntries(loc));
   PetscCall(VecGetArray(loc, &la));
-  for (PetscInt i = 0; i < a->cv.n; i++) {
+  for (PetscInt i = 0; i < a->n; i++) {
     PetscInt off;
-    PetscCall(PetscSectionGetOffset(s, ma->vStart + a->cv.vert[i], &off));
+    PetscCall(PetscSectionGetOffset(s, ma->vStart + a->vert[i], &off));
     for (PetscInt k = 0; k < bs; k++) la[off + k] = vals[i * bs + k];
   }
   PetscCall(VecRestoreArray(loc, &la));
@@ -132,8 +132,8 @@ static PetscErrorCode TransferContactField(SgCont a, SgCont b, const PetscInt ma
   PetscCall(ContactField(a, dmv, bs, va, loc));
   PetscCall(DMGetLocalSection(dmv, &s));
   PetscCall(VecGetArrayRead(loc, &la));
-  for (PetscInt j = 0; j < b->cv.n; j++) {
-    const PetscInt v = b->cv.vert[j];
+  for (PetscInt j = 0; j < b->n; j++) {
+    const PetscInt v = b->vert[j];
     PetscInt       o0, o1;
     PetscCall(PetscSectionGetOffset(s, ma->vStart + map[2 * v], &o0));
     PetscCall(PetscSectionGetOffset(s, ma->vStart + map[2 * v + 1], &o1));
@@ -152,7 +152,7 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
   const PetscScalar *pa;
   PetscScalar       *pb;
   const SgMesh      *ma, *mb;
-  PetscInt          *map, dim = 0, n = b->cv.n;
+  PetscInt          *map, dim = 0, n = b->n;
   PetscReal         *lb;
 
   PetscFunctionBeginUser;
@@ -204,13 +204,13 @@ PetscErrorCode SgContNestedResume(SgCont ct)
   PetscFunctionBeginUser;
   ct->gamma = ct->gamma_warm;
   if (!ct->ssn || !ct->ops.shifts || !ct->nested_lamhat) PetscFunctionReturn(0);
-  PetscCall(PetscArraycpy(ct->lamhat, ct->nested_lamhat, ct->cv.n));
+  PetscCall(PetscArraycpy(ct->lamhat, ct->nested_lamhat, ct->n));
   if (ct->cv.friction) {
     PetscReal *lhT;
     PetscInt   dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));
     PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
-    PetscCall(PetscArraycpy(lhT, ct->nested_lamhat + ct->cv.n, ct->cv.n * dim));
+    PetscCall(PetscArraycpy(lhT, ct->nested_lamhat + ct->n, ct->n * dim));
   }
   PetscFunctionReturn(0);
 }

@@ -33,7 +33,7 @@ static PetscErrorCode Solve_None(SgCont ct)
   PetscFunctionBeginUser;
   if (ct->c) {
     ct->gamma = nn->gamma;
-    for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = nn->lamhat;
+    for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = nn->lamhat;
   }
   PetscCall(SgContStart(ct, &ok));
   if (!ok) PetscFunctionReturn(0);

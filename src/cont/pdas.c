@@ -58,8 +58,8 @@ PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], SgFrame *f, PetscIn
     const PetscReal *fs;
     PetscCall(SgFrameCreate(ct->prob, ct->c, global, f));
     PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
-    PetscCall(PetscArraycpy(axis, fa, ct->cv.n));
-    PetscCall(PetscArraycpy(sign, fs, ct->cv.n));
+    PetscCall(PetscArraycpy(axis, fa, ct->n));
+    PetscCall(PetscArraycpy(sign, fs, ct->n));
   } else if (aligned) PetscCall(SgContactAxisAligned(ct->c, who, axis, sign));
   else { /* refused on every rank (aligned is global), naming the vertex on the rank that has it */
     char           msg[256], why[1024] = "";
@@ -82,7 +82,7 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
   PetscInt s[3] = {0, 0, 0};
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < ct->cv.n; i++) {
+  for (PetscInt i = 0; i < ct->n; i++) {
     s[0] += a[i];
     s[1] += (b[i] && !a[i]);
     s[2] += (a[i] && !b[i]);
@@ -111,17 +111,17 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(VecGetArrayRead(y, &ya));
   if (R) PetscCall(VecGetArrayRead(R, &ra));
-  for (PetscInt i = 0; i < c->n; i++) gmax = PetscMax(gmax, gb[i]);
+  for (PetscInt i = 0; i < ct->n; i++) gmax = PetscMax(gmax, gb[i]);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[c->off[i] + axis[i]]) * nax[i] / c->w[i] : 0;
+  for (PetscInt i = 0; i < ct->n; i++) {
+    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[ct->off[i] + axis[i]]) * nax[i] / ct->w[i] : 0;
     PetscReal       g;
     SgContactLawBound(c->law, i, lamN, &g, NULL);
     PetscReal z[3] = {0, 0, 0}, nz = 0, dt = 0;
     char      s;
     for (PetscInt j = 0; j < dim; j++) {
       if (j == axis[i]) continue;
-      z[j] = (R ? -PetscRealPart(ra[c->off[i] + j]) / c->w[i] : 0) + cc * (PetscRealPart(ya[c->off[i] + j]) - yref[i * dim + j]);
+      z[j] = (R ? -PetscRealPart(ra[ct->off[i] + j]) / ct->w[i] : 0) + cc * (PetscRealPart(ya[ct->off[i] + j]) - yref[i * dim + j]);
       nz += z[j] * z[j];
     }
     nz = PetscSqrtReal(nz);
@@ -163,11 +163,11 @@ static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next
      just touches; elsewhere the sets (and the friction fixed point) settle as before, to round-off */
   if (SgElasticityGetScales(ct->prob, &Knorm, NULL, NULL) || VecNorm(ct->y, NORM_INFINITY, &ymax)) return PETSC_FALSE;
   ro = 8 * PETSC_MACHINE_EPSILON * Knorm * ymax;
-  for (PetscInt i = 0; i < ct->cv.n; i++) loaded += ((act[i] || next[i]) && PetscAbsReal(ct->lam[i]) * ct->cv.w[i] > ro);
+  for (PetscInt i = 0; i < ct->n; i++) loaded += ((act[i] || next[i]) && PetscAbsReal(ct->lam[i]) * ct->w[i] > ro);
   if (MPI_Allreduce(MPI_IN_PLACE, &loaded, 1, MPIU_INT, MPI_SUM, ct->comm) || loaded) return PETSC_FALSE;
   if (SgContMeasure(ct)) return PETSC_FALSE;
   if (!(ct->kkt.residual <= ct->kkt_tol)) return PETSC_FALSE;
-  for (PetscInt i = 0; i < ct->cv.n; i++) {
+  for (PetscInt i = 0; i < ct->n; i++) {
     if (act[i] == next[i]) continue;
     v[0] = PetscMax(v[0], PetscAbsReal(g[i]));
     v[1] = PetscMax(v[1], PetscAbsReal(ct->lam[i]));
@@ -187,7 +187,7 @@ static PetscErrorCode Gap(SgCont ct, SgFrame f, const PetscInt axis[], const Pet
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(y, &ya));
   if (f)
-    for (PetscInt i = 0; i < ct->cv.n; i++) g[i] = sign[i] * PetscRealPart(ya[ct->cv.off[i] + axis[i]]) - ct->cv.d[i];
+    for (PetscInt i = 0; i < ct->n; i++) g[i] = sign[i] * PetscRealPart(ya[ct->off[i] + axis[i]]) - ct->d[i];
   else PetscCall(SgContactGap(ct->c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscFunctionReturn(0);
@@ -249,9 +249,9 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   w->dim = dim;
   PetscCall(SgElasticityGetOperators(ct->prob, &w->K, &w->b));
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc6(c->n, &w->axis, c->n, &w->sign, c->n, &w->g, c->n, &w->act, c->n, &w->next, c->n * dim, &w->rows)); /* rows: the stick vertices' tangential ones too */
+  PetscCall(PetscMalloc6(ct->n, &w->axis, ct->n, &w->sign, ct->n, &w->g, ct->n, &w->act, ct->n, &w->next, ct->n * dim, &w->rows)); /* rows: the stick vertices' tangential ones too */
   PetscCall(PetscMalloc1(pd->maxit + 1, &w->hash));
-  PetscCall(PetscMalloc1(c->n, &w->nax));
+  PetscCall(PetscMalloc1(ct->n, &w->nax));
   PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &w->f, w->axis, w->sign));
   w->Kw   = w->K;
   w->bw   = w->b;
@@ -262,7 +262,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     MatNullSpace     nsp;
     PetscCall(SgFrameGetStiffness(w->f, &w->Kw));
     PetscCall(SgFrameGetAxes(w->f, NULL, NULL, &rot));
-    for (PetscInt i = 0; i < c->n; i++) w->nax[i] = rot[i] ? w->sign[i] : c->normal[i * dim + w->axis[i]];
+    for (PetscInt i = 0; i < ct->n; i++) w->nax[i] = rot[i] ? w->sign[i] : ct->normal[i * dim + w->axis[i]];
     PetscCall(MatDuplicate(w->Kw, MAT_COPY_VALUES, &w->Af));
     PetscCall(MatPropagateSymmetryOptions(w->K, w->Af));
     PetscCall(MatGetNearNullSpace(w->Kw, &nsp));
@@ -274,15 +274,15 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     PetscCall(SgFrameToLocal(w->f, w->bw));
     PetscCall(VecDuplicate(w->b, &w->yw));
     if (w->fr) {
-      PetscCall(PetscMalloc1(c->n * dim, &w->yrf));
-      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(w->f, i, &c->yref[i * dim], &w->yrf[i * dim]);
+      PetscCall(PetscMalloc1(ct->n * dim, &w->yrf));
+      for (PetscInt i = 0; i < ct->n; i++) SgFrameVectorToLocal(w->f, i, &c->yref[i * dim], &w->yrf[i * dim]);
       w->yref = w->yrf;
     }
   } else
-    for (PetscInt i = 0; i < c->n; i++) w->nax[i] = c->normal[i * dim + w->axis[i]];
-  for (PetscInt i = 0; i < c->n; i++) hc += c->w[i];
+    for (PetscInt i = 0; i < ct->n; i++) w->nax[i] = ct->normal[i * dim + w->axis[i]];
+  for (PetscInt i = 0; i < ct->n; i++) hc += ct->w[i];
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
-  hc = dim == 2 ? hc / c->nglobal : PetscSqrtReal(hc / c->nglobal);
+  hc = dim == 2 ? hc / ct->nglobal : PetscSqrtReal(hc / ct->nglobal);
   if (pd->c == 0) pd->c = E / hc;
   PetscFunctionReturn(0);
 }
@@ -292,7 +292,6 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
 static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
 {
   PDAS                *pd  = (PDAS *)ct->data;
-  const SgContactView *c   = &ct->cv;
   const PetscInt       dim = w->dim;
   Vec                  diag;
   PetscInt             N;
@@ -309,8 +308,8 @@ static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
   PetscCall(MatGetOwnershipRange(w->A, &w->rstart, NULL));
   PetscCall(MatSetOption(w->A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   if (w->fr) {
-    PetscCall(PetscCalloc4(c->n, &w->fst, c->n, &w->fnext, c->n * dim, &w->tdir, c->n, &w->gb));
-    PetscCall(PetscCalloc2(c->n, &w->zn, c->n * dim * dim, &w->blk));
+    PetscCall(PetscCalloc4(ct->n, &w->fst, ct->n, &w->fnext, ct->n * dim, &w->tdir, ct->n, &w->gb));
+    PetscCall(PetscCalloc2(ct->n, &w->zn, ct->n * dim * dim, &w->blk));
     PetscCall(VecDuplicate(w->b, &w->R));
   }
   if (w->f) { /* the start in the frames */
@@ -318,7 +317,7 @@ static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
     PetscCall(SgFrameToLocal(w->f, w->yw));
   }
   PetscCall(Gap(ct, w->f, w->axis, w->sign, w->yw, w->g));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < ct->n; i++) {
     /* a load step starts from the last step's active set test (its multiplier and the gap at the new load) */
     w->act[i]  = ct->warm ? (char)(ct->lam[i] + pd->c * w->g[i] > 0) : (char)(w->g[i] > 0);
     ct->lam[i] = 0;
@@ -358,7 +357,7 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
     /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
        along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
        without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
-    for (PetscInt i = 0; i < c->n; i++) {
+    for (PetscInt i = 0; i < ct->n; i++) {
       PetscReal *B = &blk[i * dim * dim], a, beta;
       for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
       if (fst[i] != 2) continue;
@@ -367,7 +366,7 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
       for (PetscInt p = 0; p < dim; p++)
         for (PetscInt q = 0; q < dim; q++) {
           if (p == axis[i] || q == axis[i]) continue;
-          B[p * dim + q] = c->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
+          B[p * dim + q] = ct->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
         }
     }
     PetscCall(SgContactAddBlocks(ct->c, blk, A));
@@ -376,23 +375,23 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
   }
   PetscCall(VecCopy(bw, rhs));
   PetscCall(VecGetArray(x, &xa));
-  for (PetscInt i = 0; i < c->n; i++)
+  for (PetscInt i = 0; i < ct->n; i++)
     if (act[i]) {
-      rows[nrows++]           = rstart + c->off[i] + axis[i];
-      xa[c->off[i] + axis[i]] = sign[i] * c->d[i];
+      rows[nrows++]           = rstart + ct->off[i] + axis[i];
+      xa[ct->off[i] + axis[i]] = sign[i] * ct->d[i];
     }
   if (fr) {
     PetscScalar *ra;
     PetscCall(VecGetArray(rhs, &ra));
-    for (PetscInt i = 0; i < c->n; i++)
+    for (PetscInt i = 0; i < ct->n; i++)
       for (PetscInt j = 0; j < dim; j++) {
         if (j == axis[i]) continue;
         if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
-          rows[nrows++]     = rstart + c->off[i] + j;
-          xa[c->off[i] + j] = yref[i * dim + j];
+          rows[nrows++]     = rstart + ct->off[i] + j;
+          xa[ct->off[i] + j] = yref[i * dim + j];
         } else if (fst[i] == 2) {
           if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
-            const PetscInt ra_ = rstart + c->off[i] + axis[i], rj = rstart + c->off[i] + j;
+            const PetscInt ra_ = rstart + ct->off[i] + axis[i], rj = rstart + ct->off[i] + j;
             PetscReal      gi, dg;
             SgContactLawBound(c->law, i, 0, &gi, &dg);
             const PetscReal    fc = dg * tdir[i * dim + j] * nax[i];
@@ -408,12 +407,12 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
             PetscCall(PetscFree(vv));
             PetscCall(MatRestoreRow(Kw, ra_, &nc, &ca, &va));
             PetscCall(VecGetArrayRead(bw, &ba));
-            ra[c->off[i] + j] -= fc * ba[c->off[i] + axis[i]];
+            ra[ct->off[i] + j] -= fc * ba[ct->off[i] + axis[i]];
             PetscCall(VecRestoreArrayRead(bw, &ba));
             ncoupled++;
-          } else ra[c->off[i] + j] -= c->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
+          } else ra[ct->off[i] + j] -= ct->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
           if (dim == 3)                                                    /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
-            for (PetscInt q = 0; q < dim; q++) ra[c->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
+            for (PetscInt q = 0; q < dim; q++) ra[ct->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
         }
       }
     PetscCall(VecRestoreArray(rhs, &ra));
@@ -435,7 +434,6 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
 static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt *nact_, PetscInt *entered_, PetscInt *left_)
 {
   PDAS                *pd   = (PDAS *)ct->data;
-  const SgContactView *c    = &ct->cv;
   const PetscBool      fr   = w->fr;
   const PetscInt      *axis = w->axis;
   const PetscReal     *sign = w->sign, *nax = w->nax, *yref = w->yref;
@@ -450,7 +448,7 @@ static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt
   /* multiplier from the equilibrium on the active set, then the next active set */
   PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
   PetscCall(Gap(ct, f, axis, sign, yw, g));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < ct->n; i++) {
     if (!act[i]) ct->lam[i] = 0;
     next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
   }
@@ -460,7 +458,7 @@ static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt
     PetscCall(MatMult(Kw, yw, R));
     PetscCall(VecAXPY(R, -1.0, bw));
     PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, next, gb, tdir, zn, fnext, &fchanged));
-    PetscCall(PetscArraycpy(fst, fnext, c->n));
+    PetscCall(PetscArraycpy(fst, fnext, ct->n));
     if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
     entered += fchanged; /* counted as changes of the sets */
   }
@@ -499,7 +497,6 @@ static PetscErrorCode RecordIteration_PDAS(SgCont ct, PetscInt k, PetscInt nact,
    failed (an active set came back: cycling), or the next set becomes the active one (*done = PETSC_FALSE) */
 static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt entered, PetscInt left, PetscBool *done_)
 {
-  const SgContactView *c  = &ct->cv;
   const PetscBool      fr = w->fr, coupled = w->coupled;
   const PetscReal     *g     = w->g;
   const PetscInt64    *hash  = w->hash;
@@ -526,7 +523,7 @@ static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt e
       done          = PETSC_TRUE;
       ct->converged = PETSC_TRUE;
       PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
-    } else PetscCall(PetscArraycpy(act, next, c->n));
+    } else PetscCall(PetscArraycpy(act, next, ct->n));
     kktprev = ct->kkt.residual;
   } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
     PetscInt64 h;
@@ -536,8 +533,8 @@ static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt e
         PetscCall(SgContFail(ct, "PDAS_ACTIVE_SET_CYCLING: the active set of iteration %" PetscInt_FMT " came back after iteration %" PetscInt_FMT, j + 1, k));
         done = PETSC_TRUE;
       }
-    PetscCall(PetscArraycpy(act, next, c->n));
-  } else PetscCall(PetscArraycpy(act, next, c->n));
+    PetscCall(PetscArraycpy(act, next, ct->n));
+  } else PetscCall(PetscArraycpy(act, next, ct->n));
   w->kktprev = kktprev;
   *done_     = done;
   PetscFunctionReturn(0);

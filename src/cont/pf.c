@@ -30,7 +30,7 @@ static PetscErrorCode Start_PF(SgCont ct)
   PetscFunctionBeginUser;
   ct->gamma = pf->gamma1;
   pf->tauk  = 1; /* tau_k = tau0^k */
-  for (PetscInt i = 0; i < ct->cv.n; i++) ct->lamhat[i] = 0;
+  for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);
 }
 

@@ -139,8 +139,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgSummarySetReal(sum, "rho_C", ct->kkt.rhoC));
     PetscCall(SgSummarySetInt(sum, "active_set_size", ct->kkt.nactive));
     PetscCall(SgSummarySetReal(sum, "contact_force", ct->kkt.force));
-    PetscCall(SgSummarySetInt(sum, "contact_vertices", ct->cv.nglobal));
-    PetscCall(SgSummarySetReal(sum, "contact_area", ct->cv.area));
+    PetscCall(SgSummarySetInt(sum, "contact_vertices", ct->nglobal));
+    PetscCall(SgSummarySetReal(sum, "contact_area", ct->area));
     PetscCall(SgContactGetObstacleType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "obstacle", obstype));
     PetscCall(SgContactGetNormalType(ct->c, &obstype));
@@ -377,7 +377,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->n * dim));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], nv, vf, cf));
@@ -407,8 +407,8 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscMalloc1(2 * ct->cv.n * dim + 1, &yr));
-      PetscCall(PetscArraycpy(yr, yref, 2 * ct->cv.n * dim));
+      PetscCall(PetscMalloc1(2 * ct->n * dim + 1, &yr));
+      PetscCall(PetscArraycpy(yr, yref, 2 * ct->n * dim));
     }
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     PetscCall(PetscMalloc1(m + 1, &dv));
@@ -432,7 +432,7 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
       PetscInt   dim;
       PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, yr, 2 * ct->cv.n * dim));
+      PetscCall(PetscArraycpy(yref, yr, 2 * ct->n * dim));
       PetscCall(PetscFree(yr));
     }
     PetscCall(PetscFree(dv));
@@ -574,7 +574,7 @@ PetscErrorCode SgContView(SgCont ct, PetscViewer viewer)
       PetscCall(PetscSNPrintf(steps, sizeof(steps), " in load step %" PetscInt_FMT " (all %" PetscInt_FMT " load steps: %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations)", ct->nsteps, ct->nsteps, outer, ssn));
     }
     PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s. %s; %" PetscInt_FMT " outer, %" PetscInt_FMT " SSN iterations%s; KKT residual %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); active %" PetscInt_FMT "/%" PetscInt_FMT " vertices; contact force %.6e; energy %.12e\n", ct->type, SgContVerdict(ct), ct->reason, ct->outer, ct->ssn_its, steps, (double)ct->kkt.residual,
-                                     (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium, ct->kkt.nactive, ct->cv.nglobal, (double)ct->kkt.force, (double)ct->V));
+                                     (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium, ct->kkt.nactive, ct->nglobal, (double)ct->kkt.force, (double)ct->V));
   } else PetscCall(PetscViewerASCIIPrintf(viewer, "elasticity: %s; energy %.12e\n", ct->reason, (double)ct->V));
   PetscFunctionReturn(0);
 }

@@ -200,7 +200,7 @@ static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool st
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
   if (!step_open && yref) {
-    PetscCall(PetscCalloc1(2 * ct->cv.n * dim + 1, &next)); /* the second half is written with prescribed components only */
+    PetscCall(PetscCalloc1(2 * ct->n * dim + 1, &next)); /* the second half is written with prescribed components only */
     PetscCall(SgContactComputeSlipReference(ct->c, ct->y, next));
     yref = next;
   }
@@ -354,7 +354,7 @@ static PetscErrorCode LoadKeptSteps(SgCont ct, SgCheckpointReader r, PetscInt n)
     char name[64];
     PetscCall(VecDuplicate(ct->y, &ct->ysteps[k]));
     PetscCall(VecSet(ct->ysteps[k], 0));
-    PetscCall(PetscMalloc1(ct->cv.n + 1, &ct->lamsteps[k]));
+    PetscCall(PetscMalloc1(ct->n + 1, &ct->lamsteps[k]));
     PetscCall(PetscSNPrintf(name, sizeof(name), "step_displacement_%" PetscInt_FMT, k));
     PetscCall(SgCheckpointReaderDisplacement(r, name, "a displacement of a kept load step", ct->ysteps[k]));
     PetscCall(PetscSNPrintf(name, sizeof(name), "step_multiplier_%" PetscInt_FMT, k));

@@ -33,7 +33,6 @@ static PetscErrorCode Jacobian_VI(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 static PetscErrorCode Solve_VI(SgCont ct)
 {
   VI                  *vi = (VI *)ct->data;
-  const SgContactView *c  = &ct->cv;
   PetscReal            Knorm, bnorm;
   char                 prefix[256];
   Vec                  xl, xu, r;
@@ -51,7 +50,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(SgElasticityGetOperators(ct->prob, &vi->K, &vi->b));
   PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : ""));
-  PetscCall(PetscMalloc2(c->n, &axis, c->n, &sign));
+  PetscCall(PetscMalloc2(ct->n, &axis, ct->n, &sign));
   PetscCall(SgContBoundFrame(ct, "-cont_type vi", &f, axis, sign));
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
@@ -77,9 +76,9 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(VecSet(xu, PETSC_INFINITY));
   PetscCall(VecGetArray(xl, &la));
   PetscCall(VecGetArray(xu, &ua));
-  for (PetscInt i = 0; i < c->n; i++) { /* sign * y_axis <= d */
-    if (sign[i] > 0) ua[c->off[i] + axis[i]] = c->d[i];
-    else la[c->off[i] + axis[i]] = -c->d[i];
+  for (PetscInt i = 0; i < ct->n; i++) { /* sign * y_axis <= d */
+    if (sign[i] > 0) ua[ct->off[i] + axis[i]] = ct->d[i];
+    else la[ct->off[i] + axis[i]] = -ct->d[i];
   }
   PetscCall(VecRestoreArray(xl, &la));
   PetscCall(VecRestoreArray(xu, &ua));

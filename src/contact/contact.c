@@ -360,17 +360,47 @@ static PetscErrorCode ObstacleVertices(SgContact c, const SgBoundary *bnd)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SgContactGetVertices(SgContact c, PetscInt *n, PetscInt *nglobal, const PetscInt *vert[], const PetscInt *off[])
+{
+  PetscFunctionBeginUser;
+  if (n) *n = c->n;
+  if (nglobal) *nglobal = c->nglobal;
+  if (vert) *vert = c->vert;
+  if (off) *off = c->off;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetWeights(SgContact c, const PetscReal *w[])
+{
+  PetscFunctionBeginUser;
+  *w = c->w;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetNormals(SgContact c, const PetscReal *normal[])
+{
+  PetscFunctionBeginUser;
+  *normal = c->normal;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetGaps(SgContact c, const PetscReal *d[])
+{
+  PetscFunctionBeginUser;
+  *d = c->d;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactGetArea(SgContact c, PetscReal *area)
+{
+  PetscFunctionBeginUser;
+  *area = c->area;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
 {
   PetscFunctionBeginUser;
-  v->n        = c->n;
-  v->nglobal  = c->nglobal;
-  v->vert     = c->vert;
-  v->off      = c->off;
-  v->w        = c->w;
-  v->normal   = c->normal;
-  v->d        = c->d;
-  v->area     = c->area;
   v->law      = c->law;
   v->friction = c->friction;
   v->coupled  = c->law->coupled;

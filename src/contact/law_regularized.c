@@ -12,7 +12,7 @@
    first: quasi-static incremental friction), bound g = g_i(mN) (the law's: s for Tresca, F mN for Coulomb), lam_T =
    P_g(z) the projection onto the ball of radius g; t = z/|z| (0 if z = 0). The state: free (g = 0), stick (|z| <= g),
    slip (|z| > g). */
-static char FrictionAt(SgContactLaw law, const SgContactLawInput *in, const SgContactView *c, SgContactLawState st, PetscInt i, const PetscReal uv[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
+static char FrictionAt(SgContactLaw law, const SgContactLawInput *in, SgContact c, SgContactLawState st, PetscInt i, const PetscReal uv[], PetscReal mN, PetscReal lamT[], PetscReal u[], PetscReal t[], PetscReal *zn, PetscReal *gb)
 {
   const PetscInt   dim = law->dim;
   const PetscReal *n = &c->normal[i * dim], gT = law->gfac * in->gamma;
@@ -50,7 +50,7 @@ static char FrictionAt(SgContactLaw law, const SgContactLawInput *in, const SgCo
 
 /* A change of state at vertex i since the Jacobian beyond round-off: |z| and the bound g differ by more than the
    round-off of forming them (or the normal multiplier crossed 0 beyond its own) */
-static PetscBool HardChange(SgContactLaw law, const SgContactLawInput *in, const SgContactView *c, SgContactLawState st, PetscInt i, PetscReal mN, char s, PetscReal zn, PetscReal gb)
+static PetscBool HardChange(SgContactLaw law, const SgContactLawInput *in, SgContact c, SgContactLawState st, PetscInt i, PetscReal mN, char s, PetscReal zn, PetscReal gb)
 {
   const PetscInt  dim  = law->dim;
   const PetscReal gT   = law->gfac * in->gamma;
@@ -78,10 +78,9 @@ static PetscErrorCode Residual_Regularized(SgContactLaw law, SgContactLawInput *
 {
   const PetscInt  dim = law->dim;
   const PetscReal gT  = law->gfac * in->gamma;
-  SgContactView   cv, *c = &cv;
+  SgContact     c = in->c; /* the contact object itself (this layer's) */
 
   PetscFunctionBeginUser;
-  PetscCall(SgContactGetView(in->c, &cv));
   PetscCall(SgContactVertexDisplacements(in->c, ya, in->uv));
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal *lt = &st->lamT[i * dim], u[3], t[3], zn, gb, lu = 0;
@@ -122,7 +121,7 @@ static PetscErrorCode Residual_Regularized(SgContactLaw law, SgContactLawInput *
    stick vertex whose tangential residual T F_i / w_i lies below q and whose equilibrium force lam_T - T F_i / w_i (the
    force the step should reach) lies beyond the bound slips: linearized as slip in the direction of that force (the
    step made consistent by SgContactLawStepCorrection). True if so, with its t and |z|. */
-static PetscBool StickForcedToSlip(SgContactLaw law, const SgContactLawInput *in, const SgContactView *c, PetscInt i, const PetscScalar fa[], const PetscReal lt[], PetscReal gb, PetscReal t[], PetscReal *zn)
+static PetscBool StickForcedToSlip(SgContactLaw law, const SgContactLawInput *in, SgContact c, PetscInt i, const PetscScalar fa[], const PetscReal lt[], PetscReal gb, PetscReal t[], PetscReal *zn)
 {
   const PetscInt   dim = law->dim;
   const PetscReal *n = &c->normal[i * dim], gT = law->gfac * in->gamma;
@@ -146,7 +145,7 @@ static PetscBool StickForcedToSlip(SgContactLaw law, const SgContactLawInput *in
 /* The block of vertex i in state s (nb, tb: the normal and slip direction, in the vertex's frame with -ssn_frame):
      stick: w gamma_T T_i;   slip: w (g/|z|) gamma_T (T_i - t t^T), and for a bound from lam_N with an active normal
      also w g'(lam_N) gamma t n_i^T (the bound moves with y: a nonsymmetric block);   free: 0. */
-static void Block(SgContactLaw law, const SgContactLawInput *in, const SgContactView *c, PetscInt i, char s, PetscReal mN, PetscReal gb, PetscReal zn, const PetscReal nb[], const PetscReal tb[], PetscReal B[])
+static void Block(SgContactLaw law, const SgContactLawInput *in, SgContact c, PetscInt i, char s, PetscReal mN, PetscReal gb, PetscReal zn, const PetscReal nb[], const PetscReal tb[], PetscReal B[])
 {
   const PetscInt  dim = law->dim;
   const PetscReal gT  = law->gfac * in->gamma;
@@ -170,11 +169,10 @@ static void Block(SgContactLaw law, const SgContactLawInput *in, const SgContact
 static PetscErrorCode Jacobian_Regularized(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscScalar fa[], Mat P)
 {
   const PetscInt dim = law->dim;
-  SgContactView  cv, *c = &cv;
+  SgContact    c = in->c; /* the contact object itself (this layer's) */
   PetscReal     *blk;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContactGetView(in->c, &cv));
   PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
   in->nforce = 0;
   PetscCall(SgContactVertexDisplacements(in->c, ya, in->uv));
@@ -226,10 +224,9 @@ static PetscErrorCode Jacobian_Regularized(SgContactLaw law, SgContactLawInput *
 static PetscErrorCode StepCorrection_Regularized(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar xa[], PetscReal ft[])
 {
   const PetscInt dim = law->dim;
-  SgContactView  cv, *c = &cv;
+  SgContact    c = in->c; /* the contact object itself (this layer's) */
 
   PetscFunctionBeginUser;
-  PetscCall(SgContactGetView(in->c, &cv));
   PetscCall(SgContactVertexDisplacements(in->c, xa, in->uv));
   PetscCall(PetscArrayzero(ft, c->n * dim));
   for (PetscInt i = 0; i < c->n; i++) {
@@ -251,10 +248,9 @@ static PetscErrorCode StepCorrection_Regularized(SgContactLaw law, SgContactLawI
 static PetscReal Floor_Regularized(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
 {
   const PetscInt dim = law->dim;
-  SgContactView  cv, *c = &cv;
+  SgContact    c = in->c; /* the contact object itself (this layer's) */
   PetscReal      ymax = 0;
 
-  (void)SgContactGetView(in->c, &cv); /* (no error: a copy of the view) */
   if (equil) {
     if (st->state[i] != SG_FRICTION_STICK) return 0;
     for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));

@@ -334,10 +334,12 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   PetscCall(SgElasticityView(p->el, viewer));
   if (p->c) {
     const char   *type;
-    SgContactView cv;
-    PetscCall(SgContactGetView(p->c, &cv));
+    PetscInt  nglobal;
+    PetscReal area;
+    PetscCall(SgContactGetVertices(p->c, NULL, &nglobal, NULL, NULL));
+    PetscCall(SgContactGetArea(p->c, &area));
     PetscCall(SgContactGetObstacleType(p->c, &type));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "contact boundary: %" PetscInt_FMT " vertices, area %g; obstacle %s\n", cv.nglobal, (double)cv.area, type));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "contact boundary: %" PetscInt_FMT " vertices, area %g; obstacle %s\n", nglobal, (double)area, type));
   } else PetscCall(PetscViewerASCIIPrintf(viewer, "no contact boundary\n"));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(0);

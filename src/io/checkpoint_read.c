@@ -347,14 +347,15 @@ PetscErrorCode SgCheckpointReaderDisplacement(SgCheckpointReader r, const char n
 /* bs numbers per contact vertex into a (NULL: only checked), matched by the coordinates */
 PetscErrorCode SgCheckpointReaderContact(SgCheckpointReader r, const char name[], PetscInt bs, PetscBool nonneg, const char what[], PetscReal a[])
 {
-  SgContactView cv = {0};
-  PetscReal    *f;
+  PetscInt        n    = 0;
+  const PetscInt *vert = NULL;
+  PetscReal      *f;
 
   PetscFunctionBeginUser;
-  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  if (r->c) PetscCall(SgContactGetVertices(r->c, &n, NULL, &vert, NULL));
   PetscCall(ReaderVertexData(&r, name, bs, nonneg, what, &f));
-  for (PetscInt i = 0; a && i < cv.n; i++)
-    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = f[cv.vert[i] * bs + d]; /* 0 at a vertex not in the file */
+  for (PetscInt i = 0; a && i < n; i++)
+    for (PetscInt d = 0; d < bs; d++) a[i * bs + d] = f[vert[i] * bs + d]; /* 0 at a vertex not in the file */
   PetscCall(PetscFree(f));
   PetscFunctionReturn(0);
 }
@@ -471,7 +472,8 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 {
   SgCheckpointReader r = *rp;
   const SgMesh      *m;
-  SgContactView      cv  = {0};
+  PetscInt           ncv  = 0; /* the contact vertices */
+  const PetscInt    *cvert = NULL;
   const PetscInt     dim = r->dim;
   PetscReal         *x, *fx, *qx, *rfx, *rqx, *px;
   PetscInt          *perm, *pg, *ans, *rans, *order, nmiss = 0, nrf, nrq, nr, nleaves = 0, *ilocal;
@@ -482,7 +484,7 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMesh(r->el, &m));
-  if (r->c) PetscCall(SgContactGetView(r->c, &cv));
+  if (r->c) PetscCall(SgContactGetVertices(r->c, &ncv, NULL, &cvert, NULL));
   PetscCallMPI(MPI_Comm_size(r->comm, &size));
   PetscCall(PetscLayoutCreate(r->comm, &layout));
   PetscCall(PetscLayoutSetSize(layout, r->nvert));
@@ -548,8 +550,8 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
     if (r->idx[v] < 0 && m->goff[v] >= 0) nmiss++;
     if (r->idx[v] >= 0) nleaves++;
   }
-  for (PetscInt i = 0; i < cv.n; i++)
-    if (r->idx[cv.vert[i]] < 0) nmiss++;
+  for (PetscInt i = 0; i < ncv; i++)
+    if (r->idx[cvert[i]] < 0) nmiss++;
   /* the rows lo..hi-1 of each rank are the roots, the matched vertices of the mesh the leaves */
   PetscCall(PetscMalloc1(nleaves + 1, &ilocal));
   PetscCall(PetscMalloc1(nleaves + 1, &iremote));

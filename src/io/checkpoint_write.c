@@ -150,16 +150,17 @@ PetscErrorCode SgCheckpointWriterDisplacement(SgCheckpointWriter w, const char n
 PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter w, const char name[], PetscInt bs, const PetscReal a[])
 {
   const SgMesh *m;
-  SgContactView cv = {0};
-  PetscReal    *vals;
-  Vec           v;
+  PetscInt        n    = 0;
+  const PetscInt *vert = NULL;
+  PetscReal      *vals;
+  Vec             v;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMesh(w->el, &m));
-  if (w->c) PetscCall(SgContactGetView(w->c, &cv));
+  if (w->c) PetscCall(SgContactGetVertices(w->c, &n, NULL, &vert, NULL));
   PetscCall(PetscCalloc1(m->nv * bs + 1, &vals));
-  for (PetscInt i = 0; a && i < cv.n; i++)
-    for (PetscInt d = 0; d < bs; d++) vals[cv.vert[i] * bs + d] = a[i * bs + d];
+  for (PetscInt i = 0; a && i < n; i++)
+    for (PetscInt d = 0; d < bs; d++) vals[vert[i] * bs + d] = a[i * bs + d];
   PetscCall(VertexVector(w->el, name, bs, vals, &v));
   PetscCall(PetscFree(vals));
   PetscCall(WriterAddVec(w, v));

@@ -151,17 +151,20 @@ static PetscErrorCode MomentsStiffness(SgElasticity el, PetscInt dim, const Pets
 /* the contact boundary's (its weights) and the gaps' with the obstacle at its full placement */
 static PetscErrorCode MomentsContact(SgContact c, const SgMesh *m, PetscInt dim, const PetscReal lo[3], const PetscReal hi[3], const PetscInt off[], PetscReal buf[])
 {
-  SgContactView cv;
-  PetscReal     w[NMOM], *gap;
+  PetscInt         n;
+  const PetscInt  *vert;
+  const PetscReal *cw;
+  PetscReal        w[NMOM], *gap;
 
   PetscFunctionBeginUser;
-  PetscCall(SgContactGetView(c, &cv));
-  PetscCall(PetscMalloc1(cv.n + 1, &gap));
+  PetscCall(SgContactGetVertices(c, &n, NULL, &vert, NULL));
+  PetscCall(SgContactGetWeights(c, &cw));
+  PetscCall(PetscMalloc1(n + 1, &gap));
   PetscCall(SgContactGapsAt(c, 1.0, gap));
-  for (PetscInt i = 0; i < cv.n; i++) {
-    MomentWeights(dim, lo, hi, &m->x[cv.vert[i] * dim], w);
+  for (PetscInt i = 0; i < n; i++) {
+    MomentWeights(dim, lo, hi, &m->x[vert[i] * dim], w);
     for (PetscInt k = 0; k < NMOM; k++) {
-      const PetscReal a = cv.w[i] * w[k], g = gap[i] < PETSC_MAX_REAL ? a * gap[i] : 0; /* a ray that misses: no gap */
+      const PetscReal a = cw[i] * w[k], g = gap[i] < PETSC_MAX_REAL ? a * gap[i] : 0; /* a ray that misses: no gap */
       buf[off[4] + k] += a;
       buf[MOM_MAX + off[4] + k] += PetscAbsReal(a);
       buf[off[5] + k] += g;

@@ -16,7 +16,6 @@ struct _n_SgCondense {
 static PetscErrorCode CondenseUpdate(SgCondense cd)
 {
   SgSSN                s   = cd->ssn;
-  const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   Mat                  S;
   MatFactorSchurStatus status;
@@ -35,12 +34,12 @@ static PetscErrorCode CondenseUpdate(SgCondense cd)
   for (PetscInt j = 0; j < n; j++) PetscCall(PetscArraycpy(sa + j * lda, s0 + j * lda0, n));
   PetscCall(MatDenseRestoreArrayRead(cd->S0, &s0));
   if (s->havejac)
-    for (PetscInt i = 0; i < c->n; i++) {
+    for (PetscInt i = 0; i < s->n; i++) {
       if (!s->actjac[i]) continue;
-      if (cd->ncomp == 1) sa[i * lda + i] += s->gamma * c->w[i];
+      if (cd->ncomp == 1) sa[i * lda + i] += s->gamma * s->w[i];
       else
         for (PetscInt a = 0; a < dim; a++)
-          for (PetscInt b = 0; b < dim; b++) sa[(i * dim + b) * lda + i * dim + a] += s->gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
+          for (PetscInt b = 0; b < dim; b++) sa[(i * dim + b) * lda + i * dim + a] += s->gamma * s->w[i] * s->normal[i * dim + a] * s->normal[i * dim + b];
     }
   PetscCall(MatDenseRestoreArray(S, &sa));
   PetscCall(MatFactorRestoreSchurComplement(cd->F, &S, MAT_FACTOR_SCHUR_UNFACTORED));
@@ -56,17 +55,16 @@ static PetscErrorCode PCSetUp_Condense(PC pc)
   PetscCall(PCShellGetContext(pc, &cd));
   if (!cd->ready) { /* the one sparse factorization, with the Schur complement on the contact dofs */
     const PetscInt       dim = cd->ssn->dim;
-    const SgContactView *c   = &cd->ssn->cv;
     PetscInt            *idx, rstart;
     IS                   is;
     MatFactorInfo        info;
     MatFactorSchurStatus status;
 
     PetscCall(MatGetOwnershipRange(cd->ssn->Klin, &rstart, NULL));
-    PetscCall(PetscMalloc1(c->n * cd->ncomp, &idx));
-    for (PetscInt i = 0; i < c->n; i++)
-      for (PetscInt k = 0; k < cd->ncomp; k++) idx[i * cd->ncomp + k] = rstart + c->off[i] + (cd->ncomp == 1 ? cd->axis[i] : k);
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, c->n * cd->ncomp, idx, PETSC_OWN_POINTER, &is));
+    PetscCall(PetscMalloc1(cd->ssn->n * cd->ncomp, &idx));
+    for (PetscInt i = 0; i < cd->ssn->n; i++)
+      for (PetscInt k = 0; k < cd->ncomp; k++) idx[i * cd->ncomp + k] = rstart + cd->ssn->off[i] + (cd->ncomp == 1 ? cd->axis[i] : k);
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, cd->ssn->n * cd->ncomp, idx, PETSC_OWN_POINTER, &is));
     PetscCall(MatGetFactor(cd->ssn->Klin, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &cd->F));
     PetscCall(MatFactorSetSchurIS(cd->F, is));
     PetscCall(ISDestroy(&is));
@@ -110,16 +108,16 @@ PetscErrorCode SgCondenseCreate(SgSSN s, SgCondense *cond)
   aligned = PETSC_TRUE;
   PetscCall(PetscNew(&cd));
   cd->ssn = s;
-  PetscCall(PetscMalloc1(s->cv.n, &cd->axis));
+  PetscCall(PetscMalloc1(s->n, &cd->axis));
   if (s->frame) { /* in the contact frames every normal is an axis (frame.c) */
     const PetscInt *axis;
     PetscCall(SgFrameGetAxes(s->frame, &axis, NULL, NULL));
-    PetscCall(PetscArraycpy(cd->axis, axis, s->cv.n));
+    PetscCall(PetscArraycpy(cd->axis, axis, s->n));
   } else {
-    for (PetscInt i = 0; i < s->cv.n; i++) {
+    for (PetscInt i = 0; i < s->n; i++) {
       cd->axis[i] = -1;
       for (PetscInt k = 0; k < dim; k++)
-        if (PetscAbsReal(PetscAbsReal(s->cv.normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
+        if (PetscAbsReal(PetscAbsReal(s->normal[i * dim + k]) - 1) < 1e-12) cd->axis[i] = k;
       if (cd->axis[i] < 0) aligned = PETSC_FALSE;
     }
   }

@@ -66,7 +66,7 @@ PetscErrorCode SgSSNSolveDirect(SgSSN s, PetscReal gamma, Vec y, PetscInt *its, 
 PetscErrorCode SgSSNCoulombFixedPoint(SgSSN s, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason)
 {
   const SgContactView *c = &s->cv;
-  const PetscInt       n = c->n, m = s->fp_m;
+  const PetscInt       n = s->n, m = s->fp_m;
   PetscReal            beta = s->fp_omega, *x, *f, *dX, *dF, *Mat_, *rhs, *gam;
   PetscInt             k, nh = 0;
   const PetscScalar   *ya;

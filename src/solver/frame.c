@@ -24,7 +24,9 @@ struct _n_SgFrame {
   MPI_Comm        comm;
   PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
   PetscInt        nrot_global;
-  const PetscInt *off;     /* dof offset of each contact vertex (the contact view's) */
+  const PetscInt *off;     /* dof offset of each contact vertex (the contact object's, SgContactGetVertices) */
+  PetscInt        nglobal; /* contact vertices on all ranks */
+  const PetscReal *normal; /* their unit normals (SgContactGetNormals) */
   PetscReal      *Q;       /* Q_i row-major: column b is the frame's b-th vector in global components */
   PetscBool      *rot;     /* Q_i is not the identity */
   PetscInt       *axis;    /* the frame dof of the normal */
@@ -261,7 +263,7 @@ static PetscErrorCode RotateStiffnessSeq(SgFrame f, Mat K, Mat *Kr, PetscBool *d
    with the body); where those two moments agree to 1e-6 (a body round about n) the minimal rotation of VertexFrame.
    Of the 2^dim dim! signed orders of the columns the one closest to the identity (largest trace). *ok false: the
    normals differ (or there are none). Collective. */
-static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMesh *m, PetscInt *kn, PetscReal *sn, PetscBool *ok)
+static PetscErrorCode GlobalFrame(SgFrame f, const SgMesh *m, PetscInt *kn, PetscReal *sn, PetscBool *ok)
 {
   const PetscInt dim   = f->dim;
   PetscReal      ns[4] = {0, 0, 0, 0}, nb[3] = {0, 0, 0}, dev = 0, len = 0, F[9], Q0[9], s0;
@@ -278,8 +280,8 @@ static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMe
 
   PetscFunctionBeginUser;
   *ok = PETSC_FALSE;
-  for (PetscInt i = 0; i < cv->n; i++) {
-    for (PetscInt a = 0; a < dim; a++) ns[a] += cv->normal[i * dim + a];
+  for (PetscInt i = 0; i < f->n; i++) {
+    for (PetscInt a = 0; a < dim; a++) ns[a] += f->normal[i * dim + a];
     ns[3] += 1;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ns, 4, MPIU_REAL, MPIU_SUM, f->comm));
@@ -287,8 +289,8 @@ static PetscErrorCode GlobalFrame(SgFrame f, const SgContactView *cv, const SgMe
   len = PetscSqrtReal(len);
   if (ns[3] < 1 || len < 0.5 * ns[3]) PetscFunctionReturn(0);
   for (PetscInt a = 0; a < dim; a++) nb[a] = ns[a] / len;
-  for (PetscInt i = 0; i < cv->n; i++)
-    for (PetscInt a = 0; a < dim; a++) dev = PetscMax(dev, PetscAbsReal(cv->normal[i * dim + a] - nb[a]));
+  for (PetscInt i = 0; i < f->n; i++)
+    for (PetscInt a = 0; a < dim; a++) dev = PetscMax(dev, PetscAbsReal(f->normal[i * dim + a] - nb[a]));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dev, 1, MPIU_REAL, MPIU_MAX, f->comm));
   if (dev > 1e-8) PetscFunctionReturn(0);
   VertexFrame(dim, nb, Q0, &k0, &s0);
@@ -395,7 +397,7 @@ static void GlobalVertexFrame(SgFrame f, const PetscReal n[], PetscInt k, PetscR
 
 /* The start of a frame's set-up (the log event begun): the object for the contact vertices of c, each with its own
    frame from its normal (the identity where the normal is an axis) */
-static PetscErrorCode FrameStart(SgElasticity el, SgContact c, SgContactView *cv, PetscInt *dim, SgFrame *frame)
+static PetscErrorCode FrameStart(SgElasticity el, SgContact c, PetscInt *dim, SgFrame *frame)
 {
   SgFrame f;
 
@@ -405,17 +407,16 @@ static PetscErrorCode FrameStart(SgElasticity el, SgContact c, SgContactView *cv
     frame_registered = PETSC_TRUE;
   }
   PetscCall(PetscLogEventBegin(SG_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(SgContactGetView(c, cv));
   PetscCall(SgElasticityGetDimension(el, dim));
   PetscCall(PetscNew(&f));
   PetscCall(SgElasticityGetComm(el, &f->comm));
   f->dim = *dim;
-  f->n   = cv->n;
-  f->off = cv->off;
-  PetscCall(PetscMalloc4(cv->n * *dim * *dim, &f->Q, cv->n, &f->rot, cv->n, &f->axis, cv->n, &f->sign));
-  for (PetscInt i = 0; i < cv->n; i++) {
+  PetscCall(SgContactGetVertices(c, &f->n, &f->nglobal, NULL, &f->off));
+  PetscCall(SgContactGetNormals(c, &f->normal));
+  PetscCall(PetscMalloc4(f->n * *dim * *dim, &f->Q, f->n, &f->rot, f->n, &f->axis, f->n, &f->sign));
+  for (PetscInt i = 0; i < f->n; i++) {
     const PetscInt   d = *dim;
-    const PetscReal *n = &cv->normal[i * d];
+    const PetscReal *n = &f->normal[i * d];
     PetscInt         k = -1;
     for (PetscInt a = 0; a < d; a++)
       if (PetscAbsReal(PetscAbsReal(n[a]) - 1) < 1e-10) k = a;
@@ -463,7 +464,6 @@ static PetscErrorCode FrameNullSpace(SgFrame f, SgElasticity el, PetscBool keepc
 PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgFrame *frame)
 {
   SgFrame       f;
-  SgContactView cv;
   const SgMesh *m;
   Mat           K, Qm;
   PetscInt      dim, mloc, kn = -1;
@@ -475,30 +475,30 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   if (!c) PetscFunctionReturn(0);
   PetscCall(SgContactNormalsAxisAligned(c, &aligned));
   if (aligned) PetscFunctionReturn(0);
-  PetscCall(FrameStart(el, c, &cv, &dim, &f));
+  PetscCall(FrameStart(el, c, &dim, &f));
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   PetscCall(MatGetLocalSize(K, &mloc, NULL));
   f->nb = mloc / dim;
   PetscCall(PetscMalloc1(f->nb, &f->bq));
-  if (global) PetscCall(GlobalFrame(f, &cv, m, &kn, &sn, &ok));
+  if (global) PetscCall(GlobalFrame(f, m, &kn, &sn, &ok));
   f->global = ok;
   for (PetscInt b = 0; b < f->nb; b++) f->bq[b] = ok ? -2 : -1;
   if (ok) { /* R on every block but at a roller (a partly fixed vertex: its fixed components must stay dofs of their
                own, the Dirichlet rows rows of the identity): there the frame of the contact vertex as above, else none */
     for (PetscInt v = 0; v < m->nv; v++)
       if (m->goff[v] >= 0 && SgMeshPartial(m, v)) f->bq[m->goff[v] / dim] = -1;
-    for (PetscInt i = 0; i < cv.n; i++) {
-      if (f->bq[cv.off[i] / dim] == -1) continue; /* a roller */
-      GlobalVertexFrame(f, &cv.normal[i * dim], kn, sn, &f->Q[i * dim * dim]);
+    for (PetscInt i = 0; i < f->n; i++) {
+      if (f->bq[f->off[i] / dim] == -1) continue; /* a roller */
+      GlobalVertexFrame(f, &f->normal[i * dim], kn, sn, &f->Q[i * dim * dim]);
       f->rot[i]  = PETSC_TRUE;
       f->axis[i] = kn;
       f->sign[i] = sn;
     }
   }
   f->nrot = 0;
-  for (PetscInt i = 0; i < cv.n; i++)
-    if (f->rot[i]) f->bq[cv.off[i] / dim] = i;
+  for (PetscInt i = 0; i < f->n; i++)
+    if (f->rot[i]) f->bq[f->off[i] / dim] = i;
   for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
   PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
   PetscCall(RotateStiffnessSeq(f, K, &f->Kr, &done));
@@ -512,7 +512,7 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
   if (f->global && dim == 2) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g; %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3]));
   else if (f->global) PetscCall(PetscInfo(NULL, "-ssn_frame: the body in one frame (-ssn_frame_global): %" PetscInt_FMT " vertices rotated, the normal on dof %" PetscInt_FMT ", R = [%g %g %g; %g %g %g; %g %g %g]\n", f->nrot_global, kn, (double)f->R[0], (double)f->R[1], (double)f->R[2], (double)f->R[3], (double)f->R[4], (double)f->R[5], (double)f->R[6], (double)f->R[7], (double)f->R[8]));
-  else PetscCall(PetscInfo(NULL, "-ssn_frame: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
+  else PetscCall(PetscInfo(NULL, "-ssn_frame: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, f->nglobal));
   *frame = f;
   PetscFunctionReturn(0);
 }
@@ -525,20 +525,19 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
 PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
 {
   SgFrame       f;
-  SgContactView cv;
   Mat           K, Qm, G;
   PetscInt      dim, mloc;
 
   PetscFunctionBeginUser;
   *frame = NULL;
-  PetscCall(FrameStart(el, c, &cv, &dim, &f));
+  PetscCall(FrameStart(el, c, &dim, &f));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   PetscCall(MatGetLocalSize(K, &mloc, NULL));
   f->nb = mloc / dim;
   PetscCall(PetscMalloc1(f->nb, &f->bq));
   for (PetscInt b = 0; b < f->nb; b++) f->bq[b] = -1;
-  for (PetscInt i = 0; i < cv.n; i++)
-    if (f->rot[i]) f->bq[cv.off[i] / dim] = i;
+  for (PetscInt i = 0; i < f->n; i++)
+    if (f->rot[i]) f->bq[f->off[i] / dim] = i;
   f->nrot = 0;
   for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
   PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
@@ -551,7 +550,7 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
   PetscCall(MatSetBlockSize(f->Kr, dim));
   PetscCall(FrameNullSpace(f, el, PETSC_FALSE)); /* (T Q)^-1 r */
   PetscCall(PetscLogEventEnd(SG_FrameSetUp, 0, 0, 0, 0));
-  PetscCall(PetscInfo(NULL, "-ssn_pair_transform: the pair's dual-mortar transformation, %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, cv.nglobal));
+  PetscCall(PetscInfo(NULL, "-ssn_pair_transform: the pair's dual-mortar transformation, %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices rotated into the frame of their normal\n", f->nrot_global, f->nglobal));
   *frame = f;
   PetscFunctionReturn(0);
 }

@@ -39,8 +39,8 @@ static PetscErrorCode Hierarchy(DM dm, PetscInt *nlv, DM **lv)
 }
 
 /* The interpolation from the free dofs of mesh c to those of mesh f (the next refinement; map from
-   SgMeshRefinementMap); with a frame, the rows of the rotated contact vertices in their frames. */
-static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh *f, const PetscInt map[], SgFrame frame, const SgContactView *cv, Mat *P)
+   SgMeshRefinementMap); with a frame, the rows of the rotated contact vertices (ncv, their local vertex numbers cvert) in their frames. */
+static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh *f, const PetscInt map[], SgFrame frame, PetscInt ncv, const PetscInt cvert[], Mat *P)
 {
   const PetscInt   dim = f->dim;
   PetscInt         nr = 0, nc = 0, *cidx = NULL;
@@ -56,8 +56,8 @@ static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh
     PetscCall(SgFrameGetAxes(frame, NULL, NULL, &rot));
     PetscCall(PetscMalloc1(f->nv, &cidx));
     for (PetscInt v = 0; v < f->nv; v++) cidx[v] = -1;
-    for (PetscInt i = 0; i < cv->n; i++)
-      if (rot[i]) cidx[cv->vert[i]] = i;
+    for (PetscInt i = 0; i < ncv; i++)
+      if (rot[i]) cidx[cvert[i]] = i;
   }
   for (PetscInt v = 0; v < f->nv; v++) {
     const PetscInt  v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
@@ -139,7 +139,7 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
     PetscInt *map, bad;
     PetscCall(SgMeshRefinementMap(dmc[l - 1], &m[l - 1], &m[l], prefix, &map, &bad));
     PetscCheck(!bad, s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg_interp geometric: the mesh refined %" PetscInt_FMT " times fewer, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the refinement does not nest here; use -ssn_pc_truncated_mg_interp amg", L - l + 1, bad);
-    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L ? s->frame : NULL, &s->cv, &(*P)[l]));
+    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L ? s->frame : NULL, s->n, s->vert, &(*P)[l]));
     PetscCall(PetscFree(map));
   }
   {

@@ -7,7 +7,6 @@
    without the rows and columns of fixed components of a roller (the pair leaves them out: R's rows and columns) */
 PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
 {
-  const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   PetscInt             rstart;
 
@@ -17,11 +16,11 @@ PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
     PetscFunctionReturn(0);
   }
   PetscCall(MatGetOwnershipRange(P, &rstart, NULL));
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscInt v = c->vert[i];
+  for (PetscInt i = 0; i < s->n; i++) {
+    const PetscInt v = s->vert[i];
     PetscInt       idx[3];
     PetscScalar    b[9];
-    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + c->off[i] + a;
+    for (PetscInt a = 0; a < dim; a++) idx[a] = rstart + s->off[i] + a;
     for (PetscInt a = 0; a < dim; a++)
       for (PetscInt k = 0; k < dim; k++) {
         const PetscBool fixed = (PetscBool)(SgMeshPartial(s->mesh, v) && (SgMeshFixed(s->mesh, v, a) || SgMeshFixed(s->mesh, v, k)));
@@ -36,7 +35,6 @@ PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
    vertex (exactly: nothing of gamma reaches its tangential entries), the block as without frames elsewhere */
 static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
 {
-  const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscInt      *axis;
   const PetscBool     *rot;
@@ -44,14 +42,14 @@ static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
 
   PetscFunctionBeginUser;
   PetscCall(SgFrameGetAxes(s->frame, &axis, NULL, &rot));
-  PetscCall(PetscCalloc1(c->n * dim * dim, &blk));
-  for (PetscInt i = 0; i < c->n; i++) {
+  PetscCall(PetscCalloc1(s->n * dim * dim, &blk));
+  for (PetscInt i = 0; i < s->n; i++) {
     PetscReal *B = &blk[i * dim * dim];
     if (!s->actjac[i]) continue;
-    if (rot[i]) B[axis[i] * dim + axis[i]] = s->gamma * c->w[i];
+    if (rot[i]) B[axis[i] * dim + axis[i]] = s->gamma * s->w[i];
     else
       for (PetscInt a = 0; a < dim; a++)
-        for (PetscInt b = 0; b < dim; b++) B[a * dim + b] = s->gamma * c->w[i] * c->normal[i * dim + a] * c->normal[i * dim + b];
+        for (PetscInt b = 0; b < dim; b++) B[a * dim + b] = s->gamma * s->w[i] * s->normal[i * dim + a] * s->normal[i * dim + b];
   }
   PetscCall(SgSSNAddBlocks(s, blk, P));
   PetscCall(PetscFree(blk));
@@ -69,7 +67,7 @@ PetscErrorCode SgSSNJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) s->actjac[i] = (char)(s->lamhat[i] + s->gamma * s->g[i] > 0);
+  for (PetscInt i = 0; i < s->n; i++) s->actjac[i] = (char)(s->lamhat[i] + s->gamma * s->g[i] > 0);
   s->havejac = PETSC_TRUE;
   if (s->nhash == s->maxhash) {
     s->maxhash = PetscMax(64, 2 * s->maxhash);

@@ -266,7 +266,7 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscMPIInt   size;
   MPI_Comm      comm;
   SgContactView cv;
-  PetscInt      dim, ncond;
+  PetscInt      dim, ncond, nglobal;
   PetscBool     aligned = PETSC_FALSE, on;
   size_t        n;
 
@@ -314,7 +314,8 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
     }
     PetscFunctionReturn(0);
   }
-  ncond = cv.nglobal * (aligned ? 1 : dim); /* axis-aligned normals condense one component (condense.c) */
+  PetscCall(SgContactGetVertices(c, NULL, &nglobal, NULL, NULL));
+  ncond = nglobal * (aligned ? 1 : dim); /* axis-aligned normals condense one component (condense.c) */
   if (size > 1 || ncond > SG_CONDENSE_MAX_DOFS) PetscFunctionReturn(0);
   PetscCall(SetDefaultSSN(prefix, "ssn_condense", &on));
   def->condense = on;

@@ -17,12 +17,12 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
   PetscFunctionBeginUser;
   PetscCall(SgSSNLawInput(s, &in));
   PetscCall(VecGetArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < s->n; i++) {
     PetscReal t = 0;
     if (s->lamhat[i] + s->gamma * s->g[i] > 0) {
       PetscReal gi, dg = 0;
       if (c->coupled) SgContactLawBound(c->law, i, s->m[i], &gi, &dg); /* the bound dg lam_N */
-      t = s->gamma * c->w[i] * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata) * (1 + (c->coupled ? dg : 0));
+      t = s->gamma * s->w[i] * (PetscAbsReal(s->g[i] + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata) * (1 + (c->coupled ? dg : 0));
     }
     t += SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_FALSE); /* the law's tangential term (0 without) */
     fl2 += t * t;
@@ -41,7 +41,6 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
 PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
 {
   SgSSN                s   = (SgSSN)ctx;
-  const SgContactView *c   = &s->cv;
   const PetscInt       dim = s->dim;
   const PetscScalar   *ya;
   PetscScalar         *fa, dots[2];
@@ -68,22 +67,22 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
   PetscCall(PetscLogEventBegin(SG_ActiveSet, 0, 0, 0, 0));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < s->n; i++) {
     const PetscReal z = s->lamhat[i] + s->gamma * s->g[i];
     /* the multiplier of the last Newton step: lamhat + gamma g on the set it used, 0 elsewhere */
     const PetscReal lj = s->havejac ? (s->actjac[i] ? z : 0) : PetscMax(0, z);
     s->m[i]            = PetscMax(0, z);
     s->act[i]          = (char)(z > 0);
-    loc[0] += c->w[i] * s->m[i] * s->m[i];
-    loc[1] += c->w[i] * s->m[i] * s->g[i];
+    loc[0] += s->w[i] * s->m[i] * s->m[i];
+    loc[1] += s->w[i] * s->m[i] * s->g[i];
     loc[2] += s->act[i];
     if (s->havejac) {
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
       /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
-      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + s->udata)) + s->kroff / c->w[i]);
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata)) + s->kroff / s->w[i]);
     }
-    loc[5] += c->w[i] * PetscSqr(lj - s->m[i]);
+    loc[5] += s->w[i] * PetscSqr(lj - s->m[i]);
   }
   PetscCall(PetscLogEventEnd(SG_ActiveSet, 0, 0, 0, 0));
   PetscCall(VecGetArray(F, &fa));
@@ -96,11 +95,11 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   {
     const PetscScalar *ma;
     PetscCall(VecGetArrayRead(s->mass, &ma));
-    for (PetscInt i = 0; i < c->n; i++) {
+    for (PetscInt i = 0; i < s->n; i++) {
       const PetscReal z = s->lamhat[i] + s->gamma * s->g[i], lj = s->havejac ? (s->actjac[i] ? z : 0) : s->m[i];
       for (PetscInt k = 0; k < dim; k++) {
-        const PetscInt  j  = c->off[i] + k;
-        const PetscReal fj = PetscRealPart(fa[j]), r = fj - c->w[i] * (s->m[i] - lj) * c->normal[i * dim + k];
+        const PetscInt  j  = s->off[i] + k;
+        const PetscReal fj = PetscRealPart(fa[j]), r = fj - s->w[i] * (s->m[i] - lj) * s->normal[i * dim + k];
         r1corr2 += (r * r - fj * fj) / PetscRealPart(ma[j]);
       }
     }
@@ -144,17 +143,17 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal
   PetscReal            floor = 0, nrm[2], *g, *m;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMalloc2(c->n, &g, c->n, &m));
+  PetscCall(PetscMalloc2(s->n, &g, s->n, &m));
   PetscCall(VecDuplicate(y, &F));
   PetscCall(MatMult(s->K, y, F));
   PetscCall(VecAXPY(F, -1.0, s->b));
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(s->c, ya, g));
   PetscCall(VecRestoreArrayRead(y, &ya));
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < s->n; i++) {
     const PetscReal z = s->lamhat[i] + s->gamma * g[i];
     m[i]              = PetscMax(0, z);
-    if (z > 0) floor = PetscMax(floor, s->gamma * c->w[i] * (PetscAbsReal(g[i] + c->d[i]) + PetscAbsReal(c->d[i])));
+    if (z > 0) floor = PetscMax(floor, s->gamma * s->w[i] * (PetscAbsReal(g[i] + s->d[i]) + PetscAbsReal(s->d[i])));
   }
   floor *= 4 * PETSC_MACHINE_EPSILON;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &floor, 1, MPIU_REAL, MPI_MAX, s->comm));
@@ -167,7 +166,7 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal
     PetscCall(SgSSNFrictionResidual(s, ya, m, fa, floc)); /* the law's tangential forces (none without friction) */
     /* the round-off of gamma_T T y on the stick set */
     PetscCall(SgSSNLawInput(s, &in));
-    for (PetscInt i = 0; i < c->n; i++) fl = PetscMax(fl, SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_TRUE));
+    for (PetscInt i = 0; i < s->n; i++) fl = PetscMax(fl, SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_TRUE));
     PetscCall(VecRestoreArrayRead(y, &ya));
     fl *= 4 * PETSC_MACHINE_EPSILON;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fl, 1, MPIU_REAL, MPI_MAX, s->comm));

@@ -110,7 +110,13 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SgElasticityGetMass(p, &s->mass));
   s->prob = p;
   PetscCall(SgSSNUpdateLoad(s));
-  if (c) PetscCall(SgContactGetView(c, &s->cv));
+  if (c) {
+    PetscCall(SgContactGetView(c, &s->cv));
+    PetscCall(SgContactGetVertices(c, &s->n, &s->nglobal, &s->vert, &s->off));
+    PetscCall(SgContactGetWeights(c, &s->w));
+    PetscCall(SgContactGetNormals(c, &s->normal));
+    PetscCall(SgContactGetGaps(c, &s->d));
+  }
   PetscCall(PetscTime(&s->t0));
   PetscCall(PetscObjectReference((PetscObject)J));
   s->J = J;
@@ -119,15 +125,15 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
     PetscCall(MatSetOption(J, MAT_SYMMETRIC, PETSC_FALSE));
   }
   PetscCall(VecDuplicate(s->b, &s->r));
-  PetscCall(PetscMalloc5(s->cv.n, &s->g, s->cv.n, &s->m, s->cv.n, &s->act, s->cv.n, &s->actjac, s->cv.n, &s->lamhat));
-  for (PetscInt i = 0; i < s->cv.n; i++) s->lamhat[i] = 0;
+  PetscCall(PetscMalloc5(s->n, &s->g, s->n, &s->m, s->n, &s->act, s->n, &s->actjac, s->n, &s->lamhat));
+  for (PetscInt i = 0; i < s->n; i++) s->lamhat[i] = 0;
   if (c) { /* the law's tangential state, sized by it (no arrays without friction) */
     PetscCall(SgContactLawStateCreate(s->cv.law, &s->lst));
     PetscCall(SgContactLawStateGetArrays(s->lst, &s->lamhatT, &s->mT, &s->fst));
     PetscCall(SgContactLawStateGetJacobianArrays(s->lst, &s->fstjac, &s->tjac));
   }
-  PetscCall(PetscCalloc2(s->cv.n * s->dim + 1, &s->uv, s->cv.n * s->dim + 1, &s->ft));
-  PetscCall(PetscCalloc1(s->cv.n + 1, &s->fforce));
+  PetscCall(PetscCalloc2(s->n * s->dim + 1, &s->uv, s->n * s->dim + 1, &s->ft));
+  PetscCall(PetscCalloc1(s->n + 1, &s->fforce));
   PetscCall(SNESCreate(s->comm, &s->snes));
   PetscCall(SNESSetOptionsPrefix(s->snes, prefix));
   PetscCall(SNESSetKSP(s->snes, ksp));
@@ -392,12 +398,12 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN s, Vec y, PetscInt *changed)
   const PetscScalar *ya;
 
   PetscFunctionBeginUser;
-  if (!s->gy) PetscCall(PetscMalloc1(s->cv.n, &s->gy));
+  if (!s->gy) PetscCall(PetscMalloc1(s->n, &s->gy));
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(s->c, ya, s->gy));
   PetscCall(VecRestoreArrayRead(y, &ya));
   *changed = 0;
-  for (PetscInt i = 0; i < s->cv.n; i++) *changed += ((s->lamhat[i] + s->gamma * s->gy[i] > 0) != (s->actjac[i] != 0));
+  for (PetscInt i = 0; i < s->n; i++) *changed += ((s->lamhat[i] + s->gamma * s->gy[i] > 0) != (s->actjac[i] != 0));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, changed, 1, MPIU_INT, MPI_SUM, s->comm));
   PetscFunctionReturn(0);
 }
@@ -406,14 +412,13 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN s, Vec y, PetscInt *changed)
    iterate (the sets of the last Newton step): the measures of the inexact path-following rule (15). */
 PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
 {
-  const SgContactView *c    = &s->cv;
   PetscReal            r[2] = {0, 0};
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < c->n; i++) {
+  for (PetscInt i = 0; i < s->n; i++) {
     const PetscBool act = (PetscBool)(s->havejac ? s->actjac[i] : s->act[i]);
-    r[0] += c->w[i] * PetscMax(0, s->g[i]);
-    r[1] += c->w[i] * (act ? -PetscMin(0, s->g[i]) : PetscMax(0, s->g[i]));
+    r[0] += s->w[i] * PetscMax(0, s->g[i]);
+    r[1] += s->w[i] * (act ? -PetscMin(0, s->g[i]) : PetscMax(0, s->g[i]));
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, r, 2, MPIU_REAL, MPI_SUM, s->comm));
   *rhoF = r[0];
@@ -430,7 +435,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   s->outer   = outer;
   s->havejac = PETSC_FALSE;
   s->dmax    = 0;
-  for (PetscInt i = 0; i < s->cv.n; i++) s->dmax = PetscMax(s->dmax, PetscAbsReal(s->cv.d[i]));
+  for (PetscInt i = 0; i < s->n; i++) s->dmax = PetscMax(s->dmax, PetscAbsReal(s->d[i]));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash    = 0;
   s->stagnant = PETSC_FALSE;

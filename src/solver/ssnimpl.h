@@ -7,7 +7,12 @@
 struct _n_SgSSN {
   SgElasticity  prob;
   SgContact     c;  /* NULL without a contact boundary */
-  SgContactView cv; /* its vertices */
+  SgContactView cv; /* its law */
+  /* read once from the contact object (SgContactGetVertices, ...; NULL and 0 without it) */
+  PetscInt         n, nglobal; /* contact vertices owned here, in all */
+  const PetscInt  *vert, *off; /* their local vertex numbers, the offsets of their first dofs in the local vector */
+  const PetscReal *w, *normal; /* boundary weights, outward unit normals (n*dim) */
+  const PetscReal *d;          /* gaps to the obstacle along the normals */
   /* read once from the elasticity object */
   MPI_Comm          comm;
   PetscInt          dim;

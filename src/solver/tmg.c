@@ -201,23 +201,22 @@ static PetscErrorCode DeadDofs(Mat A, Mat AK)
    their (whole) interpolations. */
 static PetscErrorCode Update(SgTMG t)
 {
-  const SgContactView *c = &t->ssn->cv;
   const PetscInt       n = t->nlevels;
   PetscInt             rstart, na = 0, nag, *rows;
   PetscBool            same = PETSC_TRUE;
   Mat                  D    = NULL;
 
   PetscFunctionBeginUser;
-  for (PetscInt i = 0; i < c->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
+  for (PetscInt i = 0; i < t->ssn->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
   same = (PetscBool)(same && !t->fresh);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, t->ssn->comm));
   if (same) PetscFunctionReturn(0);
   t->fresh = PETSC_FALSE;
   PetscCall(MatGetOwnershipRange(t->Pt, &rstart, NULL));
-  PetscCall(PetscMalloc1(c->n, &rows));
-  for (PetscInt i = 0; i < c->n; i++) {
+  PetscCall(PetscMalloc1(t->ssn->n, &rows));
+  for (PetscInt i = 0; i < t->ssn->n; i++) {
     t->have[i] = t->want[i];
-    if (t->want[i]) rows[na++] = rstart + c->off[i] + t->axis[i];
+    if (t->want[i]) rows[na++] = rstart + t->ssn->off[i] + t->axis[i];
   }
   PetscCall(MPIU_Allreduce(&na, &nag, 1, MPIU_INT, MPI_SUM, t->ssn->comm));
   PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
@@ -325,14 +324,14 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   t->ssn   = s;
   t->gamg  = gamg;
   t->fresh = PETSC_TRUE;
-  PetscCall(PetscMalloc4(s->cv.n, &t->axis, s->cv.n, &t->sign, s->cv.n, &t->want, s->cv.n, &t->have));
-  for (PetscInt i = 0; i < s->cv.n; i++) t->want[i] = t->have[i] = 0;
+  PetscCall(PetscMalloc4(s->n, &t->axis, s->n, &t->sign, s->n, &t->want, s->n, &t->have));
+  for (PetscInt i = 0; i < s->n; i++) t->want[i] = t->have[i] = 0;
   if (s->frame) { /* every normal is the axis of its frame (frame.c) */
     const PetscInt  *axis;
     const PetscReal *sign;
     PetscCall(SgFrameGetAxes(s->frame, &axis, &sign, NULL));
-    PetscCall(PetscArraycpy(t->axis, axis, s->cv.n));
-    PetscCall(PetscArraycpy(t->sign, sign, s->cv.n));
+    PetscCall(PetscArraycpy(t->axis, axis, s->n));
+    PetscCall(PetscArraycpy(t->sign, sign, s->n));
   } else {
     PetscBool pair; /* two bodies have no frames: the refusal names the multigrid alone */
     PetscCall(SgContactIsPair(s->c, &pair));
@@ -367,7 +366,7 @@ PetscErrorCode SgTMGSetActiveSet(SgTMG t, const char act[])
 {
   PetscFunctionBeginUser;
   if (!t) PetscFunctionReturn(0);
-  PetscCall(PetscArraycpy(t->want, act, t->ssn->cv.n));
+  PetscCall(PetscArraycpy(t->want, act, t->ssn->n));
   t->has_set = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
