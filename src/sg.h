@@ -445,17 +445,17 @@ typedef struct {
 } SgLinearDefault;
 #define SG_LINEAR_DEFAULT_NAMG 7 /* the BoomerAMG settings (the size of SgLinearSolverSetDefault's entered[]) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], const SgLinearDefault *, KSP *, Mat *);
-PetscErrorCode SgLinearSolverSetDefault(KSP, const SgLinearDefault *, PetscBool[]); /* before the KSP's (or its SNES's) SetFromOptions ... */
-PetscErrorCode SgLinearSolverEndDefault(KSP, const SgLinearDefault *, PetscBool[]); /* ... and after it (the BoomerAMG options entered for it taken out) */
-PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                                           /* -help: the default solver's option */
+PetscErrorCode SgLinearSolverSetDefault(KSP, const SgLinearDefault *, PetscBool[]);                                                      /* before the KSP's (or its SNES's) SetFromOptions ... */
+PetscErrorCode SgLinearSolverEndDefault(KSP, const SgLinearDefault *, PetscBool[]);                                                      /* ... and after it (the BoomerAMG options entered for it taken out) */
+PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm, const char[]);                                                                          /* -help: the default solver's option */
 PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, PetscBool, SgLinearDefault *, PetscBool *, char[], size_t); /* linear.c: the default solver unless -ksp_type/-pc_type are given */
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, SgLinearDefault *, char[], size_t);
 PetscErrorCode SgLinearSolverGeometricMG(const char[], PetscBool *); /* linear.c: -ssn_pc_truncated_mg_interp geometric given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
-PetscErrorCode SgSSNSetCondense(SgSSN, PetscBool);                 /* the default of -ssn_condense (before SgSSNSetFromOptions) */
-PetscErrorCode SgSSNSetTruncatedMG(SgSSN, PetscBool, PetscBool);   /* the defaults of -ssn_pc_truncated_mg and of its interpolations: geometric */
-PetscErrorCode SgSSNSetFromOptions(SgSSN);                         /* the options, then the frames, condensation or truncated multigrid */
+PetscErrorCode SgSSNSetCondense(SgSSN, PetscBool);               /* the default of -ssn_condense (before SgSSNSetFromOptions) */
+PetscErrorCode SgSSNSetTruncatedMG(SgSSN, PetscBool, PetscBool); /* the defaults of -ssn_pc_truncated_mg and of its interpolations: geometric */
+PetscErrorCode SgSSNSetFromOptions(SgSSN);                       /* the options, then the frames, condensation or truncated multigrid */
 PetscErrorCode SgSSNDestroy(SgSSN *);
 PetscErrorCode SgSSNSolve(SgSSN, PetscReal, PetscInt, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
 PetscErrorCode SgSSNGetSNES(SgSSN, SNES *);

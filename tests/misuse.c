@@ -840,17 +840,17 @@ static PetscErrorCode CasesMaterials(PetscReal res[4])
    energy at its first and its second solve, the smaller one's at both. */
 static PetscErrorCode SolveDefault(PetscInt nx, PetscInt ny, const char want_ksp[], PetscReal *V)
 {
-  const PetscInt     top = 3, bottom = 1;
-  const PetscReal    u[2]     = {0.002, -0.01};
-  const char *const  names[]  = {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type", "-ksp_rtol", "-pc_hypre_type", "-pc_hypre_boomeramg_strong_threshold", "-pc_hypre_boomeramg_relax_type_down", "-ssn_condense", "-ssn_pc_truncated_mg", "-ssn_pc_truncated_mg_interp"};
-  DM                 dm;
-  SgProblem          p;
-  SgCont             c;
-  SNES               snes;
-  KSP                ksp;
-  KSPType            kt;
-  PetscBool          conv, left = PETSC_FALSE, same;
-  char               what[256];
+  const PetscInt    top = 3, bottom = 1;
+  const PetscReal   u[2]    = {0.002, -0.01};
+  const char *const names[] = {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type", "-ksp_rtol", "-pc_hypre_type", "-pc_hypre_boomeramg_strong_threshold", "-pc_hypre_boomeramg_relax_type_down", "-ssn_condense", "-ssn_pc_truncated_mg", "-ssn_pc_truncated_mg_interp"};
+  DM                dm;
+  SgProblem         p;
+  SgCont            c;
+  SNES              snes;
+  KSP               ksp;
+  KSPType           kt;
+  PetscBool         conv, left = PETSC_FALSE, same;
+  char              what[256];
 
   PetscFunctionBeginUser;
   PetscCall(MakeBox(nx, ny, &dm));

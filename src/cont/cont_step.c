@@ -36,8 +36,8 @@ PetscErrorCode SgContAddGamma(SgCont ct, PetscReal gamma)
 /* kn[i] = n_i^T K_ii n_i, the normal diagonal stiffness of each contact vertex: kn / w has the units of gamma */
 PetscErrorCode SgContNormalStiffness(SgCont ct, PetscReal kn[])
 {
-  PetscInt             dim, rstart;
-  Mat                  K;
+  PetscInt dim, rstart;
+  Mat      K;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));

@@ -59,18 +59,18 @@ struct _n_SgCont {
   SgProblem             problem_obj;
   SgElasticity          prob;
   SgContact             c;
-  SgContactView         cv;      /* the contact law; the contact vertices read once (SgContactGetVertices, ...): */
-  PetscInt              n, nglobal;   /* owned here, in all (0 without contact) */
-  const PetscInt       *vert, *off;   /* local vertex numbers, offsets of their first dofs in the local vector */
-  const PetscReal      *w, *normal;   /* boundary weights, outward unit normals (n*dim) */
-  const PetscReal      *d;            /* gaps to the obstacle along the normals */
-  PetscReal             area;         /* |Gamma_c| */
-  KSP                   ksp;    /* the linear solver of every step (-<prefix>ksp_*, -<prefix>pc_*) */
-  Mat                   J;      /* its working matrix */
-  SgSSN                 ssn;    /* NULL for the baselines */
-  PetscReal            *lamhat; /* the SSN's shift (NULL without SSN) */
-  Vec                   y;      /* the iterate, finally the solution */
-  PetscReal            *lam;    /* the multiplier at y */
+  SgContactView         cv;         /* the contact law; the contact vertices read once (SgContactGetVertices, ...): */
+  PetscInt              n, nglobal; /* owned here, in all (0 without contact) */
+  const PetscInt       *vert, *off; /* local vertex numbers, offsets of their first dofs in the local vector */
+  const PetscReal      *w, *normal; /* boundary weights, outward unit normals (n*dim) */
+  const PetscReal      *d;          /* gaps to the obstacle along the normals */
+  PetscReal             area;       /* |Gamma_c| */
+  KSP                   ksp;        /* the linear solver of every step (-<prefix>ksp_*, -<prefix>pc_*) */
+  Mat                   J;          /* its working matrix */
+  SgSSN                 ssn;        /* NULL for the baselines */
+  PetscReal            *lamhat;     /* the SSN's shift (NULL without SSN) */
+  Vec                   y;          /* the iterate, finally the solution */
+  PetscReal            *lam;        /* the multiplier at y */
   PetscReal             kkt_tol;
   PetscReal             gamma;     /* gamma of the next outer step */
   PetscBool             restarted; /* the state comes from -restart_file */

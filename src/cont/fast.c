@@ -152,8 +152,8 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
 /* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i */
 static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
 {
-  const PetscScalar   *ya;
-  PetscReal            s = 0, *g, *kn, E;
+  const PetscScalar *ya;
+  PetscReal          s = 0, *g, *kn, E;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));

@@ -291,10 +291,10 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
    the first normal set and friction states */
 static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
 {
-  PDAS                *pd  = (PDAS *)ct->data;
-  const PetscInt       dim = w->dim;
-  Vec                  diag;
-  PetscInt             N;
+  PDAS          *pd  = (PDAS *)ct->data;
+  const PetscInt dim = w->dim;
+  Vec            diag;
+  PetscInt       N;
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(w->b, &w->rhs));
@@ -377,7 +377,7 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
   PetscCall(VecGetArray(x, &xa));
   for (PetscInt i = 0; i < ct->n; i++)
     if (act[i]) {
-      rows[nrows++]           = rstart + ct->off[i] + axis[i];
+      rows[nrows++]            = rstart + ct->off[i] + axis[i];
       xa[ct->off[i] + axis[i]] = sign[i] * ct->d[i];
     }
   if (fr) {
@@ -387,7 +387,7 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
       for (PetscInt j = 0; j < dim; j++) {
         if (j == axis[i]) continue;
         if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
-          rows[nrows++]     = rstart + ct->off[i] + j;
+          rows[nrows++]      = rstart + ct->off[i] + j;
           xa[ct->off[i] + j] = yref[i * dim + j];
         } else if (fst[i] == 2) {
           if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
@@ -411,7 +411,7 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
             PetscCall(VecRestoreArrayRead(bw, &ba));
             ncoupled++;
           } else ra[ct->off[i] + j] -= ct->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
-          if (dim == 3)                                                    /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
+          if (dim == 3)                                                      /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
             for (PetscInt q = 0; q < dim; q++) ra[ct->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
         }
       }
@@ -433,16 +433,16 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
    size and changes) and, with friction, the next states (their changes counted as entered) */
 static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt *nact_, PetscInt *entered_, PetscInt *left_)
 {
-  PDAS                *pd   = (PDAS *)ct->data;
-  const PetscBool      fr   = w->fr;
-  const PetscInt      *axis = w->axis;
-  const PetscReal     *sign = w->sign, *nax = w->nax, *yref = w->yref;
-  PetscReal           *g = w->g, *gb = w->gb, *tdir = w->tdir, *zn = w->zn;
-  char                *act = w->act, *next = w->next, *fst = w->fst, *fnext = w->fnext;
-  SgFrame              f  = w->f;
-  Mat                  Kw = w->Kw;
-  Vec                  yw = w->yw, bw = w->bw, R = w->R;
-  PetscInt             nact = 0, entered = 0, left = 0;
+  PDAS            *pd   = (PDAS *)ct->data;
+  const PetscBool  fr   = w->fr;
+  const PetscInt  *axis = w->axis;
+  const PetscReal *sign = w->sign, *nax = w->nax, *yref = w->yref;
+  PetscReal       *g = w->g, *gb = w->gb, *tdir = w->tdir, *zn = w->zn;
+  char            *act = w->act, *next = w->next, *fst = w->fst, *fnext = w->fnext;
+  SgFrame          f  = w->f;
+  Mat              Kw = w->Kw;
+  Vec              yw = w->yw, bw = w->bw, R = w->R;
+  PetscInt         nact = 0, entered = 0, left = 0;
 
   PetscFunctionBeginUser;
   /* multiplier from the equilibrium on the active set, then the next active set */
@@ -497,13 +497,13 @@ static PetscErrorCode RecordIteration_PDAS(SgCont ct, PetscInt k, PetscInt nact,
    failed (an active set came back: cycling), or the next set becomes the active one (*done = PETSC_FALSE) */
 static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt entered, PetscInt left, PetscBool *done_)
 {
-  const PetscBool      fr = w->fr, coupled = w->coupled;
-  const PetscReal     *g     = w->g;
-  const PetscInt64    *hash  = w->hash;
-  const PetscInt       nhash = w->nhash;
-  char                *act = w->act, *next = w->next;
-  PetscReal            kktprev = w->kktprev;
-  PetscBool            done    = PETSC_FALSE;
+  const PetscBool   fr = w->fr, coupled = w->coupled;
+  const PetscReal  *g     = w->g;
+  const PetscInt64 *hash  = w->hash;
+  const PetscInt    nhash = w->nhash;
+  char             *act = w->act, *next = w->next;
+  PetscReal         kktprev = w->kktprev;
+  PetscBool         done    = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   if (entered + left == 0) {

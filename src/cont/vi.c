@@ -32,19 +32,19 @@ static PetscErrorCode Jacobian_VI(SNES snes, Vec y, Mat J, Mat P, void *ctx)
 
 static PetscErrorCode Solve_VI(SgCont ct)
 {
-  VI                  *vi = (VI *)ct->data;
-  PetscReal            Knorm, bnorm;
-  char                 prefix[256];
-  Vec                  xl, xu, r;
-  PetscInt            *axis, its, kits;
-  PetscReal           *sign;
-  PetscScalar         *la, *ua;
-  SgFrame              f = NULL;
-  Vec                  yw, bf = NULL; /* the iterate and the load in the frames (ct->y and b without) */
-  SNESConvergedReason  reason;
-  PetscBool            ok;
-  SgHistoryRow         row;
-  PetscLogDouble       t;
+  VI                 *vi = (VI *)ct->data;
+  PetscReal           Knorm, bnorm;
+  char                prefix[256];
+  Vec                 xl, xu, r;
+  PetscInt           *axis, its, kits;
+  PetscReal          *sign;
+  PetscScalar        *la, *ua;
+  SgFrame             f = NULL;
+  Vec                 yw, bf = NULL; /* the iterate and the load in the frames (ct->y and b without) */
+  SNESConvergedReason reason;
+  PetscBool           ok;
+  SgHistoryRow        row;
+  PetscLogDouble      t;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetOperators(ct->prob, &vi->K, &vi->b));

@@ -78,7 +78,7 @@ static PetscErrorCode Residual_Regularized(SgContactLaw law, SgContactLawInput *
 {
   const PetscInt  dim = law->dim;
   const PetscReal gT  = law->gfac * in->gamma;
-  SgContact     c = in->c; /* the contact object itself (this layer's) */
+  SgContact       c   = in->c; /* the contact object itself (this layer's) */
 
   PetscFunctionBeginUser;
   PetscCall(SgContactVertexDisplacements(in->c, ya, in->uv));
@@ -169,7 +169,7 @@ static void Block(SgContactLaw law, const SgContactLawInput *in, SgContact c, Pe
 static PetscErrorCode Jacobian_Regularized(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], const PetscScalar fa[], Mat P)
 {
   const PetscInt dim = law->dim;
-  SgContact    c = in->c; /* the contact object itself (this layer's) */
+  SgContact      c   = in->c; /* the contact object itself (this layer's) */
   PetscReal     *blk;
 
   PetscFunctionBeginUser;
@@ -224,7 +224,7 @@ static PetscErrorCode Jacobian_Regularized(SgContactLaw law, SgContactLawInput *
 static PetscErrorCode StepCorrection_Regularized(SgContactLaw law, SgContactLawInput *in, SgContactLawState st, const PetscScalar xa[], PetscReal ft[])
 {
   const PetscInt dim = law->dim;
-  SgContact    c = in->c; /* the contact object itself (this layer's) */
+  SgContact      c   = in->c; /* the contact object itself (this layer's) */
 
   PetscFunctionBeginUser;
   PetscCall(SgContactVertexDisplacements(in->c, xa, in->uv));
@@ -247,8 +247,8 @@ static PetscErrorCode StepCorrection_Regularized(SgContactLaw law, SgContactLawI
    for the equilibrium error of a solve (equil true) gamma_T w 2 max_k |y_k| at stick */
 static PetscReal Floor_Regularized(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
 {
-  const PetscInt dim = law->dim;
-  SgContact    c = in->c; /* the contact object itself (this layer's) */
+  const PetscInt dim  = law->dim;
+  SgContact      c    = in->c; /* the contact object itself (this layer's) */
   PetscReal      ymax = 0;
 
   if (equil) {

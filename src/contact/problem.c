@@ -333,9 +333,9 @@ PetscErrorCode SgProblemView(SgProblem p, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(SgElasticityView(p->el, viewer));
   if (p->c) {
-    const char   *type;
-    PetscInt  nglobal;
-    PetscReal area;
+    const char *type;
+    PetscInt    nglobal;
+    PetscReal   area;
     PetscCall(SgContactGetVertices(p->c, NULL, &nglobal, NULL, NULL));
     PetscCall(SgContactGetArea(p->c, &area));
     PetscCall(SgContactGetObstacleType(p->c, &type));

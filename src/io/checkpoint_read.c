@@ -472,9 +472,9 @@ static PetscErrorCode ReaderMatchVertices(SgCheckpointReader *rp)
 {
   SgCheckpointReader r = *rp;
   const SgMesh      *m;
-  PetscInt           ncv  = 0; /* the contact vertices */
+  PetscInt           ncv   = 0; /* the contact vertices */
   const PetscInt    *cvert = NULL;
-  const PetscInt     dim = r->dim;
+  const PetscInt     dim   = r->dim;
   PetscReal         *x, *fx, *qx, *rfx, *rqx, *px;
   PetscInt          *perm, *pg, *ans, *rans, *order, nmiss = 0, nrf, nrq, nr, nleaves = 0, *ilocal;
   PetscMPIInt        size, *fc, *qc, *rfc, *rqc;

@@ -149,7 +149,7 @@ PetscErrorCode SgCheckpointWriterDisplacement(SgCheckpointWriter w, const char n
 /* bs numbers per contact vertex (a; NULL: zeros), zeros at the other vertices */
 PetscErrorCode SgCheckpointWriterContact(SgCheckpointWriter w, const char name[], PetscInt bs, const PetscReal a[])
 {
-  const SgMesh *m;
+  const SgMesh   *m;
   PetscInt        n    = 0;
   const PetscInt *vert = NULL;
   PetscReal      *vals;

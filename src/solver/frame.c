@@ -21,26 +21,26 @@
 #include "solver/ssnimpl.h"
 
 struct _n_SgFrame {
-  MPI_Comm        comm;
-  PetscInt        dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
-  PetscInt        nrot_global;
-  const PetscInt *off;     /* dof offset of each contact vertex (the contact object's, SgContactGetVertices) */
-  PetscInt        nglobal; /* contact vertices on all ranks */
-  const PetscReal *normal; /* their unit normals (SgContactGetNormals) */
-  PetscReal      *Q;       /* Q_i row-major: column b is the frame's b-th vector in global components */
-  PetscBool      *rot;     /* Q_i is not the identity */
-  PetscInt       *axis;    /* the frame dof of the normal */
-  PetscReal      *sign;    /* n = sign Q_i e_axis */
-  PetscBool       global;  /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
-  PetscReal       R[9];    /* that frame, row-major like Q_i */
-  PetscInt        nb;      /* blocks (vertices) of the local part of a global vector */
-  PetscInt       *bq;      /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
-  Mat             Kr;      /* Q^T K Q */
-  MatNullSpace    nsp;     /* the rotated near null space (NULL if the problem has none) */
-  Vec             b;       /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
-  Mat             T, Tinv; /* two bodies (-ssn_pair_transform, SgFrameCreatePair): the dual-mortar basis transformation
+  MPI_Comm         comm;
+  PetscInt         dim, n, nrot; /* contact vertices here; of those rotated (on all ranks: nrot_global) */
+  PetscInt         nrot_global;
+  const PetscInt  *off;     /* dof offset of each contact vertex (the contact object's, SgContactGetVertices) */
+  PetscInt         nglobal; /* contact vertices on all ranks */
+  const PetscReal *normal;  /* their unit normals (SgContactGetNormals) */
+  PetscReal       *Q;       /* Q_i row-major: column b is the frame's b-th vector in global components */
+  PetscBool       *rot;     /* Q_i is not the identity */
+  PetscInt        *axis;    /* the frame dof of the normal */
+  PetscReal       *sign;    /* n = sign Q_i e_axis */
+  PetscBool        global;  /* -ssn_frame_global: every vertex of the body in one frame R (GlobalFrame) */
+  PetscReal        R[9];    /* that frame, row-major like Q_i */
+  PetscInt         nb;      /* blocks (vertices) of the local part of a global vector */
+  PetscInt        *bq;      /* per block: -1 the identity, -2 R, i >= 0 the frame Q_i of contact vertex i */
+  Mat              Kr;      /* Q^T K Q */
+  MatNullSpace     nsp;     /* the rotated near null space (NULL if the problem has none) */
+  Vec              b;       /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
+  Mat              T, Tinv; /* two bodies (-ssn_pair_transform, SgFrameCreatePair): the dual-mortar basis transformation
                               u = T v before the rotations (u = T Q z), and its inverse; NULL otherwise */
-  Vec             w;       /* work for them */
+  Vec              w;       /* work for them */
 };
 
 static PetscLogEvent SG_FrameSetUp;
@@ -524,9 +524,9 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
    null space is (T Q)^-1 applied to the rigid-body modes. Made even where every normal is an axis (T alone). */
 PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
 {
-  SgFrame       f;
-  Mat           K, Qm, G;
-  PetscInt      dim, mloc;
+  SgFrame  f;
+  Mat      K, Qm, G;
+  PetscInt dim, mloc;
 
   PetscFunctionBeginUser;
   *frame = NULL;

@@ -7,8 +7,8 @@
    without the rows and columns of fixed components of a roller (the pair leaves them out: R's rows and columns) */
 PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
 {
-  const PetscInt       dim = s->dim;
-  PetscInt             rstart;
+  const PetscInt dim = s->dim;
+  PetscInt       rstart;
 
   PetscFunctionBeginUser;
   if (!SgFramePairTransform(s->frame)) {
@@ -35,10 +35,10 @@ PetscErrorCode SgSSNAddBlocks(SgSSN s, const PetscReal blk[], Mat P)
    vertex (exactly: nothing of gamma reaches its tangential entries), the block as without frames elsewhere */
 static PetscErrorCode FrameContactJacobian(SgSSN s, Mat P)
 {
-  const PetscInt       dim = s->dim;
-  const PetscInt      *axis;
-  const PetscBool     *rot;
-  PetscReal           *blk;
+  const PetscInt   dim = s->dim;
+  const PetscInt  *axis;
+  const PetscBool *rot;
+  PetscReal       *blk;
 
   PetscFunctionBeginUser;
   PetscCall(SgFrameGetAxes(s->frame, &axis, NULL, &rot));

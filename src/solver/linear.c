@@ -32,13 +32,13 @@ static PetscErrorCode DirectMaxOption(PetscOptionItems *PetscOptionsObject, Pets
    again) keeps what it finds set. An options object of the KSP's own (PetscObjectSetOptions) would replace the global
    database for it, not add to it: the user's -pc_hypre_* options would no longer reach the PC. */
 static const char *const AMGDefaults[][2] = {
-  {"pc_hypre_boomeramg_strong_threshold", "0.5"                     },
-  {"pc_hypre_boomeramg_coarsen_type",     "HMIS"                    },
-  {"pc_hypre_boomeramg_interp_type",      "ext+i"                   },
-  {"pc_hypre_boomeramg_P_max",            "4"                       },
-  {"pc_hypre_boomeramg_agg_nl",           "1"                       },
-  {"pc_hypre_boomeramg_relax_type_down",  "l1-Gauss-Seidel"         },
-  {"pc_hypre_boomeramg_relax_type_up",    "backward-l1-Gauss-Seidel"}
+    {"pc_hypre_boomeramg_strong_threshold",                      "0.5"},
+    {    "pc_hypre_boomeramg_coarsen_type",                     "HMIS"},
+    {     "pc_hypre_boomeramg_interp_type",                    "ext+i"},
+    {           "pc_hypre_boomeramg_P_max",                        "4"},
+    {          "pc_hypre_boomeramg_agg_nl",                        "1"},
+    { "pc_hypre_boomeramg_relax_type_down",          "l1-Gauss-Seidel"},
+    {   "pc_hypre_boomeramg_relax_type_up", "backward-l1-Gauss-Seidel"}
 };
 #define SG_NAMG SG_LINEAR_DEFAULT_NAMG
 _Static_assert(sizeof(AMGDefaults) / sizeof(AMGDefaults[0]) == SG_LINEAR_DEFAULT_NAMG, "SG_LINEAR_DEFAULT_NAMG");

@@ -40,12 +40,12 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
 
 PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
 {
-  SgSSN                s   = (SgSSN)ctx;
-  const PetscInt       dim = s->dim;
-  const PetscScalar   *ya;
-  PetscScalar         *fa, dots[2];
-  PetscReal            loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
-  Vec                  vecs[2];
+  SgSSN              s   = (SgSSN)ctx;
+  const PetscInt     dim = s->dim;
+  const PetscScalar *ya;
+  PetscScalar       *fa, dots[2];
+  PetscReal          loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
+  Vec                vecs[2];
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));

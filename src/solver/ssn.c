@@ -178,12 +178,12 @@ PetscErrorCode SgSSNSetTruncatedMG(SgSSN s, PetscBool tmg, PetscBool geometric)
    truncated multigrid on the KSP */
 PetscErrorCode SgSSNSetFromOptions(SgSSN s)
 {
-  PetscBool   condense = s->condense_default, tmg = s->tmg_default, frame = PETSC_TRUE;
-  PetscInt    interp = s->interp_default;
-  SgElasticity p     = s->prob;
-  SgContact   c      = s->c;
-  const char *prefix;
-  KSP         ksp;
+  PetscBool    condense = s->condense_default, tmg = s->tmg_default, frame = PETSC_TRUE;
+  PetscInt     interp = s->interp_default;
+  SgElasticity p      = s->prob;
+  SgContact    c      = s->c;
+  const char  *prefix;
+  KSP          ksp;
 
   PetscFunctionBeginUser;
   PetscCheck(!s->snes_setfromoptions, s->comm, PETSC_ERR_ORDER, "SgSSNSetFromOptions: called twice");
@@ -412,7 +412,7 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN s, Vec y, PetscInt *changed)
    iterate (the sets of the last Newton step): the measures of the inexact path-following rule (15). */
 PetscErrorCode SgSSNPathMeasures(SgSSN s, PetscReal *rhoF, PetscReal *rhoC)
 {
-  PetscReal            r[2] = {0, 0};
+  PetscReal r[2] = {0, 0};
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < s->n; i++) {

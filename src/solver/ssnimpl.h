@@ -39,21 +39,21 @@ struct _n_SgSSN {
   PetscBool         prev_settled;
   PetscInt          nhash, maxhash; /* hashes of the active sets of this solve's Newton steps */
   PetscInt64       *hash;
-  PetscBool         residual_test;      /* inexact linear solves: also require a small residual */
-  PetscInt          pc_reuse_its;       /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
-  SgCondense        cond;               /* -ssn_condense: linear solves condensed onto the contact dofs */
-  SgTMG             tmg;                /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
-  PetscBool         condense_default;   /* the defaults of -ssn_condense and -ssn_pc_truncated_mg (SgSSNSetCondense, */
-  PetscBool         tmg_default;        /* SgSSNSetTruncatedMG: the default linear solver's, linear.c) and of its */
-  PetscInt          interp_default;     /* interpolations (1: geometric) */
+  PetscBool         residual_test;       /* inexact linear solves: also require a small residual */
+  PetscInt          pc_reuse_its;        /* > 0: keep the preconditioner within a solve while the Krylov solver needs <= this */
+  SgCondense        cond;                /* -ssn_condense: linear solves condensed onto the contact dofs */
+  SgTMG             tmg;                 /* -ssn_pc_truncated_mg: the preconditioner follows the active set (tmg.c) */
+  PetscBool         condense_default;    /* the defaults of -ssn_condense and -ssn_pc_truncated_mg (SgSSNSetCondense, */
+  PetscBool         tmg_default;         /* SgSSNSetTruncatedMG: the default linear solver's, linear.c) and of its */
+  PetscInt          interp_default;      /* interpolations (1: geometric) */
   PetscBool         snes_setfromoptions; /* SgSSNSetFromOptions was called */
-  SgFrame           frame;              /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
-  PetscBool         frame_local;        /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
-  PetscBool         pair_transform;     /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
-  PetscBool         pair_transform_set; /* given (else on for a pair solved iteratively) */
-  Mat               Klin;               /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
-  Mat               Pf;                 /* with frames: the Jacobian assembled in them (the KSP's matrices) */
-  PetscReal         nbhd_tau;           /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
+  SgFrame           frame;               /* -ssn_frame: the linear solves in each contact vertex's frame (frame.c), or NULL */
+  PetscBool         frame_local;         /* -ssn_frame_global false: frames at the contact vertices alone, never the whole body's */
+  PetscBool         pair_transform;      /* -ssn_pair_transform: two bodies solved in the dual-mortar basis (frame.c) */
+  PetscBool         pair_transform_set;  /* given (else on for a pair solved iteratively) */
+  Mat               Klin;                /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
+  Mat               Pf;                  /* with frames: the Jacobian assembled in them (the KSP's matrices) */
+  PetscReal         nbhd_tau;            /* > 0: also stop in the neighbourhood ||(r1,r2)|| <= tau/sqrt(gamma) (IPF) */
   SgSSNReason       reason;
   PetscBool         monitor;
   PetscBool         progress;      /* a short line per iteration when -ssn_monitor is off (SgSSNSetProgress) */

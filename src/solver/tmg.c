@@ -201,10 +201,10 @@ static PetscErrorCode DeadDofs(Mat A, Mat AK)
    their (whole) interpolations. */
 static PetscErrorCode Update(SgTMG t)
 {
-  const PetscInt       n = t->nlevels;
-  PetscInt             rstart, na = 0, nag, *rows;
-  PetscBool            same = PETSC_TRUE;
-  Mat                  D    = NULL;
+  const PetscInt n = t->nlevels;
+  PetscInt       rstart, na = 0, nag, *rows;
+  PetscBool      same = PETSC_TRUE;
+  Mat            D    = NULL;
 
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < t->ssn->n; i++) same = (PetscBool)(same && (t->want[i] != 0) == (t->have[i] != 0));
