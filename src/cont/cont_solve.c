@@ -86,12 +86,10 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(SgContactNormalDisplacementMax(ct->c, ct->y, &r->normal_displacement_max));
     r->force   = ct->kkt.force;
     r->nactive = ct->kkt.nactive;
-    if (ct->cv.friction) {
-      r->nstick            = ct->fsum.nstick;
-      r->nslip             = ct->fsum.nslip;
-      r->friction_force    = ct->fsum.force_norm;
-      r->friction_traction = ct->fsum.traction;
-    }
+    r->nstick            = ct->fsum.nstick; /* the law's summary (zeros without friction) */
+    r->nslip             = ct->fsum.nslip;
+    r->friction_force    = ct->fsum.force_norm;
+    r->friction_traction = ct->fsum.traction;
   }
   if (ct->store_steps) {
     PetscCall(VecDuplicate(ct->y, &ct->ysteps[ct->nsteps]));

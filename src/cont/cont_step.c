@@ -210,7 +210,7 @@ PetscErrorCode SgContMeasure(SgCont ct)
 {
   PetscFunctionBeginUser;
   PetscCall(SgContactKKT(ct->c, ct->y, &ct->kkt));
-  if (ct->cv.friction) PetscCall(SgContactGetFrictionSummary(ct->c, &ct->fsum));
+  PetscCall(SgContactGetFrictionSummary(ct->c, &ct->fsum)); /* the law's (zeros without friction) */
   PetscFunctionReturn(0);
 }
 
