@@ -226,9 +226,17 @@ PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *); /* t
 #define SG_LAW_MAX_FIELDS 8
 PetscErrorCode SgContactLawGetFields(SgContactLaw, PetscInt *, const char *const **, const PetscBool **);
 PetscErrorCode SgContactLawFields(SgContact, Vec, Vec[]);
-/* the law's summary keys (none for the frictionless law): of a solve, and per load step */
-PetscErrorCode SgContactLawSummary(SgContactLaw, PetscInt, const SgFrictionSummary *, SgSummary);
-PetscErrorCode SgContactLawStepSummary(SgContactLaw, PetscInt, const SgFrictionSummary[], SgSummary);
+/* the law's summary keys (none for the frictionless law): of a solve, and per load step, written through the
+   caller's key writer (the output layer's summary; the law names the keys) */
+typedef struct {
+  void *ctx;
+  PetscErrorCode (*setint)(void *, const char[], PetscInt);
+  PetscErrorCode (*setreal)(void *, const char[], PetscReal);
+  PetscErrorCode (*setintarray)(void *, const char[], PetscInt, const PetscInt[]);
+  PetscErrorCode (*setrealarray)(void *, const char[], PetscInt, const PetscReal[]);
+} SgContactLawKeys;
+PetscErrorCode SgContactLawSummary(SgContactLaw, PetscInt, const SgFrictionSummary *, SgContactLawKeys *);
+PetscErrorCode SgContactLawStepSummary(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
 /* PDAS's state update at owned vertex i (lam_N, z = lam_T + c T (y - yref) of length nz with dim components, the last
    state and slip direction t, updated): the next state, the bound g, the direction's change dt (free without friction) */
 char SgContactLawPdasState(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);

@@ -61,6 +61,46 @@ static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
 }
 
 /* Two bodies (a contact pair): the number of bodies of the mesh and the forces of the pair (SgContactPairForces) */
+/* the summary as the law's key writer (the law names its keys, SgContactLawSummary) */
+static PetscErrorCode KeyInt(void *ctx, const char key[], PetscInt v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetInt((SgSummary)ctx, key, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyReal(void *ctx, const char key[], PetscReal v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetReal((SgSummary)ctx, key, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyIntArray(void *ctx, const char key[], PetscInt n, const PetscInt v[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetIntArray((SgSummary)ctx, key, n, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyRealArray(void *ctx, const char key[], PetscInt n, const PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetRealArray((SgSummary)ctx, key, n, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SummaryLawKeys(SgSummary sum, SgContactLawKeys *keys)
+{
+  PetscFunctionBeginUser;
+  keys->ctx          = sum;
+  keys->setint       = KeyInt;
+  keys->setreal      = KeyReal;
+  keys->setintarray  = KeyIntArray;
+  keys->setrealarray = KeyRealArray;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SummaryPair(SgCont ct, SgSummary sum, PetscInt dim)
 {
   PetscBool pair;
@@ -120,7 +160,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
   }
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->c) {
-    const char *obstype;
+    const char      *obstype;
+    SgContactLawKeys keys;
     PetscCall(SgSummarySetInt(sum, "ssn_iterations", ct->ssn_its));
     PetscCall(SgSummarySetInt(sum, "outer_iterations", ct->outer));
     PetscCall(SgSummarySetRealArray(sum, "gammas", ct->ngammas, ct->gammas));
@@ -146,7 +187,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgContactGetNormalType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "contact_normal", obstype));
     PetscCall(SgSummarySetString(sum, "friction_type", SgLawName(ct->cv.law)));
-    PetscCall(SgContactLawSummary(ct->cv.law, dim, &ct->fsum, sum)); /* the law's keys, of this controller's last KKT measures (SgContMeasure) */
+    PetscCall(SummaryLawKeys(sum, &keys));
+    PetscCall(SgContactLawSummary(ct->cv.law, dim, &ct->fsum, &keys)); /* the law's keys, of this controller's last KKT measures (SgContMeasure) */
     {
       /* the contact force on the body, sum_i w_i lam_i n_i, with the multiplier of contact_force (SgContactKKT's),
          against the reaction */
@@ -489,6 +531,7 @@ static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
   for (PetscInt j = 0; j < 5; j++) PetscCall(SgSummarySetIntArray(sum, in[j], ct->nsteps, b[j]));
   if (ct->c) { /* the law's keys per step (friction: the stick and slip sets, the friction resultant and traction) */
     SgFrictionSummary *fs;
+    SgContactLawKeys   keys;
     PetscCall(PetscCalloc1(ct->nsteps + 1, &fs));
     for (PetscInt k = 0; k < ct->nsteps; k++) {
       fs[k].nstick     = ct->steps[k].nstick;
@@ -496,7 +539,8 @@ static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
       fs[k].force_norm = ct->steps[k].friction_force;
       fs[k].traction   = ct->steps[k].friction_traction;
     }
-    PetscCall(SgContactLawStepSummary(ct->cv.law, ct->nsteps, fs, sum));
+    PetscCall(SummaryLawKeys(sum, &keys));
+    PetscCall(SgContactLawStepSummary(ct->cv.law, ct->nsteps, fs, &keys));
     PetscCall(PetscFree(fs));
   }
   PetscCall(SgSummarySetInt(sum, "load_steps_outer_iterations", tot[0]));

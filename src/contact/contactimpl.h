@@ -85,8 +85,8 @@ typedef struct {
   PetscErrorCode (*getfields)(SgContactLaw, PetscInt *, const char *const **, const PetscBool **);
   PetscErrorCode (*fields)(SgContactLaw, SgContact, Vec[]);
   /* its summary keys, of one solve's summary (the last SgContactKKT's) and per load step; NULL: none */
-  PetscErrorCode (*summary)(SgContactLaw, PetscInt, const SgFrictionSummary *, SgSummary);
-  PetscErrorCode (*stepsummary)(SgContactLaw, PetscInt, const SgFrictionSummary[], SgSummary);
+  PetscErrorCode (*summary)(SgContactLaw, PetscInt, const SgFrictionSummary *, SgContactLawKeys *);
+  PetscErrorCode (*stepsummary)(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
   /* PDAS (Hueber-Stadler-Wohlmuth): the state of vertex i for the next solve from lamN and z = lam_T + c T (y - yref)
      of length nz (dim components, the normal's axis component 0), its last state st and slip direction t (updated
      on slip; *dt its largest change); the bound into *g. NULL: free */

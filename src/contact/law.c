@@ -449,14 +449,14 @@ PetscErrorCode SgContactLawFillFields(SgContactLaw law, SgContact c, Vec fields[
 
 /* The law's summary keys of a solve (fs: the last SgContactKKT's summary) and per load step (n steps); none without
    the ops (the frictionless law) */
-PetscErrorCode SgContactLawSummary(SgContactLaw law, PetscInt dim, const SgFrictionSummary *fs, SgSummary sum)
+PetscErrorCode SgContactLawSummary(SgContactLaw law, PetscInt dim, const SgFrictionSummary *fs, SgContactLawKeys *sum)
 {
   PetscFunctionBeginUser;
   if (law && law->ops.summary) PetscCall(law->ops.summary(law, dim, fs, sum));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgContactLawStepSummary(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgSummary sum)
+PetscErrorCode SgContactLawStepSummary(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgContactLawKeys *sum)
 {
   PetscFunctionBeginUser;
   if (law && law->ops.stepsummary) PetscCall(law->ops.stepsummary(law, n, fs, sum));

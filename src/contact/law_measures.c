@@ -252,7 +252,7 @@ static PetscErrorCode Fields_Regularized(SgContactLaw law, SgContact c, Vec v[])
 
 /* the summary keys of a solve: the law's parameters by their names, the stick and slip sets, the friction resultant,
    traction integral and largest slip, and the two friction parts of the KKT measures */
-static PetscErrorCode Summary_Regularized(SgContactLaw law, PetscInt dim, const SgFrictionSummary *fs, SgSummary sum)
+static PetscErrorCode Summary_Regularized(SgContactLaw law, PetscInt dim, const SgFrictionSummary *fs, SgContactLawKeys *sum)
 {
   const char *pn[SG_LAW_MAX_PARAMETERS];
   PetscReal   pv[SG_LAW_MAX_PARAMETERS];
@@ -260,20 +260,20 @@ static PetscErrorCode Summary_Regularized(SgContactLaw law, PetscInt dim, const 
 
   PetscFunctionBeginUser;
   PetscCall(SgContactLawGetParameters(law, &np, pn, pv));
-  for (PetscInt k = 0; k < np; k++) PetscCall(SgSummarySetReal(sum, pn[k], pv[k]));
-  PetscCall(SgSummarySetInt(sum, "stick_size", fs->nstick));
-  PetscCall(SgSummarySetInt(sum, "slip_size", fs->nslip));
-  PetscCall(SgSummarySetReal(sum, "friction_force", fs->force_norm));
-  PetscCall(SgSummarySetRealArray(sum, "friction_force_vector", dim, fs->force));
-  PetscCall(SgSummarySetReal(sum, "friction_traction_integral", fs->traction));
-  PetscCall(SgSummarySetReal(sum, "slip_max", fs->slip_max));
-  PetscCall(SgSummarySetReal(sum, "friction_bound_violation", fs->bound));
-  PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs->slip));
+  for (PetscInt k = 0; k < np; k++) PetscCall(sum->setreal(sum->ctx, pn[k], pv[k]));
+  PetscCall(sum->setint(sum->ctx, "stick_size", fs->nstick));
+  PetscCall(sum->setint(sum->ctx, "slip_size", fs->nslip));
+  PetscCall(sum->setreal(sum->ctx, "friction_force", fs->force_norm));
+  PetscCall(sum->setrealarray(sum->ctx, "friction_force_vector", dim, fs->force));
+  PetscCall(sum->setreal(sum->ctx, "friction_traction_integral", fs->traction));
+  PetscCall(sum->setreal(sum->ctx, "slip_max", fs->slip_max));
+  PetscCall(sum->setreal(sum->ctx, "friction_bound_violation", fs->bound));
+  PetscCall(sum->setreal(sum->ctx, "friction_complementarity", fs->slip));
   PetscFunctionReturn(0);
 }
 
 /* per load step: the stick and slip sets, the friction resultant and traction integral */
-static PetscErrorCode StepSummary_Regularized(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgSummary sum)
+static PetscErrorCode StepSummary_Regularized(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgContactLawKeys *sum)
 {
   PetscInt  *b[2];
   PetscReal *a[2];
@@ -287,10 +287,10 @@ static PetscErrorCode StepSummary_Regularized(SgContactLaw law, PetscInt n, cons
     a[0][k] = fs[k].force_norm;
     a[1][k] = fs[k].traction;
   }
-  PetscCall(SgSummarySetIntArray(sum, "load_step_stick_size", n, b[0]));
-  PetscCall(SgSummarySetIntArray(sum, "load_step_slip_size", n, b[1]));
-  PetscCall(SgSummarySetRealArray(sum, "load_step_friction_force", n, a[0]));
-  PetscCall(SgSummarySetRealArray(sum, "load_step_friction_traction_integral", n, a[1]));
+  PetscCall(sum->setintarray(sum->ctx, "load_step_stick_size", n, b[0]));
+  PetscCall(sum->setintarray(sum->ctx, "load_step_slip_size", n, b[1]));
+  PetscCall(sum->setrealarray(sum->ctx, "load_step_friction_force", n, a[0]));
+  PetscCall(sum->setrealarray(sum->ctx, "load_step_friction_traction_integral", n, a[1]));
   PetscCall(PetscFree4(b[0], b[1], a[0], a[1]));
   PetscFunctionReturn(0);
 }
