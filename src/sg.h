@@ -197,6 +197,7 @@ PetscErrorCode           SgContactLawCreateFromOptions(PetscOptionItems *, MPI_C
 PetscErrorCode           SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
 void                     SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
 PetscErrorCode           SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                     /* max_i g_i(lam_N) over all ranks */
+PetscErrorCode           SgContactLawGammaPrecision(SgContactLaw, PetscReal, PetscReal, PetscReal *);  /* lowers the gamma cap of double precision (lam max, y max at the active vertices); nothing without friction */
 PetscErrorCode           SgContactLawGetType(SgContactLaw, const char *[]);
 const char              *SgLawName(SgContactLaw); /* its type name, for messages */
 PetscErrorCode           SgContactLawGetId(SgContactLaw, PetscInt *);
@@ -314,10 +315,7 @@ typedef struct {
   SgContactLaw     law;
   PetscBool        friction; /* the law has a tangential part */
   PetscBool        coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
-  PetscReal        fgfac;    /* gamma_T = fgfac * gamma: -friction_gamma_factor */
-  const PetscReal *yref;     /* friction: the displacement at the start of the load step, n*dim (zeros at the
-                                  first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference); two
-                                  bodies: of the relative displacements (SgContactVertexDisplacements) */
+  /* the law's gamma_T / gamma and slip reference: SgContactLawGetInfo, SgContactLawGetSlipReference */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);

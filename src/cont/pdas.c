@@ -193,7 +193,7 @@ static PetscErrorCode PdasFrameFree(SgFrame *f, Mat *Af, Vec b, Vec *bw, Vec *yw
 }
 
 /* The working data of one Solve_PDAS. The working coordinates: the contact frames where a normal is not an axis
-   (SgContBoundFrame), else the original ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component
+   (SgContBoundFrame), else the original ones (Kw = K, bw = b, yw = ct->y, yref the law's); nax: the normal's component
    on the axis dof. A: the system of an iteration (ct->J, or Af in the frames). */
 typedef struct {
   PetscInt         dim;
@@ -240,7 +240,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   w->Kw   = w->K;
   w->bw   = w->b;
   w->yw   = ct->y;
-  w->yref = c->yref;
+  PetscCall(SgContactLawGetSlipReference(c->law, (PetscReal **)&w->yref)); /* the law's (NULL without friction) */
   if (w->f) {
     const PetscBool *rot;
     MatNullSpace     nsp;
@@ -259,7 +259,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     PetscCall(VecDuplicate(w->b, &w->yw));
     if (w->fr) {
       PetscCall(PetscMalloc1(c->n * dim, &w->yrf));
-      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(w->f, i, &c->yref[i * dim], &w->yrf[i * dim]);
+      for (PetscInt i = 0; i < c->n; i++) SgFrameVectorToLocal(w->f, i, &w->yref[i * dim], &w->yrf[i * dim]);
       w->yref = w->yrf;
     }
   } else

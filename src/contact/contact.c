@@ -374,8 +374,6 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->law      = c->law;
   v->friction = c->friction;
   v->coupled  = c->law->coupled;
-  v->fgfac    = c->fgfac;
-  v->yref     = c->yref;
   PetscFunctionReturn(0);
 }
 

@@ -402,6 +402,24 @@ PetscReal SgContactLawFloor(SgContactLaw law, const SgContactLawInput *in, SgCon
   return law && law->ops.floor ? law->ops.floor(law, in, st, ya, i, equil) : 0;
 }
 
+/* The law's limit of gamma in double precision (SgContGammaPrecision), lowering *gdp (collective): with the largest
+   multiplier lammax and the largest displacement ymax at the active vertices, the regularized tangential term's
+   round-off gamma_T eps ymax must stay below 1e-2 of the largest bound. A state decided on round-off changes a
+   friction force by at most its bound, so a bound below 1e-2 of the largest multiplier (Coulomb with F = 1e-12) is held
+   to the normal multipliers' margin instead: otherwise the cap would stop a path whose friction cannot matter. Nothing
+   without a tangential part. */
+PetscErrorCode SgContactLawGammaPrecision(SgContactLaw law, PetscReal lammax, PetscReal ymax, PetscReal *gdp)
+{
+  PetscReal gb;
+
+  PetscFunctionBeginUser;
+  if (!law || !law->friction || !(ymax > 0)) PetscFunctionReturn(0);
+  PetscCall(SgContactLawBoundMax(law, lammax, &gb)); /* max_i g_i(max lam): s (Tresca), F max lam (Coulomb) */
+  gb = PetscMax(gb, 1e-2 * lammax);
+  if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (law->gfac * PETSC_MACHINE_EPSILON * ymax));
+  PetscFunctionReturn(0);
+}
+
 /* The law's part of SgContactKKT (the op kkt; nothing without it: the frictionless law) */
 PetscErrorCode SgContactLawKKT(SgContactLaw law, SgContact c, Vec y, PetscScalar ra[], const PetscReal lam[], PetscReal ynrm, const KKTScales *sc, PetscReal *slip2)
 {
