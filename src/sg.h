@@ -197,7 +197,7 @@ PetscErrorCode           SgContactLawCreateFromOptions(PetscOptionItems *, MPI_C
 PetscErrorCode           SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
 void                     SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
 PetscErrorCode           SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                     /* max_i g_i(lam_N) over all ranks */
-PetscErrorCode           SgContactLawGammaPrecision(SgContactLaw, PetscReal, PetscReal, PetscReal *);  /* lowers the gamma cap of double precision (lam max, y max at the active vertices); nothing without friction */
+PetscErrorCode           SgContactLawGammaPrecision(SgContactLaw, PetscReal, PetscReal, PetscReal *);    /* lowers the gamma cap of double precision (lam max, y max at the active vertices); nothing without friction */
 PetscErrorCode           SgContactLawGetType(SgContactLaw, const char *[]);
 const char              *SgLawName(SgContactLaw); /* its type name, for messages */
 PetscErrorCode           SgContactLawGetId(SgContactLaw, PetscInt *);
@@ -207,7 +207,7 @@ PetscErrorCode           SgContactLawGetParameters(SgContactLaw, PetscInt *, con
 PetscErrorCode           SgContactLawGetDescription(SgContactLaw, const char **);                          /* "Coulomb F = 0.3", for messages */
 PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
 PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
-PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **); /* the law's: 2 n dim (NULL without a tangential part) */
+PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **);   /* the law's: 2 n dim (NULL without a tangential part) */
 PetscErrorCode           SgContactLawGetSlipReferenceSize(SgContactLaw, PetscInt *); /* its length: 2 n dim, or 0 */
 enum { SG_FRICTION_FREE  = 0,
        SG_FRICTION_STICK = 1,
@@ -240,7 +240,7 @@ PetscErrorCode SgContactLawSummary(SgContactLaw, PetscInt, const SgFrictionSumma
 PetscErrorCode SgContactLawStepSummary(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
 /* PDAS's state update at owned vertex i (lam_N, z = lam_T + c T (y - yref) of length nz with dim components, the last
    state and slip direction t, updated): the next state, the bound g, the direction's change dt (free without friction) */
-char SgContactLawPdasState(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
+char           SgContactLawPdasState(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec);                  /* the start of a load step's slip increment (NULL: zero) */
 PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
 PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **);         /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
@@ -312,9 +312,9 @@ typedef struct {
   const PetscReal *d;          /* initial gap to the obstacle along the normal */
   PetscReal        area;       /* |Gamma_c| */
   /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
-  SgContactLaw     law;
-  PetscBool        friction; /* the law has a tangential part */
-  PetscBool        coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
+  SgContactLaw law;
+  PetscBool    friction; /* the law has a tangential part */
+  PetscBool    coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
   /* the law's gamma_T / gamma and slip reference: SgContactLawGetInfo, SgContactLawGetSlipReference */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
@@ -478,7 +478,7 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                    
 PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]);                                   /* -help without a problem: the SSN's options */
 PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec);                                       /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
-PetscErrorCode SgSSNGetLawState(SgSSN, SgContactLawState *);                              /* the law's tangential state of this solver */
+PetscErrorCode SgSSNGetLawState(SgSSN, SgContactLawState *);                             /* the law's tangential state of this solver */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *);   /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);

@@ -237,9 +237,9 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCall(PetscMalloc1(pd->maxit + 1, &w->hash));
   PetscCall(PetscMalloc1(c->n, &w->nax));
   PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &w->f, w->axis, w->sign));
-  w->Kw   = w->K;
-  w->bw   = w->b;
-  w->yw   = ct->y;
+  w->Kw = w->K;
+  w->bw = w->b;
+  w->yw = ct->y;
   PetscCall(SgContactLawGetSlipReference(c->law, (PetscReal **)&w->yref)); /* the law's (NULL without friction) */
   if (w->f) {
     const PetscBool *rot;

@@ -583,7 +583,7 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
     fm = SgContactLawContactForce(c->law, dim, &ra[c->off[i]], &c->normal[i * dim], rn, c->w[i] * PetscAbsReal(lam[i]), f); /* the law's: with friction the whole nodal force */
     for (PetscInt k = 0; k < dim; k++) {
       const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
-      if (!inner) cs[k] += f[k]; /* between the bodies: no part of the resultant on the whole mesh */
+      if (!inner) cs[k] += f[k];                                     /* between the bodies: no part of the resultant on the whole mesh */
       cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
     }
     cm = PetscMax(cm, fm);
@@ -671,7 +671,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], ForceNoise(c, &sc, i)) && !(rf < rg));
   }
   PetscCall(SgContactLawKKT(c->law, c, y, ra, lam, ynrm, &sc, &s[3])); /* the law's part (frictionless: none) */
-  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
+  PetscCall(SgContactAddForce(c, lam, ra));                            /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscBool act = (PetscBool)c->kact[i]; /* the active set of the fields and of the friction states too */
@@ -697,6 +697,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   kkt->penetration   = PetscSqrtReal(s[0]);
   kkt->equilibrium   = SafeRatio(nrm, sc.F);
   kkt->infeasibility = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
+
   c->fsum.slip         = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale); /* the law's parts (0 without friction) */
   kkt->complementarity = PetscMax(SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale), SafeRatio(letgo, sc.F));
   kkt->dual            = PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound);

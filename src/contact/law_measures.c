@@ -190,7 +190,7 @@ static PetscReal ContactForce_Regularized(SgContactLaw law, PetscInt dim, const 
 
 static PetscErrorCode GetFields_Regularized(SgContactLaw law, PetscInt *n, const char *const **names, const PetscBool **vector)
 {
-  static const char *const nm[3] = {"tangential_traction", "slip", "friction_state"};
+  static const char *const nm[3]  = {"tangential_traction", "slip", "friction_state"};
   static const PetscBool   vec[3] = {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE};
 
   PetscFunctionBeginUser;
