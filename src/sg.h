@@ -197,6 +197,7 @@ PetscErrorCode           SgContactLawCreateFromOptions(PetscOptionItems *, MPI_C
 PetscErrorCode           SgContactLawSetVertices(SgContactLaw, PetscInt, const PetscReal[]);
 void                     SgContactLawBound(SgContactLaw, PetscInt, PetscReal, PetscReal *, PetscReal *); /* at owned contact vertex i, lam_N: g and dg/dlam_N */
 PetscErrorCode           SgContactLawBoundMax(SgContactLaw, PetscReal, PetscReal *);                     /* max_i g_i(lam_N) over all ranks */
+PetscErrorCode           SgContactLawGammaPrecision(SgContactLaw, PetscReal, PetscReal, PetscReal *);    /* lowers the gamma cap of double precision (lam max, y max at the active vertices); nothing without friction */
 PetscErrorCode           SgContactLawGetType(SgContactLaw, const char *[]);
 const char              *SgLawName(SgContactLaw); /* its type name, for messages */
 PetscErrorCode           SgContactLawGetId(SgContactLaw, PetscInt *);
@@ -206,7 +207,8 @@ PetscErrorCode           SgContactLawGetParameters(SgContactLaw, PetscInt *, con
 PetscErrorCode           SgContactLawGetDescription(SgContactLaw, const char **);                          /* "Coulomb F = 0.3", for messages */
 PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
 PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
-PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **); /* the law's: 2 n dim (NULL without a tangential part) */
+PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **);   /* the law's: 2 n dim (NULL without a tangential part) */
+PetscErrorCode           SgContactLawGetSlipReferenceSize(SgContactLaw, PetscInt *); /* its length: 2 n dim, or 0 */
 enum { SG_FRICTION_FREE  = 0,
        SG_FRICTION_STICK = 1,
        SG_FRICTION_SLIP  = 2 }; /* the state of a contact vertex */
@@ -219,8 +221,26 @@ typedef struct {
   PetscReal slip_max;             /* max_i |T_i y_i| */
   PetscReal bound, slip;          /* the two friction parts of the KKT measures (dual and complementarity) */
 } SgFrictionSummary;
-PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *);
-PetscErrorCode SgContactFrictionFields(SgContact, Vec, Vec, Vec, Vec);     /* y -> tangential traction, slip, state */
+PetscErrorCode SgContactGetFrictionSummary(SgContact, SgFrictionSummary *); /* the law's summary of the last SgContactKKT (zeros without friction) */
+/* the law's output fields (none for the frictionless law): names, and per field a vector (dim) or a scalar; their
+   values at y (SgContactLawFields: the record of SgContactKKT at y) */
+#define SG_LAW_MAX_FIELDS 8
+PetscErrorCode SgContactLawGetFields(SgContactLaw, PetscInt *, const char *const **, const PetscBool **);
+PetscErrorCode SgContactLawFields(SgContact, Vec, Vec[]);
+/* the law's summary keys (none for the frictionless law): of a solve, and per load step, written through the
+   caller's key writer (the output layer's summary; the law names the keys) */
+typedef struct {
+  void *ctx;
+  PetscErrorCode (*setint)(void *, const char[], PetscInt);
+  PetscErrorCode (*setreal)(void *, const char[], PetscReal);
+  PetscErrorCode (*setintarray)(void *, const char[], PetscInt, const PetscInt[]);
+  PetscErrorCode (*setrealarray)(void *, const char[], PetscInt, const PetscReal[]);
+} SgContactLawKeys;
+PetscErrorCode SgContactLawSummary(SgContactLaw, PetscInt, const SgFrictionSummary *, SgContactLawKeys *);
+PetscErrorCode SgContactLawStepSummary(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
+/* PDAS's state update at owned vertex i (lam_N, z = lam_T + c T (y - yref) of length nz with dim components, the last
+   state and slip direction t, updated): the next state, the bound g, the direction's change dt (free without friction) */
+char           SgContactLawPdasState(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec);                  /* the start of a load step's slip increment (NULL: zero) */
 PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
 PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **);         /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */
@@ -233,6 +253,8 @@ PetscErrorCode SgContactLawStateCreate(SgContactLaw, SgContactLawState *);
 PetscErrorCode SgContactLawStateGetArrays(SgContactLawState, PetscReal **, PetscReal **, char **); /* lamhat_T, lam_T (n dim), states (n) */
 PetscErrorCode SgContactLawStateGetJacobianArrays(SgContactLawState, char **, PetscReal **);       /* the states and slip directions at the last Jacobian */
 PetscErrorCode SgContactLawStateDestroy(SgContactLawState *);
+PetscErrorCode SgContactLawStateZeroShift(SgContactLawState);   /* lamhat_T = 0: a new path (nothing without a tangential part) */
+PetscErrorCode SgContactLawStateAcceptShift(SgContactLawState); /* lamhat_T = lam_T, the last multiplier: ALM's update */
 /* What the law's tangential terms in the SSN read of it and write for it (SgContactLawResidual, SgContactLawJacobian,
    SgContactLawStepCorrection, SgContactLawFloor): the normal part at the contact vertices and the Newton bookkeeping;
    the SSN fills it before each call. The frictionless law's terms do nothing. */
@@ -292,13 +314,10 @@ PetscErrorCode SgContactGetArea(SgContact, PetscReal *);
 /* The contact law on Gamma_c, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
-  SgContactLaw     law;
-  PetscBool        friction; /* the law has a tangential part */
-  PetscBool        coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
-  PetscReal        fgfac;    /* gamma_T = fgfac * gamma: -friction_gamma_factor */
-  const PetscReal *yref;     /* friction: the displacement at the start of the load step, n*dim (zeros at the
-                                  first): slip is the increment T_i (y_i - yref_i) (SgContactSetSlipReference); two
-                                  bodies: of the relative displacements (SgContactVertexDisplacements) */
+  SgContactLaw law;
+  PetscBool    friction; /* the law has a tangential part */
+  PetscBool    coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
+  /* the law's gamma_T / gamma and slip reference: SgContactLawGetInfo, SgContactLawGetSlipReference */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);
 PetscErrorCode SgContactGetObstacleType(SgContact, const char *[]);
@@ -479,6 +498,7 @@ PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                    
 PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]);                                   /* -help without a problem: the SSN's options */
 PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec);                                       /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */
+PetscErrorCode SgSSNGetLawState(SgSSN, SgContactLawState *);                             /* the law's tangential state of this solver */
 PetscErrorCode SgSSNEquilibriumError(SgSSN, Vec, PetscReal, PetscReal *, PetscReal *);   /* (P_gamma)'s equilibrium residual against a force scale (SgKKT.fscale), and its round-off floor */
 PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);

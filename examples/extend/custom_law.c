@@ -6,7 +6,9 @@
    Jacobians stay symmetric), its view and the names of its parameters in the summary and the checkpoint.
 
    The program solves the problem of the options (the driver's options: -box_*, -dirichlet_*, -contact_ids, -cont_type,
-   ...) once and writes the JSON summary (-summary_file). With s1 = 0 the law is -friction_type tresca with
+   ...) once and writes the JSON summary (-summary_file) and the fields (-output_file). The law's part of the KKT
+   measures, its fields and summary keys and PDAS's state update come from the ops every law with a bound gets
+   (law_measures.c) unless the type sets its own. With s1 = 0 the law is -friction_type tresca with
    -friction_bound s0, bit for bit; when every contact vertex slips the friction force is the integral of s over
    Gamma_c (tests/law.ini). Built from the source tree against lib/libsignorini.a:
        make bin/custom_law && bin/custom_law -options_file options/sliding_block.opts -friction_type tresca_x \
@@ -101,13 +103,14 @@ int main(int argc, char **argv)
   SgCont      cont;
   PetscBool   converged;
   const char *reason;
-  char        sumfile[PETSC_MAX_PATH_LEN] = "";
+  char        sumfile[PETSC_MAX_PATH_LEN] = "", outfile[PETSC_MAX_PATH_LEN] = "";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   comm = PETSC_COMM_WORLD;
   PetscCall(SgContactLawRegister("tresca_x", LawCreate_TrescaX)); /* before any problem reads -friction_type */
   PetscOptionsBegin(comm, NULL, "custom_law: a friction law of one's own", NULL);
   PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, sumfile, sumfile, sizeof(sumfile), NULL));
+  PetscCall(PetscOptionsString("-output_file", "HDF5 fields of the result (the law's too: traction, slip, state)", NULL, outfile, outfile, sizeof(outfile), NULL));
   PetscOptionsEnd();
   PetscCall(SgProblemCreate(comm, &prob));
   PetscCall(SgProblemSetFromOptions(prob));
@@ -120,6 +123,7 @@ int main(int argc, char **argv)
   PetscCall(SgContGetConvergedReason(cont, &converged, &reason));
   PetscCall(PetscPrintf(comm, "custom law: %s (%s)\n", converged ? "converged" : "FAILED", reason));
   PetscCall(SgContWriteSummary(cont, sumfile));
+  PetscCall(SgContWriteFields(cont, outfile, 1));
   PetscCall(SgContDestroy(&cont));
   PetscCall(PetscFinalize());
   return converged ? 0 : 1;

@@ -21,36 +21,27 @@ static PetscErrorCode SetFromOptions_ALM(SgCont ct, PetscOptionItems *PetscOptio
 
 static PetscErrorCode Start_ALM(SgCont ct)
 {
-  ALM *alm = (ALM *)ct->data;
+  ALM              *alm = (ALM *)ct->data;
+  SgContactLawState st;
 
   PetscFunctionBeginUser;
   ct->gamma = alm->gamma;
   for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0; /* lam^0 = 0 */
-  if (ct->cv.friction) {
-    PetscReal *lhT;
-    PetscInt   dim;
-    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
-    PetscCall(PetscArrayzero(lhT, ct->n * dim));
-  }
+  PetscCall(SgSSNGetLawState(ct->ssn, &st));
+  PetscCall(SgContactLawStateZeroShift(st)); /* lamhat_T^0 = 0 (nothing without friction) */
   PetscFunctionReturn(0);
 }
 
 /* the multiplier update: the SSN multiplier max(0, lamhat + gamma g) is lam^{l+1} */
 static PetscErrorCode Update_ALM(SgCont ct, PetscReal *next)
 {
-  ALM *alm = (ALM *)ct->data;
+  ALM              *alm = (ALM *)ct->data;
+  SgContactLawState st;
 
   PetscFunctionBeginUser;
   PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->n));
-  if (ct->cv.friction) { /* lamhat_T^{l+1} = P_g(lamhat_T^l + gamma_T T y), the SSN's tangential multiplier */
-    PetscReal       *lhT;
-    const PetscReal *mT;
-    PetscInt         dim;
-    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, &mT, NULL));
-    PetscCall(PetscArraycpy(lhT, mT, ct->n * dim));
-  }
+  PetscCall(SgSSNGetLawState(ct->ssn, &st));
+  PetscCall(SgContactLawStateAcceptShift(st)); /* lamhat_T^{l+1} = P_g(lamhat_T^l + gamma_T T y): the law's */
   *next = ct->gamma * alm->factor;
   PetscFunctionReturn(0);
 }

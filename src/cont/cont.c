@@ -186,10 +186,12 @@ PetscErrorCode SgContSetUp(SgCont ct)
   PetscCall(DMCreateGlobalVector(dm, &ct->y));
   PetscCall(PetscObjectSetName((PetscObject)ct->y, "displacement"));
   PetscCall(PetscCalloc1(ct->n, &ct->lam));
-  if (ct->c && ct->cv.friction) { /* this controller's slip reference: zero, the first load step's start */
-    PetscInt dim;
-    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(PetscCalloc1(2 * ct->n * dim + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
+  if (ct->c) { /* this controller's copy of the law's slip reference (none without friction): zero, the first load step's start */
+    PetscInt   m;
+    PetscReal *lref;
+    PetscCall(SgContactLawGetSlipReference(ct->cv.law, &lref)); /* (on every rank, also one without contact vertices) */
+    PetscCall(SgContactLawGetSlipReferenceSize(ct->cv.law, &m));
+    if (lref) PetscCall(PetscCalloc1(m + 1, &ct->yref)); /* of the unknowns, then of the full displacement */
   }
   PetscCall(SgLinearSolverCreate(ct->prob, ((PetscObject)ct)->prefix, &ct->lin, &ct->ksp, &ct->J));
   if (ct->ops.needs_ssn && ct->c) {

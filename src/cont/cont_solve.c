@@ -84,14 +84,12 @@ static PetscErrorCode RecordStep(SgCont ct, PetscReal t)
     PetscCall(SgContactGetObstacleTranslation(ct->c, T));
     r->obstacle_displacement = t * PetscSqrtReal(T[0] * T[0] + T[1] * T[1] + T[2] * T[2]);
     PetscCall(SgContactNormalDisplacementMax(ct->c, ct->y, &r->normal_displacement_max));
-    r->force   = ct->kkt.force;
-    r->nactive = ct->kkt.nactive;
-    if (ct->cv.friction) {
-      r->nstick            = ct->fsum.nstick;
-      r->nslip             = ct->fsum.nslip;
-      r->friction_force    = ct->fsum.force_norm;
-      r->friction_traction = ct->fsum.traction;
-    }
+    r->force             = ct->kkt.force;
+    r->nactive           = ct->kkt.nactive;
+    r->nstick            = ct->fsum.nstick; /* the law's summary (zeros without friction) */
+    r->nslip             = ct->fsum.nslip;
+    r->friction_force    = ct->fsum.force_norm;
+    r->friction_traction = ct->fsum.traction;
   }
   if (ct->store_steps) {
     PetscCall(VecDuplicate(ct->y, &ct->ysteps[ct->nsteps]));

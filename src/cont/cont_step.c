@@ -209,7 +209,7 @@ PetscErrorCode SgContMeasure(SgCont ct)
 {
   PetscFunctionBeginUser;
   PetscCall(SgContactKKT(ct->c, ct->y, &ct->kkt));
-  if (ct->cv.friction) PetscCall(SgContactGetFrictionSummary(ct->c, &ct->fsum));
+  PetscCall(SgContactGetFrictionSummary(ct->c, &ct->fsum)); /* the law's (zeros without friction) */
   PetscFunctionReturn(0);
 }
 
@@ -300,14 +300,6 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
   PetscCall(VecRestoreArrayRead(ct->y, &ya));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, 3, MPIU_REAL, MPI_MAX, ct->comm));
   *gdp = v[0] > 0 && v[1] > 0 ? 1e-2 * v[0] / (PETSC_MACHINE_EPSILON * v[1]) : PETSC_MAX_REAL;
-  if (c->friction && v[2] > 0) {
-    /* the largest bound: s (Tresca) or F max lam (Coulomb); a state decided on round-off changes a friction force by
-       at most its bound, so a bound below 1e-2 of the largest multiplier (Coulomb with F = 1e-12) is held to the
-       normal multipliers' margin instead: otherwise the cap would stop a path whose friction cannot matter */
-    PetscReal gb;
-    PetscCall(SgContactLawBoundMax(c->law, v[0], &gb)); /* max_i g_i(max lam) */
-    gb = PetscMax(gb, 1e-2 * v[0]);
-    if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (c->fgfac * PETSC_MACHINE_EPSILON * v[2]));
-  }
+  PetscCall(SgContactLawGammaPrecision(c->law, v[0], v[2], gdp)); /* the law's limit (none without friction) */
   PetscFunctionReturn(0);
 }

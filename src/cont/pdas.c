@@ -96,9 +96,9 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
 
 /* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
    normal set act (all in the working coordinates: the frames' where the normals are not axes; nax the normal's
-   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w; bound g = s
-   or F lam_N; z = lam_T + c T (y - yref) (the load step's slip; yref = 0 at the first step); free (g = 0),
-   stick (|z| <= g), slip (t = z/|z|). changed (if not NULL): the vertices whose state changed, or whose slip direction
+   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w,
+   z = lam_T + c T (y - yref) (the load step's slip; yref = 0 at the first step); the law gives the bound g and the
+   state (SgContactLawPdasState: free (g = 0), stick (|z| <= g), slip (t = z/|z|) for a law with a bound). changed (if not NULL): the vertices whose state changed, or whose slip direction
    or bound moved by more than 1e-12 (relative) since the last call. */
 static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], const PetscReal nax[], const PetscReal yref[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
 {
@@ -115,31 +115,15 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
   for (PetscInt i = 0; i < ct->n; i++) {
     const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[ct->off[i] + axis[i]]) * nax[i] / ct->w[i] : 0;
-    PetscReal       g;
-    SgContactLawBound(c->law, i, lamN, &g, NULL);
-    PetscReal z[3] = {0, 0, 0}, nz = 0, dt = 0;
-    char      s;
+    PetscReal       g, z[3] = {0, 0, 0}, nz = 0, dt;
+    char            s;
     for (PetscInt j = 0; j < dim; j++) {
       if (j == axis[i]) continue;
       z[j] = (R ? -PetscRealPart(ra[ct->off[i] + j]) / ct->w[i] : 0) + cc * (PetscRealPart(ya[ct->off[i] + j]) - yref[i * dim + j]);
       nz += z[j] * z[j];
     }
     nz = PetscSqrtReal(nz);
-    s  = !(g > 0) ? 0 : (nz <= g ? 1 : 2);
-    if (s == 2 && st[i] == 2) {
-      /* a slip whose direction turned by more than 90 degrees since the last solve sticks in the next one (its force
-         then comes from the equilibrium, not from the old direction): with nearly every vertex slipping, the forces
-         g t of the old directions can push the whole contact zone back and forth between +t and -t for ever (the
-         same safeguard as the SSN's, FrictionJacobian in solver/ssn.c) */
-      PetscReal tt = 0;
-      for (PetscInt j = 0; j < dim; j++) tt += z[j] / nz * tdir[i * dim + j];
-      if (tt <= 0) s = 1;
-    }
-    if (s == 2)
-      for (PetscInt j = 0; j < dim; j++) {
-        dt                = PetscMax(dt, PetscAbsReal(z[j] / nz - tdir[i * dim + j]));
-        tdir[i * dim + j] = z[j] / nz;
-      }
+    s  = SgContactLawPdasState(c->law, i, lamN, dim, z, nz, st[i], &tdir[i * dim], &g, &dt); /* the law's bound and state update */
     nch += (s != st[i] || (s == 2 && (dt > 1e-12 || PetscAbsReal(g - gb[i]) > 1e-12 * gmax)));
     zn[i] = nz;
     st[i] = s;
@@ -209,7 +193,7 @@ static PetscErrorCode PdasFrameFree(SgFrame *f, Mat *Af, Vec b, Vec *bw, Vec *yw
 }
 
 /* The working data of one Solve_PDAS. The working coordinates: the contact frames where a normal is not an axis
-   (SgContBoundFrame), else the original ones (Kw = K, bw = b, yw = ct->y, yref = c->yref); nax: the normal's component
+   (SgContBoundFrame), else the original ones (Kw = K, bw = b, yw = ct->y, yref the law's); nax: the normal's component
    on the axis dof. A: the system of an iteration (ct->J, or Af in the frames). */
 typedef struct {
   PetscInt         dim;
@@ -253,10 +237,10 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCall(PetscMalloc1(pd->maxit + 1, &w->hash));
   PetscCall(PetscMalloc1(ct->n, &w->nax));
   PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &w->f, w->axis, w->sign));
-  w->Kw   = w->K;
-  w->bw   = w->b;
-  w->yw   = ct->y;
-  w->yref = c->yref;
+  w->Kw = w->K;
+  w->bw = w->b;
+  w->yw = ct->y;
+  PetscCall(SgContactLawGetSlipReference(c->law, (PetscReal **)&w->yref)); /* the law's (NULL without friction) */
   if (w->f) {
     const PetscBool *rot;
     MatNullSpace     nsp;
@@ -275,7 +259,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     PetscCall(VecDuplicate(w->b, &w->yw));
     if (w->fr) {
       PetscCall(PetscMalloc1(ct->n * dim, &w->yrf));
-      for (PetscInt i = 0; i < ct->n; i++) SgFrameVectorToLocal(w->f, i, &c->yref[i * dim], &w->yrf[i * dim]);
+      for (PetscInt i = 0; i < ct->n; i++) SgFrameVectorToLocal(w->f, i, &w->yref[i * dim], &w->yrf[i * dim]);
       w->yref = w->yrf;
     }
   } else

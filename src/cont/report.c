@@ -61,6 +61,46 @@ static PetscErrorCode LinearSolverName(SgCont ct, char name[], size_t len)
 }
 
 /* Two bodies (a contact pair): the number of bodies of the mesh and the forces of the pair (SgContactPairForces) */
+/* the summary as the law's key writer (the law names its keys, SgContactLawSummary) */
+static PetscErrorCode KeyInt(void *ctx, const char key[], PetscInt v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetInt((SgSummary)ctx, key, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyReal(void *ctx, const char key[], PetscReal v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetReal((SgSummary)ctx, key, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyIntArray(void *ctx, const char key[], PetscInt n, const PetscInt v[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetIntArray((SgSummary)ctx, key, n, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KeyRealArray(void *ctx, const char key[], PetscInt n, const PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgSummarySetRealArray((SgSummary)ctx, key, n, v));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SummaryLawKeys(SgSummary sum, SgContactLawKeys *keys)
+{
+  PetscFunctionBeginUser;
+  keys->ctx          = sum;
+  keys->setint       = KeyInt;
+  keys->setreal      = KeyReal;
+  keys->setintarray  = KeyIntArray;
+  keys->setrealarray = KeyRealArray;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SummaryPair(SgCont ct, SgSummary sum, PetscInt dim)
 {
   PetscBool pair;
@@ -120,7 +160,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
   }
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (ct->c) {
-    const char *obstype;
+    const char      *obstype;
+    SgContactLawKeys keys;
     PetscCall(SgSummarySetInt(sum, "ssn_iterations", ct->ssn_its));
     PetscCall(SgSummarySetInt(sum, "outer_iterations", ct->outer));
     PetscCall(SgSummarySetRealArray(sum, "gammas", ct->ngammas, ct->gammas));
@@ -146,23 +187,8 @@ static PetscErrorCode SummaryFill(SgCont ct, SgSummary sum)
     PetscCall(SgContactGetNormalType(ct->c, &obstype));
     PetscCall(SgSummarySetString(sum, "contact_normal", obstype));
     PetscCall(SgSummarySetString(sum, "friction_type", SgLawName(ct->cv.law)));
-    if (ct->cv.friction) {
-      /* of this controller's last KKT measures (SgContMeasure): lam_T from the tangential residual */
-      const SgFrictionSummary fs = ct->fsum;
-      const char             *pn[SG_LAW_MAX_PARAMETERS];
-      PetscReal               pv[SG_LAW_MAX_PARAMETERS];
-      PetscInt                np;
-      PetscCall(SgContactLawGetParameters(ct->cv.law, &np, pn, pv)); /* the law's, by its names */
-      for (PetscInt k = 0; k < np; k++) PetscCall(SgSummarySetReal(sum, pn[k], pv[k]));
-      PetscCall(SgSummarySetInt(sum, "stick_size", fs.nstick));
-      PetscCall(SgSummarySetInt(sum, "slip_size", fs.nslip));
-      PetscCall(SgSummarySetReal(sum, "friction_force", fs.force_norm));
-      PetscCall(SgSummarySetRealArray(sum, "friction_force_vector", dim, fs.force));
-      PetscCall(SgSummarySetReal(sum, "friction_traction_integral", fs.traction));
-      PetscCall(SgSummarySetReal(sum, "slip_max", fs.slip_max));
-      PetscCall(SgSummarySetReal(sum, "friction_bound_violation", fs.bound));
-      PetscCall(SgSummarySetReal(sum, "friction_complementarity", fs.slip));
-    }
+    PetscCall(SummaryLawKeys(sum, &keys));
+    PetscCall(SgContactLawSummary(ct->cv.law, dim, &ct->fsum, &keys)); /* the law's keys, of this controller's last KKT measures (SgContMeasure) */
     {
       /* the contact force on the body, sum_i w_i lam_i n_i, with the multiplier of contact_force (SgContactKKT's),
          against the reaction */
@@ -296,7 +322,7 @@ static PetscErrorCode PairFieldsFill(SgCont ct, Vec y, PetscInt nv, Vec vf[], Ve
 }
 
 /* The work vectors of the fields: vf displacement and (with contact) the contact fields, cf the cell fields */
-static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[10], PetscInt *nc, Vec cf[3])
+static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[7 + SG_LAW_MAX_FIELDS], PetscInt *nc, Vec cf[3])
 {
   SgElasticity p = ct->prob;
   PetscInt     dim;
@@ -323,16 +349,17 @@ static PetscErrorCode FieldsCreate(SgCont ct, PetscInt *nv, Vec vf[10], PetscInt
     PetscCall(PetscObjectSetName((PetscObject)vf[5], "obstacle_offset"));
     PetscCall(VecSetBlockSize(vf[5], dim));
     *nv = 6;
-    if (ct->cv.friction) { /* tangential traction, slip, and the state 0 free, 1 stick, 2 slip */
-      PetscCall(DMCreateGlobalVector(dmVec, &vf[6]));
-      PetscCall(PetscObjectSetName((PetscObject)vf[6], "tangential_traction"));
-      PetscCall(VecSetBlockSize(vf[6], dim));
-      PetscCall(DMCreateGlobalVector(dmVec, &vf[7]));
-      PetscCall(PetscObjectSetName((PetscObject)vf[7], "slip"));
-      PetscCall(VecSetBlockSize(vf[7], dim));
-      PetscCall(DMCreateGlobalVector(dmVert, &vf[8]));
-      PetscCall(PetscObjectSetName((PetscObject)vf[8], "friction_state"));
-      *nv = 9;
+    { /* the law's fields (friction: tangential traction, slip, and the state 0 free, 1 stick, 2 slip) */
+      PetscInt           nl;
+      const char *const *names;
+      const PetscBool   *vector;
+      PetscCall(SgContactLawGetFields(ct->cv.law, &nl, &names, &vector));
+      for (PetscInt k = 0; k < nl; k++) {
+        PetscCall(DMCreateGlobalVector(vector[k] ? dmVec : dmVert, &vf[6 + k]));
+        PetscCall(PetscObjectSetName((PetscObject)vf[6 + k], names[k]));
+        if (vector[k]) PetscCall(VecSetBlockSize(vf[6 + k], dim));
+      }
+      *nv = 6 + nl;
     }
   }
   *nc = 2;
@@ -351,7 +378,7 @@ static PetscErrorCode FieldsFill(SgCont ct, Vec y, const PetscReal lam[], PetscI
   PetscCall(SgElasticityFullDisplacement(ct->prob, y, vf[0]));
   PetscCall(SgElasticityCellFields(ct->prob, y, cf[0], cf[1]));
   if (ct->c) PetscCall(SgContactFields(ct->c, y, lam, &vf[1], vf[5]));
-  if (ct->c && ct->cv.friction) PetscCall(SgContactFrictionFields(ct->c, y, vf[6], vf[7], vf[8]));
+  if (ct->c) PetscCall(SgContactLawFields(ct->c, y, &vf[6])); /* the law's (none without friction) */
   PetscCall(PairFieldsFill(ct, y, nv, vf, cf));
   PetscFunctionReturn(0);
 }
@@ -370,14 +397,15 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
   PetscFunctionBeginUser;
   PetscCall(SgProblemSetLoadFactor(ct->problem_obj, ct->steps[j].t));
   if (ct->dvsteps) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, PetscIsNanReal(ct->dvsteps[j * ct->ndv]) ? NULL : &ct->dvsteps[j * ct->ndv]));
-  /* friction: the step's slip is the increment from its reference (kept with it, or the step before's solution) */
-  if (ct->c && ct->cv.friction) {
+  /* the law's slip reference (none without friction): the step's slip is the increment from its reference (kept
+     with it, or the step before's solution) */
+  if (ct->c) {
     if (ct->yrsteps && ct->yrsteps[j]) {
       PetscReal *yref;
-      PetscInt   dim;
-      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+      PetscInt   m;
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], 2 * ct->n * dim));
+      PetscCall(SgContactLawGetSlipReferenceSize(ct->cv.law, &m));
+      PetscCall(PetscArraycpy(yref, ct->yrsteps[j], m));
     } else PetscCall(SgContactSetSlipReference(ct->c, j > 0 ? ct->ysteps[j - 1] : NULL));
   }
   PetscCall(FieldsFill(ct, ct->ysteps[j], ct->lamsteps[j], nv, vf, cf));
@@ -386,7 +414,7 @@ static PetscErrorCode FillStep(void *vctx, PetscInt k, PetscInt nv, Vec vf[], Pe
 
 static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnification)
 {
-  Vec       vf[10], cf[3];
+  Vec       vf[7 + SG_LAW_MAX_FIELDS], cf[3]; /* 6 of the contact, the law's, the pair's */
   PetscInt  nv = 0, nc = 2, nkept = 0;
   PetscBool loadsteps;
 
@@ -397,18 +425,17 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
   for (PetscInt k = 0; ct->ysteps && k < ct->nsteps; k++) nkept += ct->ysteps[k] ? 1 : 0;
   if (loadsteps && nkept) {
     /* a temporal collection of the kept load steps (time: the load factor), the problem's factor restored after */
-    PetscInt  *idx, *num, m;
+    PetscInt  *idx, *num, m, my = 0;
     PetscReal *times, t, *dv = NULL, *yr = NULL;
     PetscBool  dset;
     StepsCtx   sc;
     PetscCall(SgProblemGetLoadFactor(ct->problem_obj, &t));
-    if (ct->c && ct->cv.friction) { /* the slip reference of the last step, restored after */
+    if (ct->c) { /* the law's slip reference of the last step (none without friction), restored after */
       PetscReal *yref;
-      PetscInt   dim;
-      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscMalloc1(2 * ct->n * dim + 1, &yr));
-      PetscCall(PetscArraycpy(yr, yref, 2 * ct->n * dim));
+      PetscCall(SgContactLawGetSlipReferenceSize(ct->cv.law, &my));
+      PetscCall(PetscMalloc1(my + 1, &yr));
+      PetscCall(PetscArraycpy(yr, yref, my));
     }
     PetscCall(SgElasticityGetDirichletSize(ct->prob, &m));
     PetscCall(PetscMalloc1(m + 1, &dv));
@@ -429,10 +456,8 @@ static PetscErrorCode WriteFields(SgCont ct, const char file[], PetscReal magnif
     if (ct->dvsteps) PetscCall(SgProblemSetDirichletValues(ct->problem_obj, dset ? dv : NULL)); /* the problem's values restored too */
     if (yr) {
       PetscReal *yref;
-      PetscInt   dim;
-      PetscCall(SgElasticityGetDimension(ct->prob, &dim));
       PetscCall(SgContactGetSlipReference(ct->c, &yref));
-      PetscCall(PetscArraycpy(yref, yr, 2 * ct->n * dim));
+      PetscCall(PetscArraycpy(yref, yr, my));
       PetscCall(PetscFree(yr));
     }
     PetscCall(PetscFree(dv));
@@ -504,17 +529,19 @@ static PetscErrorCode SummaryLoadSteps(SgCont ct, SgSummary sum)
   PetscCall(SgSummarySetInt(sum, "load_steps", ct->nsteps));
   for (PetscInt j = 0; j < 7; j++) PetscCall(SgSummarySetRealArray(sum, rn[j], ct->nsteps, a[j]));
   for (PetscInt j = 0; j < 5; j++) PetscCall(SgSummarySetIntArray(sum, in[j], ct->nsteps, b[j]));
-  if (ct->c && ct->cv.friction) { /* per step: the stick and slip sets, the friction resultant and traction integral */
+  if (ct->c) { /* the law's keys per step (friction: the stick and slip sets, the friction resultant and traction) */
+    SgFrictionSummary *fs;
+    SgContactLawKeys   keys;
+    PetscCall(PetscCalloc1(ct->nsteps + 1, &fs));
     for (PetscInt k = 0; k < ct->nsteps; k++) {
-      b[0][k] = ct->steps[k].nstick;
-      b[1][k] = ct->steps[k].nslip;
-      a[0][k] = ct->steps[k].friction_force;
-      a[1][k] = ct->steps[k].friction_traction;
+      fs[k].nstick     = ct->steps[k].nstick;
+      fs[k].nslip      = ct->steps[k].nslip;
+      fs[k].force_norm = ct->steps[k].friction_force;
+      fs[k].traction   = ct->steps[k].friction_traction;
     }
-    PetscCall(SgSummarySetIntArray(sum, "load_step_stick_size", ct->nsteps, b[0]));
-    PetscCall(SgSummarySetIntArray(sum, "load_step_slip_size", ct->nsteps, b[1]));
-    PetscCall(SgSummarySetRealArray(sum, "load_step_friction_force", ct->nsteps, a[0]));
-    PetscCall(SgSummarySetRealArray(sum, "load_step_friction_traction_integral", ct->nsteps, a[1]));
+    PetscCall(SummaryLawKeys(sum, &keys));
+    PetscCall(SgContactLawStepSummary(ct->cv.law, ct->nsteps, fs, &keys));
+    PetscCall(PetscFree(fs));
   }
   PetscCall(SgSummarySetInt(sum, "load_steps_outer_iterations", tot[0]));
   PetscCall(SgSummarySetInt(sum, "load_steps_ssn_iterations", tot[1]));

@@ -404,8 +404,6 @@ PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
   v->law      = c->law;
   v->friction = c->friction;
   v->coupled  = c->law->coupled;
-  v->fgfac    = c->fgfac;
-  v->yref     = c->yref;
   PetscFunctionReturn(0);
 }
 
@@ -595,94 +593,12 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact c, Vec y, PetscReal lam
   PetscFunctionReturn(0);
 }
 
-/* Friction at contact vertex i from its residual r = (K y - b)_i (on the fixed components: 0, or the reaction where a
-   Dirichlet facet of Gamma_c fixes them), its load step's increment dy = u_i - uref_i of the full displacement (the
-   Dirichlet data on fixed components) and the normal multiplier lamN: the tangential multiplier lam_T = -T_i r / w_i,
-   the slip u = T_i dy, the bound g (s, or F max(0, lamN)), and the state. With Coulomb every active vertex (act) is
-   stick or slip and the others free (a bound at the noise level, F = 0 or F lamN tiny, is met: slip); with Tresca a
-   vertex is free where s is at the noise level. Slip: |lam_T| at the bound up to noise. A vertex whose tangential
-   motion is prescribed (fixed components) is sliding when that motion is not zero: its friction is the bound along
-   the slip (the support supplies the rest of its reaction); held by a Dirichlet facet of Gamma_c, it sticks while it
-   does not move, with the reaction as its friction up to the bound (unoise: the displacement noise). */
-static char FrictionFromResidual(SgContact c, PetscInt i, const PetscReal r[], const PetscReal dy[], PetscBool act, PetscReal lamN, PetscReal noise, PetscReal unoise, PetscReal lt[], PetscReal u[], PetscReal *gb, PetscReal *ntfree)
-{
-  const PetscInt   dim = c->dim;
-  const PetscReal *n   = &c->normal[i * dim];
-  const PetscInt   v   = c->vert[i];
-  PetscReal        rn = 0, yn = 0, nt = 0, nu = 0, up = 0;
-  PetscBool        partial;
-
-  for (PetscInt k = 0; k < dim; k++) {
-    rn += n[k] * r[k];
-    yn += n[k] * dy[k];
-  }
-  for (PetscInt k = 0; k < dim; k++) {
-    lt[k] = -(r[k] - rn * n[k]) / c->w[i];
-    u[k]  = dy[k] - yn * n[k];
-    nt += lt[k] * lt[k];
-    nu += u[k] * u[k];
-  }
-  nt = PetscSqrtReal(nt);
-  nu = PetscSqrtReal(nu);
-  SgContactLawBound(c->law, i, lamN, gb, NULL);
-  partial = (PetscBool)(c->haspartial && SgMeshPartial(c->mesh, v));
-  *ntfree = nt; /* the part the solution must keep within the bound: that of the free components */
-  if (partial) {
-    *ntfree = 0;
-    for (PetscInt k = 0; k < dim; k++) {
-      if (SgMeshFixed(c->mesh, v, k)) up = PetscMax(up, PetscAbsReal(u[k]));
-      else *ntfree += lt[k] * lt[k];
-    }
-    *ntfree = PetscSqrtReal(*ntfree);
-  }
-  if (c->law->coupled ? !act : *gb <= noise) return SG_FRICTION_FREE; /* a bound from lam_N: free out of contact */
-  if (partial && (up > unoise || (c->dmask[i] && nu > unoise))) {     /* prescribed sliding */
-    for (PetscInt k = 0; k < dim; k++) lt[k] = *gb * u[k] / nu;
-    return SG_FRICTION_SLIP;
-  }
-  if (partial && c->dmask[i]) { /* held where it is: the reaction, at most the bound */
-    if (nt > *gb)
-      for (PetscInt k = 0; k < dim; k++) lt[k] *= *gb / nt;
-    return SG_FRICTION_STICK;
-  }
-  return nt >= *gb - PetscMax(1e-10 * *gb, noise) ? SG_FRICTION_SLIP : SG_FRICTION_STICK;
-}
-
 PetscErrorCode SgContactGetFrictionSummary(SgContact c, SgFrictionSummary *fs)
 {
   PetscFunctionBeginUser;
   *fs = c->fsum;
   PetscFunctionReturn(0);
 }
-
-/* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
-   vanishes but the measure does not */
-static PetscReal SafeRatio(PetscReal a, PetscReal b)
-{
-  if (!(a > 0)) return a == 0 ? 0 : a; /* 0, or NaN passed on */
-  return b > 0 ? a / b : PETSC_INFINITY;
-}
-
-/* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
-   stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):
-   F       the force scale: the largest nodal force on the body, a load on the free dofs, a support force on the
-           Dirichlet part (K u - f there) or a contact force (w_i |lam_i|; with friction the whole nodal force w_i |R_i|),
-           and the shear part of ||K|| ||y||, 2 mu / (lambda + 2 mu) ||K|| ||y|| (all of it for nu = 0; a backward error
-           scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
-   Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
-   With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
-   frictionless problem) both are the data's at factor 1 (the largest Dirichlet value, obstacle translation or the
-   displacement of the total load through the shear modulus; failing those the mesh diameter): a zero answer is
-   measured against the problem, not 0/0, nor against its own round-off.
-   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
-           rnoise / F is the smallest equilibrium measure the arithmetic can certify.
-   res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
-           equilibrium the resultant vanishes.
-   R: K y - b with the rollers' fixed components zeroed, before the contact forces are taken out; lam from it. */
-typedef struct {
-  PetscReal F, Y, rnoise, res[3], l1;
-  PetscBool zero;
-} KKTScales;
 
 static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
 {
@@ -692,16 +608,15 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
   for (PetscInt i = 0; i < c->n; i++) { /* the contact force on the body at vertex i */
-    PetscReal f[3], rn = 0, a = 0;
+    PetscReal f[3], rn = 0, fm;
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
+    fm = SgContactLawContactForce(c->law, dim, &ra[c->off[i]], &c->normal[i * dim], rn, c->w[i] * PetscAbsReal(lam[i]), f); /* the law's: with friction the whole nodal force */
     for (PetscInt k = 0; k < dim; k++) {
       const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
-      f[k]                  = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
-      if (!inner) cs[k] += f[k]; /* between the bodies: no part of the resultant on the whole mesh */
+      if (!inner) cs[k] += f[k];                                     /* between the bodies: no part of the resultant on the whole mesh */
       cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
-      a += f[k] * f[k];
     }
-    cm = PetscMax(cm, c->friction ? PetscSqrtReal(a) : c->w[i] * PetscAbsReal(lam[i]));
+    cm = PetscMax(cm, fm);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cs, 4, MPIU_REAL, MPI_SUM, c->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cm, 1, MPIU_REAL, MPI_MAX, c->comm));
@@ -726,126 +641,6 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
     sc->Y = PetscMax(sc->Y, Yf);
     sc->F = PetscMax(sc->F, PetscMax(bfull, 2 * mu / (lambda + 2 * mu) * Knorm * Yf));
   }
-  PetscFunctionReturn(0);
-}
-
-/* the force below which a nodal force at contact vertex i is round-off: 1e-12 of the force scale, and at least a few
-   times the round-off of forming the residual */
-static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
-{
-  return PetscMax(1e-12 * sc->F, 4 * sc->rnoise) / c->w[i];
-}
-
-/* The friction part of SgContactKKT. friction: lam_T balances the tangential residual; measured are the bound
-   |lam_T| <= g (a force, with the dual part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip
-   u_T = a lam_T with a >= 0 where |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed
-   components the displacement is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a
-   traction on it. In: ra = K y - b (the rollers' fixed components zeroed), lam the normal multipliers, ynrm
-   ||y||_inf. Out: the numbers per contact vertex (klt, kslip, kst), the friction summary fsum, s[3] (this rank's slip
-   part of the complementarity^2), and ra without the tangential residual of the free components (what the friction
-   balances). */
-static PetscErrorCode KKTFrictionMeasures(SgContact c, Vec y, PetscScalar ra[], const PetscReal lam[], PetscReal ynrm, const KKTScales *sc, PetscReal s[])
-{
-  const PetscInt     dim = c->dim;
-  const PetscScalar *ya;
-  PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm, *uv, *ft = NULL;
-  const PetscScalar *ul = NULL, *rfa = NULL;
-  Vec                yloc = NULL, Rf = NULL;
-
-  PetscFunctionBeginUser;
-  if (c->haspartial) {
-    PetscCall(DMGetLocalVector(c->dm, &yloc));
-    PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
-    PetscCall(VecGetArrayRead(yloc, &ul));
-    for (PetscInt i = 0; i < c->n; i++)
-      for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
-  }
-  if (c->hasdface) {
-    PetscCall(VecDuplicate(y, &Rf));
-    PetscCall(SgElasticityFixedResidual(c->prob, y, Rf));
-    PetscCall(VecGetArrayRead(Rf, &rfa));
-  }
-  unoise *= 1e-10;
-  PetscCall(VecGetArrayRead(y, &ya));
-  /* the vertices' displacements (two bodies: relative, R y) and, for a pair, the friction forces w lam_T on them */
-  PetscCall(PetscMalloc1(c->n * dim + 1, &uv));
-  PetscCall(SgContactVertexDisplacements(c, ya, uv));
-  if (c->pair) PetscCall(PetscCalloc1(c->n * dim + 1, &ft));
-  for (PetscInt i = 0; i < c->n; i++) {
-    const PetscReal noise = ForceNoise(c, sc, i);
-    const PetscInt  v     = c->vert[i];
-    PetscReal       lt[3], u[3], gb, nt = 0, err = 0, a = 0, un = 0, r[3], dy[3], ntfree;
-    char            st;
-    for (PetscInt k = 0; k < dim; k++) {
-      const PetscBool fixed = (PetscBool)(c->haspartial && SgMeshFixed(c->mesh, v, k));
-      r[k]                  = fixed && c->dmask && (c->dmask[i] >> k & 1) ? PetscRealPart(rfa[c->off[i] + k]) : PetscRealPart(ra[c->off[i] + k]);
-      dy[k]                 = fixed ? PetscRealPart(ul[c->mesh->loff[v] + k]) - c->ypref[i * dim + k] : uv[i * dim + k] - c->yref[i * dim + k];
-      if (ul && !c->norecord) {
-        c->ypfull[i * dim + k]          = PetscRealPart(ul[c->mesh->loff[v] + k]);
-        c->ypfull[(c->n + i) * dim + k] = PetscRealPart(ya[c->off[i] + k]);
-      }
-    }
-    st = FrictionFromResidual(c, i, r, dy, (PetscBool)c->kact[i], lam[i], noise, unoise, lt, u, &gb, &ntfree);
-    for (PetscInt k = 0; k < dim; k++) {
-      nt += lt[k] * lt[k];
-      un += u[k] * u[k];
-      f[2 + k] += c->w[i] * lt[k];
-      c->klt[i * dim + k]   = lt[k];
-      c->kslip[i * dim + k] = u[k];
-    }
-    c->kst[i] = st;
-    if (ft) /* two bodies: the friction force acts on both sides (taken out below, R^T w lam_T) */
-      for (PetscInt k = 0; k < dim; k++) ft[i * dim + k] = c->w[i] * lt[k];
-    else { /* what the friction balances: the tangential residual on the free components */
-      PetscReal rn = 0;
-      for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
-      for (PetscInt k = 0; k < dim; k++)
-        if (!(c->haspartial && SgMeshFixed(c->mesh, v, k))) ra[c->off[i] + k] = rn * c->normal[i * dim + k];
-    }
-    nt    = PetscSqrtReal(nt);
-    un    = PetscSqrtReal(un);
-    fm[0] = PetscMax(fm[0], c->w[i] * PetscMax(0, ntfree - gb));
-    fm[1] = PetscMax(fm[1], un);
-    f[5] += c->w[i] * nt;
-    if (st == SG_FRICTION_STICK) err = un;
-    else if (st == SG_FRICTION_SLIP && gb > noise) { /* a bound at the noise level (Coulomb, F lam_N tiny): no direction to measure */
-      for (PetscInt k = 0; k < dim; k++) a += u[k] * lt[k] / nt;
-      a = PetscMax(0, a);
-      for (PetscInt k = 0; k < dim; k++) err += PetscSqr(u[k] - a * lt[k] / nt);
-      err = PetscSqrtReal(err);
-    }
-    f[0] += (st == SG_FRICTION_STICK);
-    f[1] += (st == SG_FRICTION_SLIP);
-    f[6] += c->w[i] * err * err;
-  }
-  PetscCall(VecRestoreArrayRead(y, &ya));
-  if (ft) PetscCall(SgContactAddVertexForces(c, ft, ra)); /* at the slave vertex: leaves its normal residual, as above */
-  PetscCall(PetscFree(ft));
-  PetscCall(PetscFree(uv));
-  if (yloc) {
-    PetscCall(VecRestoreArrayRead(yloc, &ul));
-    PetscCall(DMRestoreLocalVector(c->dm, &yloc));
-    if (!c->norecord) c->haverecord = PETSC_TRUE; /* the next load step's slip reference from this y takes these data */
-  }
-  if (Rf) {
-    PetscCall(VecRestoreArrayRead(Rf, &rfa));
-    PetscCall(VecDestroy(&Rf));
-  }
-  s[3] = f[6]; /* the slip part of the complementarity^2 (summed with s below) */
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, f, 8, MPIU_REAL, MPI_SUM, c->comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, fm, 2, MPIU_REAL, MPI_MAX, c->comm));
-  c->fsum.nstick     = (PetscInt)f[0];
-  c->fsum.nslip      = (PetscInt)f[1];
-  c->fsum.force_norm = 0;
-  for (PetscInt k = 0; k < 3; k++) {
-    c->fsum.force[k] = k < dim ? f[2 + k] : 0;
-    c->fsum.force_norm += PetscSqr(c->fsum.force[k]);
-  }
-  c->fsum.force_norm = PetscSqrtReal(c->fsum.force_norm);
-  c->fsum.traction   = f[5];
-  c->fsum.slip_max   = fm[1];
-  c->fsum.bound      = SafeRatio(fm[0], sc->F);
   PetscFunctionReturn(0);
 }
 
@@ -905,8 +700,8 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
     c->klam[i] = lam[i];
     c->kact[i] = (char)(lam[i] > PetscMax(1e-10 * mx[0], ForceNoise(c, &sc, i)) && !(rf < rg));
   }
-  if (c->friction) PetscCall(KKTFrictionMeasures(c, y, ra, lam, ynrm, &sc, s));
-  PetscCall(SgContactAddForce(c, lam, ra)); /* what is left: interior (and, without friction, tangential) residual */
+  PetscCall(SgContactLawKKT(c->law, c, y, ra, lam, ynrm, &sc, &s[3])); /* the law's part (frictionless: none) */
+  PetscCall(SgContactAddForce(c, lam, ra));                            /* what is left: interior (and, without friction, tangential) residual */
   PetscCall(VecRestoreArray(R, &ra));
   for (PetscInt i = 0; i < c->n; i++) {
     const PetscBool act = (PetscBool)c->kact[i]; /* the active set of the fields and of the friction states too */
@@ -932,9 +727,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   kkt->penetration   = PetscSqrtReal(s[0]);
   kkt->equilibrium   = SafeRatio(nrm, sc.F);
   kkt->infeasibility = SafeRatio(PetscSqrtReal(s[0]), kkt->lscale);
-  if (c->friction) c->fsum.slip = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale);
+
+  c->fsum.slip         = SafeRatio(PetscSqrtReal(s[3]), kkt->lscale); /* the law's parts (0 without friction) */
   kkt->complementarity = PetscMax(SafeRatio(PetscSqrtReal(s[1] + s[3]), kkt->lscale), SafeRatio(letgo, sc.F));
-  kkt->dual            = c->friction ? PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound) : SafeRatio(mx[1], sc.F);
+  kkt->dual            = PetscMax(SafeRatio(mx[1], sc.F), c->fsum.bound);
   kkt->rhoF            = s[4];
   kkt->rhoC            = s[5];
   kkt->force           = s[6];
@@ -1038,52 +834,13 @@ PetscErrorCode SgContactFields(SgContact c, Vec y, const PetscReal lam[], Vec fl
   PetscFunctionReturn(0);
 }
 
-/* Friction fields for output (with a friction law): per contact vertex the tangential traction lam_T (from the
-   tangential residual, as in SgContactKKT: the traction on the obstacle; the body feels -lam_T), the slip of the
-   load step T_i (y_i - yref_i) (with load steps the last step's increment; the total T_i y_i without) and the state 0 free, 1 stick, 2 slip (the classification of SgContactKKT); zero elsewhere. */
-PetscErrorCode SgContactFrictionFields(SgContact c, Vec y, Vec traction, Vec slip, Vec state)
+/* The law's output fields (SgContactLawGetFields) at y: the per-vertex record of SgContactKKT at y, written by the
+   law's op (none for the frictionless law); zero elsewhere */
+PetscErrorCode SgContactLawFields(SgContact c, Vec y, Vec fields[])
 {
-  const PetscInt dim = c->dim;
-  Vec            lt, ls, lst;
-  PetscScalar   *ta, *sa, *qa;
-  PetscSection   vs, ss;
-
   PetscFunctionBeginUser;
   PetscCall(ContactStateAt(c, y));
-  PetscCall(DMGetLocalSection(c->dmVec, &vs));
-  PetscCall(DMGetLocalSection(c->dmVert, &ss));
-  PetscCall(DMGetLocalVector(c->dmVec, &lt));
-  PetscCall(DMGetLocalVector(c->dmVec, &ls));
-  PetscCall(DMGetLocalVector(c->dmVert, &lst));
-  PetscCall(VecZeroEntries(lt));
-  PetscCall(VecZeroEntries(ls));
-  PetscCall(VecZeroEntries(lst));
-  PetscCall(VecGetArray(lt, &ta));
-  PetscCall(VecGetArray(ls, &sa));
-  PetscCall(VecGetArray(lst, &qa));
-  for (PetscInt i = 0; i < c->n; i++) {
-    PetscInt off, soff;
-    PetscCall(PetscSectionGetOffset(vs, c->mesh->vStart + c->vert[i], &off));
-    PetscCall(PetscSectionGetOffset(ss, c->mesh->vStart + c->vert[i], &soff));
-    for (PetscInt k = 0; k < dim; k++) {
-      ta[off + k] = c->klt[i * dim + k];
-      sa[off + k] = c->kslip[i * dim + k];
-    }
-    qa[soff] = c->kst[i];
-  }
-  PetscCall(VecRestoreArray(lt, &ta));
-  PetscCall(VecRestoreArray(ls, &sa));
-  PetscCall(VecRestoreArray(lst, &qa));
-  /* only owners hold contact vertices: adding the zeros of the other ranks keeps the owner's value */
-  PetscCall(VecZeroEntries(traction));
-  PetscCall(VecZeroEntries(slip));
-  PetscCall(VecZeroEntries(state));
-  PetscCall(DMLocalToGlobal(c->dmVec, lt, ADD_VALUES, traction));
-  PetscCall(DMLocalToGlobal(c->dmVec, ls, ADD_VALUES, slip));
-  PetscCall(DMLocalToGlobal(c->dmVert, lst, ADD_VALUES, state));
-  PetscCall(DMRestoreLocalVector(c->dmVec, &lt));
-  PetscCall(DMRestoreLocalVector(c->dmVec, &ls));
-  PetscCall(DMRestoreLocalVector(c->dmVert, &lst));
+  PetscCall(SgContactLawFillFields(c->law, c, fields));
   PetscFunctionReturn(0);
 }
 

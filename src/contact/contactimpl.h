@@ -27,6 +27,27 @@ PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
 PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
 PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
 
+/* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
+   stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):
+   F       the force scale: the largest nodal force on the body, a load on the free dofs, a support force on the
+           Dirichlet part (K u - f there) or a contact force (w_i |lam_i|; with friction the whole nodal force w_i |R_i|),
+           and the shear part of ||K|| ||y||, 2 mu / (lambda + 2 mu) ||K|| ||y|| (all of it for nu = 0; a backward error
+           scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
+   Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
+   With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
+   frictionless problem) both are the data's at factor 1 (the largest Dirichlet value, obstacle translation or the
+   displacement of the total load through the shear modulus; failing those the mesh diameter): a zero answer is
+   measured against the problem, not 0/0, nor against its own round-off.
+   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
+           rnoise / F is the smallest equilibrium measure the arithmetic can certify.
+   res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
+           equilibrium the resultant vanishes.
+   R: K y - b with the rollers' fixed components zeroed, before the contact forces are taken out; lam from it. */
+typedef struct {
+  PetscReal F, Y, rnoise, res[3], l1;
+  PetscBool zero;
+} KKTScales;
+
 /* law.c: the contact law, a type of the registry SgContactLawList (-friction_type, SgContactLawRegister). A type's
    create function sets its ops, data and the flags friction and coupled; the bound op is a pointwise kernel. */
 typedef struct {
@@ -50,6 +71,26 @@ typedef struct {
      type and its parameters): NULL without one; a type with a tangential part that sets none gets law_regularized.c's */
   PetscErrorCode (*save)(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);
   PetscErrorCode (*load)(SgContactLaw, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *);
+  /* its part of the KKT measures of y (SgContactKKT; NULL: none, the frictionless law): in ra = K y - b (the rollers'
+     fixed components zeroed), lam the normal multipliers, ynrm ||y||_inf, the scales; out the contact object's record
+     per vertex (klt, kslip, kst), its summary c->fsum but the slip part, *slip2 this rank's part of the
+     complementarity^2, and ra without what the law balances. A type with a tangential part that sets none gets
+     law_measures.c's (the regularized law's lam_T from the tangential residual). */
+  PetscErrorCode (*kkt)(SgContactLaw, SgContact, Vec, PetscScalar[], const PetscReal[], PetscReal, const KKTScales *, PetscReal *);
+  /* the force of the contact on the body at a vertex for the KKT's force scale, from its residual r and normal part rn
+     (n the normal; wlam = w |lam|), into f (dim), and its size (NULL: the normal force rn n, of size wlam) */
+  PetscReal (*contactforce)(SgContactLaw, PetscInt, const PetscScalar[], const PetscReal[], PetscReal, PetscReal, PetscReal[]);
+  /* its output fields: names and whether each is a vector (dim per vertex) or a scalar; and their values at the last
+     SgContactKKT's record (zero off the contact vertices); NULL: none */
+  PetscErrorCode (*getfields)(SgContactLaw, PetscInt *, const char *const **, const PetscBool **);
+  PetscErrorCode (*fields)(SgContactLaw, SgContact, Vec[]);
+  /* its summary keys, of one solve's summary (the last SgContactKKT's) and per load step; NULL: none */
+  PetscErrorCode (*summary)(SgContactLaw, PetscInt, const SgFrictionSummary *, SgContactLawKeys *);
+  PetscErrorCode (*stepsummary)(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
+  /* PDAS (Hueber-Stadler-Wohlmuth): the state of vertex i for the next solve from lamN and z = lam_T + c T (y - yref)
+     of length nz (dim components, the normal's axis component 0), its last state st and slip direction t (updated
+     on slip; *dt its largest change); the bound into *g. NULL: free */
+  char (*pdasstate)(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
 } SgContactLawOps;
 
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */
@@ -144,6 +185,27 @@ struct _n_SgContact {
   Vec        pw, pf, pl;   /* work: displacement and force wrappers (no array), B's row vector */
   Vec        pr;           /* with friction: R's row vector (pair.h: the relative displacements) */
 };
+
+/* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
+   vanishes but the measure does not */
+static inline PetscReal SafeRatio(PetscReal a, PetscReal b)
+{
+  if (!(a > 0)) return a == 0 ? 0 : a; /* 0, or NaN passed on */
+  return b > 0 ? a / b : PETSC_INFINITY;
+}
+
+/* the force below which a nodal force at contact vertex i is round-off: 1e-12 of the force scale, and at least a few
+   times the round-off of forming the residual */
+static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
+{
+  return PetscMax(1e-12 * sc->F, 4 * sc->rnoise) / c->w[i];
+}
+
+/* law_measures.c: the KKT part, fields and summary of a law with a bound; contact.c: the per-vertex record at y */
+PetscErrorCode SgContactLawSetMeasureOps(SgContactLaw);
+PetscErrorCode SgContactLawKKT(SgContactLaw, SgContact, Vec, PetscScalar[], const PetscReal[], PetscReal, const KKTScales *, PetscReal *); /* law.c: the op kkt */
+PetscReal      SgContactLawContactForce(SgContactLaw, PetscInt, const PetscScalar[], const PetscReal[], PetscReal, PetscReal, PetscReal[]);
+PetscErrorCode SgContactLawFillFields(SgContactLaw, SgContact, Vec[]);
 
 /* contact.c: a surface's lumped weights and area-weighted normal sums, summed over the ranks (local vectors) */
 PetscErrorCode SgContactLumpedSurface(SgContact, PetscInt, const PetscInt[], Vec, Vec, PetscReal *);

@@ -256,6 +256,7 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
   }
   if (law->ops.setup) PetscCall(law->ops.setup(law));
   if (law->friction) PetscCall(SgContactLawSetRegularizedOps(law)); /* the terms the type does not set itself */
+  if (law->friction) PetscCall(SgContactLawSetMeasureOps(law));     /* and its measures, fields and summary keys */
   PetscFunctionReturn(0);
 }
 
@@ -313,6 +314,31 @@ PetscErrorCode SgContactLawStateGetJacobianArrays(SgContactLawState st, char **s
   PetscFunctionBeginUser;
   if (statejac) *statejac = st->statejac;
   if (tjac) *tjac = st->tjac;
+  PetscFunctionReturn(0);
+}
+
+/* the number of values of its slip reference: 2 n dim with a tangential part (of the unknowns, then of the full
+   displacement), else 0 */
+PetscErrorCode SgContactLawGetSlipReferenceSize(SgContactLaw law, PetscInt *m)
+{
+  PetscFunctionBeginUser;
+  *m = law && law->yref ? 2 * law->n * law->dim : 0;
+  PetscFunctionReturn(0);
+}
+
+/* the tangential shift lamhat_T: zero (the start of a path), or the last multiplier lam_T (ALM's update
+   lamhat_T = P_g(lamhat_T + gamma_T T y)); nothing without a tangential part (no arrays) */
+PetscErrorCode SgContactLawStateZeroShift(SgContactLawState st)
+{
+  PetscFunctionBeginUser;
+  if (st) PetscCall(PetscArrayzero(st->lamhatT, st->n * st->dim));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStateAcceptShift(SgContactLawState st)
+{
+  PetscFunctionBeginUser;
+  if (st) PetscCall(PetscArraycpy(st->lamhatT, st->lamT, st->n * st->dim));
   PetscFunctionReturn(0);
 }
 
@@ -374,6 +400,94 @@ PetscErrorCode SgContactLawStepCorrection(SgContactLaw law, SgContactLawInput *i
 PetscReal SgContactLawFloor(SgContactLaw law, const SgContactLawInput *in, SgContactLawState st, const PetscScalar ya[], PetscInt i, PetscBool equil)
 {
   return law && law->ops.floor ? law->ops.floor(law, in, st, ya, i, equil) : 0;
+}
+
+/* The law's limit of gamma in double precision (SgContGammaPrecision), lowering *gdp (collective): with the largest
+   multiplier lammax and the largest displacement ymax at the active vertices, the regularized tangential term's
+   round-off gamma_T eps ymax must stay below 1e-2 of the largest bound. A state decided on round-off changes a
+   friction force by at most its bound, so a bound below 1e-2 of the largest multiplier (Coulomb with F = 1e-12) is held
+   to the normal multipliers' margin instead: otherwise the cap would stop a path whose friction cannot matter. Nothing
+   without a tangential part. */
+PetscErrorCode SgContactLawGammaPrecision(SgContactLaw law, PetscReal lammax, PetscReal ymax, PetscReal *gdp)
+{
+  PetscReal gb;
+
+  PetscFunctionBeginUser;
+  if (!law || !law->friction || !(ymax > 0)) PetscFunctionReturn(0);
+  PetscCall(SgContactLawBoundMax(law, lammax, &gb)); /* max_i g_i(max lam): s (Tresca), F max lam (Coulomb) */
+  gb = PetscMax(gb, 1e-2 * lammax);
+  if (gb > 0) *gdp = PetscMin(*gdp, 1e-2 * gb / (law->gfac * PETSC_MACHINE_EPSILON * ymax));
+  PetscFunctionReturn(0);
+}
+
+/* The law's part of SgContactKKT (the op kkt; nothing without it: the frictionless law) */
+PetscErrorCode SgContactLawKKT(SgContactLaw law, SgContact c, Vec y, PetscScalar ra[], const PetscReal lam[], PetscReal ynrm, const KKTScales *sc, PetscReal *slip2)
+{
+  PetscFunctionBeginUser;
+  *slip2 = 0;
+  if (law->ops.kkt) PetscCall(law->ops.kkt(law, c, y, ra, lam, ynrm, sc, slip2));
+  PetscFunctionReturn(0);
+}
+
+/* the contact force on the body at a vertex for the KKT's force scale (the op contactforce; without it the normal
+   force rn n, of size wlam = w |lam|) */
+PetscReal SgContactLawContactForce(SgContactLaw law, PetscInt dim, const PetscScalar r[], const PetscReal n[], PetscReal rn, PetscReal wlam, PetscReal f[])
+{
+  if (law->ops.contactforce) return law->ops.contactforce(law, dim, r, n, rn, wlam, f);
+  for (PetscInt k = 0; k < dim; k++) f[k] = rn * n[k];
+  return wlam;
+}
+
+/* The law's output fields: their number (at most SG_LAW_MAX_FIELDS), names and whether each is a vector (dim per
+   vertex) or a scalar field; none without the op */
+PetscErrorCode SgContactLawGetFields(SgContactLaw law, PetscInt *n, const char *const **names, const PetscBool **vector)
+{
+  PetscFunctionBeginUser;
+  *n = 0;
+  if (names) *names = NULL;
+  if (vector) *vector = NULL;
+  if (law && law->ops.getfields) {
+    const char *const *nm;
+    const PetscBool   *vec;
+    PetscCall(law->ops.getfields(law, n, &nm, &vec));
+    PetscCheck(*n >= 0 && *n <= SG_LAW_MAX_FIELDS, law->comm, PETSC_ERR_SUP, "friction law %s: %" PetscInt_FMT " output fields, at most %d", law->type, *n, SG_LAW_MAX_FIELDS);
+    if (names) *names = nm;
+    if (vector) *vector = vec;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* their values at the contact object's record (SgContactLawFields in contact.c makes it at y first) */
+PetscErrorCode SgContactLawFillFields(SgContactLaw law, SgContact c, Vec fields[])
+{
+  PetscFunctionBeginUser;
+  if (law->ops.fields) PetscCall(law->ops.fields(law, c, fields));
+  PetscFunctionReturn(0);
+}
+
+/* The law's summary keys of a solve (fs: the last SgContactKKT's summary) and per load step (n steps); none without
+   the ops (the frictionless law) */
+PetscErrorCode SgContactLawSummary(SgContactLaw law, PetscInt dim, const SgFrictionSummary *fs, SgContactLawKeys *sum)
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.summary) PetscCall(law->ops.summary(law, dim, fs, sum));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawStepSummary(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgContactLawKeys *sum)
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.stepsummary) PetscCall(law->ops.stepsummary(law, n, fs, sum));
+  PetscFunctionReturn(0);
+}
+
+/* PDAS's state of owned vertex i for its next solve (the op pdasstate; free without it); see SgContactLawOps */
+char SgContactLawPdasState(SgContactLaw law, PetscInt i, PetscReal lamN, PetscInt dim, const PetscReal z[], PetscReal nz, char st, PetscReal t[], PetscReal *g, PetscReal *dt)
+{
+  *dt = 0;
+  if (law->ops.pdasstate) return law->ops.pdasstate(law, i, lamN, dim, z, nz, st, t, g, dt);
+  *g = 0;
+  return SG_FRICTION_FREE;
 }
 
 /* The checkpoint's part of the law: its number in the registry (friction_type, 0 without friction or a law), its

@@ -19,7 +19,7 @@ static char FrictionAt(SgContactLaw law, const SgContactLawInput *in, SgContact 
   PetscReal        un = 0, zdn = 0, z[3], nz = 0, dy[3];
 
   for (PetscInt k = 0; k < dim; k++) {
-    dy[k] = uv[i * dim + k] - c->yref[i * dim + k]; /* the load step's increment */
+    dy[k] = uv[i * dim + k] - law->yref[i * dim + k]; /* the load step's increment */
     un += n[k] * dy[k];
   }
   for (PetscInt k = 0; k < dim; k++) {
@@ -57,7 +57,7 @@ static PetscBool HardChange(SgContactLaw law, const SgContactLawInput *in, SgCon
   PetscReal       ymax = 0, lh = 0, ro;
 
   for (PetscInt k = 0; k < dim; k++) {
-    ymax = PetscMax(ymax, PetscAbsReal(in->uv[i * dim + k]) + PetscAbsReal(c->yref[i * dim + k]));
+    ymax = PetscMax(ymax, PetscAbsReal(in->uv[i * dim + k]) + PetscAbsReal(law->yref[i * dim + k]));
     lh   = PetscMax(lh, PetscAbsReal(st->lamhatT[i * dim + k]));
   }
   const PetscReal roN = 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(in->lamhat[i]) + in->gamma * (PetscAbsReal(in->g[i] + c->d[i]) + PetscAbsReal(c->d[i]) + in->udata)) + in->kroff / c->w[i];
@@ -133,7 +133,7 @@ static PetscBool StickForcedToSlip(SgContactLaw law, const SgContactLawInput *in
     le[k]             = lt[k] - r;
     ln += le[k] * le[k];
     rt += r * r;
-    ym = PetscMax(ym, PetscMax(PetscAbsReal(in->uv[i * dim + k]), PetscAbsReal(c->yref[i * dim + k])));
+    ym = PetscMax(ym, PetscMax(PetscAbsReal(in->uv[i * dim + k]), PetscAbsReal(law->yref[i * dim + k])));
   }
   ln = PetscSqrtReal(ln);
   if (!(ln > gb && PetscSqrtReal(rt) <= 4 * PETSC_MACHINE_EPSILON * gT * ym)) return PETSC_FALSE;
@@ -257,7 +257,7 @@ static PetscReal Floor_Regularized(SgContactLaw law, const SgContactLawInput *in
     return law->gfac * in->gamma * c->w[i] * 2 * ymax;
   }
   if (!(st->state[i] == SG_FRICTION_STICK || (in->havejac && st->state[i] == SG_FRICTION_SLIP && st->statejac[i] != SG_FRICTION_SLIP))) return 0;
-  for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(c->yref[i * dim + k]));
+  for (PetscInt k = 0; k < dim; k++) ymax = PetscMax(ymax, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])) + PetscAbsReal(law->yref[i * dim + k]));
   return law->gfac * in->gamma * c->w[i] * 2 * ymax;
 }
 

@@ -21,8 +21,8 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
     PetscReal t = 0;
     if (s->lamhat[i] + s->gamma * s->g[i] > 0) {
       PetscReal gi, dg = 0;
-      if (c->coupled) SgContactLawBound(c->law, i, s->m[i], &gi, &dg); /* the bound dg lam_N */
-      t = s->gamma * s->w[i] * (PetscAbsReal(s->g[i] + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata) * (1 + (c->coupled ? dg : 0));
+      SgContactLawBound(c->law, i, s->m[i], &gi, &dg); /* the bound's coupling dg lam_N (0 unless it depends on lam_N) */
+      t = s->gamma * s->w[i] * (PetscAbsReal(s->g[i] + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata) * (1 + dg);
     }
     t += SgContactLawFloor(c->law, &in, s->lst, ya, i, PETSC_FALSE); /* the law's tangential term (0 without) */
     fl2 += t * t;

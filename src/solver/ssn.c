@@ -465,6 +465,13 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
 
 /* friction: the tangential shift lamhat_T (n*dim, for the controller to set), the multiplier lam_T and the states at
    the last residual evaluation; NULLs without friction */
+PetscErrorCode SgSSNGetLawState(SgSSN s, SgContactLawState *st)
+{
+  PetscFunctionBeginUser;
+  *st = s ? s->lst : NULL; /* no SSN (no contact boundary): no state */
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNGetFriction(SgSSN s, PetscReal **lamhatT, const PetscReal **mT, const char **fst)
 {
   PetscFunctionBeginUser;
