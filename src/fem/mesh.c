@@ -184,8 +184,8 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
    each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
    "SgNestedBase". Without -cont_nested, a 3D mesh refined with -dm_refine N >= 1 for a frictionless contact boundary
-   of one body (-contact_ids or -contact_label, no -contact_master_ids) keeps every level (L = N): nested iteration's
-   default (SgContNestedDefault); so does a 2D one with friction, or where the linear solver may be iterative (2 x the
+   of one body (-contact_ids or -contact_label, no -contact_master_ids, no -friction_type but none) keeps every level
+   (L = N): nested iteration's default (SgContNestedDefault); so does a 2D one with friction, or where the linear solver may be iterative (2 x the
    fine mesh's vertices above the default's direct limit: 20000 on several ranks or -cont_direct_max_unknowns; or a
    Krylov -ksp_type): without friction SgContNestedDefault solves on them only if it is, a direct solve leaves them
    unused. -cont_nested 0 keeps none. */
@@ -240,11 +240,15 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_ids", &ids));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_label", &label));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair));
-    { /* with friction in 2D with either solver: no condensation there, every SSN step is a factorization of K */
+    { /* with friction in 2D with either solver (no condensation there, every SSN step is a factorization of K); not
+         in 3D (Coulomb with BiCGStab + BoomerAMG: 2.9x the CPU time from the nested start, bench/nested.md) */
       char      law[64] = "";
       PetscBool fset;
       PetscCall(PetscOptionsGetString(NULL, prefix, "-friction_type", law, sizeof(law), &fset));
-      if (fset && strcmp(law, "none")) iter2d = PETSC_TRUE;
+      if (fset && strcmp(law, "none")) {
+        if (dim == 2) iter2d = PETSC_TRUE;
+        else pair = PETSC_TRUE;
+      }
     }
     if ((dim == 3 || iter2d) && (ids || label) && !pair) {
       nset = PETSC_TRUE;
