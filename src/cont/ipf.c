@@ -106,7 +106,14 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
   if (next >= cap && cap > gamma) {
     next  = cap;
     *nbhd = 0; /* the last problem: solved exactly */
-  } else if (cap <= gamma) *nbhd = 0;
+  } else if (cap <= gamma) {
+    /* a solve started from a coarser level (-cont_nested) begins at that level's last gamma, which can lie at or past
+       this mesh's cap: its inexact first step is then solved again exactly at the same gamma, as the last problem of
+       the path, rather than gamma grown past the cap to where double precision ends (the 3D Tresca block stopped at
+       PRECISION_LIMIT at gamma 4.3e16 so) */
+    if (*nbhd > 0 && ct->nested_start) next = gamma;
+    *nbhd = 0;
+  }
   PetscCall(SgSSNGetSNES(ct->ssn, &snes));
   PetscCall(PetscInfo(snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
   *Jprev = J;

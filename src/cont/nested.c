@@ -21,28 +21,36 @@
 #include <petscdmplextransform.h>
 
 /* The default of -cont_nested, before the options are read: with -dm_refine N >= 1 the problem is first solved on the
-   unrefined mesh and on each refinement (N coarser levels), where the mesh kept them (fem/mesh.c: 3D, a contact
-   boundary of one body, -cont_nested not given). Not in 2D (with the default condensed MUMPS the coarse levels'
-   factorizations cost what the saved SSN steps save: the same CPU time, 0.98-1.0x, at 1e4 ... 6.2e5 unknowns), not with friction (a 3D
-   Tresca block with ipf, -dm_refine 1, stopped at PRECISION_LIMIT from the nested start, converged without), not for
-   two bodies (not measured), nor a mesh given by the program or a controller of a coarse level. Measured in bench/nested.md ("The
-   default"). */
-PetscErrorCode SgContNestedDefault(SgCont ct)
+   unrefined mesh and on each refinement (N coarser levels), where the mesh kept them (fem/mesh.c: a contact boundary
+   of one body, -cont_nested not given; 3D without friction, or 2D with friction or where the solver may be
+   iterative) and, in 2D, the linear solver is
+   iterative (iterative: SgLinearSolverDefaults' verdict) or there is friction. Not in 2D frictionless with a direct
+   solver (with the default condensed MUMPS the coarse levels' factorizations cost what the saved SSN steps save: the
+   same CPU time, 0.75-1.0x, at 1e4 ... 6.2e5 unknowns); with friction there is no condensation and every SSN step
+   factors K (Example 1 with Coulomb at 1.5e5 unknowns: 0.56x the CPU time). Not with friction in 3D (the Coulomb
+   block at 22,500 unknowns with BiCGStab + BoomerAMG: 2.9x the CPU time, its linear solves much harder from the
+   nested start at a large gamma; Tresca there 0.38x). Not for two bodies (not measured), nor
+   a mesh given by the program or a controller of a coarse level. Measured in bench/nested.md ("The default", "2D and
+   friction"). */
+PetscErrorCode SgContNestedDefault(SgCont ct, PetscBool iterative)
 {
   PetscBool   own, pair = PETSC_FALSE, given;
-  PetscInt    nref;
+  PetscInt    nref, dim;
   DM          dm;
   PetscObject lv = NULL;
   char        name[64];
 
   PetscFunctionBeginUser;
   ct->nested_default = PETSC_FALSE;
-  if (ct->nested_inner || !ct->c || ct->cv.friction) PetscFunctionReturn(0);
+  if (ct->nested_inner || !ct->c) PetscFunctionReturn(0);
   PetscCall(PetscOptionsHasName(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-cont_nested", &given));
   if (given) PetscFunctionReturn(0);
   PetscCall(SgContactIsPair(ct->c, &pair));
   PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
   if (pair || !own || nref < 1) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  if (dim == 2 && !iterative && !ct->cv.friction) PetscFunctionReturn(0); /* 2D direct, frictionless: the levels, if kept, stay unused */
+  if (dim == 3 && ct->cv.friction) PetscFunctionReturn(0);                /* (fem/mesh.c keeps no levels there) */
   PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
   PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nref));
   PetscCall(PetscObjectQuery((PetscObject)dm, name, &lv));

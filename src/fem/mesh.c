@@ -184,8 +184,11 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
    each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
    "SgNestedBase". Without -cont_nested, a 3D mesh refined with -dm_refine N >= 1 for a frictionless contact boundary
-   of one body (-contact_ids or -contact_label, no -contact_master_ids, no -friction_type but none) keeps every level (L = N): nested iteration's default
-   (SgContNestedDefault); -cont_nested 0 keeps none. */
+   of one body (-contact_ids or -contact_label, no -contact_master_ids, no -friction_type but none) keeps every level
+   (L = N): nested iteration's default (SgContNestedDefault); so does a 2D one with friction, or where the linear solver may be iterative (2 x the
+   fine mesh's vertices above the default's direct limit: 20000 on several ranks or -cont_direct_max_unknowns; or a
+   Krylov -ksp_type): without friction SgContNestedDefault solves on them only if it is, a direct solve leaves them
+   unused. -cont_nested 0 keeps none. */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
   PetscInt          nest = 0, nref = 0, interp = 0;
@@ -201,20 +204,53 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
   if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
-  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, one body in contact, 3D */
-    PetscBool ids, label, pair;
+  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, one body in contact, 3D,
+                                        and in 2D with friction or where the linear solver may be iterative
+                                        (SgContNestedDefault uses the levels only if it is) */
+    PetscBool ids, label, pair, iter2d = PETSC_FALSE;
     PetscInt  dim;
     PetscCall(DMGetDimension(*dm, &dim));
+    if (dim == 2) { /* the unknowns of the refined mesh at most 2 V_N (V_N its vertices, from the counts of the given
+                       mesh: a regular refinement adds a vertex per edge, splits an edge in two and a triangle in four,
+                       with three new edges) against the default's direct limit (solver/linear.c) */
+      PetscMPIInt size;
+      char        ksp[64] = "";
+      PetscBool   kset, mset;
+      PetscInt    maxdirect = PETSC_MAX_INT, pS, pE, n[3];
+      PetscReal   V, E, F;
+      PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)*dm), &size));
+      if (size > 1) maxdirect = 20000;
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      if (PetscOptionsGetInt(NULL, prefix, "-cont_direct_max_unknowns", &maxdirect, &mset)) mset = PETSC_FALSE;
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(PetscOptionsGetString(NULL, prefix, "-ksp_type", ksp, sizeof(ksp), &kset));
+      for (PetscInt d = 0; d < 3; d++) {
+        PetscCall(DMPlexGetDepthStratum(*dm, d, &pS, &pE));
+        n[d] = pE - pS;
+      }
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, n, 3, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)*dm)));
+      V = n[0], E = n[1], F = n[2];
+      for (PetscInt r = 0; r < nref; r++) {
+        V += E;
+        E = 2 * E + 3 * F;
+        F *= 4;
+      }
+      iter2d = (PetscBool)(2 * V > maxdirect || (kset && strcmp(ksp, "preonly")));
+    }
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_ids", &ids));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_label", &label));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair));
-    { /* not with friction: the 3D Tresca block with ipf stopped at the precision limit from the nested start */
+    { /* with friction in 2D with either solver (no condensation there, every SSN step is a factorization of K); not
+         in 3D (Coulomb with BiCGStab + BoomerAMG: 2.9x the CPU time from the nested start, bench/nested.md) */
       char      law[64] = "";
       PetscBool fset;
       PetscCall(PetscOptionsGetString(NULL, prefix, "-friction_type", law, sizeof(law), &fset));
-      if (fset && strcmp(law, "none")) pair = PETSC_TRUE;
+      if (fset && strcmp(law, "none")) {
+        if (dim == 2) iter2d = PETSC_TRUE;
+        else pair = PETSC_TRUE;
+      }
     }
-    if (dim == 3 && (ids || label) && !pair) {
+    if ((dim == 3 || iter2d) && (ids || label) && !pair) {
       nset = PETSC_TRUE;
       nest = nref;
     }
