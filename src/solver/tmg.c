@@ -88,13 +88,17 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   else {
     /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
        coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
-    PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
+    /* two bodies in the pair's basis (-ssn_pair_amg_displacements): the AMG of K in the displacements, its finest
+       interpolation taken into the basis (SgFramePairInterpolation) */
+    const PetscBool pu = (PetscBool)(t->ssn->pair_amg_u && SgFramePairTransform(t->ssn->frame));
+    Mat             Ka = pu ? t->ssn->K : t->ssn->Klin;
+    PetscCall(PCSetOperators(t->amg, Ka, Ka));
     {
       MatNullSpace keep = NULL;
-      PetscCall(RotationsOnly(t, t->ssn->Klin, &keep));
+      PetscCall(RotationsOnly(t, Ka, &keep));
       PetscCall(PCSetUp(t->amg));
       if (keep) {
-        PetscCall(MatSetNearNullSpace(t->ssn->Klin, keep));
+        PetscCall(MatSetNearNullSpace(Ka, keep));
         PetscCall(MatNullSpaceDestroy(&keep));
       }
     }
@@ -104,6 +108,12 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
     for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
     PetscCall(PetscFree(P));
+    if (pu) {
+      Mat Pv;
+      PetscCall(SgFramePairInterpolation(t->ssn->frame, t->P[n - 1], &Pv));
+      PetscCall(MatDestroy(&t->P[n - 1]));
+      t->P[n - 1] = Pv;
+    }
   }
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
   PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
