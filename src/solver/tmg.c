@@ -10,7 +10,10 @@
    Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block): any normal is, in
    the contact frames (-ssn_frame, frame.c), where all of this works on Q^T J Q and Q^T K Q.
    With -ssn_pc_truncated_mg_interp geometric the interpolations are the mesh hierarchy's (gmg.c) and no AMG is set up;
-   the rest is the same. */
+   the rest is the same.
+   Two bodies in the pair's dual-mortar basis (-ssn_pair_transform): the AMG is set up on K in the displacements and its
+   finest interpolation taken into the basis ((T Q)^-1 P, SgFramePairInterpolation), so that the coarse operators are
+   K's own (-ssn_pair_amg_displacements, on by default). */
 #include "solver/ssnimpl.h"
 
 struct _n_SgTMG {
