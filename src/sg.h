@@ -511,6 +511,7 @@ PetscErrorCode SgTMGDestroy(SgTMG *);
 PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
 PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, SgFrame *);        /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform) */
 PetscBool      SgFramePairTransform(SgFrame);                                /* the frame carries that transformation */
+PetscErrorCode SgFramePairInterpolation(SgFrame, Mat, Mat *);                /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
 PetscErrorCode SgFrameDestroy(SgFrame *);
 PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
 PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */

@@ -555,6 +555,25 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: an interpolation P into K's unknowns (the displacements u) taken into the pair's basis, (T Q)^-1 P =
+   Q^T T^-1 P, so that the Galerkin product with the transformed stiffness is K's own:
+   ((T Q)^-1 P)^T (T Q)^T K (T Q) (T Q)^-1 P = P^T K P. An AMG of K coarsens each body apart and keeps each body's
+   rigid motions; in the basis these are not smooth (v_s = u_s - D^-1 M u_m jumps at the slave surface), so the AMG of
+   the transformed stiffness does not find them. Sparse: T^-1 is the identity but at the slave rows. */
+PetscErrorCode SgFramePairInterpolation(SgFrame f, Mat P, Mat *Pv)
+{
+  Mat G, Qm;
+
+  PetscFunctionBeginUser;
+  PetscCheck(f && f->Tinv, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SgFramePairInterpolation: the frame has no pair transformation");
+  PetscCall(MatMatMult(f->Tinv, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
+  PetscCall(FrameMatrix(f, G, &Qm));
+  PetscCall(MatTransposeMatMult(Qm, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Pv));
+  PetscCall(MatDestroy(&Qm));
+  PetscCall(MatDestroy(&G));
+  PetscFunctionReturn(0);
+}
+
 /* whether the frame carries the pair's transformation (its contact blocks are nodal: SgSSNAddBlocks) */
 PetscBool SgFramePairTransform(SgFrame f)
 {

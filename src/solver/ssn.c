@@ -33,6 +33,7 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
     s->frame_local = (PetscBool)!global;
   }
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_transform", "Two bodies (-contact_master_ids): solve the linear systems in the dual-mortar basis u = T v (v_s = u_s - D^-1 M u_m at the slave contact vertices) and the frames of the slave normals, where every condition of the pair is one diagonal entry, as against a rigid obstacle: AMG and the truncated multigrid then apply (default: on with an iterative linear solver, off with a direct one)", &s->pair_transform, &s->pair_transform_set));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_amg_displacements", "Two bodies in the dual-mortar basis with the truncated multigrid: set its AMG up on the stiffness in the displacements (the two bodies apart) and take the finest interpolation into the basis, (T Q)^-1 P, so that its coarse operators are the bodies' own; false: the AMG of the transformed stiffness (T Q)^T K (T Q)", &s->pair_amg_u, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscFunctionReturn(0);
 }
@@ -49,6 +50,7 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   if (!help) PetscFunctionReturn(0);
   PetscCall(PetscMemzero(&s, sizeof(s)));
   s.fp_max_it = 50;
+  s.pair_amg_u = PETSC_TRUE;
   s.fp_omega  = 1;
   s.fp_m      = 8;
   s.fp_rtol   = 1e-13;
@@ -147,6 +149,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SNESMonitorSet(s->snes, SgSSNMonitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
   s->fp_max_it = 50;
+  s->pair_amg_u = PETSC_TRUE;
   s->fp_omega  = 1;
   s->fp_m      = 8;
   s->fp_rtol   = 1e-13;

@@ -10,7 +10,10 @@
    Normals must be axis-aligned (a zero row then is the projection (I - n n^T) of the row block): any normal is, in
    the contact frames (-ssn_frame, frame.c), where all of this works on Q^T J Q and Q^T K Q.
    With -ssn_pc_truncated_mg_interp geometric the interpolations are the mesh hierarchy's (gmg.c) and no AMG is set up;
-   the rest is the same. */
+   the rest is the same.
+   Two bodies in the pair's dual-mortar basis (-ssn_pair_transform): the AMG is set up on K in the displacements and its
+   finest interpolation taken into the basis ((T Q)^-1 P, SgFramePairInterpolation), so that the coarse operators are
+   K's own (-ssn_pair_amg_displacements, on by default). */
 #include "solver/ssnimpl.h"
 
 struct _n_SgTMG {
@@ -88,13 +91,17 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   else {
     /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
        coarser level (-cont_nested) has no such solve and its first operator is a Jacobian with gamma in it */
-    PetscCall(PCSetOperators(t->amg, t->ssn->Klin, t->ssn->Klin));
+    /* two bodies in the pair's basis (-ssn_pair_amg_displacements): the AMG of K in the displacements, its finest
+       interpolation taken into the basis (SgFramePairInterpolation) */
+    const PetscBool pu = (PetscBool)(t->ssn->pair_amg_u && SgFramePairTransform(t->ssn->frame));
+    Mat             Ka = pu ? t->ssn->K : t->ssn->Klin;
+    PetscCall(PCSetOperators(t->amg, Ka, Ka));
     {
       MatNullSpace keep = NULL;
-      PetscCall(RotationsOnly(t, t->ssn->Klin, &keep));
+      PetscCall(RotationsOnly(t, Ka, &keep));
       PetscCall(PCSetUp(t->amg));
       if (keep) {
-        PetscCall(MatSetNearNullSpace(t->ssn->Klin, keep));
+        PetscCall(MatSetNearNullSpace(Ka, keep));
         PetscCall(MatNullSpaceDestroy(&keep));
       }
     }
@@ -104,6 +111,12 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     PetscCall(PetscCalloc3(n, &t->P, n, &t->AK, n, &t->A));
     for (PetscInt l = 1; l < n; l++) t->P[l] = P[l - 1];
     PetscCall(PetscFree(P));
+    if (pu) {
+      Mat Pv;
+      PetscCall(SgFramePairInterpolation(t->ssn->frame, t->P[n - 1], &Pv));
+      PetscCall(MatDestroy(&t->P[n - 1]));
+      t->P[n - 1] = Pv;
+    }
   }
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
   PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
