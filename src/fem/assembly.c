@@ -127,21 +127,29 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
       PetscCall(PetscSortInt(nb, kp->bj + kp->bi[r]));
     }
   }
-  if (size == 1) { /* the whole pattern, scalar rows from the block rows */
+  if (size == 1) { /* the exact row lengths, then the whole pattern, each block row's scalar rows in one call */
     const PetscInt nb = bend - bstart;
-    PetscInt      *ii, *jj;
-    PetscCall(PetscMalloc2(n + 1, &ii, kp->bi[nb] * dim * dim + 1, &jj));
-    ii[0] = 0;
-    for (PetscInt r = 0; r < nb; r++)
-      for (PetscInt i = 0; i < dim; i++) {
-        PetscInt *row = jj + ii[r * dim + i];
-        for (PetscInt k = kp->bi[r]; k < kp->bi[r + 1]; k++)
-          for (PetscInt j = 0; j < dim; j++) *row++ = kp->bj[k] * dim + j;
-        ii[r * dim + i + 1] = ii[r * dim + i] + (kp->bi[r + 1] - kp->bi[r]) * dim;
-      }
-    PetscCall(MatSeqAIJSetPreallocationCSR(p->K, ii, jj, NULL));
-    PetscCall(PetscFree2(ii, jj));
+    PetscInt      *len, *cols, nmax = 0;
+    PetscScalar   *zero;
+    PetscCall(PetscMalloc1(n + 1, &len));
+    for (PetscInt r = 0; r < nb; r++) {
+      nmax = PetscMax(nmax, kp->bi[r + 1] - kp->bi[r]);
+      for (PetscInt i = 0; i < dim; i++) len[r * dim + i] = (kp->bi[r + 1] - kp->bi[r]) * dim;
+    }
+    PetscCall(MatSeqAIJSetPreallocation(p->K, 0, len));
+    PetscCall(PetscFree(len));
     PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCall(PetscCalloc2(nmax * dim + 1, &cols, nmax * dim * dim + 1, &zero));
+    for (PetscInt r = 0; r < nb; r++) {
+      PetscInt rows[3], nc = kp->bi[r + 1] - kp->bi[r];
+      for (PetscInt k = 0; k < nc; k++)
+        for (PetscInt j = 0; j < dim; j++) cols[k * dim + j] = kp->bj[kp->bi[r] + k] * dim + j;
+      for (PetscInt i = 0; i < dim; i++) rows[i] = r * dim + i;
+      PetscCall(MatSetValues(p->K, dim, rows, nc * dim, cols, zero, INSERT_VALUES));
+    }
+    PetscCall(PetscFree2(cols, zero));
+    PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
     PetscCall(MatSeqAIJGetArray(p->K, &kp->a));
   } else { /* the owned rows' pattern, each row in increasing order */
     PetscInt    *cols, nmax = 0;
