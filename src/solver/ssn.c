@@ -60,16 +60,47 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   PetscFunctionReturn(0);
 }
 
+/* A and B sequential AIJ with the same nonzero pattern */
+static PetscErrorCode SamePatternSeqAIJ(Mat A, Mat B, PetscBool *same)
+{
+  PetscBool       sa, sb, fa, fb;
+  const PetscInt *ia, *ja, *ib, *jb;
+  PetscInt        na, nb;
+
+  PetscFunctionBeginUser;
+  *same = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQAIJ, &sa));
+  PetscCall(PetscObjectTypeCompare((PetscObject)B, MATSEQAIJ, &sb));
+  if (!sa || !sb) PetscFunctionReturn(0);
+  PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &fa));
+  PetscCall(MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &fb));
+  if (fa && fb && na == nb) {
+    PetscCall(PetscArraycmp(ia, ib, na + 1, same));
+    if (*same) PetscCall(PetscArraycmp(ja, jb, ia[na], same));
+  }
+  PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &fa));
+  PetscCall(MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &fb));
+  PetscFunctionReturn(0);
+}
+
 /* -ssn_frame: the Jacobians are assembled in the contact frames into Pf (a copy of Q^T K Q) and the KSP solves with
    it in the frames (SgFrameAttachKSP); the elasticity solve without contact takes Q^T K Q (SgLinearSolveUnconstrained
-   finds both on the KSP) */
+   finds both on the KSP). Pf is the working matrix J itself where Q^T K Q has J's pattern (one rank: the frame rotates
+   a copy of K in place): J, the controller's copy of K, has no other use in the frames, and one copy of K less is
+   kept (about 12 % of the peak memory of Example 2 at 1.07e6 unknowns). */
 static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
 {
   MatNullSpace nsp;
+  PetscBool    same;
 
   PetscFunctionBeginUser;
   PetscCall(SgFrameGetStiffness(s->frame, &s->Klin));
-  PetscCall(MatDuplicate(s->Klin, MAT_COPY_VALUES, &s->Pf));
+  PetscCall(SamePatternSeqAIJ(s->Klin, s->J, &same));
+  if (same) {
+    PetscCall(MatCopy(s->Klin, s->J, SAME_NONZERO_PATTERN));
+    PetscCall(PetscObjectReference((PetscObject)s->J));
+    s->Pf = s->J;
+  } else PetscCall(MatDuplicate(s->Klin, MAT_COPY_VALUES, &s->Pf));
   PetscCall(MatGetNearNullSpace(s->Klin, &nsp));
   if (nsp) PetscCall(MatSetNearNullSpace(s->Pf, nsp));
   PetscCall(MatSetOption(s->Pf, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
