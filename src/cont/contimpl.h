@@ -169,7 +169,7 @@ PetscErrorCode SgContCreate_IPF(SgCont);
 PetscErrorCode SgContCreate_Fast(SgCont);
 PetscErrorCode SgContCreate_PDAS(SgCont);
 PetscErrorCode SgContCreate_VI(SgCont);
-PetscErrorCode SgContNestedCheck(SgCont);   /* nested.c: -cont_nested against the problem (SgContSetFromOptions) */
+PetscErrorCode SgContNestedCheck(SgCont);              /* nested.c: -cont_nested against the problem (SgContSetFromOptions) */
 PetscErrorCode SgContNestedDefault(SgCont, PetscBool); /* nested.c: the default of -cont_nested with -dm_refine (SgContSetFromOptions) */
-PetscErrorCode SgContNestedStart(SgCont);   /* nested.c: solve the coarse levels, start this solve from them */
-PetscErrorCode SgContNestedResume(SgCont);  /* nested.c: after the type's start, the coarse level's gamma and shift */
+PetscErrorCode SgContNestedStart(SgCont);              /* nested.c: solve the coarse levels, start this solve from them */
+PetscErrorCode SgContNestedResume(SgCont);             /* nested.c: after the type's start, the coarse level's gamma and shift */

@@ -114,7 +114,7 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
     PetscCall(PetscMalloc1(nnzb + 1, &kp->bj));
     for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
     for (PetscInt v = 0; v < m->nv; v++) {
-      const PetscInt r = m->goff[v] < 0 ? -1 : m->gblock[v] - bstart;
+      const PetscInt r  = m->goff[v] < 0 ? -1 : m->gblock[v] - bstart;
       PetscInt       nb = 0;
       if (r < 0) continue;
       for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)

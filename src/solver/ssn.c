@@ -49,11 +49,11 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) PetscFunctionReturn(0);
   PetscCall(PetscMemzero(&s, sizeof(s)));
-  s.fp_max_it = 50;
+  s.fp_max_it  = 50;
   s.pair_amg_u = PETSC_TRUE;
-  s.fp_omega  = 1;
-  s.fp_m      = 8;
-  s.fp_rtol   = 1e-13;
+  s.fp_omega   = 1;
+  s.fp_m       = 8;
+  s.fp_rtol    = 1e-13;
   PetscOptionsBegin(comm, prefix, "Semismooth Newton (active set) solver", NULL);
   PetscCall(SSNOptions(PetscOptionsObject, &s, &condense, &tmg, &interp, &frame));
   PetscOptionsEnd();
@@ -179,12 +179,12 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SNESLineSearchSetPreCheck(ls, SgSSNFrictionPreCheck, s)); /* the law's step correction (none without friction) */
   PetscCall(SNESMonitorSet(s->snes, SgSSNMonitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
-  s->fp_max_it = 50;
+  s->fp_max_it  = 50;
   s->pair_amg_u = PETSC_TRUE;
-  s->fp_omega  = 1;
-  s->fp_m      = 8;
-  s->fp_rtol   = 1e-13;
-  *ssn         = s;
+  s->fp_omega   = 1;
+  s->fp_m       = 8;
+  s->fp_rtol    = 1e-13;
+  *ssn          = s;
   PetscFunctionReturn(0);
 }
 
