@@ -73,6 +73,108 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
   PetscFunctionReturn(0);
 }
 
+/* On several ranks the smoothers' sweeps are l1 Gauss-Seidel (hypre's l1-GS, Baker, Falgout, Kolev and Yang 2011):
+   each rank sweeps its own rows with the diagonal a_ii + l1_i, l1_i the sum of |a_ij| over the columns of other ranks
+   (kept at 0 where that sum is at most a_ii / 3: their Remark 6.2, as hypre's l1 norms); PCSOR's local sweeps (a_ii
+   alone) are Gauss-Seidel within a rank and Jacobi across ranks, whose multigrid is not positive definite where the
+   coupling across ranks is strong: the stiffness in the pair's dual-mortar basis (frame.c), where a master vertex
+   couples through the slave's rows to master vertices far away on other ranks, gave CG DIVERGED_INDEFINITE_PC on 2
+   ranks (tests/pair2r.ini). With W the sweep's lower (upper) triangle, W + W^T - A = D + 2 L1 - A_offrank is
+   positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a backward one up is
+   symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
+   on one rank the smoothers stay PCSOR (the same sweeps: no rows of other ranks). */
+typedef struct {
+  Mat       Ad;     /* the diagonal block of the smoother's matrix, its diagonal plus l1 */
+  Vec       xl, yl; /* sequential views of the local parts */
+  PetscBool back;   /* a backward sweep */
+} L1GS;
+
+static PetscErrorCode SetUp_L1GS(PC pc)
+{
+  L1GS              *g;
+  Mat                P, Ad, Ao;
+  Vec                d;
+  PetscScalar       *da;
+  const PetscScalar *va;
+  PetscInt           m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &g));
+  PetscCall(PCGetOperators(pc, NULL, &P));
+  PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
+  PetscCall(MatDestroy(&g->Ad));
+  PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &g->Ad));
+  PetscCall(MatGetLocalSize(Ad, &m, NULL));
+  PetscCall(MatCreateVecs(g->Ad, &d, NULL));
+  PetscCall(MatGetDiagonal(g->Ad, d));
+  PetscCall(VecGetArray(d, &da));
+  for (PetscInt i = 0; i < m; i++) {
+    PetscInt  nc;
+    PetscReal l1 = 0;
+    PetscCall(MatGetRow(Ao, i, &nc, NULL, &va));
+    for (PetscInt k = 0; k < nc; k++) l1 += PetscAbsScalar(va[k]);
+    PetscCall(MatRestoreRow(Ao, i, &nc, NULL, &va));
+    da[i] = l1 > PetscAbsScalar(da[i]) / 3 ? l1 : 0;
+  }
+  PetscCall(VecRestoreArray(d, &da));
+  PetscCall(MatDiagonalSet(g->Ad, d, ADD_VALUES));
+  PetscCall(VecDestroy(&d));
+  if (!g->xl) {
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->xl));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->yl));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
+{
+  L1GS              *g;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &g));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  PetscCall(VecPlaceArray(g->xl, xa));
+  PetscCall(VecPlaceArray(g->yl, ya));
+  PetscCall(MatSOR(g->Ad, g->xl, 1.0, (MatSORType)((g->back ? SOR_BACKWARD_SWEEP : SOR_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, g->yl));
+  PetscCall(VecResetArray(g->xl));
+  PetscCall(VecResetArray(g->yl));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_L1GS(PC pc)
+{
+  L1GS *g;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &g));
+  PetscCall(MatDestroy(&g->Ad));
+  PetscCall(VecDestroy(&g->xl));
+  PetscCall(VecDestroy(&g->yl));
+  PetscCall(PetscFree(g));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetL1GS(PC pc, PetscBool back)
+{
+  L1GS *g;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&g));
+  g->back = back;
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, g));
+  PetscCall(PCShellSetName(pc, back ? "backward l1 Gauss-Seidel" : "l1 Gauss-Seidel"));
+  PetscCall(PCShellSetSetUp(pc, SetUp_L1GS));
+  PetscCall(PCShellSetApply(pc, Apply_L1GS));
+  PetscCall(PCShellSetDestroy(pc, Destroy_L1GS));
+  PetscFunctionReturn(0);
+}
+
 /* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
    level (kept), and the smoothers: after BoomerAMG one Gauss-Seidel sweep forward before and one backward after the
    coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel gave NaN
@@ -84,9 +186,11 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   const char *prefix;
   char        mgprefix[256];
   KSP         ksp;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
+  PetscCallMPI(MPI_Comm_size(t->ssn->comm, &size));
   if (t->geo) n = t->nlevels;
   else {
     /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
@@ -164,6 +268,10 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
       PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
       PetscCall(KSPGetPC(sm[k], &spc));
+      if (size > 1) { /* l1 Gauss-Seidel (SetL1GS) */
+        PetscCall(SetL1GS(spc, (PetscBool)(k == 1)));
+        continue;
+      }
       PetscCall(PCSetType(spc, PCSOR));
       PetscCall(PCSORSetSymmetric(spc, k == 0 ? SOR_LOCAL_FORWARD_SWEEP : SOR_LOCAL_BACKWARD_SWEEP));
     }
