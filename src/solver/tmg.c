@@ -177,8 +177,9 @@ static PetscErrorCode SetL1GS(PC pc, PetscBool back)
 
 /* The first set-up: the AMG on the operator, its interpolations into a PCMG, the Galerkin operators of K on every
    level (kept), and the smoothers: after BoomerAMG one Gauss-Seidel sweep forward before and one backward after the
-   coarse correction (as hypre's l1-Gauss-Seidel pair), after GAMG its own Chebyshev/Jacobi (Gauss-Seidel gave NaN
-   there, as it diverges in GAMG itself, part A of bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
+   coarse correction (as hypre's l1-Gauss-Seidel pair; on several ranks l1 Gauss-Seidel itself, SetL1GS), after GAMG
+   its own Chebyshev/Jacobi (Gauss-Seidel gave NaN there, as it diverges in GAMG itself, part A of
+   bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
