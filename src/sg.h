@@ -209,6 +209,28 @@ PetscErrorCode           SgContactLawView(SgContactLaw, PetscViewer);
 PetscErrorCode           SgContactLawDestroy(SgContactLaw *);
 PetscErrorCode           SgContactLawGetSlipReference(SgContactLaw, PetscReal **);   /* the law's: 2 n dim (NULL without a tangential part) */
 PetscErrorCode           SgContactLawGetSlipReferenceSize(SgContactLaw, PetscInt *); /* its length: 2 n dim, or 0 */
+/* What the solvers ask of a law (SgContactLawGetProperties): the SSN, the controllers and the output choose their
+   policies from these properties and never test which law it is, so a new law is one file. A type states two facts
+   when created (friction: a tangential part; coupled: its bound depends on lam_N) and gets the properties that follow
+   from them; its op getproperties may change them. All false: the frictionless law (and a problem without contact),
+   the frictionless code paths. */
+typedef struct {
+  PetscBool tangential;  /* a tangential part: the multipliers lam_T, lamhat_T, the stick/slip states and the slip
+                            reference (the SSN's tangential state and monitor, the per-step states of the checkpoint,
+                            nested iteration's transfer of lamhat_T, the prescribed slip, the pair's tangential blocks) */
+  PetscBool nonlinear;   /* its SSN terms are nonlinear on fixed sets (the slip direction z/|z|): Newton steps on settled
+                            sets converge, they do not land (the residual test against the load, the stagnation test,
+                            no cycle test, the matrix changes on the same set), an iterative solve that fails is repeated
+                            by sparse LU; the solvers built on the normal active set alone (-ssn_condense,
+                            -ssn_pc_truncated_mg, -cont_type fast and vi) do not apply: ipf is the default controller */
+  PetscBool coupled;     /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians (LU, BiCGStab; no CG or
+                            Cholesky), a failed Newton iteration gets the fixed point on the frozen bound, pf and ipf
+                            fall back to the shifted path (-cont_coulomb_shifted_path), PDAS may couple the slip
+                            force (-cont_pdas_coulomb_coupled) */
+  PetscBool dissipative; /* it dissipates work: the solution does not minimize the elastic energy V alone (no energy
+                            check of the solution) */
+} SgContactLawProperties;
+PetscErrorCode SgContactLawGetProperties(SgContactLaw, SgContactLawProperties *); /* a NULL law: all false */
 enum { SG_FRICTION_FREE  = 0,
        SG_FRICTION_STICK = 1,
        SG_FRICTION_SLIP  = 2 }; /* the state of a contact vertex */
@@ -314,9 +336,8 @@ PetscErrorCode SgContactGetArea(SgContact, PetscReal *);
 /* The contact law on Gamma_c, a read-only view for the loops of the solvers (SgContactGetView). */
 typedef struct {
   /* friction on Gamma_c (-friction_type): the law gives the bound of |lam_T| (SgContactLawBound) */
-  SgContactLaw law;
-  PetscBool    friction; /* the law has a tangential part */
-  PetscBool    coupled;  /* its bound depends on lam_N (Coulomb): nonsymmetric Jacobians */
+  SgContactLaw           law;
+  SgContactLawProperties props; /* what the solvers ask of it (SgContactLawGetProperties) */
   /* the law's gamma_T / gamma and slip reference: SgContactLawGetInfo, SgContactLawGetSlipReference */
 } SgContactView;
 PetscErrorCode SgContactGetView(SgContact, SgContactView *);

@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -265,7 +265,7 @@ static PetscErrorCode CtlSolve(SgProblem p, SgCont ct, PetscReal t, CtlResult *r
   if (c) {
     SgContactView cv;
     PetscCall(SgContactGetView(c, &cv));
-    if (cv.friction) {
+    if (cv.props.tangential) {
       SgFrictionSummary fs;
       PetscCall(SgContactGetFrictionSummary(c, &fs)); /* of the KKT measures of this solve's result */
       r->friction = fs.force_norm;
@@ -932,6 +932,93 @@ static PetscErrorCode TestPairObstacleAPI(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* The law's properties (SgContactLawGetProperties) for every registered law, with what they are checked against,
+   computed from the law itself: the slip reference and the solver's tangential state it sizes (a tangential part),
+   and its bound at two normal multipliers and its derivative (a bound from lam_N). h7_linear, registered here, is a
+   law that states its own properties through ops.getproperties (a tangential part that is linear on fixed sets). */
+static void Bound_H7Linear(SgContactLaw law, PetscInt i, PetscReal lamN, PetscReal *g, PetscReal *dg)
+{
+  (void)law;
+  (void)i;
+  (void)lamN;
+  *g = 0.25;
+  if (dg) *dg = 0;
+}
+
+static PetscErrorCode GetProperties_H7Linear(SgContactLaw law, SgContactLawProperties *p)
+{
+  PetscFunctionBeginUser;
+  (void)law;
+  p->nonlinear = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LawCreate_H7Linear(SgContactLaw law)
+{
+  PetscFunctionBeginUser;
+  law->friction          = PETSC_TRUE;
+  law->coupled           = PETSC_FALSE;
+  law->ops.bound         = Bound_H7Linear;
+  law->ops.getproperties = GetProperties_H7Linear;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestLawProperties(SgSummary s)
+{
+  SgContactLawProperties p;
+  const PetscReal        x[2]  = {0.5, 0};
+  PetscInt               nlaws = 0;
+  const char            *name  = NULL;
+  char                   key[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(SgContactLawGetProperties(NULL, &p)); /* no law (no contact): the frictionless paths */
+  PetscCall(SgSummarySetBool(s, "null_any", (PetscBool)(p.tangential || p.nonlinear || p.coupled || p.dissipative)));
+  PetscCall(SgContactLawRegister("h7_linear", LawCreate_H7Linear));
+  PetscCall(PetscOptionsSetValue(NULL, "-friction_bound", "0.2"));
+  PetscCall(PetscOptionsSetValue(NULL, "-friction_coefficient", "0.3"));
+  for (PetscInt k = 0;; k++) {
+    SgContactLaw      law = NULL;
+    SgContactLawState st;
+    PetscReal         g1, g2, dg, *lamT;
+    PetscInt          m;
+
+    PetscCall(SgContactLawGetTypeName(k, &name));
+    if (!name) break;
+    PetscCall(PetscOptionsSetValue(NULL, "-friction_type", name));
+    PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Law properties", NULL);
+    PetscCall(SgContactLawCreateFromOptions(PetscOptionsObject, PETSC_COMM_WORLD, 2, &law));
+    PetscOptionsEnd();
+    PetscCall(SgContactLawSetVertices(law, 1, x));
+    PetscCall(SgContactLawGetProperties(law, &p));
+    PetscCall(SgContactLawGetSlipReferenceSize(law, &m));
+    PetscCall(SgContactLawStateCreate(law, &st));
+    PetscCall(SgContactLawStateGetArrays(st, NULL, &lamT, NULL));
+    SgContactLawBound(law, 0, 1.0, &g1, &dg);
+    SgContactLawBound(law, 0, 2.0, &g2, NULL);
+#define H7KEY(what) (PetscSNPrintf(key, sizeof(key), "law%" PetscInt_FMT "_%s", k, what), key)
+    PetscCall(SgSummarySetString(s, H7KEY("name"), name));
+    PetscCall(SgSummarySetBool(s, H7KEY("tangential"), p.tangential));
+    PetscCall(SgSummarySetBool(s, H7KEY("nonlinear"), p.nonlinear));
+    PetscCall(SgSummarySetBool(s, H7KEY("coupled"), p.coupled));
+    PetscCall(SgSummarySetBool(s, H7KEY("dissipative"), p.dissipative));
+    PetscCall(SgSummarySetInt(s, H7KEY("slipref_size"), m));
+    PetscCall(SgSummarySetBool(s, H7KEY("has_lamT"), (PetscBool)(lamT != NULL)));
+    PetscCall(SgSummarySetReal(s, H7KEY("g1"), g1));
+    PetscCall(SgSummarySetReal(s, H7KEY("g2"), g2));
+    PetscCall(SgSummarySetReal(s, H7KEY("dg"), dg));
+#undef H7KEY
+    PetscCall(SgContactLawStateDestroy(&st));
+    PetscCall(SgContactLawDestroy(&law));
+    nlaws++;
+  }
+  PetscCall(SgSummarySetInt(s, "nlaws", nlaws));
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_type"));
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_bound"));
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_coefficient"));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -960,6 +1047,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "pair", &eq) == 0 && eq) PetscCall(TestPair(s));
   else if (PetscStrcmp(test, "pairapi", &eq) == 0 && eq) PetscCall(TestPairAPI(s));
   else if (PetscStrcmp(test, "pairobstacleapi", &eq) == 0 && eq) PetscCall(TestPairObstacleAPI(s));
+  else if (PetscStrcmp(test, "lawproperties", &eq) == 0 && eq) PetscCall(TestLawProperties(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

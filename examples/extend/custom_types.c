@@ -89,7 +89,7 @@ static PetscErrorCode Start_Penalty(SgCont ct)
   Penalty *pn = (Penalty *)ct->data;
 
   PetscFunctionBeginUser;
-  PetscCheck(!ct->cv.friction, ct->comm, PETSC_ERR_SUP, "-cont_type penalty: not written for friction");
+  PetscCheck(!ct->cv.props.tangential, ct->comm, PETSC_ERR_SUP, "-cont_type penalty: not written for friction");
   ct->gamma = pn->gamma;
   for (PetscInt i = 0; i < ct->n; i++) ct->lamhat[i] = 0;
   PetscFunctionReturn(0);

@@ -189,7 +189,7 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
 PetscErrorCode SgContSolveContinuation(SgCont ct)
 {
   PetscBool       stop = PETSC_FALSE, ok, ssnfail = PETSC_FALSE;
-  const PetscBool shifted = (PetscBool)(ct->c && ct->cv.coupled && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
+  const PetscBool shifted = (PetscBool)(ct->c && ct->cv.props.coupled && ct->coulomb_shifted && !ct->ops.shifts && !ct->restarted && (!strcmp(ct->type, SGCONTPF) || !strcmp(ct->type, SGCONTIPF)));
 
   PetscFunctionBeginUser;
   if (!ct->restarted && (!ct->warm || ct->nested_start)) PetscCall(ct->ops.start(ct));

@@ -147,13 +147,13 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
     if (ct->lin_inherited) { /* a coarse level of -cont_nested: the finest level's default, SSN settings included */
       iterative = (PetscBool)strcmp(ct->lin.ksp, KSPPREONLY);
       PetscCall(PetscSNPrintf(ct->solver_desc, sizeof(ct->solver_desc), "the finest level's default (-cont_nested)"));
-    } else PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.coupled), pair, &ct->lin, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
+    } else PetscCall(SgLinearSolverDefaults(ct->prob, ((PetscObject)ct)->prefix, (PetscBool)(ct->c && ct->cv.props.coupled), pair, &ct->lin, &iterative, ct->solver_desc, sizeof(ct->solver_desc)));
     solver_default = (PetscBool)(ct->lin.on && !ct->lin_inherited);
   }
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   ct->type_default = (PetscBool)!ct->type[0];
   /* fast is not built for friction: ipf there */
-  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.friction ? SGCONTFAST : SGCONTIPF)));
+  if (ct->type_default) PetscCall(PetscStrcpy(ct->type, !ct->c ? SGCONTNONE : ((dim == 3 || iterative) && !ct->cv.props.nonlinear ? SGCONTFAST : SGCONTIPF)));
   PetscCall(SgContNestedDefault(ct, iterative));
   PetscObjectOptionsBegin((PetscObject)ct);
   PetscCall(CommonOptions(ct, PetscOptionsObject));
@@ -171,7 +171,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->max_outer > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_max_it: must be positive, got %" PetscInt_FMT, ct->max_outer);
   PetscCheck(PetscIsNormalReal(ct->gamma_max) && ct->gamma_max > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_gamma_max: must be positive and finite, got %g", (double)ct->gamma_max);
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
-  if (ct->c && ct->cv.friction) {
+  if (ct->c && ct->cv.props.nonlinear) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
     PetscBool pair;
     PetscCall(SgContactIsPair(ct->c, &pair)); /* two bodies: pdas is refused for the pair itself */

@@ -139,7 +139,7 @@ static PetscErrorCode CheckResult(SgCont ct)
     PetscCall(SgContFail(ct, "PRECISION_LIMIT: double precision cannot certify -cont_kkt_tol %.3e here: forming K y - b rounds the nodal forces by %.3e of the largest force on the body (lambda/mu = %.3g, -nu %.16g); no solver can reach or verify it (-cont_kkt_tol above %.1e, nu farther from 0.5 or a coarser mesh can be solved); the run: %s%s", (double)ct->kkt_tol, (double)ct->kkt.roundoff, (double)(lambda / mu), (double)nu, (double)(2 * ct->kkt.roundoff), ct->converged ? "CONVERGED, " : "", was));
     PetscFunctionReturn(0);
   }
-  if (ct->converged && !ct->cv.friction && !strcmp(ct->problem, "P")) {
+  if (ct->converged && !ct->cv.props.dissipative && !strcmp(ct->problem, "P")) {
     PetscReal dmin = PETSC_MAX_REAL, V0, margin;
     PetscInt  ndofs;
     for (PetscInt i = 0; i < ct->n; i++) dmin = PetscMin(dmin, ct->d[i]);

@@ -49,8 +49,8 @@ PetscErrorCode SgContNestedDefault(SgCont ct, PetscBool iterative)
   PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
   if (pair || !own || nref < 1) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  if (dim == 2 && !iterative && !ct->cv.friction) PetscFunctionReturn(0); /* 2D direct, frictionless: the levels, if kept, stay unused */
-  if (dim == 3 && ct->cv.friction) PetscFunctionReturn(0);                /* (fem/mesh.c keeps no levels there) */
+  if (dim == 2 && !iterative && !ct->cv.props.nonlinear) PetscFunctionReturn(0); /* 2D direct, frictionless: the levels, if kept, stay unused */
+  if (dim == 3 && ct->cv.props.tangential) PetscFunctionReturn(0);               /* (fem/mesh.c keeps no levels there) */
   PetscCall(SgElasticityGetDMs(ct->prob, &dm, NULL, NULL, NULL));
   PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, nref));
   PetscCall(PetscObjectQuery((PetscObject)dm, name, &lv));
@@ -187,11 +187,11 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
   PetscCall(DMRestoreLocalVector(dmb, &yb));
   /* the multipliers: the normal one, then with friction the tangential one */
   PetscCall(PetscFree(b->nested_lamhat));
-  PetscCall(PetscCalloc1(n * (1 + (b->cv.friction ? dim : 0)) + 1, &b->nested_lamhat));
+  PetscCall(PetscCalloc1(n * (1 + (b->cv.props.tangential ? dim : 0)) + 1, &b->nested_lamhat));
   lb = b->nested_lamhat;
   PetscCall(TransferContactField(a, b, map, PETSC_FALSE, 1, a->lam, lb));
   PetscCall(PetscArraycpy(b->lam, lb, n));
-  if (b->cv.friction && a->ssn) {
+  if (b->cv.props.tangential && a->ssn) {
     PetscReal       *lhT;
     const PetscReal *mT;
     PetscCall(SgSSNGetFriction(a->ssn, &lhT, &mT, NULL));
@@ -213,7 +213,7 @@ PetscErrorCode SgContNestedResume(SgCont ct)
   ct->gamma = ct->gamma_warm;
   if (!ct->ssn || !ct->ops.shifts || !ct->nested_lamhat) PetscFunctionReturn(0);
   PetscCall(PetscArraycpy(ct->lamhat, ct->nested_lamhat, ct->n));
-  if (ct->cv.friction) {
+  if (ct->cv.props.tangential) {
     PetscReal *lhT;
     PetscInt   dim;
     PetscCall(SgElasticityGetDimension(ct->prob, &dim));

@@ -227,8 +227,8 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCall(PetscMemzero(w, sizeof(*w)));
   w->A       = ct->J;
   w->kktprev = PETSC_MAX_REAL;
-  w->fr      = c->friction;
-  w->coupled = (PetscBool)(c->coupled && pd->coupled);
+  w->fr      = c->props.tangential;
+  w->coupled = (PetscBool)(c->props.coupled && pd->coupled);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   w->dim = dim;
   PetscCall(SgElasticityGetOperators(ct->prob, &w->K, &w->b));

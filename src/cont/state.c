@@ -299,7 +299,7 @@ static PetscErrorCode LoadStepsSave(SgCont ct, SgCheckpointWriter w, PetscBool s
     PetscCall(SgCheckpointWriterReals(w, "load_dirichlet_values", ct->ndv * ct->nsteps, ct->dvsteps));
     PetscCall(SgCheckpointWriterAttribute(w, "load_dirichlet_count", PETSC_INT, &ct->ndv));
   }
-  if (ct->c && ct->cv.friction) {
+  if (ct->c && ct->cv.props.tangential) {
     PetscCall(PetscMalloc1(4 * ct->nsteps + 1, &a));
     for (PetscInt i = 0; i < ct->nsteps; i++) {
       a[4 * i]     = s[i].nstick;
@@ -384,7 +384,7 @@ static PetscErrorCode LoadStepsData(SgCont ct, SgCheckpointReader r, const LoadH
     }
     PetscCall(PetscFree(a));
     PetscCall(SgCheckpointReaderHasDataset(r, "load_steps_friction", &has));
-    if (has && ct->c && ct->cv.friction) {
+    if (has && ct->c && ct->cv.props.tangential) {
       PetscCall(SgCheckpointReaderReals(r, "load_steps_friction", 4 * h->nsteps, NULL, &a));
       for (PetscInt i = 0; i < h->nsteps; i++) {
         steps[i].nstick            = (PetscInt)a[4 * i];

@@ -7,7 +7,12 @@ static PetscErrorCode FrictionFromOptions(PetscOptionItems *PetscOptionsObject, 
 {
   PetscFunctionBeginUser;
   PetscCall(SgContactLawCreateFromOptions(PetscOptionsObject, c->comm, c->dim, &c->law));
-  PetscCall(SgContactLawGetInfo(c->law, &c->friction, NULL, &c->fgfac));
+  PetscCall(SgContactLawGetInfo(c->law, NULL, NULL, &c->fgfac));
+  {
+    SgContactLawProperties props;
+    PetscCall(SgContactLawGetProperties(c->law, &props));
+    c->tangpart = props.tangential;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -72,7 +77,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscCall(SgContactPairFromOptions(PetscOptionsObject, c));
   PetscOptionsEnd();
   PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
-  PetscCheck(c->bnd.active || !c->friction, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", c->law->type);
+  PetscCheck(c->bnd.active || !c->tangpart, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", c->law->type);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
     PetscCall(SgContactLawDestroy(&c->law));
     PetscCall(PetscFree(c->prefix));
@@ -204,7 +209,7 @@ PetscErrorCode SgContactSetUp(SgContact c)
   /* the first load step's slip: from y = 0; the reference of the unknowns, then (ypref) of the full displacement:
      the law's (VerticesDone) */
   PetscCall(VerticesDone(c));
-  if (c->friction) PetscCall(PrescribedSetUp(c));
+  if (c->tangpart) PetscCall(PrescribedSetUp(c));
   PetscCall(PetscLogEventEnd(SG_ContactSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -401,9 +406,8 @@ PetscErrorCode SgContactGetArea(SgContact c, PetscReal *area)
 PetscErrorCode SgContactGetView(SgContact c, SgContactView *v)
 {
   PetscFunctionBeginUser;
-  v->law      = c->law;
-  v->friction = c->friction;
-  v->coupled  = c->law->coupled;
+  v->law = c->law;
+  PetscCall(SgContactLawGetProperties(c->law, &v->props));
   PetscFunctionReturn(0);
 }
 

@@ -113,7 +113,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(PetscFree(vof));
   /* the Jacobian's pattern: K's and B^T B's (with friction that of R^T diag(B_i) R with full dim x dim blocks B_i,
      which holds B^T B's: B = diag(D) N^T R) */
-  if (c->friction) PetscCall(PairBlocksProduct(c, NULL, &BtB));
+  if (c->tangpart) PetscCall(PairBlocksProduct(c, NULL, &BtB));
   else PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
   PetscCall(MatZeroEntries(BtB));
   {
@@ -136,7 +136,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(VecCreateMPIWithArray(c->comm, 1, nrow * dim, PETSC_DETERMINE, NULL, &c->pw));
   PetscCall(VecDuplicate(c->pw, &c->pf));
   PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));
-  if (c->friction) {
+  if (c->tangpart) {
     /* the friction arrays of contact.c (PrescribedSetUp for an obstacle): the slip reference is the relative
        displacement R y at the start of the load step (the law's, allocated in VerticesDone); no vertex has prescribed
        tangential motion (the components a support fixes are out of R) */

@@ -91,6 +91,9 @@ typedef struct {
      of length nz (dim components, the normal's axis component 0), its last state st and slip direction t (updated
      on slip; *dt its largest change); the bound into *g. NULL: free */
   char (*pdasstate)(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
+  /* the properties the solvers ask for (SgContactLawGetProperties; sg.h describes them), filled beforehand with those
+     that follow from the flags friction and coupled; NULL: those */
+  PetscErrorCode (*getproperties)(SgContactLaw, SgContactLawProperties *);
 } SgContactLawOps;
 
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */
@@ -145,7 +148,7 @@ struct _n_SgContact {
   PetscReal         area;
   char             *prefix;
   SgContactLaw      law;      /* -friction_type and its parameters */
-  PetscBool         friction; /* the law has a tangential part */
+  PetscBool         tangpart; /* the law's property tangential (SgContactLawGetProperties) */
   PetscReal         fgfac;    /* -friction_gamma_factor c: gamma_T = c gamma (the law's) */
   PetscReal        *xc;       /* the coordinates of the contact vertices, n dim (for the law) */
   SgFrictionSummary fsum;     /* of the last SgContactKKT */

@@ -592,6 +592,21 @@ PetscErrorCode SgContactLawGetInfo(SgContactLaw law, PetscBool *friction, PetscB
   PetscFunctionReturn(0);
 }
 
+/* What the solvers ask of the law: the properties that follow from its flags (a tangential part is nonlinear on fixed
+   sets and dissipates; a bound from lam_N makes the Jacobians nonsymmetric), then the type's own (ops.getproperties) */
+PetscErrorCode SgContactLawGetProperties(SgContactLaw law, SgContactLawProperties *p)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(p, sizeof(*p)));
+  if (!law) PetscFunctionReturn(0);
+  p->tangential  = law->friction;
+  p->nonlinear   = law->friction;
+  p->coupled     = law->coupled;
+  p->dissipative = law->friction;
+  if (law->ops.getproperties) PetscCall(law->ops.getproperties(law, p));
+  PetscFunctionReturn(0);
+}
+
 /* the law's own parameters, by their summary and checkpoint names (friction_bound, friction_coefficient, ...), then
    friction_gamma_factor: at most SG_LAW_MAX_PARAMETERS */
 PetscErrorCode SgContactLawGetParameters(SgContactLaw law, PetscInt *n, const char *names[], PetscReal values[])

@@ -30,7 +30,7 @@ PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal
     }
     PetscFunctionReturn(0);
   }
-  settled = (PetscBool)(s->nentered + s->nleft == 0 && (!s->cv.friction || s->nfchanged == 0));
+  settled = (PetscBool)(s->nentered + s->nleft == 0 && (!s->cv.props.tangential || s->nfchanged == 0));
   if (s->stop_test) { /* a controller's own test replaces the one below */
     PetscCall(s->stop_test(s, it, fnorm, settled, reason, s->stop_ctx));
     PetscFunctionReturn(0);
@@ -39,13 +39,13 @@ PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal
      unchanged active set no longer halves it, at the round-off floor of the (gamma-scaled) residual, which must
      lie below sqrt(rtol) max(||F_0||, ||b||) or at the floor of forming the gamma-scaled terms (s->ffloor: at large
      gamma that floor is above sqrt(rtol) ||b||, and the steps repeat the same iterate until -snes_max_it) */
-  if (s->cv.friction) {
+  if (s->cv.props.nonlinear) {
     /* friction: ||F_0|| grows with gamma (the penetration of the start) and says nothing about the slip set, where
        the Newton steps converge instead of landing: measured against the load ||b|| alone */
     small = (PetscBool)(fnorm <= PetscMax(atol, rtol * s->bnorm) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * s->bnorm, s->ffloor)));
   } else small = (PetscBool)(!s->residual_test || fnorm <= PetscMax(atol, rtol * s->fnorm0) || (settled && s->prev_settled && fnorm > 0.5 * s->prev_fnorm && fnorm <= PetscMax(PetscSqrtReal(rtol) * PetscMax(s->fnorm0, s->bnorm), s->ffloor)));
   /* friction: the next Jacobian reclassifies the sticks from their equilibrium force (SgSSNFrictionJacobian) */
-  s->stagnant     = (PetscBool)(s->cv.friction && it > 1 && fnorm > 0.5 * s->prev_fnorm);
+  s->stagnant     = (PetscBool)(s->cv.props.nonlinear && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
   if (settled && small) {
@@ -61,7 +61,7 @@ PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal
     /* r1 measures the equilibrium residual, inexact linear solves included */
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_NEIGHBOURHOOD;
-  } else if (!settled && !s->cv.friction) { /* with slip the iterate is no function of the sets: no cycle test */
+  } else if (!settled && !s->cv.props.nonlinear) { /* with slip the iterate is no function of the sets: no cycle test */
     PetscInt64 h;
     PetscCall(SgContactActiveSetHash(s->c, s->act, &h));
     for (PetscInt j = 0; j < s->nhash - 1; j++)
@@ -87,7 +87,7 @@ PetscErrorCode SgSSNMonitor(SNES snes, PetscInt it, PetscReal fnorm, void *ctx)
   PetscCall(SNESGetKSP(snes, &ksp));
   if (it > 0) PetscCall(KSPGetIterationNumber(ksp, &kits));
   PetscCall(PetscTime(&t));
-  if (s->monitor && s->cv.friction)
+  if (s->monitor && s->cv.props.tangential)
     PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) stick %" PetscInt_FMT " slip %" PetscInt_FMT " (%" PetscInt_FMT " changed) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, s->nstick, s->nslip, s->nfchanged, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));
   else if (s->monitor)
     PetscCall(PetscPrintf(s->comm, "  SSN %2" PetscInt_FMT " gamma %.3e |A| %" PetscInt_FMT " (+%" PetscInt_FMT " -%" PetscInt_FMT " next) ||F|| %.3e r1 %.3e r2 %.3e V %.10e KSP %" PetscInt_FMT "\n", it, (double)s->gamma, s->nact, s->nentered, s->nleft, (double)fnorm, (double)s->r1, (double)s->r2, (double)s->V, kits));

@@ -84,7 +84,7 @@ PetscErrorCode SgSSNJacobian(SNES snes, Vec y, Mat J, Mat P, void *ctx)
     if (s->nhash > 1) PetscCall(KSPGetIterationNumber(ksp, &kits));
     /* SNES decides the reuse after this callback from its lag: -1 reuses, -2 rebuilds once */
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && kits <= s->pc_reuse_its ? -1 : -2));
-  } else if (s->pc_same_set && !c->friction) { /* with slip the matrix changes on the same set */
+  } else if (s->pc_same_set && !c->props.nonlinear) { /* with slip the matrix changes on the same set */
     /* the same active set at the same gamma is the same matrix: keep its preconditioner */
     PetscCall(SNESSetLagPreconditioner(snes, s->nhash > 1 && s->hash[s->nhash - 1] == s->hash[s->nhash - 2] ? -1 : -2));
   }

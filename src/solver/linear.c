@@ -273,7 +273,7 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
   PetscFunctionBeginUser;
   if (!c) PetscFunctionReturn(0);
   PetscCall(SgContactGetView(c, &cv));
-  if (cv.friction) PetscFunctionReturn(0); /* neither condensation nor the truncated multigrid is built for friction */
+  if (cv.props.nonlinear) PetscFunctionReturn(0); /* neither condensation nor the truncated multigrid is built for friction */
   PetscCall(SgContactIsPair(c, &on));
   if (on) { /* nor for two bodies (a condition couples both sides); iterative: the SSN's dual-mortar basis (ssn.c) */
     char      opt[256];

@@ -104,7 +104,7 @@ static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
   PetscCall(MatGetNearNullSpace(s->Klin, &nsp));
   if (nsp) PetscCall(MatSetNearNullSpace(s->Pf, nsp));
   PetscCall(MatSetOption(s->Pf, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-  if (s->cv.coupled) {
+  if (s->cv.props.coupled) {
     PetscCall(MatSetOption(s->Pf, MAT_SPD, PETSC_FALSE));
     PetscCall(MatSetOption(s->Pf, MAT_SYMMETRIC, PETSC_FALSE));
   }
@@ -153,7 +153,7 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(PetscTime(&s->t0));
   PetscCall(PetscObjectReference((PetscObject)J));
   s->J = J;
-  if (s->cv.coupled) { /* the coupling t n^T of the slip set */
+  if (s->cv.props.coupled) { /* the coupling t n^T of the slip set */
     PetscCall(MatSetOption(J, MAT_SPD, PETSC_FALSE));
     PetscCall(MatSetOption(J, MAT_SYMMETRIC, PETSC_FALSE));
   }
@@ -239,8 +239,8 @@ PetscErrorCode SgSSNSetFromOptions(SgSSN s)
   PetscCheck(s->fp_m >= 1 && s->fp_m <= 100, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_m: must be in [1, 100], got %" PetscInt_FMT, s->fp_m);
   PetscCheck(s->fp_omega > 0 && s->fp_omega <= 1, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_omega: must be in (0, 1], got %g", (double)s->fp_omega);
   PetscCheck(PetscIsNormalReal(s->fp_rtol) && s->fp_rtol > 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_coulomb_fp_rtol: must be positive and finite, got %g", (double)s->fp_rtol);
-  PetscCheck(!(s->cv.friction && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
-  PetscCheck(!(s->cv.friction && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
+  PetscCheck(!(s->cv.props.nonlinear && condense), s->comm, PETSC_ERR_SUP, "-ssn_condense is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
+  PetscCheck(!(s->cv.props.nonlinear && tmg), s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg is not built for friction (-friction_type %s) yet: leave it out (the default solver does without it)", SgLawName(s->cv.law));
   s->Klin = s->K;
   if (!s->pair_transform_set) { /* the default: on for a pair solved iteratively (a factorization needs no help) */
     PetscBool pair, preonly;
@@ -274,7 +274,7 @@ PetscErrorCode SgSSNSetFromOptions(SgSSN s)
     PetscBool preonly;
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
     /* exact (direct) solves land on the auxiliary problem's solution: a settled active set is convergence */
-    s->residual_test = (PetscBool)(!preonly || s->cv.friction); /* slip: Newton steps converge, they do not land */
+    s->residual_test = (PetscBool)(!preonly || s->cv.props.nonlinear); /* slip: Newton steps converge, they do not land */
     s->iterative     = (PetscBool)!preonly;
     PetscCheck(s->pc_reuse_its >= 0, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its: must be >= 0, got %" PetscInt_FMT, s->pc_reuse_its);
     PetscCheck(!(s->pc_reuse_its > 0 && preonly), s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_reuse_its %" PetscInt_FMT " needs an iterative -ksp_type (e.g. cg): with preonly a kept factorization gives wrong Newton steps", s->pc_reuse_its);
@@ -473,7 +473,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash    = 0;
   s->stagnant = PETSC_FALSE;
-  if (s->cv.friction && (s->iterative || s->cv.coupled)) {
+  if ((s->cv.props.nonlinear && s->iterative) || s->cv.props.coupled) { /* the start, for the fallbacks below */
     if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
     PetscCall(VecCopy(y, s->y0));
   }
@@ -490,9 +490,9 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c), from the
      solve's initial guess; also after an iterate that overflowed (two bodies with Coulomb friction: inexact steps at a
      large gamma can blow up before the iteration count runs out) */
-  if (s->cv.friction && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_NAN)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
+  if (s->cv.props.nonlinear && s->iterative && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_NAN)) PetscCall(SgSSNSolveDirect(s, gamma, y, its, kits, reason));
   /* a bound from lam_N (Coulomb): a failure of the coupled Newton iteration (cycling states) gets the fixed point on the frozen bound */
-  if (s->cv.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(SgSSNCoulombFixedPoint(s, y, its, kits, reason));
+  if (s->cv.props.coupled && s->fp_max_it > 0 && (s->reason == SG_SSN_MAX_IT || s->reason == SG_SSN_CYCLING || s->reason == SG_SSN_SNES_FAILED)) PetscCall(SgSSNCoulombFixedPoint(s, y, its, kits, reason));
   /* the basic line search evaluated F at the returned iterate: g, m and the active set describe it */
   PetscFunctionReturn(0);
 }
