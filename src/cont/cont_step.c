@@ -293,7 +293,8 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
   for (PetscInt i = 0; i < c->n; i++) {
     PetscReal yi = 0;
     if (!(ct->lam[i] > 0)) continue;
-    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[c->off[i] + k])));
+    for (PetscInt k = 0; k < dim; k++) yi += PetscSqr(PetscRealPart(ya[c->off[i] + k]));
+    yi = PetscSqrtReal(yi); /* the vertex's displacement, its length: the same turned */
     v[0] = PetscMax(v[0], ct->lam[i]);
     v[1] = PetscMax(v[1], yi + PetscAbsReal(c->d[i]));
     v[2] = PetscMax(v[2], yi);

@@ -639,12 +639,16 @@ static PetscReal SafeRatio(PetscReal a, PetscReal b)
            Dirichlet part (K u - f there) or a contact force (w_i |lam_i|; with friction the whole nodal force w_i |R_i|),
            and the shear part of ||K|| ||y||, 2 mu / (lambda + 2 mu) ||K|| ||y|| (all of it for nu = 0; a backward error
            scale that keeps the measures of compressible materials as independent of the mesh as the forces allow).
-   Y       the displacement scale: max(||y||_inf, largest initial penetration, largest Dirichlet value).
+   Y       the displacement scale: max(largest vertex displacement, largest initial penetration, largest Dirichlet value).
+   Every nodal quantity here (displacements, loads, support and residual forces) is a vertex's Euclidean length, ||K||
+   and ||b|| are per vertex (SgMatVertexNorm, SgVecVertexNormMax): the scales, the measures and the controllers' gamma
+   from them are the same for the problem turned rigidly (with component maxima the turned Example 2 got another gamma
+   and took other SSN steps).
    With no data at all at this load factor (no loads, Dirichlet values 0, no penetration; y = 0 then solves the
    frictionless problem) both are the data's at factor 1 (the largest Dirichlet value, obstacle translation or the
    displacement of the total load through the shear modulus; failing those the mesh diameter): a zero answer is
    measured against the problem, not 0/0, nor against its own round-off.
-   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||)_inf;
+   rnoise  the round-off of a nodal force of R = K y - b formed in double precision, eps (||K|| ||y|| + ||b||);
            rnoise / F is the smallest equilibrium measure the arithmetic can certify.
    res, l1 the resultant of all forces on the body (loads, supports, contact) and the sum of their magnitudes: in
            equilibrium the resultant vanishes.
@@ -662,22 +666,22 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
   for (PetscInt i = 0; i < c->n; i++) { /* the contact force on the body at vertex i */
-    PetscReal f[3], rn = 0, a = 0;
+    PetscReal       f[3], rn = 0, a = 0;
+    const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
     for (PetscInt k = 0; k < dim; k++) {
-      const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
       f[k]                  = c->friction ? PetscRealPart(ra[c->off[i] + k]) : rn * c->normal[i * dim + k];
       if (!inner) cs[k] += f[k]; /* between the bodies: no part of the resultant on the whole mesh */
-      cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
       a += f[k] * f[k];
     }
+    cs[3] += (inner ? 2 : 1) * PetscSqrtReal(a); /* its magnitude, the same turned */
     cm = PetscMax(cm, c->friction ? PetscSqrtReal(a) : c->w[i] * PetscAbsReal(lam[i]));
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cs, 4, MPIU_REAL, MPI_SUM, c->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cm, 1, MPIU_REAL, MPI_MAX, c->comm));
   for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
   sc->l1 += cs[3];
-  PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
+  PetscCall(SgVecVertexNormMax(y, dim, &ynorm));
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
   PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
@@ -710,8 +714,8 @@ static inline PetscReal ForceNoise(SgContact c, const KKTScales *sc, PetscInt i)
    |lam_T| <= g (a force, with the dual part) and, as lengths with the complementarity: no slip where |lam_T| < g, slip
    u_T = a lam_T with a >= 0 where |lam_T| = g (the friction force -w lam_T on the body opposes the slip). On fixed
    components the displacement is the data (the slip prescribed) and the reaction of a Dirichlet facet of Gamma_c is a
-   traction on it. In: ra = K y - b (the rollers' fixed components zeroed), lam the normal multipliers, ynrm
-   ||y||_inf. Out: the numbers per contact vertex (klt, kslip, kst), the friction summary fsum, s[3] (this rank's slip
+   traction on it. In: ra = K y - b (the rollers' fixed components zeroed), lam the normal multipliers, ynrm the
+   largest vertex displacement. Out: the numbers per contact vertex (klt, kslip, kst), the friction summary fsum, s[3] (this rank's slip
    part of the complementarity^2), and ra without the tangential residual of the free components (what the friction
    balances). */
 static PetscErrorCode KKTFrictionMeasures(SgContact c, Vec y, PetscScalar ra[], const PetscReal lam[], PetscReal ynrm, const KKTScales *sc, PetscReal s[])
@@ -727,8 +731,11 @@ static PetscErrorCode KKTFrictionMeasures(SgContact c, Vec y, PetscScalar ra[], 
     PetscCall(DMGetLocalVector(c->dm, &yloc));
     PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
     PetscCall(VecGetArrayRead(yloc, &ul));
-    for (PetscInt i = 0; i < c->n; i++)
-      for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
+    for (PetscInt i = 0; i < c->n; i++) {
+      PetscReal u2 = 0;
+      for (PetscInt k = 0; k < dim; k++) u2 += PetscSqr(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k]));
+      unoise = PetscMax(unoise, PetscSqrtReal(u2));
+    }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
   }
   if (c->hasdface) {
@@ -864,7 +871,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(ComputeScales(c, y, ra, lam, mx[2], &sc));
   for (PetscInt k = 0; k < dim; k++) bal += PetscSqr(sc.res[k]);
   bal = PetscSqrtReal(bal);
-  PetscCall(VecNorm(y, NORM_INFINITY, &ynrm));
+  PetscCall(SgVecVertexNormMax(y, dim, &ynrm));
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier (ForceNoise) and a tiny fraction of
        the largest pressure. A pressure at an open gap violates complementarity either way: as a force (w lam / F, an
@@ -891,9 +898,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &letgo, 1, MPIU_REAL, MPI_MAX, c->comm));
-  /* the largest nodal force left unbalanced, against the largest force acting: its round-off floor rnoise / F is
-     reported beside it (kkt->roundoff) */
-  PetscCall(VecNorm(R, NORM_INFINITY, &nrm));
+  /* the largest nodal force left unbalanced (a vertex's Euclidean length), against the largest force acting: its
+     round-off floor rnoise / F is reported beside it (kkt->roundoff) */
+  PetscCall(SgVecVertexNormMax(R, dim, &nrm));
   kkt->uscale        = sc.Y;
   kkt->lscale        = sc.Y * PetscSqrtReal(c->area);
   kkt->fscale        = sc.F;

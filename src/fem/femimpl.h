@@ -28,8 +28,8 @@ struct _n_SgElasticity {
   Vec            mass;             /* lumped volume of each free dof's vertex (for the discrete dual norm) */
   Vec            ubc;              /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
   PetscReal      energy_shift;     /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
-  PetscReal      bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
-  PetscReal      Knorm;            /* ||K||_inf */
+  PetscReal      bnorm, bnorm_inf; /* ||b||_2, the largest nodal force (per vertex, SgVecVertexNormMax) */
+  PetscReal      Knorm;            /* ||K|| per vertex block row (SgMatVertexNorm; about ||K||_inf) */
   Vec            fpart;            /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
   PetscReal      diam;             /* diameter of the mesh's bounding box */
   PetscReal      rigid_shift;      /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
