@@ -133,7 +133,7 @@ PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary *
 PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest components, resultant, l1 sum */
 PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf and the total load ||f||_1 at factor 1, mesh diameter */
 /* rotation-invariant norms (vnorm.c): per vertex the Euclidean length of its dim entries, largest and summed; for K the
-   largest block row sum of the blocks' Frobenius norms */
+   largest block row sum of the blocks' spectral norms */
 PetscErrorCode SgVecVertexNormMax(Vec, PetscInt, PetscReal *);
 PetscErrorCode SgVecVertexNormSum(Vec, PetscInt, PetscReal *);
 PetscErrorCode SgMatVertexNorm(Mat, PetscInt, PetscReal *);

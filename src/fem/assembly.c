@@ -232,7 +232,7 @@ static PetscErrorCode AssembleOperators(SgElasticity p, Vec floc, Vec mloc, Pets
   }
   PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));
   PetscCall(VecNorm(p->b, NORM_2, &p->bnorm));
-  /* the largest nodal force and ||K|| per vertex (Euclidean lengths, Frobenius norms of the vertex blocks): the scales
+  /* the largest nodal force and ||K|| per vertex (Euclidean lengths, spectral norms of the vertex blocks): the scales
      of the KKT measures and the round-off estimates are then the same for the problem turned rigidly */
   PetscCall(SgVecVertexNormMax(p->b, p->dim, &p->bnorm_inf));
   PetscCall(SgMatVertexNorm(p->K, p->dim, &p->Knorm));
