@@ -159,7 +159,7 @@ static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next
   PetscReal v[2]   = {0, 0}, Knorm, ymax, ro;
   PetscInt  loaded = 0, dim;
 
-  /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y||_inf / w): a body that
+  /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y|| / w, per vertex): a body that
      just touches; elsewhere the sets (and the friction fixed point) settle as before, to round-off */
   if (SgElasticityGetScales(ct->prob, &Knorm, NULL, NULL) || SgElasticityGetDimension(ct->prob, &dim) || SgVecVertexNormMax(ct->y, dim, &ymax)) return PETSC_FALSE;
   ro = 8 * PETSC_MACHINE_EPSILON * Knorm * ymax;

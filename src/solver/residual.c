@@ -51,7 +51,7 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
   {
-    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y||_inf: a change of a multiplier (times the
+    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y|| (per vertex): a change of a multiplier (times the
        vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps).
        ||y|| at least the problem's displacement data (s->udata): a step unloaded to y = 0 has iterates of round-off
        size, whose gaps would otherwise flip the sets on numbers far below anything the problem can resolve */
