@@ -107,7 +107,8 @@ PetscErrorCode SgElasticityGetMesh(SgElasticity, const SgMesh **);
 PetscErrorCode SgElasticityGetOperators(SgElasticity, Mat *, Vec *); /* K and b */
 PetscErrorCode SgElasticityGetMass(SgElasticity, Vec *);
 PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *);                 /* NULL when not attached */
-PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||K||_inf, ||b||_2, ||b||_inf */
+PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *); /* ||K|| (SgMatVertexNorm), ||b||_2, the largest nodal force */
+PetscErrorCode SgElasticityGetNodalNormSize(SgElasticity, PetscInt *);                     /* -contact_kkt_scale: dim (vertex) or 1 (component) */
 PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
 PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);                                                              /* the one material, or of several the stiffest (largest E, the first of equals) */
 PetscErrorCode SgElasticityGetMaterials(SgElasticity, const char **, PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **); /* -material_label, number of -material_ids (0: one material for every cell), the ids, E and nu of each */
@@ -130,8 +131,13 @@ PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
 PetscErrorCode SgElasticityBodyField(SgElasticity, Vec, PetscInt *);
 PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
 PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
-PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest components, resultant, l1 sum */
+PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest nodal (per vertex), resultant, sum of nodal magnitudes */
 PetscErrorCode SgElasticityGetDataScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *, PetscReal *, PetscReal *); /* largest Dirichlet value now and at factor 1, ||b||_inf and the total load ||f||_1 at factor 1, mesh diameter */
+/* rotation-invariant norms (vnorm.c): per vertex the Euclidean length of its dim entries, largest and summed; for K the
+   largest block row sum of the blocks' spectral norms */
+PetscErrorCode SgVecVertexNormMax(Vec, PetscInt, PetscReal *);
+PetscErrorCode SgVecVertexNormSum(Vec, PetscInt, PetscReal *);
+PetscErrorCode SgMatVertexNorm(Mat, PetscInt, PetscReal *);
 PetscErrorCode SgSimplexGradients(PetscInt, const PetscReal[], PetscReal[], PetscReal *);
 PetscErrorCode SgElementStiffness(PetscInt, const PetscReal[], PetscReal, PetscReal, PetscReal[], PetscReal *);
 PetscErrorCode SgLame(PetscReal, PetscReal, PetscReal *, PetscReal *);
@@ -360,8 +366,9 @@ PetscErrorCode SgContactMultiplierFromResidual(SgContact, Vec, PetscReal[]);
    dimensionless (the same for any load level, material scale and unit system), with the force scale F (the largest
    nodal force on the body: a load on the free dofs, a support force K u - f on the Dirichlet part, a contact force
    w_i |lam_i|; not ||K|| ||y||, which grows like lambda as nu -> 1/2) and the length scale Y sqrt|Gamma_c|,
-   Y = max(||y||_inf, largest initial penetration, largest Dirichlet value); with no data at this load factor (the
-   answer is y = 0) both are the data's at factor 1 (infinity norms):
+   Y = max(largest vertex displacement, largest initial penetration, largest Dirichlet value); with no data at this load
+   factor (the answer is y = 0) both are the data's at factor 1. Nodal quantities are a vertex's Euclidean length (the
+   same for the problem turned rigidly, SgVecVertexNormMax):
    equilibrium     ||K y - b + B^T W lam|| / F                              (interior and tangential part)
    infeasibility   ||max(0, g)||_{L2(Gamma_c)} / (Y sqrt|Gamma_c|)
    complementarity (||max(0, g)||_{L2(I)} + ||min(0, g)||_{L2(A)}) / (Y sqrt|Gamma_c|), A = {lam > 0}, as an L2 sum of squares

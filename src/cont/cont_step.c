@@ -284,15 +284,21 @@ PetscErrorCode SgContGammaPrecision(SgCont ct, PetscReal *gdp)
   const SgContactView *c = &ct->cv;
   const PetscScalar   *ya;
   PetscReal            v[3] = {0, 0, 0};
-  PetscInt             dim;
+  PetscInt             dim, nd;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgElasticityGetNodalNormSize(ct->prob, &nd));
   PetscCall(VecGetArrayRead(ct->y, &ya));
   for (PetscInt i = 0; i < ct->n; i++) {
     PetscReal yi = 0;
     if (!(ct->lam[i] > 0)) continue;
-    for (PetscInt k = 0; k < dim; k++) yi = PetscMax(yi, PetscAbsReal(PetscRealPart(ya[ct->off[i] + k])));
+    for (PetscInt k = 0; k < dim; k++) {
+      const PetscReal yk = PetscRealPart(ya[ct->off[i] + k]);
+      if (nd > 1) yi += yk * yk; /* -contact_kkt_scale vertex: the vertex's displacement, its length (the same turned) */
+      else yi = PetscMax(yi, PetscAbsReal(yk));
+    }
+    if (nd > 1) yi = PetscSqrtReal(yi);
     v[0] = PetscMax(v[0], ct->lam[i]);
     v[1] = PetscMax(v[1], yi + PetscAbsReal(ct->d[i]));
     v[2] = PetscMax(v[2], yi);

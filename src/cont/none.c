@@ -39,15 +39,17 @@ static PetscErrorCode Solve_None(SgCont ct)
   if (!ok) PetscFunctionReturn(0);
   if (!ct->c) {
     PetscReal nrm[2], Knorm, bnorm_inf;
+    PetscInt  dim;
     Vec       R, b;
     Mat       K;
     PetscCall(SgElasticityGetOperators(ct->prob, &K, &b));
+    PetscCall(SgElasticityGetNodalNormSize(ct->prob, &dim));
     PetscCall(SgElasticityGetScales(ct->prob, &Knorm, NULL, &bnorm_inf));
     PetscCall(VecDuplicate(ct->y, &R));
     PetscCall(MatMult(K, ct->y, R));
     PetscCall(VecAXPY(R, -1.0, b));
-    PetscCall(VecNorm(R, NORM_INFINITY, &nrm[0]));
-    PetscCall(VecNorm(ct->y, NORM_INFINITY, &nrm[1]));
+    PetscCall(SgVecVertexNormMax(R, dim, &nrm[0])); /* per vertex: the same turned */
+    PetscCall(SgVecVertexNormMax(ct->y, dim, &nrm[1]));
     PetscCall(VecDestroy(&R));
     ct->residual  = nrm[0] > 0 ? nrm[0] / (Knorm * nrm[1] + bnorm_inf) : 0;
     ct->converged = PETSC_TRUE;

@@ -141,11 +141,11 @@ static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axi
 static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next[], const PetscReal g[], PetscInt nchanged)
 {
   PetscReal v[2]   = {0, 0}, Knorm, ymax, ro;
-  PetscInt  loaded = 0;
+  PetscInt  loaded = 0, dim;
 
-  /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y||_inf / w): a body that
+  /* only where no vertex of either set carries more than the round-off of K y (8 eps ||K|| ||y|| / w, per vertex): a body that
      just touches; elsewhere the sets (and the friction fixed point) settle as before, to round-off */
-  if (SgElasticityGetScales(ct->prob, &Knorm, NULL, NULL) || VecNorm(ct->y, NORM_INFINITY, &ymax)) return PETSC_FALSE;
+  if (SgElasticityGetScales(ct->prob, &Knorm, NULL, NULL) || SgElasticityGetNodalNormSize(ct->prob, &dim) || SgVecVertexNormMax(ct->y, dim, &ymax)) return PETSC_FALSE;
   ro = 8 * PETSC_MACHINE_EPSILON * Knorm * ymax;
   for (PetscInt i = 0; i < ct->n; i++) loaded += ((act[i] || next[i]) && PetscAbsReal(ct->lam[i]) * ct->w[i] > ro);
   if (MPI_Allreduce(MPI_IN_PLACE, &loaded, 1, MPIU_INT, MPI_SUM, ct->comm) || loaded) return PETSC_FALSE;

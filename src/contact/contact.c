@@ -608,25 +608,29 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
 {
   const PetscInt dim = c->dim;
   PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+  PetscInt       nd;
 
   PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetNodalNormSize(c->prob, &nd));
   PetscCall(SgElasticityForces(c->prob, y, &fmax, &smax, sc->res, &sc->l1));
   for (PetscInt i = 0; i < c->n; i++) { /* the contact force on the body at vertex i */
-    PetscReal f[3], rn = 0, fm;
+    PetscReal       f[3], rn = 0, fm, a = 0;
+    const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
     for (PetscInt k = 0; k < dim; k++) rn += PetscRealPart(ra[c->off[i] + k]) * c->normal[i * dim + k];
     fm = SgContactLawContactForce(c->law, dim, &ra[c->off[i]], &c->normal[i * dim], rn, c->w[i] * PetscAbsReal(lam[i]), f); /* the law's: with friction the whole nodal force */
     for (PetscInt k = 0; k < dim; k++) {
-      const PetscBool inner = (PetscBool)(c->pair && !c->obsrow[i]); /* two bodies: its equal and opposite acts on the master */
-      if (!inner) cs[k] += f[k];                                     /* between the bodies: no part of the resultant on the whole mesh */
-      cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
+      if (!inner) cs[k] += f[k]; /* between the bodies: no part of the resultant on the whole mesh */
+      if (nd > 1) a += f[k] * f[k];
+      else cs[3] += (inner ? 2 : 1) * PetscAbsReal(f[k]);
     }
+    if (nd > 1) cs[3] += (inner ? 2 : 1) * PetscSqrtReal(a); /* -contact_kkt_scale vertex: its magnitude, the same turned */
     cm = PetscMax(cm, fm);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cs, 4, MPIU_REAL, MPI_SUM, c->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cm, 1, MPIU_REAL, MPI_MAX, c->comm));
   for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
   sc->l1 += cs[3];
-  PetscCall(VecNorm(y, NORM_INFINITY, &ynorm));
+  PetscCall(SgVecVertexNormMax(y, nd, &ynorm));
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
   PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
@@ -664,8 +668,10 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   const PetscScalar *ya;
   PetscReal         *g, *lam, s[8] = {0}, mx[3] = {0, 0, 0}, nrm, ynrm, bal = 0, letgo = 0;
   KKTScales          sc;
+  PetscInt           nd;
 
   PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetNodalNormSize(c->prob, &nd));
   PetscCall(PetscMalloc2(c->n, &g, c->n, &lam));
   PetscCall(VecDuplicate(y, &R));
   PetscCall(VecDuplicate(y, &Ky));
@@ -693,7 +699,7 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   PetscCall(ComputeScales(c, y, ra, lam, mx[2], &sc));
   for (PetscInt k = 0; k < dim; k++) bal += PetscSqr(sc.res[k]);
   bal = PetscSqrtReal(bal);
-  PetscCall(VecNorm(y, NORM_INFINITY, &ynrm));
+  PetscCall(SgVecVertexNormMax(y, nd, &ynrm));
   for (PetscInt i = 0; i < c->n; i++) {
     /* pressure counts as acting above the round-off of the derived multiplier (ForceNoise) and a tiny fraction of
        the largest pressure. A pressure at an open gap violates complementarity either way: as a force (w lam / F, an
@@ -720,9 +726,9 @@ PetscErrorCode SgContactKKT(SgContact c, Vec y, SgKKT *kkt)
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 8, MPIU_REAL, MPI_SUM, c->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &letgo, 1, MPIU_REAL, MPI_MAX, c->comm));
-  /* the largest nodal force left unbalanced, against the largest force acting: its round-off floor rnoise / F is
-     reported beside it (kkt->roundoff) */
-  PetscCall(VecNorm(R, NORM_INFINITY, &nrm));
+  /* the largest nodal force left unbalanced (a vertex's Euclidean length), against the largest force acting: its
+     round-off floor rnoise / F is reported beside it (kkt->roundoff) */
+  PetscCall(SgVecVertexNormMax(R, nd, &nrm));
   kkt->uscale        = sc.Y;
   kkt->lscale        = sc.Y * PetscSqrtReal(c->area);
   kkt->fscale        = sc.F;

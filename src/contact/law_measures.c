@@ -73,6 +73,7 @@ static PetscErrorCode KKT_Regularized(SgContactLaw law, SgContact c, Vec y, Pets
   PetscReal          f[8] = {0}, fm[2] = {0, 0}, unoise = ynrm, *uv, *ft = NULL;
   const PetscScalar *ul = NULL, *rfa = NULL;
   Vec                yloc = NULL, Rf = NULL;
+  PetscInt           nd;
 
   PetscFunctionBeginUser;
   (void)law;
@@ -80,8 +81,16 @@ static PetscErrorCode KKT_Regularized(SgContactLaw law, SgContact c, Vec y, Pets
     PetscCall(DMGetLocalVector(c->dm, &yloc));
     PetscCall(SgElasticityGlobalToLocal(c->prob, y, yloc));
     PetscCall(VecGetArrayRead(yloc, &ul));
-    for (PetscInt i = 0; i < c->n; i++)
-      for (PetscInt k = 0; k < dim; k++) unoise = PetscMax(unoise, PetscAbsReal(PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k])));
+    PetscCall(SgElasticityGetNodalNormSize(c->prob, &nd));
+    for (PetscInt i = 0; i < c->n; i++) { /* the largest vertex displacement (-contact_kkt_scale vertex: its length, the same turned) */
+      PetscReal u2 = 0;
+      for (PetscInt k = 0; k < dim; k++) {
+        const PetscReal uk = PetscRealPart(ul[c->mesh->loff[c->vert[i]] + k]);
+        if (nd > 1) u2 += uk * uk;
+        else unoise = PetscMax(unoise, PetscAbsReal(uk));
+      }
+      if (nd > 1) unoise = PetscMax(unoise, PetscSqrtReal(u2));
+    }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &unoise, 1, MPIU_REAL, MPI_MAX, c->comm));
   }
   if (c->hasdface) {

@@ -339,8 +339,10 @@ static PetscErrorCode AssembleOperators(SgElasticity p, Vec floc, Vec mloc, Pets
   }
   PetscCallMPI(MPI_Allreduce(&shift, &p->energy_shift, 1, MPIU_REAL, MPI_SUM, p->comm));
   PetscCall(VecNorm(p->b, NORM_2, &p->bnorm));
-  PetscCall(VecNorm(p->b, NORM_INFINITY, &p->bnorm_inf));
-  PetscCall(MatNorm(p->K, NORM_INFINITY, &p->Knorm));
+  /* the largest nodal force and ||K|| per vertex (Euclidean lengths, spectral norms of the vertex blocks): the scales
+     of the KKT measures and the round-off estimates are then the same for the problem turned rigidly */
+  PetscCall(SgVecVertexNormMax(p->b, SgNodalNormSize(p), &p->bnorm_inf));
+  PetscCall(SgMatVertexNorm(p->K, SgNodalNormSize(p), &p->Knorm));
   PetscCall(MatSetOption(p->K, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(p->K, MAT_SPD, PETSC_TRUE));
   PetscFunctionReturn(0);

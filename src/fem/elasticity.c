@@ -77,6 +77,13 @@ static PetscErrorCode ProblemOptions(SgElasticity p, const SgElasticitySettings 
   PetscCall(MaterialOptions(PetscOptionsObject, p, set));
   p->nbody_force = 0;
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-body_force", "Constant body force f (dim numbers)", 3, p->body_force, &p->nbody_force, NULL));
+  {
+    char      mode[16] = "vertex";
+    PetscBool mset;
+    PetscCall(PetscOptionsString("-contact_kkt_scale", "Nodal sizes in the KKT measures' scales, the controllers' gamma estimates and the round-off floors: vertex (a vertex's displacement or force as its Euclidean length, ||K|| from the vertex blocks' spectral norms: the same for the problem turned rigidly) or component (the largest or summed components, ||K||_inf: the paper's, kept in its problem files; they change when the problem is turned)", NULL, mode, mode, sizeof(mode), &mset));
+    PetscCheck(!mset || !strcmp(mode, "vertex") || !strcmp(mode, "component"), p->comm, PETSC_ERR_USER_INPUT, "-contact_kkt_scale: unknown value '%s' (vertex, component)", mode);
+    p->kkt_vertex = (PetscBool)strcmp(mode, "component");
+  }
   p->use_nearnull = PETSC_TRUE;
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-elasticity_near_null_space", "Attach the rigid-body modes to the stiffness as near null space (used by GAMG; hypre's use of them crashes in Debian's build)", &p->use_nearnull, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-mms", "Manufactured solution: body force and Dirichlet data from a known smooth field (verification)", &p->mms, NULL));
@@ -352,6 +359,15 @@ PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity p, MatNullSpace *nsp)
 {
   PetscFunctionBeginUser;
   *nsp = p->use_nearnull ? p->nearnull : NULL;
+  PetscFunctionReturn(0);
+}
+
+/* the number of entries the nodal norms of the KKT scales take together: dim (-contact_kkt_scale vertex) or 1
+   (component); the argument of SgVecVertexNormMax and its kin */
+PetscErrorCode SgElasticityGetNodalNormSize(SgElasticity p, PetscInt *nd)
+{
+  PetscFunctionBeginUser;
+  *nd = SgNodalNormSize(p);
   PetscFunctionReturn(0);
 }
 

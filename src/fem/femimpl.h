@@ -28,8 +28,9 @@ struct _n_SgElasticity {
   Vec            mass;             /* lumped volume of each free dof's vertex (for the discrete dual norm) */
   Vec            ubc;              /* local vector: Dirichlet values at constrained dofs, 0 elsewhere */
   PetscReal      energy_shift;     /* 1/2 u_D K_DD u_D - f_D u_D: V(y) = 1/2 y K y - b y + energy_shift */
-  PetscReal      bnorm, bnorm_inf; /* ||b||_2, ||b||_inf */
-  PetscReal      Knorm;            /* ||K||_inf */
+  PetscReal      bnorm, bnorm_inf; /* ||b||_2, the largest nodal force (SgVecVertexNormMax over SgNodalNormSize entries) */
+  PetscReal      Knorm;            /* ||K|| per vertex block row (SgMatVertexNorm; ||K||_inf with -contact_kkt_scale component) */
+  PetscBool      kkt_vertex;       /* -contact_kkt_scale vertex (PETSC_TRUE) or component: see SgNodalNormSize */
   Vec            fpart;            /* local: this rank's cells' and facets' part of the load without lifting (for the energy) */
   PetscReal      diam;             /* diameter of the mesh's bounding box */
   PetscReal      rigid_shift;      /* -elasticity_rigid_shift: K += rigid_shift E/diam^2 M (lumped volumes M) */
@@ -51,6 +52,14 @@ struct _n_SgElasticity {
   PetscReal dvals[3 * SG_MAX_IDS];
   Vec       bload1;
 };
+
+/* the number of entries a nodal norm takes together (vnorm.c): dim with -contact_kkt_scale vertex (a vertex's
+   Euclidean length, the same for the problem turned rigidly), 1 with component (the component maxima and sums, the
+   paper's scales) */
+static inline PetscInt SgNodalNormSize(SgElasticity p)
+{
+  return p->kkt_vertex ? p->dim : 1;
+}
 /* What the files of the mesh share (box.c, mesh.c, boundary.c, layout.c) */
 /* mirror: left in the lower half of x, right in the upper half, so that the mesh is symmetric about the box's middle
    x = (lower + upper) / 2 and its upper half is the -box_diagonal right mesh of that half (half models) */

@@ -73,14 +73,16 @@ PetscErrorCode SgElasticityReaction(SgElasticity p, Vec y, PetscReal R[3])
 }
 
 /* The forces on the body at the displacement y (free dofs), for the force scale and the force balance of the KKT
-   measures (SgContactKKT): fmax the largest nodal load component on the free dofs, smax the largest nodal support force
-   component (K u - f on the Dirichlet-fixed components, and the elastic foundation of -elasticity_rigid_shift), fsum
-   the resultant of loads and support forces on the body, fl1 the sum of their nodal components' magnitudes. Only the
-   cells at the Dirichlet part are visited: the cost of the measures stays that of a product with K. */
+   measures (SgContactKKT): fmax the largest nodal load on the free dofs, smax the largest nodal support force (K u - f
+   on the Dirichlet-fixed components, and the elastic foundation of -elasticity_rigid_shift), fsum the resultant of
+   loads and support forces on the body, fl1 the sum of their nodal magnitudes. A nodal force is the Euclidean length
+   of a vertex's force vector (not its largest component), so that all of them are the same for the problem turned
+   rigidly (SgVecVertexNormMax). Only the cells at the Dirichlet part are visited: the cost of the measures stays that
+   of a product with K. */
 PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscReal *smax, PetscReal fsum[3], PetscReal *fl1)
 {
   const SgMesh      *m   = &p->mesh;
-  const PetscInt     dim = p->dim, nv = dim + 1;
+  const PetscInt     dim = p->dim, nv = dim + 1, nd = SgNodalNormSize(p);
   Vec                yloc, sloc, sg, fg;
   const PetscScalar *ya, *pa, *fa;
   PetscScalar       *sa;
@@ -134,8 +136,8 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
   PetscCall(VecZeroEntries(sg));
   PetscCall(DMLocalToGlobal(p->dmVec, sloc, ADD_VALUES, sg));
   PetscCall(DMRestoreLocalVector(p->dmVec, &sloc));
-  PetscCall(VecNorm(sg, NORM_INFINITY, &nrm[0]));
-  PetscCall(VecNorm(sg, NORM_1, &nrm[1]));
+  PetscCall(SgVecVertexNormMax(sg, nd, &nrm[0]));
+  PetscCall(SgVecVertexNormSum(sg, nd, &nrm[1]));
   PetscCall(DMRestoreGlobalVector(p->dmVec, &sg));
   /* the loads on the free dofs (those on the fixed components went into the support forces) */
   PetscCall(DMGetGlobalVector(p->dm, &fg));
@@ -153,20 +155,30 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
         for (PetscInt d = 0; d < dim; d++) loc[3 + d] += PetscRealPart(ga[m->goff[v] + d]);
     PetscCall(VecRestoreArray(fg, &ga));
   }
-  PetscCall(VecNorm(fg, NORM_INFINITY, &nrm[2]));
-  PetscCall(VecNorm(fg, NORM_1, &nrm[3]));
+  PetscCall(SgVecVertexNormMax(fg, nd, &nrm[2]));
+  PetscCall(SgVecVertexNormSum(fg, nd, &nrm[3]));
   if (p->rigid_shift > 0) { /* the foundation's force -k M y on the body is a support force */
     const PetscReal k   = p->rigid_shift * p->E / PetscSqr(p->diam);
     PetscReal       fmx = 0;
     PetscCall(VecPointwiseMult(fg, p->mass, y));
     PetscCall(VecGetArrayRead(fg, &fa));
     for (PetscInt v = 0; v < m->nv; v++)
-      if (m->goff[v] >= 0)
+      if (m->goff[v] >= 0) {
+        PetscReal f2 = 0;
         for (PetscInt d = 0; d < dim; d++) {
-          loc[d] -= k * PetscRealPart(fa[m->goff[v] + d]);
-          loc[6] += k * PetscAbsReal(PetscRealPart(fa[m->goff[v] + d]));
-          fmx = PetscMax(fmx, k * PetscAbsReal(PetscRealPart(fa[m->goff[v] + d])));
+          const PetscReal fd = k * PetscRealPart(fa[m->goff[v] + d]);
+          loc[d] -= fd;
+          if (nd > 1) f2 += PetscSqr(fd); /* -contact_kkt_scale vertex: the nodal force's length */
+          else {
+            loc[6] += PetscAbsReal(fd);
+            fmx = PetscMax(fmx, PetscAbsReal(fd));
+          }
         }
+        if (nd > 1) {
+          loc[6] += PetscSqrtReal(f2);
+          fmx = PetscMax(fmx, PetscSqrtReal(f2));
+        }
+      }
     PetscCall(VecRestoreArrayRead(fg, &fa));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &fmx, 1, MPIU_REAL, MPI_MAX, p->comm));
     nrm[0] = PetscMax(nrm[0], fmx);
@@ -183,15 +195,16 @@ PetscErrorCode SgElasticityForces(SgElasticity p, Vec y, PetscReal *fmax, PetscR
 /* Displacement and force scales of the data, for the KKT measures when the displacement is (nearly) zero: the largest
    Dirichlet value now (ucur) and at factor 1 (ufull: the values given, whatever the load factor or the values set per
    step), ||b||_inf at factor 1 (bfull: the largest nodal force, with the lifting of the Dirichlet values), the total
-   load at factor 1 (floads: ||f||_1 on the free dofs, without that lifting) and the diameter of the mesh. */
+   load at factor 1 (floads: ||f||_1 on the free dofs, without that lifting) and the diameter of the mesh. Values and
+   forces per vertex as Euclidean lengths (the same for the problem turned rigidly; SgVecVertexNormMax). */
 PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscReal *ufull, PetscReal *bfull, PetscReal *floads, PetscReal *diam)
 {
   PetscReal u[2] = {0, 0};
   Vec       fg;
 
   PetscFunctionBeginUser;
-  PetscCall(VecNorm(p->ubc, NORM_INFINITY, &u[0]));
-  PetscCall(VecNorm(p->ubc1 ? p->ubc1 : p->ubc, NORM_INFINITY, &u[1]));
+  PetscCall(SgVecVertexNormMax(p->ubc, SgNodalNormSize(p), &u[0])); /* local vectors: this rank's, the maximum below */
+  PetscCall(SgVecVertexNormMax(p->ubc1 ? p->ubc1 : p->ubc, SgNodalNormSize(p), &u[1]));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, u, 2, MPIU_REAL, MPI_MAX, p->comm));
   if (ucur) *ucur = u[0];
   if (ufull) *ufull = u[1];
@@ -200,7 +213,7 @@ PetscErrorCode SgElasticityGetDataScales(SgElasticity p, PetscReal *ucur, PetscR
     PetscCall(DMGetGlobalVector(p->dm, &fg));
     PetscCall(VecZeroEntries(fg));
     PetscCall(DMLocalToGlobal(p->dm, p->fpart1 ? p->fpart1 : p->fpart, ADD_VALUES, fg));
-    PetscCall(VecNorm(fg, NORM_1, floads));
+    PetscCall(SgVecVertexNormSum(fg, SgNodalNormSize(p), floads));
     PetscCall(DMRestoreGlobalVector(p->dm, &fg));
   }
   if (diam) *diam = p->diam;

@@ -50,12 +50,12 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
   {
-    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y||_inf: a change of a multiplier (times the
+    /* the round-off of the elastic force K y at a vertex, 8 eps ||K|| ||y|| (per vertex): a change of a multiplier (times the
        vertex's weight) below it is invisible in the equilibrium, as when a body just touches (gaps of a few ulps).
        ||y|| at least the problem's displacement data (s->udata): a step unloaded to y = 0 has iterates of round-off
        size, whose gaps would otherwise flip the sets on numbers far below anything the problem can resolve */
     PetscReal ymax;
-    PetscCall(VecNorm(y, NORM_INFINITY, &ymax));
+    PetscCall(SgVecVertexNormMax(y, s->nd, &ymax)); /* the largest vertex displacement: the same turned */
     s->kroff = 8 * PETSC_MACHINE_EPSILON * s->Knorm * (ymax + s->dmax + s->udata);
   }
   PetscCall(MatMult(s->K, y, F));
@@ -173,7 +173,7 @@ PetscErrorCode SgSSNEquilibriumError(SgSSN s, Vec y, PetscReal fscale, PetscReal
     floor += fl;
   }
   PetscCall(VecRestoreArray(F, &fa));
-  PetscCall(VecNorm(F, NORM_INFINITY, &nrm[0]));
+  PetscCall(SgVecVertexNormMax(F, s->nd, &nrm[0])); /* the largest nodal force (its length: the same turned) */
   {
     const PetscReal scale = fscale, r = PetscMax(0, nrm[0] - floor);
     *err      = r > 0 ? (scale > 0 ? r / scale : PETSC_INFINITY) : nrm[0] - nrm[0]; /* NaN passed on */

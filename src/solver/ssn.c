@@ -324,6 +324,7 @@ PetscErrorCode SgSSNUpdateLoad(SgSSN s)
 {
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetScales(s->prob, &s->Knorm, &s->bnorm, &s->bnorm_inf));
+  PetscCall(SgElasticityGetNodalNormSize(s->prob, &s->nd));
   if (!(s->bnorm > 0)) PetscCall(SgElasticityGetFullLoadScales(s->prob, &s->bnorm, &s->bnorm_inf, NULL));
   { /* the displacement data: the largest Dirichlet value now and at load factor 1 (the round-off floors' scale) */
     PetscReal ucur, ufull;

@@ -16,6 +16,7 @@ struct _n_SgSSN {
   /* read once from the elasticity object */
   MPI_Comm          comm;
   PetscInt          dim;
+  PetscInt          nd; /* the nodal norms' size (SgElasticityGetNodalNormSize: dim or 1) */
   const SgMesh     *mesh;
   Mat               K;
   Vec               b, mass;
@@ -29,7 +30,7 @@ struct _n_SgSSN {
   char             *act, *actjac; /* active set there, and the one the last Jacobian used */
   PetscBool         havejac;
   PetscInt          nact, nentered, nleft;
-  PetscReal         kroff;   /* the round-off of K y at a vertex, 8 eps ||K|| (||y||_inf + max |d|), at the last residual evaluation */
+  PetscReal         kroff;   /* the round-off of K y at a vertex, 8 eps ||K|| (||y|| + max |d|), per vertex, at the last residual evaluation */
   PetscReal         dmax;    /* max |d| over the contact vertices (SgSSNSolve) */
   PetscReal         udata;   /* the largest Dirichlet value now and at load factor 1 (SgSSNUpdateLoad) */
   PetscInt          nhard;   /* the changes of state (normal and friction) beyond round-off at the last residual evaluation */
