@@ -248,8 +248,8 @@ static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], Pets
    iteration 3 SSN / 26 CG on the finest level against 3 / 51 (bench/nested.md). Not in 3D where the coarsest level
    (the unrefined mesh) has more unknowns than -ssn_pc_truncated_mg_geometric_max_coarse (*ncoarse: its unknowns, dim x
    its vertices, Dirichlet ones included; 0 if not counted): gmg.c factors it for every active set, and a 3D factorization grows like the square of the unknowns
-   (the quarter hemisphere of 119,904 unknowns refined once: 30-40 s per SSN step in the factorization, the contact
-   solve 2x the AMG's, bench/results.md); BoomerAMG's truncated multigrid then, nested iteration unchanged. */
+   (the quarter hemisphere of 119,904 unknowns refined once: 10-40 s per SSN step in the factorization, the contact
+   solve 1.5-2x the AMG's, bench/results.md); BoomerAMG's truncated multigrid then, nested iteration unchanged. */
 static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], PetscBool *geo, PetscInt *ncoarse)
 {
   DM          dm;
