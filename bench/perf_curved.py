@@ -4,7 +4,10 @@ the default controller and linear solver choose themselves) on
   hemi   the quarter elastic hemisphere on a rigid plane (options/cv_hemisphere.opts, meshes/cv_hemisphere.geo) at
          about 1e4, 1.2e5 and 1e6 unknowns (mesh scales --hemi-scales, default 4,8.5,18; measured 14,730 unknowns at 4
          and 100,761 at 8: the graded mesh grows about 7x per doubling of the scale, so 18 is an estimate: check the
-         unknowns printed);
+         unknowns printed); with --hemi-refine N each mesh is also refined N times by -dm_refine N (the contact solve and
+         its yardstick alike; the default then solves the coarser levels first, nested iteration, and its SSN steps
+         use the geometric multigrid of the levels; the refined curved face is the coarse mesh's facets, not the
+         sphere): about 8x the unknowns per refinement, case hemi_sS_rN;
   ex2    Example 2 turned rigidly by 30 degrees about (1,1,1) (options/cv_ex2_r30.opts, meshes/cv_ex2_sS_r30.msh made by
          tests/rotate_msh.py from meshes/ex2_sS.msh) against the unturned mesh, at scales --ex2-scales (default 2,4.2:
          124,128 and 1,074,513 unknowns);
@@ -23,7 +26,7 @@ and prints a markdown section for bench/results.md. Goals of issue 30: the defau
 against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 within 20 % of the unturned; at most 8
 SSN steps. A benchmark, not a test: never run by make test.
 
-usage: perf_curved.py [--only hemi,ex2,cyl] [--hemi-scales 4,8.5,18] [--ex2-scales 2,4.2] [--cyl-scale 60] [--repeat N]
+usage: perf_curved.py [--only hemi,ex2,cyl] [--hemi-scales 4,8.5,18] [--hemi-refine N] [--ex2-scales 2,4.2] [--cyl-scale 60] [--repeat N]
                       [--yard-repeat N] [--yard-configs NAME,...]
                       [--json FILE|none] [--out DIR]
 The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
@@ -51,7 +54,8 @@ EX2_VALUES = "-dirichlet_values 0,0,-0.2"
 EX2_VALUES_R30 = "-dirichlet_values -0.06666666666666667,0.04880338717125848,-0.18213672050459184"  # options/cv_ex2_r30.opts
 CYL = "-options_file options/cv_halfdisc.opts"
 FIELDS = ("dofs", "cont_type", "linear_solver", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time",
-          "linear_solve_time", "solve_time", "peak_rss_mb", "converged", "reason", "energy", "contact_force")
+          "linear_solve_time", "solve_time", "peak_rss_mb", "converged", "reason", "energy", "contact_force", "nested_levels",
+          "nested_coarse_ssn_its", "nested_coarse_ksp_its", "nested_coarse_time")
 
 
 def mesh(path):
@@ -92,6 +96,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", default="hemi,ex2,cyl")
     ap.add_argument("--hemi-scales", default="4,8.5,18")
+    ap.add_argument("--hemi-refine", type=int, default=0, help="-dm_refine N on each hemisphere mesh (0: none)")
     ap.add_argument("--ex2-scales", default="2,4.2")
     ap.add_argument("--cyl-scale", default="60")
     ap.add_argument("--repeat", type=int, default=3)
@@ -107,7 +112,8 @@ def main():
     if "hemi" in only:
         for sc in opt.hemi_scales.split(","):
             m = mesh("meshes/cv_hemisphere_s%s.msh" % sc)
-            cases.append(("hemi_s%s" % sc, "%s -dm_plex_filename %s" % (HEMI, m), "-dm_plex_filename %s %s" % (m, HEMI_ELASTIC), 1))
+            ref, tag = (" -dm_refine %d" % opt.hemi_refine, "_r%d" % opt.hemi_refine) if opt.hemi_refine else ("", "")
+            cases.append(("hemi_s%s%s" % (sc, tag), "%s -dm_plex_filename %s%s" % (HEMI, m, ref), "-dm_plex_filename %s %s%s" % (m, HEMI_ELASTIC, ref), 1))
     if "ex2" in only:
         for sc in opt.ex2_scales.split(","):
             flat = mesh("meshes/ex2_s%s.msh" % sc)  # scale 1: the mesh of meshes/ex2.msh

@@ -118,6 +118,18 @@ PetscErrorCode SgLinearSolverGeometricMG(const char prefix[], PetscBool *geo)
   PetscFunctionReturn(0);
 }
 
+/* The largest coarsest level (unknowns, 3D) of the default geometric multigrid (DefaultGeometricMG) */
+#define SG_GMG_COARSE_MAX_3D 50000
+static PetscErrorCode GeometricMaxOption(PetscOptionItems *PetscOptionsObject, PetscInt *max)
+{
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_truncated_mg_geometric_max_coarse", "3D, -dm_refine N with nested iteration's levels: the SSN steps of the iterative default use the geometric multigrid of the levels only if the unrefined mesh (its coarsest level, factored for every active set) has at most this many unknowns (3 x its vertices, Dirichlet ones included), otherwise BoomerAMG's truncated multigrid", max, &set));
+  PetscCheck(!set || *max >= 0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg_geometric_max_coarse: must be >= 0 (unknowns of the coarsest level), got %" PetscInt_FMT, *max);
+  PetscFunctionReturn(0);
+}
+
 /* -help without a problem: the option of the default linear solver (SgLinearSolverDefaults reads it) */
 PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
 {
@@ -127,8 +139,10 @@ PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) PetscFunctionReturn(0);
+  PetscInt  geomax = SG_GMG_COARSE_MAX_3D;
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
+  PetscCall(GeometricMaxOption(PetscOptionsObject, &geomax));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -231,18 +245,27 @@ static PetscErrorCode SetDefaultSSN(const char prefix[], const char name[], Pets
 /* The truncated multigrid's interpolations: the mesh hierarchy's (-ssn_pc_truncated_mg_interp geometric) when the
    mesh kept every level of -dm_refine (fem/mesh.c: nested iteration's default or -cont_nested N = -dm_refine), unless
    the option is given. Ex2 at 144,666 unknowns: 0.5x the CG iterations of BoomerAMG's, no AMG setup; with nested
-   iteration 3 SSN / 26 CG on the finest level against 3 / 51 (bench/nested.md). */
-static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], PetscBool *geo)
+   iteration 3 SSN / 26 CG on the finest level against 3 / 51 (bench/nested.md). Not in 3D where the coarsest level
+   (the unrefined mesh) has more unknowns than -ssn_pc_truncated_mg_geometric_max_coarse (*ncoarse: its unknowns, dim x
+   its vertices, Dirichlet ones included; 0 if not counted): gmg.c factors it for every active set, and a 3D factorization grows like the square of the unknowns
+   (the quarter hemisphere of 119,904 unknowns refined once: 10-40 s per SSN step in the factorization, the contact
+   solve 1.5-2x the AMG's, bench/results.md); BoomerAMG's truncated multigrid then, nested iteration unchanged. */
+static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], PetscBool *geo, PetscInt *ncoarse)
 {
   DM          dm;
   PetscObject lv = (PetscObject)NULL, base = NULL;
   char        name[64];
   PetscBool   set;
+  PetscInt    max = SG_GMG_COARSE_MAX_3D;
 
   PetscFunctionBeginUser;
+  *ncoarse = 0;
+  PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
+  PetscOptionsBegin(PetscObjectComm((PetscObject)dm), prefix, "Default linear solver", NULL);
+  PetscCall(GeometricMaxOption(PetscOptionsObject, &max));
+  PetscOptionsEnd();
   PetscCall(InterpOption(prefix, &set, geo));
   if (set) PetscFunctionReturn(0);
-  PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
   for (PetscInt k = 1;; k++) { /* the coarsest level kept */
     PetscObject q = NULL;
     PetscCall(PetscSNPrintf(name, sizeof(name), "SgNestedLevel%" PetscInt_FMT, k));
@@ -252,6 +275,18 @@ static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], P
   }
   if (lv) PetscCall(PetscObjectQuery(lv, "SgNestedBase", &base));
   *geo = (PetscBool)(base != NULL);
+  if (*geo) {
+    PetscInt dim, pS, pE, n;
+    PetscCall(DMGetDimension((DM)lv, &dim));
+    PetscCall(DMPlexGetDepthStratum((DM)lv, 0, &pS, &pE)); /* the vertices of each rank (shared ones counted twice) */
+    n = dim * (pE - pS);
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm(lv)));
+    *ncoarse = n;
+    if (dim == 3 && n > max) {
+      *geo = PETSC_FALSE;
+      PetscCall(PetscInfo(dm, "geometric multigrid not the default: its coarsest level has %" PetscInt_FMT " unknowns (> %" PetscInt_FMT ")\n", n, max));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -306,10 +341,12 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
     PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
     def->tmg = on;
     if (on) {
-      PetscBool geo;
-      PetscCall(DefaultGeometricMG(el, prefix, &geo));
+      PetscBool geo = PETSC_FALSE;
+      PetscInt  ncoarse;
+      PetscCall(DefaultGeometricMG(el, prefix, &geo, &ncoarse));
       def->geometric = geo;
       if (geo) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by the geometric multigrid of the mesh hierarchy truncated at the active set (-ssn_pc_truncated_mg_interp geometric)"));
+      else if (ncoarse) PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid truncated at the active set (-ssn_pc_truncated_mg; coarsest mesh: %" PetscInt_FMT " vertices)", ncoarse / 3));
       else PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
     }
     PetscFunctionReturn(0);
