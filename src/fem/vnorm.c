@@ -8,35 +8,10 @@
    laid out with dim consecutive entries per vertex (the displacement section, global and local alike). */
 #include <sg.h>
 
-/* the largest Euclidean length of a vertex's dim consecutive entries of v (on v's communicator; a local vector: this
-   rank's). A length that is not a multiple of dim cannot happen with this layout; then the component maximum. */
-PetscErrorCode SgVecVertexNormMax(Vec v, PetscInt dim, PetscReal *mx)
-{
-  const PetscScalar *a;
-  PetscInt           n;
-  PetscReal          m = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(v, &n));
-  if (dim <= 1 || n % dim) { /* one entry per "vertex": the component norm itself (-contact_kkt_scale component) */
-    PetscCall(VecNorm(v, NORM_INFINITY, mx));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecGetArrayRead(v, &a));
-  for (PetscInt i = 0; i < n; i += dim) {
-    PetscReal s = 0;
-    for (PetscInt k = 0; k < dim; k++) s += PetscSqr(PetscAbsScalar(a[i + k]));
-    m = PetscMax(m, s);
-  }
-  PetscCall(VecRestoreArrayRead(v, &a));
-  m = PetscSqrtReal(m);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &m, 1, MPIU_REAL, MPI_MAX, PetscObjectComm((PetscObject)v)));
-  *mx = m;
-  PetscFunctionReturn(0);
-}
-
-/* the sum over the vertices of the Euclidean lengths of their dim consecutive entries of v (on v's communicator) */
-PetscErrorCode SgVecVertexNormSum(Vec v, PetscInt dim, PetscReal *sum)
+/* the largest (sum = false) or the sum (sum = true) of the Euclidean lengths of the vertices' dim consecutive entries
+   of v, on v's communicator (a local vector: this rank's). One entry per "vertex" (dim <= 1, -contact_kkt_scale
+   component), or a length that is not a multiple of dim (cannot happen with this layout): the component norm itself. */
+static PetscErrorCode VecVertexNorm(Vec v, PetscInt dim, PetscBool sum, PetscReal *out)
 {
   const PetscScalar *a;
   PetscInt           n;
@@ -44,19 +19,37 @@ PetscErrorCode SgVecVertexNormSum(Vec v, PetscInt dim, PetscReal *sum)
 
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(v, &n));
-  if (dim <= 1 || n % dim) { /* one entry per "vertex": the component norm itself (-contact_kkt_scale component) */
-    PetscCall(VecNorm(v, NORM_1, sum));
+  if (dim <= 1 || n % dim) {
+    PetscCall(VecNorm(v, sum ? NORM_1 : NORM_INFINITY, out));
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArrayRead(v, &a));
   for (PetscInt i = 0; i < n; i += dim) {
     PetscReal s = 0;
     for (PetscInt k = 0; k < dim; k++) s += PetscSqr(PetscAbsScalar(a[i + k]));
-    t += PetscSqrtReal(s);
+    if (sum) t += PetscSqrtReal(s);
+    else t = PetscMax(t, s);
   }
   PetscCall(VecRestoreArrayRead(v, &a));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &t, 1, MPIU_REAL, MPI_SUM, PetscObjectComm((PetscObject)v)));
-  *sum = t;
+  if (!sum) t = PetscSqrtReal(t);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &t, 1, MPIU_REAL, sum ? MPI_SUM : MPI_MAX, PetscObjectComm((PetscObject)v)));
+  *out = t;
+  PetscFunctionReturn(0);
+}
+
+/* the largest Euclidean length of a vertex's dim consecutive entries of v */
+PetscErrorCode SgVecVertexNormMax(Vec v, PetscInt dim, PetscReal *mx)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecVertexNorm(v, dim, PETSC_FALSE, mx));
+  PetscFunctionReturn(0);
+}
+
+/* the sum over the vertices of the Euclidean lengths of their dim consecutive entries of v */
+PetscErrorCode SgVecVertexNormSum(Vec v, PetscInt dim, PetscReal *sum)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecVertexNorm(v, dim, PETSC_TRUE, sum));
   PetscFunctionReturn(0);
 }
 

@@ -139,7 +139,7 @@ PetscErrorCode SgLinearSolverPrintHelp(MPI_Comm comm, const char prefix[])
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) PetscFunctionReturn(0);
-  PetscInt  geomax = SG_GMG_COARSE_MAX_3D;
+  PetscInt geomax = SG_GMG_COARSE_MAX_3D;
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
   PetscCall(GeometricMaxOption(PetscOptionsObject, &geomax));
