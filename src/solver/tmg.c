@@ -79,9 +79,9 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    alone) are Gauss-Seidel within a rank and Jacobi across ranks, whose multigrid is not positive definite where the
    coupling across ranks is strong: the stiffness in the pair's dual-mortar basis (frame.c), where a master vertex
    couples through the slave's rows to master vertices far away on other ranks, gave CG DIVERGED_INDEFINITE_PC on 2
-   ranks (tests/pair2r.ini). With W the sweep's lower (upper) triangle, W + W^T - A = D + 2 L1 - A_offrank is
-   positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a backward one up is
-   symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
+   ranks (tests/parallel/twobody_ranks.ini). With W the sweep's lower (upper) triangle, W + W^T - A =
+   D + 2 L1 - A_offrank is positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a
+   backward one up is symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
    on one rank the smoothers stay PCSOR (the same sweeps: no rows of other ranks). */
 typedef struct {
   Mat       Ad;     /* the diagonal block of the smoother's matrix, its diagonal plus l1 */
