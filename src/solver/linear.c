@@ -14,6 +14,7 @@
    -ksp_* / -pc_* / -ssn_* option or options file still wins and nothing stays in PETSc's options database: a program
    that solves two problems gets each one's own default. */
 #include "sg.h"
+#include <petscsf.h>
 
 /* condensation keeps a dense Schur complement on the contact dofs: not beyond this many of them */
 #define SG_CONDENSE_MAX_DOFS 4000
@@ -276,10 +277,19 @@ static PetscErrorCode DefaultGeometricMG(SgElasticity el, const char prefix[], P
   if (lv) PetscCall(PetscObjectQuery(lv, "SgNestedBase", &base));
   *geo = (PetscBool)(base != NULL);
   if (*geo) {
-    PetscInt dim, pS, pE, n;
+    PetscInt        dim, pS, pE, n, nleaves;
+    const PetscInt *ilocal;
+    PetscSF         sf;
     PetscCall(DMGetDimension((DM)lv, &dim));
-    PetscCall(DMPlexGetDepthStratum((DM)lv, 0, &pS, &pE)); /* the vertices of each rank (shared ones counted twice) */
-    n = dim * (pE - pS);
+    PetscCall(DMPlexGetDepthStratum((DM)lv, 0, &pS, &pE)); /* this rank's vertices, less those another rank owns */
+    PetscCall(DMGetPointSF((DM)lv, &sf));
+    PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &ilocal, NULL));
+    n = pE - pS;
+    for (PetscInt l = 0; l < PetscMax(nleaves, 0); l++) {
+      const PetscInt p = ilocal ? ilocal[l] : l;
+      if (p >= pS && p < pE) n--;
+    }
+    n *= dim;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPIU_INT, MPI_SUM, PetscObjectComm(lv)));
     *ncoarse = n;
     if (dim == 3 && n > max) {
