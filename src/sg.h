@@ -222,8 +222,8 @@ PetscErrorCode           SgContactLawGetSlipReferenceSize(SgContactLaw, PetscInt
    the frictionless code paths. */
 typedef struct {
   PetscBool tangential;  /* a tangential part: the multipliers lam_T, lamhat_T, the stick/slip states and the slip
-                            reference (the SSN's tangential state and monitor, the per-step states of the checkpoint,
-                            nested iteration's transfer of lamhat_T, the prescribed slip, the pair's tangential blocks) */
+                            reference (the SSN's tangential state and monitor, the prescribed slip, the pair's
+                            tangential blocks; the checkpoint and nested iteration call the law's ops instead) */
   PetscBool nonlinear;   /* its SSN terms are nonlinear on fixed sets (the slip direction z/|z|): Newton steps on settled
                             sets converge, they do not land (the residual test against the load, the stagnation test,
                             no cycle test, the matrix changes on the same set), an iterative solve that fails is repeated
