@@ -222,8 +222,8 @@ PetscErrorCode           SgContactLawGetSlipReferenceSize(SgContactLaw, PetscInt
    the frictionless code paths. */
 typedef struct {
   PetscBool tangential;  /* a tangential part: the multipliers lam_T, lamhat_T, the stick/slip states and the slip
-                            reference (the SSN's tangential state and monitor, the per-step states of the checkpoint,
-                            nested iteration's transfer of lamhat_T, the prescribed slip, the pair's tangential blocks) */
+                            reference (the SSN's tangential state and monitor, the prescribed slip, the pair's
+                            tangential blocks; the checkpoint and nested iteration call the law's ops instead) */
   PetscBool nonlinear;   /* its SSN terms are nonlinear on fixed sets (the slip direction z/|z|): Newton steps on settled
                             sets converge, they do not land (the residual test against the load, the stagnation test,
                             no cycle test, the matrix changes on the same set), an iterative solve that fails is repeated
@@ -318,6 +318,7 @@ typedef struct {
   void *ctx;
   PetscErrorCode (*attribute)(void *, const char[], PetscDataType, const void *);
   PetscErrorCode (*contact)(void *, const char[], PetscInt, const PetscReal[]); /* dim per contact vertex (NULL: zeros) */
+  PetscErrorCode (*reals)(void *, const char[], PetscInt, const PetscReal[]);   /* numbers every rank has */
 } SgContactLawWriter;
 typedef struct {
   void       *ctx;
@@ -327,9 +328,17 @@ typedef struct {
   PetscErrorCode (*attribute)(void *, const char[], PetscDataType, void *);
   PetscErrorCode (*contact)(void *, const char[], PetscInt, const char[], PetscReal[]); /* its name, dim, a description for messages */
   PetscErrorCode (*abandon)(void *);                                                    /* the reader freed before a refusal */
+  PetscErrorCode (*reals)(void *, const char[], PetscInt, PetscReal **);                /* n numbers every rank has, allocated */
 } SgContactLawReader;
 PetscErrorCode SgContactLawSave(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);            /* the law (NULL: none), its parameters, lamhat_T (NULL: zeros) and a slip reference (2 n dim) */
 PetscErrorCode SgContactLawLoad(SgContactLaw, MPI_Comm, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *); /* checks the file's law and parameters against this one; lamhat_T, the slip reference; whether the file held its full part */
+PetscErrorCode SgContactLawStepSave(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawWriter *);         /* its summaries of n finished load steps (law NULL or none: nothing) */
+PetscErrorCode SgContactLawStepLoad(SgContactLaw, PetscInt, SgFrictionSummary[], SgContactLawReader *);               /* and back: zero counts and NaN sizes where the file holds none */
+/* Nested iteration (-cont_nested): what a finer level starts from besides y and lam_N, bs numbers per contact vertex
+   (0: nothing), a vector field (dim) or scalars; the controller interpolates them between the levels */
+PetscErrorCode SgContactLawTransferSize(SgContactLaw, PetscInt *, PetscBool *);
+PetscErrorCode SgContactLawTransferPack(SgContactLaw, SgContactLawState, PetscReal[]);         /* from a solver's state (NULL: zeros), n bs */
+PetscErrorCode SgContactLawTransferUnpack(SgContactLaw, SgContactLawState, const PetscReal[]); /* the interpolated ones into the finer level's solver state */
 /* The contact vertices owned by this rank, read-only (NULL for what is not wanted; the arrays are the contact
    object's, valid while it lives): their number here and in all, local vertex numbers and the offsets of their first
    dofs in the local part of a global displacement vector; the lumped boundary weights int_Gamma_c phi_i; the outward

@@ -160,8 +160,9 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
   const PetscScalar *pa;
   PetscScalar       *pb;
   const SgMesh      *ma, *mb;
-  PetscInt          *map, dim = 0, n = b->n;
+  PetscInt          *map, dim = 0, n = b->n, bs;
   PetscReal         *lb;
+  PetscBool          vector;
 
   PetscFunctionBeginUser;
   PetscCall(VertexMap(a, b, &map));
@@ -185,17 +186,21 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
   PetscCall(DMLocalToGlobal(dmb, yb, INSERT_VALUES, b->y));
   PetscCall(DMRestoreLocalVector(dma, &ya));
   PetscCall(DMRestoreLocalVector(dmb, &yb));
-  /* the multipliers: the normal one, then with friction the tangential one */
+  /* the multipliers: the normal one, then what the law's state starts from (friction: its tangential multiplier) */
+  PetscCall(SgContactLawTransferSize(b->cv.law, &bs, &vector));
   PetscCall(PetscFree(b->nested_lamhat));
-  PetscCall(PetscCalloc1(n * (1 + (b->cv.props.tangential ? dim : 0)) + 1, &b->nested_lamhat));
+  PetscCall(PetscCalloc1(n * (1 + bs) + 1, &b->nested_lamhat));
   lb = b->nested_lamhat;
   PetscCall(TransferContactField(a, b, map, PETSC_FALSE, 1, a->lam, lb));
   PetscCall(PetscArraycpy(b->lam, lb, n));
-  if (b->cv.props.tangential && a->ssn) {
-    PetscReal       *lhT;
-    const PetscReal *mT;
-    PetscCall(SgSSNGetFriction(a->ssn, &lhT, &mT, NULL));
-    PetscCall(TransferContactField(a, b, map, PETSC_TRUE, dim, mT, lb + n));
+  if (bs > 0) {
+    SgContactLawState st;
+    PetscReal        *va;
+    PetscCall(SgSSNGetLawState(a->ssn, &st)); /* (NULL without an SSN: zeros) */
+    PetscCall(PetscMalloc1(a->n * bs + 1, &va));
+    PetscCall(SgContactLawTransferPack(a->cv.law, st, va));
+    PetscCall(TransferContactField(a, b, map, vector, bs, va, lb + n));
+    PetscCall(PetscFree(va));
   }
   PetscCall(PetscFree(map));
   b->gamma_warm   = a->gamma_warm;
@@ -209,17 +214,14 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
    shift (alm) the interpolated multipliers as the shift */
 PetscErrorCode SgContNestedResume(SgCont ct)
 {
+  SgContactLawState st;
+
   PetscFunctionBeginUser;
   ct->gamma = ct->gamma_warm;
   if (!ct->ssn || !ct->ops.shifts || !ct->nested_lamhat) PetscFunctionReturn(0);
   PetscCall(PetscArraycpy(ct->lamhat, ct->nested_lamhat, ct->n));
-  if (ct->cv.props.tangential) {
-    PetscReal *lhT;
-    PetscInt   dim;
-    PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
-    PetscCall(PetscArraycpy(lhT, ct->nested_lamhat + ct->n, ct->n * dim));
-  }
+  PetscCall(SgSSNGetLawState(ct->ssn, &st));
+  PetscCall(SgContactLawTransferUnpack(ct->cv.law, st, ct->nested_lamhat + ct->n)); /* friction: lamhat_T */
   PetscFunctionReturn(0);
 }
 

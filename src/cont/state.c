@@ -189,11 +189,18 @@ static PetscErrorCode WriterContact(void *w, const char name[], PetscInt bs, con
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode WriterReals(void *w, const char name[], PetscInt n, const PetscReal a[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointWriterReals((SgCheckpointWriter)w, name, n, a));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FrictionSave(SgCont ct, SgCheckpointWriter w, PetscBool step_open)
 {
   PetscReal         *lhT = NULL, *yref = ct->yref, *next = NULL;
   PetscInt           dim;
-  SgContactLawWriter lw = {w, WriterAttribute, WriterContact};
+  SgContactLawWriter lw = {w, WriterAttribute, WriterContact, WriterReals};
 
   PetscFunctionBeginUser;
   if (!ct->c) PetscFunctionReturn(0);
@@ -246,14 +253,32 @@ static PetscErrorCode ReaderAbandon(void *r)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode ReaderReals(void *r, const char name[], PetscInt n, PetscReal **a)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgCheckpointReaderReals((SgCheckpointReader)r, name, n, NULL, a));
+  PetscFunctionReturn(0);
+}
+
+/* the law's reader on the checkpoint's */
+static PetscErrorCode LawReader(SgCheckpointReader r, SgContactLawReader *lr)
+{
+  const SgContactLawReader l = {r, NULL, ReaderHasAttribute, ReaderHasDataset, ReaderAttribute, ReaderContact, ReaderAbandon, ReaderReals};
+
+  PetscFunctionBeginUser;
+  *lr = l;
+  PetscCall(SgCheckpointReaderGetFile(r, &lr->file));
+  PetscFunctionReturn(0);
+}
+
 /* *full: the file held the full displacement's slip reference (older files did not: then a copy of the unknowns') */
 static PetscErrorCode FrictionLoad(SgCont ct, SgCheckpointReader r, PetscBool *full)
 {
   PetscReal         *lhT = NULL;
-  SgContactLawReader lr  = {r, NULL, ReaderHasAttribute, ReaderHasDataset, ReaderAttribute, ReaderContact, ReaderAbandon};
+  SgContactLawReader lr;
 
   PetscFunctionBeginUser;
-  PetscCall(SgCheckpointReaderGetFile(r, &lr.file));
+  PetscCall(LawReader(r, &lr));
   if (ct->ssn) PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));                        /* (NULL without friction) */
   PetscCall(SgContactLawLoad(ct->c ? ct->cv.law : NULL, ct->comm, lhT, ct->yref, &lr, full)); /* checks the file's law, reads its state */
   PetscFunctionReturn(0);
@@ -299,16 +324,18 @@ static PetscErrorCode LoadStepsSave(SgCont ct, SgCheckpointWriter w, PetscBool s
     PetscCall(SgCheckpointWriterReals(w, "load_dirichlet_values", ct->ndv * ct->nsteps, ct->dvsteps));
     PetscCall(SgCheckpointWriterAttribute(w, "load_dirichlet_count", PETSC_INT, &ct->ndv));
   }
-  if (ct->c && ct->cv.props.tangential) {
-    PetscCall(PetscMalloc1(4 * ct->nsteps + 1, &a));
+  if (ct->c) { /* the law's summaries of the steps (friction: the stick and slip sets, the friction resultant, traction) */
+    SgFrictionSummary *fs;
+    SgContactLawWriter lw = {w, WriterAttribute, WriterContact, WriterReals};
+    PetscCall(PetscCalloc1(ct->nsteps + 1, &fs));
     for (PetscInt i = 0; i < ct->nsteps; i++) {
-      a[4 * i]     = s[i].nstick;
-      a[4 * i + 1] = s[i].nslip;
-      a[4 * i + 2] = s[i].friction_force;
-      a[4 * i + 3] = s[i].friction_traction;
+      fs[i].nstick     = s[i].nstick;
+      fs[i].nslip      = s[i].nslip;
+      fs[i].force_norm = s[i].friction_force;
+      fs[i].traction   = s[i].friction_traction;
     }
-    PetscCall(SgCheckpointWriterReals(w, "load_steps_friction", 4 * ct->nsteps, a));
-    PetscCall(PetscFree(a));
+    PetscCall(SgContactLawStepSave(ct->cv.law, ct->nsteps, fs, &lw));
+    PetscCall(PetscFree(fs));
   }
   PetscFunctionReturn(0);
 }
@@ -365,9 +392,10 @@ static PetscErrorCode LoadKeptSteps(SgCont ct, SgCheckpointReader r, PetscInt n)
 
 static PetscErrorCode LoadStepsData(SgCont ct, SgCheckpointReader r, const LoadHeader *h)
 {
-  SgLoadStep *steps = NULL;
-  PetscReal  *a;
-  PetscBool   has;
+  SgLoadStep        *steps = NULL;
+  PetscReal         *a;
+  SgFrictionSummary *fs;
+  SgContactLawReader lr;
 
   PetscFunctionBeginUser;
   if (h->has) {
@@ -379,21 +407,18 @@ static PetscErrorCode LoadStepsData(SgCont ct, SgCheckpointReader r, const LoadH
       s->t = v[0], s->obstacle_displacement = v[1], s->normal_displacement_max = v[2], s->force = v[3], s->kkt = v[4], s->energy = v[5], s->time = v[6];
       s->outer = (PetscInt)v[7], s->ssn_its = (PetscInt)v[8], s->ksp_its = (PetscInt)v[9], s->nactive = (PetscInt)v[10];
       s->converged = (PetscBool)(v[11] != 0);
-      s->nstick = s->nslip = 0; /* friction: from load_steps_friction */
-      s->friction_force = s->friction_traction = SG_NAN;
     }
     PetscCall(PetscFree(a));
-    PetscCall(SgCheckpointReaderHasDataset(r, "load_steps_friction", &has));
-    if (has && ct->c && ct->cv.props.tangential) {
-      PetscCall(SgCheckpointReaderReals(r, "load_steps_friction", 4 * h->nsteps, NULL, &a));
-      for (PetscInt i = 0; i < h->nsteps; i++) {
-        steps[i].nstick            = (PetscInt)a[4 * i];
-        steps[i].nslip             = (PetscInt)a[4 * i + 1];
-        steps[i].friction_force    = a[4 * i + 2];
-        steps[i].friction_traction = a[4 * i + 3];
-      }
-      PetscCall(PetscFree(a));
+    PetscCall(PetscMalloc1(h->nsteps + 1, &fs)); /* the law's summaries of the steps (zeros and NaN: none) */
+    PetscCall(LawReader(r, &lr));
+    PetscCall(SgContactLawStepLoad(ct->c ? ct->cv.law : NULL, h->nsteps, fs, &lr));
+    for (PetscInt i = 0; i < h->nsteps; i++) {
+      steps[i].nstick            = fs[i].nstick;
+      steps[i].nslip             = fs[i].nslip;
+      steps[i].friction_force    = fs[i].force_norm;
+      steps[i].friction_traction = fs[i].traction;
     }
+    PetscCall(PetscFree(fs));
   }
   PetscCall(PetscFree(ct->steps));
   ct->steps  = steps;

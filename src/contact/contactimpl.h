@@ -71,6 +71,19 @@ typedef struct {
      type and its parameters): NULL without one; a type with a tangential part that sets none gets law_regularized.c's */
   PetscErrorCode (*save)(SgContactLaw, const PetscReal[], const PetscReal[], SgContactLawWriter *);
   PetscErrorCode (*load)(SgContactLaw, PetscReal[], PetscReal[], SgContactLawReader *, PetscBool *);
+  /* the checkpoint of its summaries of the finished load steps (n of them; SgContactLawStepSave/Load): stepload reads
+     what the file holds into fs, filled beforehand with zero counts and NaN sizes. NULL: none; a type with a tangential
+     part that sets none gets law_measures.c's (the dataset load_steps_friction) */
+  PetscErrorCode (*stepsave)(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawWriter *);
+  PetscErrorCode (*stepload)(SgContactLaw, PetscInt, SgFrictionSummary[], SgContactLawReader *);
+  /* nested iteration (-cont_nested; SgContactLawTransferSize/Pack/Unpack): the state a finer level starts from, bs
+     numbers per owned contact vertex, interpolated as a vector (vector true: bs = dim) or as bs scalars; pack writes
+     them from a solver's state (NULL: no solver, zeros), unpack sets the next level's solver state from the
+     interpolated ones. NULL: nothing to transfer (bs 0); a type with a tangential part that sets none gets
+     law_regularized.c's (the multiplier lam_T, the next level's shift lamhat_T) */
+  PetscErrorCode (*transfersize)(SgContactLaw, PetscInt *, PetscBool *);
+  PetscErrorCode (*transferpack)(SgContactLaw, SgContactLawState, PetscReal[]);
+  PetscErrorCode (*transferunpack)(SgContactLaw, SgContactLawState, const PetscReal[]);
   /* its part of the KKT measures of y (SgContactKKT; NULL: none, the frictionless law): in ra = K y - b (the rollers'
      fixed components zeroed), lam the normal multipliers, ynrm ||y||_inf, the scales; out the contact object's record
      per vertex (klt, kslip, kst), its summary c->fsum but the slip part, *slip2 this rank's part of the

@@ -545,6 +545,50 @@ PetscErrorCode SgContactLawLoad(SgContactLaw law, MPI_Comm comm, PetscReal lamha
   PetscFunctionReturn(0);
 }
 
+/* The checkpoint's summaries of the finished load steps (the op stepsave; nothing without a law or the op) */
+PetscErrorCode SgContactLawStepSave(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgContactLawWriter *w)
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.stepsave) PetscCall(law->ops.stepsave(law, n, fs, w));
+  PetscFunctionReturn(0);
+}
+
+/* and back (the op stepload): fs starts with zero counts and NaN sizes, which stay where the file holds none */
+PetscErrorCode SgContactLawStepLoad(SgContactLaw law, PetscInt n, SgFrictionSummary fs[], SgContactLawReader *r)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(PetscMemzero(&fs[k], sizeof(fs[k])));
+    fs[k].force_norm = fs[k].traction = SG_NAN;
+  }
+  if (law && law->ops.stepload) PetscCall(law->ops.stepload(law, n, fs, r));
+  PetscFunctionReturn(0);
+}
+
+/* Nested iteration: the numbers per contact vertex a finer level starts from (the op transfersize; 0 without it) */
+PetscErrorCode SgContactLawTransferSize(SgContactLaw law, PetscInt *bs, PetscBool *vector)
+{
+  PetscFunctionBeginUser;
+  *bs     = 0;
+  *vector = PETSC_FALSE;
+  if (law && law->ops.transfersize) PetscCall(law->ops.transfersize(law, bs, vector));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawTransferPack(SgContactLaw law, SgContactLawState st, PetscReal vals[])
+{
+  PetscFunctionBeginUser;
+  if (law && law->ops.transferpack) PetscCall(law->ops.transferpack(law, st, vals));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgContactLawTransferUnpack(SgContactLaw law, SgContactLawState st, const PetscReal vals[])
+{
+  PetscFunctionBeginUser;
+  if (law && st && law->ops.transferunpack) PetscCall(law->ops.transferunpack(law, st, vals));
+  PetscFunctionReturn(0);
+}
+
 const char *SgLawName(SgContactLaw law)
 {
   return law->type;

@@ -304,6 +304,46 @@ static PetscErrorCode StepSummary_Regularized(SgContactLaw law, PetscInt n, cons
   PetscFunctionReturn(0);
 }
 
+/* the checkpoint's per-step summaries: the stick and slip set sizes, the friction resultant and traction integral, 4
+   numbers per step in the dataset load_steps_friction (a file without it, from a run without friction, leaves fs) */
+static PetscErrorCode StepSave_Regularized(SgContactLaw law, PetscInt n, const SgFrictionSummary fs[], SgContactLawWriter *w)
+{
+  PetscReal *a;
+
+  PetscFunctionBeginUser;
+  (void)law;
+  PetscCall(PetscMalloc1(4 * n + 1, &a));
+  for (PetscInt i = 0; i < n; i++) {
+    a[4 * i]     = fs[i].nstick;
+    a[4 * i + 1] = fs[i].nslip;
+    a[4 * i + 2] = fs[i].force_norm;
+    a[4 * i + 3] = fs[i].traction;
+  }
+  PetscCall(w->reals(w->ctx, "load_steps_friction", 4 * n, a));
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode StepLoad_Regularized(SgContactLaw law, PetscInt n, SgFrictionSummary fs[], SgContactLawReader *r)
+{
+  PetscReal *a;
+  PetscBool  has;
+
+  PetscFunctionBeginUser;
+  (void)law;
+  PetscCall(r->hasdataset(r->ctx, "load_steps_friction", &has));
+  if (!has) PetscFunctionReturn(0);
+  PetscCall(r->reals(r->ctx, "load_steps_friction", 4 * n, &a));
+  for (PetscInt i = 0; i < n; i++) {
+    fs[i].nstick     = (PetscInt)a[4 * i];
+    fs[i].nslip      = (PetscInt)a[4 * i + 1];
+    fs[i].force_norm = a[4 * i + 2];
+    fs[i].traction   = a[4 * i + 3];
+  }
+  PetscCall(PetscFree(a));
+  PetscFunctionReturn(0);
+}
+
 /* PDAS's state of vertex i for the next solve: the bound g = g_i(lamN); free (g = 0), stick (|z| <= g), slip
    (t = z/|z|). A slip whose direction turned by more than 90 degrees since the last solve sticks in the next one (its
    force then comes from the equilibrium, not from the old direction): with nearly every vertex slipping, the forces
@@ -340,6 +380,10 @@ PetscErrorCode SgContactLawSetMeasureOps(SgContactLaw law)
   }
   if (!law->ops.summary) law->ops.summary = Summary_Regularized;
   if (!law->ops.stepsummary) law->ops.stepsummary = StepSummary_Regularized;
+  if (!law->ops.stepsave && !law->ops.stepload) {
+    law->ops.stepsave = StepSave_Regularized;
+    law->ops.stepload = StepLoad_Regularized;
+  }
   if (!law->ops.pdasstate) law->ops.pdasstate = PdasState_Regularized;
   PetscFunctionReturn(0);
 }

@@ -286,6 +286,31 @@ static PetscErrorCode Load_Regularized(SgContactLaw law, PetscReal lamhatT[], Pe
   PetscFunctionReturn(0);
 }
 
+/* Nested iteration: the multiplier lam_T of the coarser level's solve (a vector per vertex) becomes the finer level's
+   tangential shift lamhat_T (as lam_N becomes lamhat) */
+static PetscErrorCode TransferSize_Regularized(SgContactLaw law, PetscInt *bs, PetscBool *vector)
+{
+  PetscFunctionBeginUser;
+  *bs     = law->dim;
+  *vector = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TransferPack_Regularized(SgContactLaw law, SgContactLawState st, PetscReal vals[])
+{
+  PetscFunctionBeginUser;
+  if (st) PetscCall(PetscArraycpy(vals, st->lamT, law->n * law->dim));
+  else PetscCall(PetscArrayzero(vals, law->n * law->dim));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TransferUnpack_Regularized(SgContactLaw law, SgContactLawState st, const PetscReal vals[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscArraycpy(st->lamhatT, vals, law->n * law->dim));
+  PetscFunctionReturn(0);
+}
+
 /* the ops of a law with a bound (law.c installs them for a type with a tangential part that sets none of its own) */
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw law)
 {
@@ -296,5 +321,10 @@ PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw law)
   if (!law->ops.floor) law->ops.floor = Floor_Regularized;
   if (!law->ops.save) law->ops.save = Save_Regularized;
   if (!law->ops.load) law->ops.load = Load_Regularized;
+  if (!law->ops.transfersize && !law->ops.transferpack && !law->ops.transferunpack) {
+    law->ops.transfersize   = TransferSize_Regularized;
+    law->ops.transferpack   = TransferPack_Regularized;
+    law->ops.transferunpack = TransferUnpack_Regularized;
+  }
   PetscFunctionReturn(0);
 }
