@@ -15,6 +15,7 @@
    finest interpolation taken into the basis ((T Q)^-1 P, SgFramePairInterpolation), so that the coarse operators are
    K's own (-ssn_pair_amg_displacements, on by default). */
 #include "solver/ssnimpl.h"
+#include <petsc/private/petscimpl.h> /* an object's state (SetUp_L1GS) */
 
 struct _n_SgTMG {
   SgSSN      ssn;
@@ -34,10 +35,23 @@ struct _n_SgTMG {
   PetscBool  has_set, fresh;
   PetscBool  gamg; /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
   PetscBool  geo;  /* the interpolations of the mesh hierarchy (gmg.c), given at creation: no AMG */
+  /* several ranks (UpdateRanks): kept from Build, so that an update makes no new pattern or communication */
+  Mat          *D;    /* D[l]: the correction of level l, with AK[l]'s pattern */
+  PetscObjectId klin; /* the Klin they were made from */
+  Mat           Poth; /* the rows of P[n-1] at Klin's ghost columns (global coarse columns) */
+  Vec           act;  /* 1 at the active normal dofs (Klin's column layout) */
+  Vec           gact; /* its values at Klin's ghost columns */
+  VecScatter    gsc;  /* act -> gact */
+  PetscScalar  *acc;  /* a row of the correction over the coarse columns, */
+  PetscBool    *mark; /* its touched columns, */
+  PetscInt     *jw;   /* listed */
+  PetscInt     *pj, *mj, pcap, mcap, vcap;
+  PetscScalar  *pv, *mv, *vw;
+  MatStructure *str; /* str[l]: D[l]'s pattern against AK[l]'s (the same, checked once) */
 };
 
 static PetscBool     tmg_registered = PETSC_FALSE;
-static PetscLogEvent SG_TMGBuild, SG_TMGUpdate;
+static PetscLogEvent SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp;
 
 /* BoomerAMG's interpolation of the rigid-body modes (-pc_hypre_boomeramg_vec_interp_variant 1-3, with nodal
    coarsening): PETSc hands hypre every vector of the operator's near null space, and hypre's GM interpolation wants
@@ -84,29 +98,60 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    backward one up is symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
    on one rank the smoothers stay PCSOR (the same sweeps: no rows of other ranks). */
 typedef struct {
-  Mat       Ad;     /* the diagonal block of the smoother's matrix, its diagonal plus l1 */
+  Mat              Ad;      /* the diagonal block of the smoothers' matrix, its diagonal plus l1 */
+  PetscObjectId    id;      /* the operator it was made from, */
+  PetscObjectState state;   /* at this state of its values */
+  PetscObjectId    blockid; /* the operator's diagonal block that Ad is a copy of, */
+  PetscObjectState nzstate; /* at this state of its nonzero pattern, */
+  PetscObjectState adnz;    /* and Ad's own pattern state after the set-up */
+  PetscInt         refs;
+} L1GSMat;
+
+typedef struct {
+  L1GSMat  *m;      /* shared by the level's two sweeps (SetL1GS) */
   Vec       xl, yl; /* sequential views of the local parts */
   PetscBool back;   /* a backward sweep */
 } L1GS;
 
+/* Both sweeps of a level see the same operator: the first one set up makes Ad, the second finds it made (the same
+   operator at the same state). Every SSN step changes the operators' values, not their patterns: Ad's storage is
+   kept and the new values copied in (a new duplicate of the finest diagonal block, per sweep and step, took 4 s of
+   the 2-rank run of Example 2 at 1.1e6 unknowns, bench/nested.md par27). */
 static PetscErrorCode SetUp_L1GS(PC pc)
 {
   L1GS              *g;
+  L1GSMat           *lm;
   Mat                P, Ad, Ao;
   Vec                d;
   PetscScalar       *da;
   const PetscScalar *va;
   PetscInt           m;
+  PetscObjectId      id, bid;
+  PetscObjectState   state, nz, adnz = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
+  lm = g->m;
   PetscCall(PCGetOperators(pc, NULL, &P));
   PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
-  PetscCall(MatDestroy(&g->Ad));
-  PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &g->Ad));
   PetscCall(MatGetLocalSize(Ad, &m, NULL));
-  PetscCall(MatCreateVecs(g->Ad, &d, NULL));
-  PetscCall(MatGetDiagonal(g->Ad, d));
+  if (!g->xl) {
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->xl));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->yl));
+  }
+  PetscCall(PetscObjectGetId((PetscObject)P, &id));
+  state = ((PetscObject)P)->state;
+  if (lm->Ad && lm->id == id && lm->state == state) PetscFunctionReturn(0); /* the level's other sweep made it */
+  PetscCall(PetscObjectGetId((PetscObject)Ad, &bid));
+  PetscCall(MatGetNonzeroState(Ad, &nz));
+  if (lm->Ad) PetscCall(MatGetNonzeroState(lm->Ad, &adnz));
+  if (lm->Ad && lm->blockid == bid && lm->nzstate == nz && lm->adnz == adnz) PetscCall(MatCopy(Ad, lm->Ad, SAME_NONZERO_PATTERN));
+  else {
+    PetscCall(MatDestroy(&lm->Ad));
+    PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &lm->Ad));
+  }
+  PetscCall(MatCreateVecs(lm->Ad, &d, NULL));
+  PetscCall(MatGetDiagonal(lm->Ad, d));
   PetscCall(VecGetArray(d, &da));
   for (PetscInt i = 0; i < m; i++) {
     PetscInt  nc;
@@ -117,12 +162,13 @@ static PetscErrorCode SetUp_L1GS(PC pc)
     da[i] = l1 > PetscAbsScalar(da[i]) / 3 ? l1 : 0;
   }
   PetscCall(VecRestoreArray(d, &da));
-  PetscCall(MatDiagonalSet(g->Ad, d, ADD_VALUES));
+  PetscCall(MatDiagonalSet(lm->Ad, d, ADD_VALUES));
   PetscCall(VecDestroy(&d));
-  if (!g->xl) {
-    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->xl));
-    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->yl));
-  }
+  lm->id      = id;
+  lm->state   = state;
+  lm->blockid = bid;
+  lm->nzstate = nz;
+  PetscCall(MatGetNonzeroState(lm->Ad, &lm->adnz));
   PetscFunctionReturn(0);
 }
 
@@ -138,7 +184,7 @@ static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
   PetscCall(VecGetArray(y, &ya));
   PetscCall(VecPlaceArray(g->xl, xa));
   PetscCall(VecPlaceArray(g->yl, ya));
-  PetscCall(MatSOR(g->Ad, g->xl, 1.0, (MatSORType)((g->back ? SOR_BACKWARD_SWEEP : SOR_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, g->yl));
+  PetscCall(MatSOR(g->m->Ad, g->xl, 1.0, (MatSORType)((g->back ? SOR_BACKWARD_SWEEP : SOR_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, g->yl));
   PetscCall(VecResetArray(g->xl));
   PetscCall(VecResetArray(g->yl));
   PetscCall(VecRestoreArrayRead(x, &xa));
@@ -152,19 +198,26 @@ static PetscErrorCode Destroy_L1GS(PC pc)
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
-  PetscCall(MatDestroy(&g->Ad));
+  if (--g->m->refs == 0) {
+    PetscCall(MatDestroy(&g->m->Ad));
+    PetscCall(PetscFree(g->m));
+  }
   PetscCall(VecDestroy(&g->xl));
   PetscCall(VecDestroy(&g->yl));
   PetscCall(PetscFree(g));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetL1GS(PC pc, PetscBool back)
+/* lm: the level's shared matrix (NULL: a new one, for the level's other sweep to share) */
+static PetscErrorCode SetL1GS(PC pc, PetscBool back, L1GSMat **lm)
 {
   L1GS *g;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&g));
+  if (!*lm) PetscCall(PetscNew(lm));
+  g->m = *lm;
+  g->m->refs++;
   g->back = back;
   PetscCall(PCSetType(pc, PCSHELL));
   PetscCall(PCShellSetContext(pc, g));
@@ -180,6 +233,8 @@ static PetscErrorCode SetL1GS(PC pc, PetscBool back)
    coarse correction (as hypre's l1-Gauss-Seidel pair; on several ranks l1 Gauss-Seidel itself, SetL1GS), after GAMG
    its own Chebyshev/Jacobi (Gauss-Seidel gave NaN there, as it diverges in GAMG itself, part A of
    bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
+static PetscErrorCode BuildRanks(SgTMG);
+
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
@@ -232,6 +287,13 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(ISCreateStride(t->ssn->comm, hi - lo, lo, 1, &t->cols));
   PetscCall(MatDuplicate(t->P[n - 1], MAT_COPY_VALUES, &t->Pt));
   PetscCall(MatSetOption(t->Pt, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  if (size > 1 && n > 1) {
+    PetscBool ka, pa, ma;
+    PetscCall(PetscObjectTypeCompare((PetscObject)t->ssn->Klin, MATMPIAIJ, &ka));
+    PetscCall(PetscObjectTypeCompare((PetscObject)t->P[n - 1], MATMPIAIJ, &pa));
+    PetscCall(PetscObjectTypeCompare((PetscObject)t->KP, MATMPIAIJ, &ma));
+    if (ka && pa && ma) PetscCall(BuildRanks(t));
+  }
 
   PetscCall(PCCreate(t->ssn->comm, &t->mg));
   PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
@@ -244,8 +306,9 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_NONE));
   for (PetscInt l = n - 1; l > 0; l--) PetscCall(PCMGSetInterpolation(t->mg, l, l == n - 1 ? t->Pt : t->P[l]));
   for (PetscInt l = 0; l < n; l++) {
-    KSP sm[2];
-    PC  spc;
+    KSP      sm[2];
+    PC       spc;
+    L1GSMat *lm;
     PetscCall(PCMGGetSmootherDown(t->mg, l, &sm[0]));
     if (l == 0) {
       PetscCall(KSPSetOperators(sm[0], t->A[0], t->A[0]));
@@ -253,6 +316,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
       continue;
     }
     PetscCall(PCMGGetSmootherUp(t->mg, l, &sm[1]));
+    lm = NULL;
     for (PetscInt k = 0; k < 2; k++) {
       if (l < n - 1) PetscCall(KSPSetOperators(sm[k], t->A[l], t->A[l]));
       else PetscCall(KSPSetOperators(sm[k], A, B));
@@ -270,7 +334,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
       PetscCall(KSPGetPC(sm[k], &spc));
       if (size > 1) { /* l1 Gauss-Seidel (SetL1GS) */
-        PetscCall(SetL1GS(spc, (PetscBool)(k == 1)));
+        PetscCall(SetL1GS(spc, (PetscBool)(k == 1), &lm));
         continue;
       }
       PetscCall(PCSetType(spc, PCSOR));
@@ -279,6 +343,44 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   }
   PetscCall(PCSetFromOptions(t->mg));
   PetscCall(PetscLogEventEnd(SG_TMGBuild, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* Several ranks (UpdateRanks): the rows of the finest interpolation at Klin's ghost columns, the scatter of the active
+   flags to those columns, and the corrections' matrices with the kept operators' patterns, made once. */
+static PetscErrorCode BuildRanks(SgTMG t)
+{
+  const PetscInt  n = t->nlevels;
+  Mat             Ko, Pd, Po, *sub;
+  const PetscInt *garray;
+  PetscInt        ng, Nc;
+  IS              isr, isc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetId((PetscObject)t->ssn->Klin, &t->klin));
+  PetscCall(MatMPIAIJGetSeqAIJ(t->ssn->Klin, NULL, &Ko, &garray));
+  PetscCall(MatGetLocalSize(Ko, NULL, &ng));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, ng, garray, PETSC_COPY_VALUES, &isr));
+  PetscCall(MatGetSize(t->P[n - 1], NULL, &Nc));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, Nc, 0, 1, &isc));
+  PetscCall(MatCreateSubMatrices(t->P[n - 1], 1, &isr, &isc, MAT_INITIAL_MATRIX, &sub));
+  t->Poth = sub[0];
+  PetscCall(PetscObjectReference((PetscObject)t->Poth));
+  PetscCall(MatDestroySubMatrices(1, &sub));
+  PetscCall(MatCreateVecs(t->ssn->Klin, &t->act, NULL));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, ng, &t->gact));
+  PetscCall(VecScatterCreate(t->act, isr, t->gact, NULL, &t->gsc));
+  PetscCall(ISDestroy(&isr));
+  PetscCall(ISDestroy(&isc));
+  PetscCall(PetscCalloc3(Nc, &t->acc, Nc, &t->mark, Nc, &t->jw));
+  PetscCall(PetscCalloc2(n, &t->D, n, &t->str));
+  PetscCall(MatDuplicate(t->AK[n - 2], MAT_DO_NOT_COPY_VALUES, &t->D[n - 2]));
+  PetscCall(MatSetOption(t->D[n - 2], MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+  t->str[n - 2] = SAME_NONZERO_PATTERN;
+  /* the truncation zeroes rows in Pt's own blocks: its pattern must stay */
+  PetscCall(MatMPIAIJGetSeqAIJ(t->Pt, &Pd, &Po, NULL));
+  PetscCall(MatSetOption(Pd, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  PetscCall(MatSetOption(Po, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
@@ -317,6 +419,224 @@ static PetscErrorCode DeadDofs(Mat A, Mat AK)
   PetscFunctionReturn(0);
 }
 
+/* X's and Y's patterns (MPIAIJ) the same, on every rank: their blocks' rows, columns and ghost columns */
+static PetscErrorCode SamePattern(Mat X, Mat Y, PetscBool *same)
+{
+  Mat             xb[2], yb[2];
+  const PetscInt *gx, *gy;
+  PetscInt        nx, ny;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMPIAIJGetSeqAIJ(X, &xb[0], &xb[1], &gx));
+  PetscCall(MatMPIAIJGetSeqAIJ(Y, &yb[0], &yb[1], &gy));
+  PetscCall(MatGetLocalSize(xb[1], NULL, &nx));
+  PetscCall(MatGetLocalSize(yb[1], NULL, &ny));
+  *same = (PetscBool)(nx == ny);
+  for (PetscInt c = 0; *same && c < nx; c++) *same = (PetscBool)(gx[c] == gy[c]);
+  for (PetscInt k = 0; k < 2 && *same; k++) {
+    const PetscInt *ix, *jx, *iy, *jy;
+    PetscInt        mx, my;
+    PetscBool       dx, dy;
+    PetscCall(MatGetRowIJ(xb[k], 0, PETSC_FALSE, PETSC_FALSE, &mx, &ix, &jx, &dx));
+    PetscCall(MatGetRowIJ(yb[k], 0, PETSC_FALSE, PETSC_FALSE, &my, &iy, &jy, &dy));
+    *same = (PetscBool)(dx && dy && mx == my);
+    for (PetscInt i = 0; *same && i <= mx; i++) *same = (PetscBool)(ix[i] == iy[i]);
+    for (PetscInt a = 0; *same && a < ix[mx]; a++) *same = (PetscBool)(jx[a] == jy[a]);
+    PetscCall(MatRestoreRowIJ(xb[k], 0, PETSC_FALSE, PETSC_FALSE, &mx, &ix, &jx, &dx));
+    PetscCall(MatRestoreRowIJ(yb[k], 0, PETSC_FALSE, PETSC_FALSE, &my, &iy, &jy, &dy));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, same, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)X)));
+  PetscFunctionReturn(0);
+}
+
+/* row i of an MPIAIJ's local blocks (Bd: columns c0 + c; Bo: garray[c]) into *j, *v (global columns), grown to fit */
+static PetscErrorCode LocalRow(Mat Bd, Mat Bo, PetscInt c0, const PetscInt garray[], PetscInt i, PetscInt *nr, PetscInt **j, PetscScalar **v, PetscInt *cap)
+{
+  PetscInt           nd, no;
+  const PetscInt    *cd, *co;
+  const PetscScalar *vd, *vo;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetRow(Bd, i, &nd, &cd, &vd));
+  PetscCall(MatGetRow(Bo, i, &no, &co, &vo));
+  if (nd + no > *cap) {
+    PetscCall(PetscFree2(*j, *v));
+    *cap = 2 * (nd + no);
+    PetscCall(PetscMalloc2(*cap, j, *cap, v));
+  }
+  for (PetscInt a = 0; a < nd; a++) {
+    (*j)[a] = c0 + cd[a];
+    (*v)[a] = vd[a];
+  }
+  for (PetscInt b = 0; b < no; b++) {
+    (*j)[nd + b] = garray[co[b]];
+    (*v)[nd + b] = vo[b];
+  }
+  *nr = nd + no;
+  PetscCall(MatRestoreRow(Bd, i, &nd, &cd, &vd));
+  PetscCall(MatRestoreRow(Bo, i, &no, &co, &vo));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode GrowValues(SgTMG t, PetscInt need)
+{
+  PetscFunctionBeginUser;
+  if (need <= t->vcap) PetscFunctionReturn(0);
+  PetscCall(PetscFree(t->vw));
+  t->vcap = 2 * need;
+  PetscCall(PetscMalloc1(t->vcap, &t->vw));
+  PetscFunctionReturn(0);
+}
+
+/* Update's correction on several ranks, from each rank's own active rows i and the kept data (BuildRanks):
+   D = E^T K_AA E - E^T M - M^T E = sum_{i in A} P_i^T (g_i - M_i) - M_i^T P_i, with P_i, M_i = (K P)_i the rows of P
+   and K P and g_i = sum_{j in A} K_ij P_j (P_j of a ghost column j from Poth, whether j is active from the scattered
+   flags); added into D[n-2] (AK[n-2]'s pattern: the products' patterns hold every term) and carried to the coarser
+   levels by MatPtAP with the symbolic product kept. The sum is Update's in another order: the same operator up to
+   round-off. Update's general path (submatrices, products and transposes of new patterns, MatZeroRows' routing)
+   made new patterns and communication at every SSN step: 9x the 1-rank update time on 2 ranks (bench/nested.md par27). */
+static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], PetscInt nag)
+{
+  const PetscInt     n  = t->nlevels;
+  Mat                Dn = t->D[n - 2], Kd, Ko, Bd, Bo, Md, Mo, Pd, Po;
+  const PetscInt    *pg, *mg;
+  PetscInt           rstart, c0, *lrows;
+  PetscScalar       *fa;
+  const PetscScalar *la, *ga;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_TMGCorr, 0, 0, 0, 0));
+  PetscCall(MatGetOwnershipRange(t->Pt, &rstart, NULL));
+  PetscCall(MatGetOwnershipRangeColumn(t->Pt, &c0, NULL));
+  /* the truncation in Pt's own blocks (MatZeroRows would route the rows to their owners: they are ours) */
+  PetscCall(PetscMalloc1(na, &lrows));
+  for (PetscInt k = 0; k < na; k++) lrows[k] = rows[k] - rstart;
+  PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
+  PetscCall(MatMPIAIJGetSeqAIJ(t->Pt, &Pd, &Po, NULL));
+  PetscCall(MatZeroRows(Pd, na, lrows, 0.0, NULL, NULL));
+  PetscCall(MatZeroRows(Po, na, lrows, 0.0, NULL, NULL));
+  PetscCall(PetscObjectStateIncrease((PetscObject)t->Pt));
+  PetscCall(PetscFree(lrows));
+  if (nag == 0) {
+    for (PetscInt l = n - 2; l >= 0; l--) PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
+    PetscCall(PetscLogEventEnd(SG_TMGCorr, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecSet(t->act, 0.0));
+  PetscCall(VecGetArray(t->act, &fa));
+  for (PetscInt k = 0; k < na; k++) fa[rows[k] - rstart] = 1.0;
+  PetscCall(VecRestoreArray(t->act, &fa));
+  PetscCall(VecScatterBegin(t->gsc, t->act, t->gact, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(t->gsc, t->act, t->gact, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(MatMPIAIJGetSeqAIJ(t->ssn->Klin, &Kd, &Ko, NULL));
+  PetscCall(MatMPIAIJGetSeqAIJ(t->P[n - 1], &Bd, &Bo, &pg));
+  PetscCall(MatMPIAIJGetSeqAIJ(t->KP, &Md, &Mo, &mg));
+  PetscCall(MatZeroEntries(Dn));
+  PetscCall(VecGetArrayRead(t->act, &la));
+  PetscCall(VecGetArrayRead(t->gact, &ga));
+  for (PetscInt k = 0; k < na; k++) {
+    const PetscInt     i  = rows[k] - rstart;
+    PetscInt           np = 0, nm = 0, nt = 0, nc;
+    const PetscInt    *cc;
+    const PetscScalar *cv;
+
+    PetscCall(LocalRow(Bd, Bo, c0, pg, i, &np, &t->pj, &t->pv, &t->pcap));
+    PetscCall(LocalRow(Md, Mo, c0, mg, i, &nm, &t->mj, &t->mv, &t->mcap));
+    /* -M_i^T P_i */
+    PetscCall(GrowValues(t, nm * np));
+    for (PetscInt a = 0; a < nm; a++)
+      for (PetscInt b = 0; b < np; b++) t->vw[a * np + b] = -t->mv[a] * t->pv[b];
+    PetscCall(MatSetValues(Dn, nm, t->mj, np, t->pj, t->vw, ADD_VALUES));
+    /* h = g_i - M_i over the touched coarse columns */
+    for (PetscInt a = 0; a < nm; a++) {
+      const PetscInt J = t->mj[a];
+      if (!t->mark[J]) {
+        t->mark[J]  = PETSC_TRUE;
+        t->jw[nt++] = J;
+      }
+      t->acc[J] -= t->mv[a];
+    }
+    PetscCall(MatGetRow(Kd, i, &nc, &cc, &cv));
+    for (PetscInt a = 0; a < nc; a++) {
+      PetscInt           nq;
+      const PetscInt    *qd, *qo;
+      const PetscScalar *vd, *vo;
+      if (la[cc[a]] == 0.0) continue;
+      PetscCall(MatGetRow(Bd, cc[a], &nq, &qd, &vd));
+      for (PetscInt b = 0; b < nq; b++) {
+        const PetscInt J = c0 + qd[b];
+        if (!t->mark[J]) {
+          t->mark[J]  = PETSC_TRUE;
+          t->jw[nt++] = J;
+        }
+        t->acc[J] += cv[a] * vd[b];
+      }
+      PetscCall(MatRestoreRow(Bd, cc[a], &nq, &qd, &vd));
+      PetscCall(MatGetRow(Bo, cc[a], &nq, &qo, &vo));
+      for (PetscInt b = 0; b < nq; b++) {
+        const PetscInt J = pg[qo[b]];
+        if (!t->mark[J]) {
+          t->mark[J]  = PETSC_TRUE;
+          t->jw[nt++] = J;
+        }
+        t->acc[J] += cv[a] * vo[b];
+      }
+      PetscCall(MatRestoreRow(Bo, cc[a], &nq, &qo, &vo));
+    }
+    PetscCall(MatRestoreRow(Kd, i, &nc, &cc, &cv));
+    PetscCall(MatGetRow(Ko, i, &nc, &cc, &cv));
+    for (PetscInt a = 0; a < nc; a++) {
+      PetscInt           nq;
+      const PetscInt    *q;
+      const PetscScalar *vq;
+      if (ga[cc[a]] == 0.0) continue;
+      PetscCall(MatGetRow(t->Poth, cc[a], &nq, &q, &vq));
+      for (PetscInt b = 0; b < nq; b++) {
+        const PetscInt J = q[b];
+        if (!t->mark[J]) {
+          t->mark[J]  = PETSC_TRUE;
+          t->jw[nt++] = J;
+        }
+        t->acc[J] += cv[a] * vq[b];
+      }
+      PetscCall(MatRestoreRow(t->Poth, cc[a], &nq, &q, &vq));
+    }
+    PetscCall(MatRestoreRow(Ko, i, &nc, &cc, &cv));
+    /* P_i^T h */
+    PetscCall(GrowValues(t, np * nt));
+    for (PetscInt b = 0; b < np; b++)
+      for (PetscInt a = 0; a < nt; a++) t->vw[b * nt + a] = t->pv[b] * t->acc[t->jw[a]];
+    PetscCall(MatSetValues(Dn, np, t->pj, nt, t->jw, t->vw, ADD_VALUES));
+    for (PetscInt a = 0; a < nt; a++) {
+      t->acc[t->jw[a]]  = 0;
+      t->mark[t->jw[a]] = PETSC_FALSE;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(t->act, &la));
+  PetscCall(VecRestoreArrayRead(t->gact, &ga));
+  PetscCall(MatAssemblyBegin(Dn, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Dn, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(SG_TMGCorr, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(SG_TMGCoarse, 0, 0, 0, 0));
+  /* A[l] = AK[l] + D[l], D[l-1] = P[l]^T D[l] P[l] (the symbolic product made at the first update) */
+  for (PetscInt l = n - 2; l >= 0; l--) {
+    PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
+    PetscCall(MatAXPY(t->A[l], 1.0, t->D[l], t->str[l]));
+    if (l > 0) {
+      if (t->D[l - 1]) PetscCall(MatPtAP(t->D[l], t->P[l], MAT_REUSE_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
+      else {
+        PetscBool same;
+        PetscCall(MatPtAP(t->D[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
+        PetscCall(SamePattern(t->D[l - 1], t->AK[l - 1], &same));
+        t->str[l - 1] = same ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN;
+      }
+    }
+    PetscCall(DeadDofs(t->A[l], t->AK[l]));
+  }
+  PetscCall(PetscLogEventEnd(SG_TMGCoarse, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* The coarse operators for the active set `want`. With E the rows of the finest interpolation P at the active normal
    dofs (A), the truncated P_t = P - E gives P_t^T J P_t = P_t^T K P_t = P^T K P - E^T (K P) - (K P)^T E + E^T K_AA E:
    a correction of the kept Galerkin operator that only involves the rows in A. It is carried to the coarser levels by
@@ -341,6 +661,15 @@ static PetscErrorCode Update(SgTMG t)
     if (t->want[i]) rows[na++] = rstart + t->ssn->off[i] + t->axis[i];
   }
   PetscCall(MPIU_Allreduce(&na, &nag, 1, MPIU_INT, MPI_SUM, t->ssn->comm));
+  if (t->D) {
+    PetscObjectId klin;
+    PetscCall(PetscObjectGetId((PetscObject)t->ssn->Klin, &klin));
+    PetscCheck(klin == t->klin, t->ssn->comm, PETSC_ERR_PLIB, "truncated multigrid: the stiffness changed after its set-up");
+    PetscCall(UpdateRanks(t, na, rows, nag));
+    PetscCall(PetscFree(rows));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(SG_TMGCorr, 0, 0, 0, 0));
   PetscCall(MatCopy(t->P[n - 1], t->Pt, SAME_NONZERO_PATTERN));
   PetscCall(MatZeroRows(t->Pt, na, rows, 0.0, NULL, NULL));
   if (nag > 0) {
@@ -363,6 +692,8 @@ static PetscErrorCode Update(SgTMG t)
     PetscCall(ISDestroy(&isA));
   }
   PetscCall(PetscFree(rows));
+  PetscCall(PetscLogEventEnd(SG_TMGCorr, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(SG_TMGCoarse, 0, 0, 0, 0));
   /* A[l] = AK[l] + D_l, D_{l-1} = P[l]^T D_l P[l]; the corrections' patterns lie in those of the kept operators */
   for (PetscInt l = n - 2; l >= 0; l--) {
     PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
@@ -375,6 +706,7 @@ static PetscErrorCode Update(SgTMG t)
       PetscCall(DeadDofs(t->A[l], t->AK[l]));
     }
   }
+  PetscCall(PetscLogEventEnd(SG_TMGCoarse, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -390,7 +722,9 @@ static PetscErrorCode SetUp_TMG(PC pc)
   PetscCall(PetscLogEventBegin(SG_TMGUpdate, 0, 0, 0, 0));
   if (t->has_set) PetscCall(Update(t));
   PetscCall(PCSetOperators(t->mg, A, B));
+  PetscCall(PetscLogEventBegin(SG_TMGMGSetUp, 0, 0, 0, 0));
   PetscCall(PCSetUp(t->mg));
+  PetscCall(PetscLogEventEnd(SG_TMGMGSetUp, 0, 0, 0, 0));
   PetscCall(PetscLogEventEnd(SG_TMGUpdate, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -435,6 +769,9 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   if (!tmg_registered) {
     PetscCall(PetscLogEventRegister("SgTMGBuild", PC_CLASSID, &SG_TMGBuild));
     PetscCall(PetscLogEventRegister("SgTMGUpdate", PC_CLASSID, &SG_TMGUpdate));
+    PetscCall(PetscLogEventRegister("SgTMGCorr", PC_CLASSID, &SG_TMGCorr));
+    PetscCall(PetscLogEventRegister("SgTMGCoarse", PC_CLASSID, &SG_TMGCoarse));
+    PetscCall(PetscLogEventRegister("SgTMGMGSetUp", PC_CLASSID, &SG_TMGMGSetUp));
     tmg_registered = PETSC_TRUE;
   }
   PetscCall(KSPGetPC(ksp, &pc));
@@ -511,6 +848,18 @@ PetscErrorCode SgTMGDestroy(SgTMG *tmg)
   PetscCall(ISDestroy(&t->cols));
   PetscCall(MatDestroy(&t->Pt));
   PetscCall(PetscFree4(t->axis, t->sign, t->want, t->have));
+  if (t->D) {
+    for (PetscInt l = 0; l < t->nlevels; l++) PetscCall(MatDestroy(&t->D[l]));
+    PetscCall(PetscFree2(t->D, t->str));
+    PetscCall(MatDestroy(&t->Poth));
+    PetscCall(VecDestroy(&t->act));
+    PetscCall(VecDestroy(&t->gact));
+    PetscCall(VecScatterDestroy(&t->gsc));
+    PetscCall(PetscFree3(t->acc, t->mark, t->jw));
+    PetscCall(PetscFree2(t->pj, t->pv));
+    PetscCall(PetscFree2(t->mj, t->mv));
+    PetscCall(PetscFree(t->vw));
+  }
   PetscCall(PetscFree(*tmg));
   PetscFunctionReturn(0);
 }
