@@ -166,11 +166,11 @@ static PetscErrorCode TransferContactField(SgCont a, SgCont b, const PetscInt ma
    they are; none is taken out; the start only: the answer does not depend on it. */
 static PetscErrorCode PlaceRim(SgCont b, const PetscReal lam[], PetscInt *added)
 {
-  PetscReal     *g, *kn;
-  PetscScalar   *ya;
-  PetscInt       dim, n = b->n;
-  PetscBool      pair;
-  const SgMesh  *mb;
+  PetscReal    *g, *kn;
+  PetscScalar  *ya;
+  PetscInt      dim, n = b->n;
+  PetscBool     pair;
+  const SgMesh *mb;
 
   PetscFunctionBeginUser;
   *added = 0;
@@ -191,7 +191,7 @@ static PetscErrorCode PlaceRim(SgCont b, const PetscReal lam[], PetscInt *added)
     for (PetscInt k = 0; k < dim; k++)
       if (!((mask >> k) & 1)) free += nv[k] * nv[k];
     if (free < 0.25) continue; /* the fixed components (Dirichlet) stay; too little of the normal is free */
-    move = -2 * g[i] / free; /* along the free part of the normal: the mirror image in the obstacle's surface, g_i -> -g_i */
+    move = -2 * g[i] / free;   /* along the free part of the normal: the mirror image in the obstacle's surface, g_i -> -g_i */
     for (PetscInt k = 0; k < dim; k++)
       if (!((mask >> k) & 1)) ya[b->off[i] + k] += move * nv[k];
     (*added)++;
