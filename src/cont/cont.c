@@ -86,6 +86,7 @@ PetscErrorCode SgContCreate(SgProblem prob, SgCont *cont)
   ct->max_outer       = 50;
   ct->gamma_max       = 1e20;
   ct->stall_its       = 10;
+  ct->nested_rim      = 0.3;
   ct->coulomb_shifted = PETSC_TRUE;
   ct->residual        = SG_NAN;
   ct->V0 = ct->V = SG_NAN;

@@ -24,6 +24,8 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
     PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off; default with -dm_refine N >= 1 and one body in contact, in 3D without friction and in 2D with friction or an iterative linear solver: N, and with an iterative default solver the SSN steps preconditioned by the geometric multigrid of the levels)", &ct->nested, &set));
     if (set) ct->nested_default = PETSC_FALSE;
   }
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-cont_nested_rim", "Nested iteration: a finer level's first active set also takes the contact vertices whose interpolated multiplier outweighs this factor times their normal stiffness per area (n^T K_ii n / w_i) times their gap on the finer mesh (the rim of the coarse contact zone placed on the finer mesh; 0: only the interpolated displacement's penetration)", &ct->nested_rim, NULL));
+  PetscCheck(ct->nested_rim >= 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_nested_rim: must be >= 0 (0: off), got %g", (double)ct->nested_rim);
   PetscFunctionReturn(0);
 }
 

@@ -137,6 +137,8 @@ struct _n_SgCont {
   PetscInt       nested_done;                    /* coarse levels solved */
   PetscInt       nested_ssn_its, nested_ksp_its; /* their SSN steps and linear iterations */
   PetscLogDouble nested_time;                    /* their time, set-up included */
+  PetscReal      nested_rim;                     /* -cont_nested_rim: the rim test's factor of n^T K_ii n / w_i (0: off) */
+  PetscInt       nested_rim_added;               /* contact vertices the rim test moved onto the obstacle (PlaceRim) */
 };
 
 extern PetscFunctionList SgContList;
