@@ -21,7 +21,7 @@ static PetscErrorCode CommonOptions(SgCont ct, PetscOptionItems *PetscOptionsObj
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_stall_it", "Stop with STALLED after this many outer steps without progress in the KKT residual", &ct->stall_its, NULL));
   if (!ct->nested_inner) {
     PetscBool set;
-    PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off; default with -dm_refine N >= 1 and one body in contact, in 3D without friction and in 2D with friction or an iterative linear solver: N, and with an iterative default solver the SSN steps preconditioned by the geometric multigrid of the levels)", &ct->nested, &set));
+    PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_nested", "Nested iteration: solve first on the mesh refined this many times fewer (needs -dm_refine >= it), then on each finer one from the interpolated solution, multiplier shift and gamma (0: off; default with -dm_refine N >= 1 and a contact boundary (one body or a pair), in 3D without friction and in 2D with friction or an iterative linear solver: N, and with an iterative default solver the SSN steps preconditioned by the geometric multigrid of the levels)", &ct->nested, &set));
     if (set) ct->nested_default = PETSC_FALSE;
   }
   PetscFunctionReturn(0);
