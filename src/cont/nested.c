@@ -29,12 +29,14 @@
    same CPU time, 0.75-1.0x, at 1e4 ... 6.2e5 unknowns); with friction there is no condensation and every SSN step
    factors K (Example 1 with Coulomb at 1.5e5 unknowns: 0.56x the CPU time). Not with friction in 3D (the Coulomb
    block at 22,500 unknowns with BiCGStab + BoomerAMG: 2.9x the CPU time, its linear solves much harder from the
-   nested start at a large gamma; Tresca there 0.38x). Not for two bodies (not measured), nor
-   a mesh given by the program or a controller of a coarse level. Measured in bench/nested.md ("The default", "2D and
+   nested start at a large gamma; Tresca there 0.38x). Two bodies (each level its own
+   pair, contact/coarse.c) by the same rule: the sphere on a block at 121,128 unknowns, with the geometric multigrid
+   mapped into the pair's basis (solver/gmg.c), 0.7x the CPU time of the run without (bench/results.md, branch pair3).
+   Not for a mesh given by the program or a controller of a coarse level. Measured in bench/nested.md ("The default", "2D and
    friction"). */
 PetscErrorCode SgContNestedDefault(SgCont ct, PetscBool iterative)
 {
-  PetscBool   own, pair = PETSC_FALSE, given;
+  PetscBool   own, given;
   PetscInt    nref, dim;
   DM          dm;
   PetscObject lv = NULL;
@@ -45,9 +47,8 @@ PetscErrorCode SgContNestedDefault(SgCont ct, PetscBool iterative)
   if (ct->nested_inner || !ct->c) PetscFunctionReturn(0);
   PetscCall(PetscOptionsHasName(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-cont_nested", &given));
   if (given) PetscFunctionReturn(0);
-  PetscCall(SgContactIsPair(ct->c, &pair));
   PetscCall(SgProblemGetRefinement(ct->problem_obj, &own, &nref));
-  if (pair || !own || nref < 1) PetscFunctionReturn(0);
+  if (!own || nref < 1) PetscFunctionReturn(0);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   if (dim == 2 && !iterative && !ct->cv.props.nonlinear) PetscFunctionReturn(0); /* 2D direct, frictionless: the levels, if kept, stay unused */
   if (dim == 3 && ct->cv.props.tangential) PetscFunctionReturn(0);               /* (fem/mesh.c keeps no levels there) */

@@ -184,11 +184,11 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    The geometric multigrid (-ssn_pc_truncated_mg_interp geometric, solver/gmg.c) keeps every level (L = N); for it
    each level's DM holds its own coarser ones the same way, and the coarsest (unrefined) one is marked
    "SgNestedBase". Without -cont_nested, a 3D mesh refined with -dm_refine N >= 1 for a frictionless contact boundary
-   of one body (-contact_ids or -contact_label, no -contact_master_ids, no -friction_type but none) keeps every level
+   (-contact_ids or -contact_label, one body or two, no -friction_type but none) keeps every level
    (L = N): nested iteration's default (SgContNestedDefault); so does a 2D one with friction, or where the linear solver may be iterative (2 x the
    fine mesh's vertices above the default's direct limit: 20000 on several ranks or -cont_direct_max_unknowns; or a
    Krylov -ksp_type): without friction SgContNestedDefault solves on them only if it is, a direct solve leaves them
-   unused. -cont_nested 0 keeps none. */
+   unused. Two bodies (-contact_master_ids) as one. -cont_nested 0 keeps none. */
 static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
 {
   PetscInt          nest = 0, nref = 0, interp = 0;
@@ -204,10 +204,10 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   if (PetscOptionsGetInt(NULL, prefix, "-dm_refine", &nref, &rset)) rset = PETSC_FALSE;
   if (PetscOptionsGetEList(NULL, prefix, "-ssn_pc_truncated_mg_interp", interps, 2, &interp, &gset)) gset = PETSC_FALSE;
   PetscCall(PetscPopErrorHandler());
-  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, one body in contact, 3D,
+  if (!nset && rset && nref >= 1) { /* the default of -cont_nested (cont/nested.c): every level, a contact boundary, 3D,
                                         and in 2D with friction or where the linear solver may be iterative
                                         (SgContNestedDefault uses the levels only if it is) */
-    PetscBool ids, label, pair, iter2d = PETSC_FALSE;
+    PetscBool ids, label, fric3d = PETSC_FALSE, iter2d = PETSC_FALSE;
     PetscInt  dim;
     PetscCall(DMGetDimension(*dm, &dim));
     if (dim == 2) { /* the unknowns of the refined mesh at most 2 V_N (V_N its vertices, from the counts of the given
@@ -239,7 +239,6 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
     }
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_ids", &ids));
     PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_label", &label));
-    PetscCall(PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair));
     { /* with friction in 2D with either solver (no condensation there, every SSN step is a factorization of K); not
          in 3D (Coulomb with BiCGStab + BoomerAMG: 2.9x the CPU time from the nested start, bench/nested.md) */
       char      law[64] = "";
@@ -247,10 +246,10 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
       PetscCall(PetscOptionsGetString(NULL, prefix, "-friction_type", law, sizeof(law), &fset));
       if (fset && strcmp(law, "none")) {
         if (dim == 2) iter2d = PETSC_TRUE;
-        else pair = PETSC_TRUE;
+        else fric3d = PETSC_TRUE;
       }
     }
-    if ((dim == 3 || iter2d) && (ids || label) && !pair) {
+    if ((dim == 3 || iter2d) && (ids || label) && !fric3d) {
       nset = PETSC_TRUE;
       nest = nref;
     }

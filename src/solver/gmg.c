@@ -7,7 +7,9 @@
    layout made as the problem's: SgMeshSetUp with the same Dirichlet boundary) to the finer one's; a fixed component of
    a partly fixed vertex (a decoupled unknown that stays 0) receives nothing from a free one, only from the same fixed
    component of the coinciding coarse vertex (so the coarse operators keep a positive diagonal there). In the contact
-   frames (-ssn_frame) the finest P is Q^T P (rows of the rotated vertices turned into their frames); the coarser
+   frames (-ssn_frame) the finest P is Q^T P (rows of the rotated vertices turned into their frames); for two bodies
+   in the pair's dual-mortar basis (-ssn_pair_transform) it is (T Q)^-1 P (SgFramePairInterpolation, as the AMG's
+   finest interpolation there: the coarse operators are K's own, each body coarsened on its own mesh); the coarser
    levels stay in the global coordinates. tmg.c then truncates the finest P at the active normal dofs and forms the
    coarse operators by Galerkin products, as for the AMG's interpolations. */
 #include "solver/ssnimpl.h"
@@ -112,6 +114,7 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
   SgMesh           *m;
   const SgBoundary *bd;
   const char       *prefix;
+  const PetscBool   pair = SgFramePairTransform(s->frame);
 
   PetscFunctionBeginUser;
   *n = 0;
@@ -139,8 +142,14 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
     PetscInt *map, bad;
     PetscCall(SgMeshRefinementMap(dmc[l - 1], &m[l - 1], &m[l], prefix, &map, &bad));
     PetscCheck(!bad, s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg_interp geometric: the mesh refined %" PetscInt_FMT " times fewer, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the refinement does not nest here; use -ssn_pc_truncated_mg_interp amg", L - l + 1, bad);
-    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L ? s->frame : NULL, s->n, s->vert, &(*P)[l]));
+    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L && !pair ? s->frame : NULL, s->n, s->vert, &(*P)[l]));
     PetscCall(PetscFree(map));
+    if (l == L && pair) { /* two bodies: the finest P taken into the pair's dual-mortar basis, as the AMG's (tmg.c) */
+      Mat Pv;
+      PetscCall(SgFramePairInterpolation(s->frame, (*P)[L], &Pv));
+      PetscCall(MatDestroy(&(*P)[L]));
+      (*P)[L] = Pv;
+    }
   }
   {
     PetscInt nrow, nfine;

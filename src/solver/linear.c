@@ -330,8 +330,14 @@ PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity el, SgContact c, const char
        4 SSN steps and 37 s against 7 and 72 s with a BoomerAMG setup per step, bench/results.md "Two bodies") */
     PetscCall(SetDefaultSSN(prefix, "ssn_pc_truncated_mg", &on));
     def->tmg = on;
+    if (on) { /* the mesh hierarchy's interpolations where the mesh kept its levels, as for one body (gmg.c maps the
+                 finest one into the pair's basis) */
+      PetscInt ncoarse;
+      PetscCall(DefaultGeometricMG(el, prefix, &def->geometric, &ncoarse));
+    }
     PetscCall(PetscStrlen(desc, &n));
-    PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps in the pair's dual-mortar basis (-ssn_pair_transform)%s", on ? " preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)" : ""));
+    PetscCall(PetscSNPrintf(desc + n, len - n, ", the SSN steps in the pair's dual-mortar basis (-ssn_pair_transform)%s", !on ? "" : def->geometric ? " preconditioned by the geometric multigrid of the mesh hierarchy truncated at the active set (-ssn_pc_truncated_mg_interp geometric)"
+                                                                                                                                                    : " preconditioned by its multigrid kept from one setup and truncated at the active set (-ssn_pc_truncated_mg)"));
     PetscFunctionReturn(0);
   }
   PetscCall(SgElasticityGetComm(el, &comm));

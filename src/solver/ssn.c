@@ -253,7 +253,6 @@ PetscErrorCode SgSSNSetFromOptions(SgSSN s)
     PetscCall(SgContactIsPair(c, &pair));
     PetscCheck(pair, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform is for two-body contact (-contact_master_ids): this problem has no pair");
     PetscCheck(!condense, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform with -ssn_condense: condensation is not available for two bodies; leave -ssn_condense out");
-    PetscCheck(interp != 1, s->comm, PETSC_ERR_SUP, "-ssn_pair_transform with -ssn_pc_truncated_mg_interp geometric: the mesh hierarchy's interpolations do not carry the pair's transformation; use -ssn_pc_truncated_mg_interp amg");
     PetscCall(SgFrameCreatePair(p, c, &s->frame));
   } else if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
