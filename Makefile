@@ -50,7 +50,7 @@ MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.m
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
-          meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh
+          meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh meshes/ex2_s1.msh meshes/cv_ex2_s1_r30.msh meshes/cv_ex2_s1_r75.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, tests/*/twobody_fields.ini, options/twobody_hertz.opts,
 # options/twobody_sphere.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \

@@ -531,7 +531,7 @@ typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, S
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                                /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                             /* vertices whose state at y differs from the last Jacobian's set */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                             /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
 PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]);                                   /* -help without a problem: the SSN's options */
 PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec);                                       /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */

@@ -80,7 +80,7 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
       loc[3] += (s->act[i] && !s->actjac[i]);
       loc[4] += (!s->act[i] && s->actjac[i]);
       /* a change beyond the round-off of forming lamhat + gamma (tau_N y - d) */
-      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(s->g[i] + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata)) + s->kroff / s->w[i]);
+      if (s->act[i] != s->actjac[i]) loc[7] += (PetscAbsReal(z) > SgSSNDecisionRoundoff(s, i, s->g[i]));
     }
     loc[5] += s->w[i] * PetscSqr(lj - s->m[i]);
   }

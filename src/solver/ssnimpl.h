@@ -91,6 +91,16 @@ struct _n_SgSSN {
   SgContactLawState lst;
 };
 
+/* The round-off of a contact vertex's decision value lamhat_i + gamma g_i (its state: active where it is > 0) at the
+   gap g_i: forming gamma (tau_N y - d) rounds by eps gamma (|tau_N y| + |d|) (the displacement data udata bounds |y|
+   from below), and the multiplier it stands for is seen in the equilibrium only above the round-off of K y at the
+   vertex (kroff, per unit weight). A value below it is a state that the arithmetic, not the problem, decides: it differs
+   between a problem and its rigidly turned copy (rotation-invariant: lengths only). */
+static inline PetscReal SgSSNDecisionRoundoff(SgSSN s, PetscInt i, PetscReal g)
+{
+  return 8 * PETSC_MACHINE_EPSILON * (PetscAbsReal(s->lamhat[i]) + s->gamma * (PetscAbsReal(g + s->d[i]) + PetscAbsReal(s->d[i]) + s->udata)) + s->kroff / s->w[i];
+}
+
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
    fallback.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
 PetscErrorCode SgSSNResidual(SNES, Vec, Vec, void *);
