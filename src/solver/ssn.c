@@ -60,8 +60,8 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   PetscFunctionReturn(0);
 }
 
-/* A and B sequential AIJ with the same nonzero pattern */
-static PetscErrorCode SamePatternSeqAIJ(Mat A, Mat B, PetscBool *same)
+/* A and B sequential AIJ with the same nonzero pattern (false if either is not SeqAIJ) */
+PetscErrorCode SgSeqAIJSamePattern(Mat A, Mat B, PetscBool *same)
 {
   PetscBool       sa, sb, fa, fb;
   const PetscInt *ia, *ja, *ib, *jb;
@@ -95,7 +95,7 @@ static PetscErrorCode FrameSetUp(SgSSN s, KSP ksp)
 
   PetscFunctionBeginUser;
   PetscCall(SgFrameGetStiffness(s->frame, &s->Klin));
-  PetscCall(SamePatternSeqAIJ(s->Klin, s->J, &same));
+  PetscCall(SgSeqAIJSamePattern(s->Klin, s->J, &same));
   if (same) {
     PetscCall(MatCopy(s->Klin, s->J, SAME_NONZERO_PATTERN));
     PetscCall(PetscObjectReference((PetscObject)s->J));

@@ -104,6 +104,7 @@ static inline PetscReal SgSSNDecisionRoundoff(SgSSN s, PetscInt i, PetscReal g)
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
    fallback.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
 PetscErrorCode SgSSNResidual(SNES, Vec, Vec, void *);
+PetscErrorCode SgSeqAIJSamePattern(Mat, Mat, PetscBool *); /* ssn.c: two SeqAIJ matrices' patterns equal (tmg.c compares MPIAIJ blocks with it) */
 PetscErrorCode SgSSNJacobian(SNES, Vec, Mat, Mat, void *);
 PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);

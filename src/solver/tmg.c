@@ -433,18 +433,7 @@ static PetscErrorCode SamePattern(Mat X, Mat Y, PetscBool *same)
   PetscCall(MatGetLocalSize(yb[1], NULL, &ny));
   *same = (PetscBool)(nx == ny);
   for (PetscInt c = 0; *same && c < nx; c++) *same = (PetscBool)(gx[c] == gy[c]);
-  for (PetscInt k = 0; k < 2 && *same; k++) {
-    const PetscInt *ix, *jx, *iy, *jy;
-    PetscInt        mx, my;
-    PetscBool       dx, dy;
-    PetscCall(MatGetRowIJ(xb[k], 0, PETSC_FALSE, PETSC_FALSE, &mx, &ix, &jx, &dx));
-    PetscCall(MatGetRowIJ(yb[k], 0, PETSC_FALSE, PETSC_FALSE, &my, &iy, &jy, &dy));
-    *same = (PetscBool)(dx && dy && mx == my);
-    for (PetscInt i = 0; *same && i <= mx; i++) *same = (PetscBool)(ix[i] == iy[i]);
-    for (PetscInt a = 0; *same && a < ix[mx]; a++) *same = (PetscBool)(jx[a] == jy[a]);
-    PetscCall(MatRestoreRowIJ(xb[k], 0, PETSC_FALSE, PETSC_FALSE, &mx, &ix, &jx, &dx));
-    PetscCall(MatRestoreRowIJ(yb[k], 0, PETSC_FALSE, PETSC_FALSE, &my, &iy, &jy, &dy));
-  }
+  for (PetscInt k = 0; k < 2 && *same; k++) PetscCall(SgSeqAIJSamePattern(xb[k], yb[k], same));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, same, 1, MPIU_BOOL, MPI_LAND, PetscObjectComm((PetscObject)X)));
   PetscFunctionReturn(0);
 }
@@ -486,6 +475,16 @@ static PetscErrorCode GrowValues(SgTMG t, PetscInt need)
   t->vcap = 2 * need;
   PetscCall(PetscMalloc1(t->vcap, &t->vw));
   PetscFunctionReturn(0);
+}
+
+/* acc[J] += v, J listed in jw[0 .. *nt) the first time it is touched (the row of UpdateRanks' correction) */
+static inline void Accumulate(SgTMG t, PetscInt J, PetscScalar v, PetscInt *nt)
+{
+  if (!t->mark[J]) {
+    t->mark[J]     = PETSC_TRUE;
+    t->jw[(*nt)++] = J;
+  }
+  t->acc[J] += v;
 }
 
 /* Update's correction on several ranks, from each rank's own active rows i and the kept data (BuildRanks):
@@ -549,12 +548,7 @@ static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], P
     PetscCall(MatSetValues(Dn, nm, t->mj, np, t->pj, t->vw, ADD_VALUES));
     /* h = g_i - M_i over the touched coarse columns */
     for (PetscInt a = 0; a < nm; a++) {
-      const PetscInt J = t->mj[a];
-      if (!t->mark[J]) {
-        t->mark[J]  = PETSC_TRUE;
-        t->jw[nt++] = J;
-      }
-      t->acc[J] -= t->mv[a];
+      Accumulate(t, t->mj[a], -t->mv[a], &nt);
     }
     PetscCall(MatGetRow(Kd, i, &nc, &cc, &cv));
     for (PetscInt a = 0; a < nc; a++) {
@@ -564,22 +558,12 @@ static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], P
       if (la[cc[a]] == 0.0) continue;
       PetscCall(MatGetRow(Bd, cc[a], &nq, &qd, &vd));
       for (PetscInt b = 0; b < nq; b++) {
-        const PetscInt J = c0 + qd[b];
-        if (!t->mark[J]) {
-          t->mark[J]  = PETSC_TRUE;
-          t->jw[nt++] = J;
-        }
-        t->acc[J] += cv[a] * vd[b];
+        Accumulate(t, c0 + qd[b], cv[a] * vd[b], &nt);
       }
       PetscCall(MatRestoreRow(Bd, cc[a], &nq, &qd, &vd));
       PetscCall(MatGetRow(Bo, cc[a], &nq, &qo, &vo));
       for (PetscInt b = 0; b < nq; b++) {
-        const PetscInt J = pg[qo[b]];
-        if (!t->mark[J]) {
-          t->mark[J]  = PETSC_TRUE;
-          t->jw[nt++] = J;
-        }
-        t->acc[J] += cv[a] * vo[b];
+        Accumulate(t, pg[qo[b]], cv[a] * vo[b], &nt);
       }
       PetscCall(MatRestoreRow(Bo, cc[a], &nq, &qo, &vo));
     }
@@ -592,12 +576,7 @@ static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], P
       if (ga[cc[a]] == 0.0) continue;
       PetscCall(MatGetRow(t->Poth, cc[a], &nq, &q, &vq));
       for (PetscInt b = 0; b < nq; b++) {
-        const PetscInt J = q[b];
-        if (!t->mark[J]) {
-          t->mark[J]  = PETSC_TRUE;
-          t->jw[nt++] = J;
-        }
-        t->acc[J] += cv[a] * vq[b];
+        Accumulate(t, q[b], cv[a] * vq[b], &nt);
       }
       PetscCall(MatRestoreRow(t->Poth, cc[a], &nq, &q, &vq));
     }
