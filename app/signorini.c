@@ -8,8 +8,8 @@
 #include <strings.h>
 
 static const char help[] = "Contact of linear elastic bodies, frictionless or with Tresca or Coulomb friction: one body against a rigid\n"
-                           "obstacle (plane, parabola, ball, CAD model or meshed surface), or two elastic bodies (-contact_master_ids;\n"
-                           "frictionless), solved with the semismooth Newton, augmented Lagrangian and path-following methods of\n"
+                           "obstacle (plane, parabola, ball, CAD model or meshed surface), or two elastic bodies (-contact_master_ids),\n"
+                           "solved with the semismooth Newton, augmented Lagrangian and path-following methods of\n"
                            "G. Stadler (J. Comput. Appl. Math. 203, 2007). The mesh: a gmsh file (-dm_plex_filename F.msh, with\n"
                            "-dm_plex_gmsh_use_regions its physical names become labels) or a box (-box_*). README.md is the entry point,\n"
                            "doc/user-guide.md sets up a problem, doc/options.md describes every option; options/ holds ready-made\n"
