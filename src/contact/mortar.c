@@ -360,8 +360,8 @@ static void FacetBall(const SgMortarSurface *x, PetscInt f, PetscReal c[], Petsc
    of cm from that line is at most |cm - q| + |p - cs| <= rm + rs: every facet that Pair3D could take passes (with a
    margin for rounding): the others add nothing (no overlap), the integrals add in the same order, the report is a
    maximum and a flag. This makes the scan of the facets far from the other body (most of the sphere's curved face) a few operations per master facet instead of
-   Pair3D's projection and clipping: the pair set-up of the sphere on a block at 1e6 unknowns was about a fifth of
-   the run (bench/results.md, branch pair4). */
+   Pair3D's projection and clipping: the contact set-up of the sphere on a block at 907,968 unknowns took 70.7 s of a
+   245 s run before, 29.7 s of 255 s after (wall, loaded machine; bench/results.md, branch pair4). */
 static PetscBool BallMeetsLine(const PetscReal cs[], PetscReal rs, const PetscReal n[], const PetscReal cm[], PetscReal rm)
 {
   PetscReal d[3], t, d2 = 0, reach = 1.001 * (rs + rm);

@@ -172,7 +172,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
                  where every pair condition is nodal: then the one-body limits, except 2D on one rank: one body's
                  unlimited MUMPS there rests on the condensation onto the contact dofs, which a pair has not (every SSN
                  step factors K), so the limit of several ranks (no condensation either): the two cylinders at 32,700,
-                 129,752 and 516,912 unknowns took 0.6-0.7x, 0.4x and 0.35-0.45x the CPU time of MUMPS in CG +
+                 129,752 and 516,912 unknowns took 0.6-0.8x, 0.4x and 0.35-0.45x the CPU time of MUMPS in CG +
                  BoomerAMG with nested iteration (-dm_refine), 3-5 SSN steps against 7-9 (bench/results.md, pair4) */
     PetscBool tx = PETSC_TRUE;
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pair_transform", prefix ? prefix : ""));
