@@ -499,6 +499,9 @@ typedef struct {
   PetscBool tmg;       /* the SSN's truncated multigrid (SgSSNSetTruncatedMG) */
   PetscBool geometric; /* its interpolations of the mesh hierarchy */
 } SgLinearDefault;
+/* the default direct limit (-cont_direct_max_unknowns) of two bodies in 2D on one rank (solver/linear.c; fem/mesh.c
+   predicts it for nested iteration's levels): no condensation of the pair's SSN steps, as on several ranks */
+#define SG_PAIR_DIRECT_MAX_2D  20000
 #define SG_LINEAR_DEFAULT_NAMG 7 /* the BoomerAMG settings (the size of SgLinearSolverSetDefault's entered[]) */
 PetscErrorCode SgLinearSolverCreate(SgElasticity, const char[], const SgLinearDefault *, KSP *, Mat *);
 PetscErrorCode SgLinearSolverSetDefault(KSP, const SgLinearDefault *, PetscBool[]);                                                      /* before the KSP's (or its SNES's) SetFromOptions ... */

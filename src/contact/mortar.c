@@ -338,12 +338,46 @@ static PetscErrorCode GridQuery(Grid *g, const SgMortarSurface *s, PetscInt f, P
   PetscFunctionReturn(0);
 }
 
+/* The centre (the vertices' mean) and radius (the farthest vertex from it) of facet f of x */
+static void FacetBall(const SgMortarSurface *x, PetscInt f, PetscReal c[], PetscReal *r)
+{
+  const PetscInt dim = x->dim;
+  *r                 = 0;
+  for (PetscInt k = 0; k < dim; k++) c[k] = 0;
+  for (PetscInt i = 0; i < dim; i++)
+    for (PetscInt k = 0; k < dim; k++) c[k] += x->x[dim * x->facets[dim * f + i] + k] / dim;
+  for (PetscInt i = 0; i < dim; i++) {
+    PetscReal d2 = 0;
+    for (PetscInt k = 0; k < dim; k++) d2 += PetscSqr(x->x[dim * x->facets[dim * f + i] + k] - c[k]);
+    *r = PetscMax(*r, PetscSqrtReal(d2));
+  }
+}
+
+/* 3D: a slave facet meets only the master facets whose ball (centre cm, radius rm) reaches the line through the slave
+   facet's centre cs along its unit normal n within rs + rm (rs: its radius), among the grid's candidates and in the
+   full scan of a slave facet without a partner within dmax (for the report, beyond or behind dmax, mortar.h). A master facet whose projection along n
+   overlaps the slave facet has a point q with q - p parallel to n for some point p of the slave facet, so the distance
+   of cm from that line is at most |cm - q| + |p - cs| <= rm + rs: every facet that Pair3D could take passes (with a
+   margin for rounding): the others add nothing (no overlap), the integrals add in the same order, the report is a
+   maximum and a flag. This makes the scan of the facets far from the other body (most of the sphere's curved face) a few operations per master facet instead of
+   Pair3D's projection and clipping: the contact set-up of the sphere on a block at 907,968 unknowns took 70.7 s of a
+   245 s run before, 29.7 s of 255 s after (wall, loaded machine; bench/results.md, branch pair4). */
+static PetscBool BallMeetsLine(const PetscReal cs[], PetscReal rs, const PetscReal n[], const PetscReal cm[], PetscReal rm)
+{
+  PetscReal d[3], t, d2 = 0, reach = 1.001 * (rs + rm);
+  for (PetscInt k = 0; k < 3; k++) d[k] = cm[k] - cs[k];
+  t = Dot(3, d, n);
+  for (PetscInt k = 0; k < 3; k++) d2 += PetscSqr(d[k] - t * n[k]);
+  return (PetscBool)(d2 <= reach * reach);
+}
+
 PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search)
 {
   Triplets       t  = {0, 0, NULL, NULL, NULL, 0, PETSC_FALSE};
   SgMortarSearch sr = {0, -1, 0};
   Grid           grid;
   PetscInt      *cand, nc;
+  PetscReal     *ball = NULL; /* 3D: the master facets' balls (centre, radius) */
 
   PetscFunctionBeginUser;
   PetscCheck(s && m && s->dim == m->dim && (s->dim == 2 || s->dim == 3), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SgMortarIntegrals: the two surfaces must be given, of the same dimension 2 or 3");
@@ -353,19 +387,36 @@ PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface
   *area = 0;
   PetscCall(GridCreate(m, &grid));
   PetscCall(PetscMalloc1(m->nf + 1, &cand));
+  if (s->dim == 3) {
+    PetscCall(PetscMalloc1(4 * m->nf + 1, &ball));
+    for (PetscInt e = 0; e < m->nf; e++) FacetBall(m, e, ball + 4 * e, ball + 4 * e + 3);
+  }
   for (PetscInt f = 0; f < s->nf; f++) {
     PetscReal a0 = *area;
+    PetscReal cs[3], rs = 0, n[3], ln = 0;
     t.behind = 0, t.beyond = PETSC_FALSE;
     PetscCall(GridQuery(&grid, s, f, dmax, &nc, cand));
-    for (PetscInt i = 0; i < nc; i++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, cand[i], dmax, D, g0, &t, area));
+    if (s->dim == 3) { /* the slave facet's ball and unit normal for the master facets' balls (BallMeetsLine) */
+      FacetBall(s, f, cs, &rs);
+      ln = PetscSqrtReal(Dot(3, s->nrm + 3 * f, s->nrm + 3 * f));
+      for (PetscInt k = 0; k < 3; k++) n[k] = ln > 0 ? s->nrm[3 * f + k] / ln : 0;
+    }
+    for (PetscInt i = 0; i < nc; i++) {
+      if (s->dim == 2) PetscCall(Pair2D(s, f, m, cand[i], dmax, D, g0, &t, area));
+      else if (ln == 0 || BallMeetsLine(cs, rs, n, ball + 4 * cand[i], ball[4 * cand[i] + 3])) PetscCall(Pair3D(s, f, m, cand[i], dmax, D, g0, &t, area));
+    }
     if (*area > a0) continue; /* a partner within dmax */
     /* none: every master facet, for what lies farther than dmax (the report on the bodies' placement; it adds
        nothing to the integrals: no partner within dmax exists) */
-    for (PetscInt e = 0; e < m->nf; e++) PetscCall((s->dim == 2 ? Pair2D : Pair3D)(s, f, m, e, dmax, D, g0, &t, area));
+    for (PetscInt e = 0; e < m->nf; e++) {
+      if (s->dim == 2) PetscCall(Pair2D(s, f, m, e, dmax, D, g0, &t, area));
+      else if (ln == 0 || BallMeetsLine(cs, rs, n, ball + 4 * e, ball[4 * e + 3])) PetscCall(Pair3D(s, f, m, e, dmax, D, g0, &t, area));
+    }
     if (t.beyond) sr.nbeyond++;
     if (-t.behind > sr.overlap) sr.overlap = -t.behind, sr.foverlap = f;
   }
   PetscCall(PetscFree(cand));
+  PetscCall(PetscFree(ball));
   PetscCall(GridDestroy(&grid));
   *nM = t.n, *Mrow = t.row, *Mcol = t.col, *Mval = t.val;
   if (search) *search = sr;

@@ -221,6 +221,12 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
       PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)*dm), &size));
       if (size > 1) maxdirect = 20000;
       PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      { /* two bodies in the pair's dual-mortar basis: solver/linear.c's limit of a pair (with friction the levels are
+           kept anyway, below) */
+        PetscBool pair = PETSC_FALSE, tx = PETSC_TRUE;
+        if (PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair) || PetscOptionsGetBool(NULL, prefix, "-ssn_pair_transform", &tx, NULL)) pair = PETSC_FALSE;
+        if (pair && tx) maxdirect = SG_PAIR_DIRECT_MAX_2D;
+      }
       if (PetscOptionsGetInt(NULL, prefix, "-cont_direct_max_unknowns", &maxdirect, &mset)) mset = PETSC_FALSE;
       PetscCall(PetscPopErrorHandler());
       PetscCall(PetscOptionsGetString(NULL, prefix, "-ksp_type", ksp, sizeof(ksp), &kset));

@@ -22,7 +22,7 @@
 static PetscErrorCode DirectMaxOption(PetscOptionItems *PetscOptionsObject, PetscInt *maxdirect)
 {
   PetscFunctionBeginUser;
-  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: 2D: all on one rank, 20000 on several; 3D: 5000)", maxdirect, NULL));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-cont_direct_max_unknowns", "Without -ksp_type and -pc_type: problems up to this many unknowns are solved with MUMPS, larger ones with CG + BoomerAMG (default: 2D: all on one rank, 20000 on several and for two bodies without friction; 3D: 5000)", maxdirect, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -169,11 +169,22 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
      flat pair (33 against 3) and does not converge on a curved 3D one (the sphere on a block from 4.4e3 unknowns on,
      bench/results.md "Two bodies") */
   if (pair) { /* ... unless the SSN solves in the dual-mortar basis (-ssn_pair_transform, on unless turned off: frame.c),
-                 where every pair condition is nodal: then the one-body limits */
+                 where every pair condition is nodal: then the one-body limits, except 2D on one rank: one body's
+                 unlimited MUMPS there rests on the condensation onto the contact dofs, which a pair has not (every SSN
+                 step factors K), so the limit of several ranks (no condensation either): the two cylinders at 32,700,
+                 129,752 and 516,912 unknowns took 0.6-0.8x, 0.4x and 0.35-0.45x the CPU time of MUMPS in CG +
+                 BoomerAMG with nested iteration (-dm_refine), 3-5 SSN steps against 7-9 (bench/results.md, pair4) */
     PetscBool tx = PETSC_TRUE;
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pair_transform", prefix ? prefix : ""));
     PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tx, NULL));
     if (!tx) maxdirect = PETSC_MAX_INT;
+    else if (dim == 2 && size == 1) { /* frictionless (friction: unmeasured, one body's rule, MUMPS) */
+      char      law[64] = "";
+      PetscBool fset;
+      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sfriction_type", prefix ? prefix : ""));
+      PetscCall(PetscOptionsGetString(NULL, NULL, opt, law, sizeof(law), &fset));
+      if (!fset || !strcmp(law, "none")) maxdirect = SG_PAIR_DIRECT_MAX_2D;
+    }
   }
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));
