@@ -11,7 +11,8 @@
      gamma leaks into the tangential entries);
    - the KSP (Krylov method and the configured preconditioner: AMG, truncated multigrid, factorization, condensation)
      works on these matrices; its right-hand side is turned into the frames before the solve and its solution back
-     after it (KSPSetPreSolve/PostSolve), so the SNES around it never sees the frames.
+     after it (KSPSetPreSolve/PostSolve), so the SNES around it never sees the frames. The SSN's own residual goes in
+     by its frame form (SgFrameSetResidual: the normal contact force on the normal dof alone), not rotated whole.
    Residuals, iterates, controllers and outputs stay in the original coordinates. At a roller (a fixed component e_f,
    the normal orthogonal to it) the frame keeps e_f in its place, so the Dirichlet rows stay rows of the identity;
    vertices whose normal is already +-e_k keep the identity.
