@@ -50,7 +50,8 @@ MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.m
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
-          meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh meshes/ex2_s1.msh meshes/cv_ex2_s1_r30.msh meshes/cv_ex2_s1_r75.msh
+          meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh meshes/ex2_s1.msh meshes/cv_ex2_s1_r30.msh meshes/cv_ex2_s1_r75.msh \
+          meshes/cv_ex2_s1_r15.msh meshes/cv_ex2_s1_r45.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, tests/*/twobody_fields.ini, options/twobody_hertz.opts,
 # options/twobody_sphere.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \
@@ -241,6 +242,11 @@ meshes/cv_ex2_%_r30.msh: meshes/ex2_%.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 1,1,1 --angle 30 $< $@
 meshes/cv_ex2_%_r75.msh: meshes/ex2_%.msh tests/rotate_msh.py
 	$(PYTHON) tests/rotate_msh.py --axis 1,-2,0.5 --angle 75 $< $@
+# by 15 and 45 degrees about (1,-2,0.5) too (tests/features/turn32.ini; options/cv_ex2_r15.opts, options/cv_ex2_r45.opts)
+meshes/cv_ex2_%_r15.msh: meshes/ex2_%.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 1,-2,0.5 --angle 15 $< $@
+meshes/cv_ex2_%_r45.msh: meshes/ex2_%.msh tests/rotate_msh.py
+	$(PYTHON) tests/rotate_msh.py --axis 1,-2,0.5 --angle 45 $< $@
 
 # The library's objects are position independent, for the shared library; the static one holds the same objects.
 # -fno-semantic-interposition: calls inside the library stay direct and inlinable (no LD_PRELOAD of our own symbols);

@@ -560,6 +560,8 @@ PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
 PetscErrorCode SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
 PetscErrorCode SgFrameDetachKSP(SgFrame, KSP);
+PetscErrorCode SgFrameResidualWork(SgFrame, Vec, Vec *);                               /* a vector for the SSN's K y - b (SgFrameSetResidual) */
+PetscErrorCode SgFrameSetResidual(SgFrame, Vec, const PetscReal[], const PetscReal[]); /* the SSN's residual F in the frames, the normal forces w m on the normal dofs */
 
 /* ------------------------------------------------------------------ cont: cont.c (the object), cont_options.c,
    cont_step.c, cont_loop.c (the outer loop), cont_solve.c (SgContSolve, load steps), report.c (views, summary,

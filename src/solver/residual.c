@@ -38,6 +38,20 @@ static PetscErrorCode ResidualFloor(SgSSN s, Vec y)
   PetscFunctionReturn(0);
 }
 
+/* whether the Newton steps take F's frame form (frame.c, SgFrameSetResidual): with frames, one body against an
+   obstacle, no tangential law */
+static PetscErrorCode FrameResidual(SgSSN s, PetscBool *on)
+{
+  PetscBool pair = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *on = PETSC_FALSE;
+  if (!s->frame || SgFramePairTransform(s->frame) || s->cv.props.tangential) PetscFunctionReturn(0);
+  PetscCall(SgContactIsPair(s->c, &pair));
+  *on = (PetscBool)!pair;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
 {
   SgSSN              s   = (SgSSN)ctx;
@@ -46,6 +60,7 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   PetscScalar       *fa, dots[2];
   PetscReal          loc[8] = {0}, glob[8], r1corr2, floc[6] = {0};
   Vec                vecs[2];
+  PetscBool          framed;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Residual, 0, 0, 0, 0));
@@ -63,6 +78,12 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   vecs[1] = s->b;
   PetscCall(VecMDot(y, 2, vecs, dots));
   PetscCall(VecAXPY(F, -1.0, s->b));
+  PetscCall(FrameResidual(s, &framed));
+  if (framed) { /* K y - b, for the frame form of F (SgFrameSetResidual) */
+    Vec rnn;
+    PetscCall(SgFrameResidualWork(s->frame, F, &rnn));
+    PetscCall(VecCopy(F, rnn));
+  }
   PetscCall(VecGetArrayRead(y, &ya));
   PetscCall(SgContactGap(s->c, ya, s->g));
   PetscCall(VecRestoreArrayRead(y, &ya));
@@ -107,6 +128,7 @@ PetscErrorCode SgSSNResidual(SNES snes, Vec y, Vec F, void *ctx)
   }
   loc[6] = r1corr2;
   PetscCall(VecRestoreArray(F, &fa));
+  if (framed) PetscCall(SgFrameSetResidual(s->frame, F, s->w, s->m));
   PetscCall(ResidualFloor(s, y));
   PetscCallMPI(MPI_Allreduce(loc, glob, 8, MPIU_REAL, MPI_SUM, s->comm));
   PetscCall(SgElasticityDualNorm(s->prob, F, &s->fdual));
