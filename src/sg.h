@@ -266,9 +266,36 @@ typedef struct {
 } SgContactLawKeys;
 PetscErrorCode SgContactLawSummary(SgContactLaw, PetscInt, const SgFrictionSummary *, SgContactLawKeys *);
 PetscErrorCode SgContactLawStepSummary(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
-/* PDAS's state update at owned vertex i (lam_N, z = lam_T + c T (y - yref) of length nz with dim components, the last
-   state and slip direction t, updated): the next state, the bound g, the direction's change dt (free without friction) */
-char           SgContactLawPdasState(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
+/* The law's part of PDAS (law_pdas.c; src/cont/pdas.c): per owned contact vertex its tangential state for the next
+   solve (free, stick, slip), bound and slip direction, and the rows these give PDAS's linear system, in PDAS's
+   working coordinates (the law's ops pdasstate and pdasrows). Empty for a law without them (the frictionless law):
+   every call then does nothing. */
+typedef struct _n_SgContactLawPdas *SgContactLawPdas;
+typedef struct {
+  PetscInt         n, dim;
+  const PetscInt  *off, *axis; /* per vertex: its first dof in the local part of a vector; the dof of its normal */
+  const PetscReal *w, *nax;    /* its lumped weight; the normal's component on the axis dof */
+  const PetscReal *yref;       /* the slip reference in the working coordinates, n dim (unused by an empty object) */
+  PetscReal        c;          /* the constant of the state test z = lam_T + c T (y - yref) */
+  PetscBool        couple;     /* a bound from lam_N may take lam_N of the same solve (-cont_pdas_coulomb_coupled) */
+} SgContactLawPdasSetup;
+enum { SG_PDAS_ROW_NONE    = 0,
+       SG_PDAS_ROW_FIXED   = 1,   /* the component is fixed at the slip reference (stick) */
+       SG_PDAS_ROW_FORCE   = 2,   /* the force v: rhs -= v (slip) */
+       SG_PDAS_ROW_COUPLED = 3 }; /* the row takes -v times the row of the normal's dof of K, rhs -= v b there (slip, a bound from lam_N of the same solve) */
+/* a vertex's rows: per component (the normal's is SG_PDAS_ROW_NONE) its kind and value, and a spring B (dim x dim,
+   row-major) added to the matrix and, acting on the slip T (y - yref), B yref to the right-hand side */
+typedef struct {
+  char      kind[3];
+  PetscReal v[3];
+  PetscBool spring;
+  PetscReal B[9];
+} SgContactLawPdasRows;
+PetscErrorCode SgContactLawPdasCreate(SgContactLaw, MPI_Comm, const SgContactLawPdasSetup *, SgContactLawPdas *);
+PetscErrorCode SgContactLawPdasUpdate(SgContactLawPdas, Mat, Vec, Vec, PetscBool, const char[], PetscInt *);                                     /* the states from y (K y - b if the bool) and the normal set; then the rows */
+PetscErrorCode SgContactLawPdasGetRows(SgContactLawPdas, PetscInt *, const SgContactLawPdasRows **, const PetscReal **, PetscInt *, PetscInt *); /* rows, springs, their global counts */
+PetscErrorCode SgContactLawPdasGetInfo(SgContactLawPdas, PetscBool *, PetscBool *);                                                              /* keeps states; its states may change on round-off */
+PetscErrorCode SgContactLawPdasDestroy(SgContactLawPdas *);
 PetscErrorCode SgContactSetSlipReference(SgContact, Vec);                  /* the start of a load step's slip increment (NULL: zero) */
 PetscErrorCode SgContactComputeSlipReference(SgContact, Vec, PetscReal[]); /* the same into the caller's 2 n dim array, not installed */
 PetscErrorCode SgContactGetSlipReference(SgContact, PetscReal **);         /* its values, dim per contact vertex (NULL without friction), then those of the full displacement (2 n dim) */

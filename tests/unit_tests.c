@@ -1019,6 +1019,87 @@ static PetscErrorCode TestLawProperties(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* The law's part of PDAS (src/contact/law_pdas.c) for every built-in law on two contact vertices in 3D (normal on dof
+   2, weights 0.5 and 1, c = 4), with K = I and b = 0, so that R = y: lam_N = -y_2 / w, z = -y_T / w + c y_T. Vertex 0
+   (y = (0.01, 0.02, -1): lam_N = 2, |z| = 0.02 sqrt 5) sticks under Tresca s = 0.2 and Coulomb F = 0.3; vertex 1
+   (y = (0.3, -0.4, -0.5): lam_N = 0.5, z = (0.9, -1.2)) slips. Recorded: the rows (kinds, values, springs) for the ini
+   to compare with the formulas, and the changes counted by the updates after the start. */
+static PetscErrorCode TestLawPdas(SgSummary s)
+{
+  const PetscInt  off[2] = {0, 3}, axis[2] = {2, 2};
+  const PetscReal w[2] = {0.5, 1}, nax[2] = {1, 1}, yref[6] = {0, 0, 0, 0, 0, 0}, x[6] = {0, 0, 0, 1, 0, 0};
+  const PetscReal yv[6]    = {0.01, 0.02, -1, 0.3, -0.4, -0.5};
+  const char      act[2]   = {1, 1};
+  const char     *names[3] = {SGLAWNONE, SGLAWTRESCA, SGLAWCOULOMB};
+  char            key[64];
+  Mat             K;
+  Vec             b, y;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, 6, 6, 1, NULL, &K));
+  for (PetscInt i = 0; i < 6; i++) PetscCall(MatSetValue(K, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(K, &y, &b));
+  PetscCall(VecZeroEntries(b));
+  for (PetscInt i = 0; i < 6; i++) PetscCall(VecSetValue(y, i, yv[i], INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(y));
+  PetscCall(VecAssemblyEnd(y));
+  PetscCall(PetscOptionsSetValue(NULL, "-friction_bound", "0.2"));
+  PetscCall(PetscOptionsSetValue(NULL, "-friction_coefficient", "0.3"));
+  for (PetscInt k = 0; k < 3; k++) {
+    SgContactLaw                law = NULL;
+    SgContactLawPdas            lp;
+    SgContactLawPdasSetup       su = {2, 3, off, axis, w, nax, yref, 4.0, PETSC_TRUE};
+    const SgContactLawPdasRows *rows;
+    const PetscReal            *blk;
+    PetscInt                    n, nspring, ncoupled, ch[2], kinds[6] = {0, 0, 0, 0, 0, 0}, spring[2] = {0, 0};
+    PetscReal                   v[6] = {0, 0, 0, 0, 0, 0}, B[18];
+    PetscBool                   states, roundoff;
+
+    PetscCall(PetscOptionsSetValue(NULL, "-friction_type", names[k]));
+    PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Law PDAS", NULL);
+    PetscCall(SgContactLawCreateFromOptions(PetscOptionsObject, PETSC_COMM_WORLD, 3, &law));
+    PetscOptionsEnd();
+    PetscCall(SgContactLawSetVertices(law, 2, x));
+    PetscCall(SgContactLawPdasCreate(law, PETSC_COMM_SELF, &su, &lp));
+    PetscCall(SgContactLawPdasGetInfo(lp, &states, &roundoff));
+    PetscCall(SgContactLawPdasUpdate(lp, K, b, y, PETSC_TRUE, act, NULL)); /* the start */
+    PetscCall(SgContactLawPdasUpdate(lp, K, b, y, PETSC_TRUE, act, &ch[0]));
+    PetscCall(SgContactLawPdasUpdate(lp, K, b, y, PETSC_TRUE, act, &ch[1]));
+    PetscCall(SgContactLawPdasGetRows(lp, &n, &rows, &blk, &nspring, &ncoupled));
+    for (PetscInt i = 0; i < n; i++) {
+      spring[i] = rows[i].spring;
+      for (PetscInt j = 0; j < 3; j++) {
+        kinds[3 * i + j] = rows[i].kind[j];
+        v[3 * i + j]     = rows[i].v[j];
+      }
+    }
+    for (PetscInt q = 0; q < 18; q++) B[q] = n ? blk[q] : 0;
+#define LPKEY(what) (PetscSNPrintf(key, sizeof(key), "%s_%s", names[k], what), key)
+    PetscCall(SgSummarySetBool(s, LPKEY("states"), states));
+    PetscCall(SgSummarySetBool(s, LPKEY("roundoff"), roundoff));
+    PetscCall(SgSummarySetInt(s, LPKEY("nrows"), n));
+    PetscCall(SgSummarySetInt(s, LPKEY("nspring"), nspring));
+    PetscCall(SgSummarySetInt(s, LPKEY("ncoupled"), ncoupled));
+    PetscCall(SgSummarySetIntArray(s, LPKEY("changed"), 2, ch));
+    PetscCall(SgSummarySetIntArray(s, LPKEY("kind"), 6, kinds));
+    PetscCall(SgSummarySetIntArray(s, LPKEY("spring"), 2, spring));
+    PetscCall(SgSummarySetRealArray(s, LPKEY("v"), 6, v));
+    PetscCall(SgSummarySetRealArray(s, LPKEY("blk"), 18, B));
+#undef LPKEY
+    PetscCall(SgContactLawPdasDestroy(&lp));
+    PetscCall(SgContactLawDestroy(&law));
+  }
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_type"));
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_bound"));
+  PetscCall(PetscOptionsClearValue(NULL, "-friction_coefficient"));
+  PetscCall(VecDestroy(&y));
+  PetscCall(VecDestroy(&b));
+  PetscCall(MatDestroy(&K));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -1048,6 +1129,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "pairapi", &eq) == 0 && eq) PetscCall(TestPairAPI(s));
   else if (PetscStrcmp(test, "pairobstacleapi", &eq) == 0 && eq) PetscCall(TestPairObstacleAPI(s));
   else if (PetscStrcmp(test, "lawproperties", &eq) == 0 && eq) PetscCall(TestLawProperties(s));
+  else if (PetscStrcmp(test, "lawpdas", &eq) == 0 && eq) PetscCall(TestLawPdas(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

@@ -7,8 +7,8 @@
 
    The program solves the problem of the options (the driver's options: -box_*, -dirichlet_*, -contact_ids, -cont_type,
    ...) once and writes the JSON summary (-summary_file) and the fields (-output_file). The law's part of the KKT
-   measures, its fields and summary keys and PDAS's state update come from the ops every law with a bound gets
-   (law_measures.c) unless the type sets its own. With s1 = 0 the law is -friction_type tresca with
+   measures, its fields and summary keys (law_measures.c) and its part of PDAS, the state update and the rows of the
+   linear system (law_pdas.c), come from the ops every law with a bound gets unless the type sets its own. With s1 = 0 the law is -friction_type tresca with
    -friction_bound s0, bit for bit; when every contact vertex slips the friction force is the integral of s over
    Gamma_c (tests/law.ini). Built from the source tree against lib/libsignorini.a:
        make bin/custom_law && bin/custom_law -options_file options/sliding_block.opts -friction_type tresca_x \

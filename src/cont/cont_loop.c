@@ -128,27 +128,26 @@ static PetscErrorCode RestoreBest(SgCont ct)
    KKT tolerance of (P). Said on the output and in the reason; the shift is 0 again afterwards (the path's). */
 static PetscErrorCode CoulombShiftedPath(SgCont ct)
 {
-  PetscReal gamma, *lhT;
-  PetscBool stop = PETSC_FALSE, ok = PETSC_TRUE;
-  PetscInt  dim, outer0            = ct->outer;
-  char      was[sizeof(ct->reason)];
+  PetscReal         gamma;
+  PetscBool         stop = PETSC_FALSE, ok = PETSC_TRUE;
+  PetscInt          outer0 = ct->outer;
+  char              was[sizeof(ct->reason)];
+  SgContactLawState st;
 
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(was, ct->reason, sizeof(was)));
-  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  PetscCall(SgSSNGetFriction(ct->ssn, &lhT, NULL, NULL));
+  PetscCall(SgSSNGetLawState(ct->ssn, &st));
   gamma = ct->gammas[0];
   PetscCall(PetscPrintf(ct->comm, "  %s with Coulomb friction: %.200s; solved again from the start on the shifted path (lamhat = the last multipliers, gamma doubled per step from %g)\n", ct->type, was, (double)gamma));
   PetscCall(SgSSNSetNeighbourhood(ct->ssn, 0)); /* exact solves */
   PetscCall(VecCopy(ct->ystart, ct->y));
   PetscCall(PetscArrayzero(ct->lamhat, ct->n));
-  PetscCall(PetscArrayzero(lhT, ct->n * dim));
+  PetscCall(SgContactLawStateZeroShift(st)); /* lamhat_T = 0: the law's */
   ct->converged = PETSC_FALSE;
   ct->best_kkt  = PETSC_MAX_REAL;
   ct->best_step = ct->outer;
   while (ok && !stop) {
-    const PetscInt   its0 = ct->ssn_its;
-    const PetscReal *mT;
+    const PetscInt its0 = ct->ssn_its;
     ct->outer++;
     PetscCall(SgContSSN(ct, gamma, &ok));
     PetscCall(SgContMeasure(ct));
@@ -159,14 +158,13 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
       break;
     }
     PetscCall(PetscArraycpy(ct->lamhat, ct->lam, ct->n));
-    PetscCall(SgSSNGetFriction(ct->ssn, &lhT, &mT, NULL));
-    PetscCall(PetscArraycpy(lhT, mT, ct->n * dim));
+    PetscCall(SgContactLawStateAcceptShift(st)); /* lamhat_T = lam_T: the law's */
     gamma *= 2;
     ct->gamma = gamma;
     PetscCall(SgContCheck(ct, &stop));
   }
   PetscCall(PetscArrayzero(ct->lamhat, ct->n));
-  PetscCall(PetscArrayzero(lhT, ct->n * dim));
+  PetscCall(SgContactLawStateZeroShift(st));
   if (ct->converged) {
     char now[sizeof(ct->reason)];
     PetscCall(PetscStrncpy(now, ct->reason, sizeof(now)));

@@ -94,48 +94,6 @@ static PetscErrorCode SetChanges(SgCont ct, const char a[], const char b[], Pets
   PetscFunctionReturn(0);
 }
 
-/* The friction states of the next solve from the iterate y (R = K y - b, NULL at the start: lam = 0) and the next
-   normal set act (all in the working coordinates: the frames' where the normals are not axes; nax the normal's
-   component on the axis dof, yref the slip reference there): lam_N = -R.n/w on act, lam_T = -T R / w,
-   z = lam_T + c T (y - yref) (the load step's slip; yref = 0 at the first step); the law gives the bound g and the
-   state (SgContactLawPdasState: free (g = 0), stick (|z| <= g), slip (t = z/|z|) for a law with a bound). changed (if not NULL): the vertices whose state changed, or whose slip direction
-   or bound moved by more than 1e-12 (relative) since the last call. */
-static PetscErrorCode FrictionStates(SgCont ct, PetscReal cc, const PetscInt axis[], const PetscReal nax[], const PetscReal yref[], Vec y, Vec R, const char act[], PetscReal gb[], PetscReal tdir[], PetscReal zn[], char st[], PetscInt *changed)
-{
-  const SgContactView *c = &ct->cv;
-  const PetscScalar   *ya, *ra  = NULL;
-  PetscInt             dim, nch = 0;
-  PetscReal            gmax = 0;
-
-  PetscFunctionBeginUser;
-  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
-  PetscCall(VecGetArrayRead(y, &ya));
-  if (R) PetscCall(VecGetArrayRead(R, &ra));
-  for (PetscInt i = 0; i < ct->n; i++) gmax = PetscMax(gmax, gb[i]);
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPI_MAX, ct->comm));
-  for (PetscInt i = 0; i < ct->n; i++) {
-    const PetscReal lamN = R && act[i] ? -PetscRealPart(ra[ct->off[i] + axis[i]]) * nax[i] / ct->w[i] : 0;
-    PetscReal       g, z[3] = {0, 0, 0}, nz = 0, dt;
-    char            s;
-    for (PetscInt j = 0; j < dim; j++) {
-      if (j == axis[i]) continue;
-      z[j] = (R ? -PetscRealPart(ra[ct->off[i] + j]) / ct->w[i] : 0) + cc * (PetscRealPart(ya[ct->off[i] + j]) - yref[i * dim + j]);
-      nz += z[j] * z[j];
-    }
-    nz = PetscSqrtReal(nz);
-    s  = SgContactLawPdasState(c->law, i, lamN, dim, z, nz, st[i], &tdir[i * dim], &g, &dt); /* the law's bound and state update */
-    nch += (s != st[i] || (s == 2 && (dt > 1e-12 || PetscAbsReal(g - gb[i]) > 1e-12 * gmax)));
-    zn[i] = nz;
-    st[i] = s;
-    gb[i] = g;
-  }
-  if (R) PetscCall(VecRestoreArrayRead(R, &ra));
-  PetscCall(VecRestoreArrayRead(y, &ya));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nch, 1, MPIU_INT, MPI_SUM, ct->comm));
-  if (changed) *changed = nch;
-  PetscFunctionReturn(0);
-}
-
 /* The KKT residual of the iterate ct->y below the tolerance although nchanged vertices still change their sets: the
    run converged (the reason says how large the gaps and multipliers of the changing normal sets are). */
 static PetscBool KKTMet(SgCont ct, PetscInt k, const char act[], const char next[], const PetscReal g[], PetscInt nchanged)
@@ -205,13 +163,10 @@ typedef struct {
   const PetscReal *yref;
   PetscInt64      *hash; /* the normal sets' hashes, one per iteration: cycling */
   char            *act, *next;
-  PetscReal        kktprev; /* Coulomb, coupled: the KKT residual of the last iterate */
-  PetscBool        fr;
-  PetscBool        coupled;     /* a bound linear in lam_N: dg lam_N */
-  char            *fst, *fnext; /* friction state: 0 free, 1 stick, 2 slip */
-  PetscReal       *tdir, *gb;   /* slip direction (n*dim) and bound of the next solve */
-  PetscReal       *zn, *blk;    /* |z| at the state test; the slip blocks (3D) */
-  Vec              R;           /* friction: the residual K y - b of the iterate */
+  PetscReal        kktprev;  /* the law's states decided on round-off: the KKT residual of the last iterate */
+  SgContactLawPdas lp;       /* the law's part: its tangential states and the rows they give the system (empty without) */
+  PetscBool        states;   /* the law keeps states: the iterate depends on their bounds and directions too */
+  PetscBool        roundoff; /* and they may change on round-off for ever (a bound from lam_N of the same solve) */
 } PdasWork;
 
 /* The arrays of the sets, the working coordinates (the contact frames where a normal is not an axis) and the default
@@ -227,8 +182,6 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCall(PetscMemzero(w, sizeof(*w)));
   w->A       = ct->J;
   w->kktprev = PETSC_MAX_REAL;
-  w->fr      = c->props.tangential;
-  w->coupled = (PetscBool)(c->props.coupled && pd->coupled);
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   w->dim = dim;
   PetscCall(SgElasticityGetOperators(ct->prob, &w->K, &w->b));
@@ -257,7 +210,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     PetscCall(VecCopy(w->b, w->bw));
     PetscCall(SgFrameToLocal(w->f, w->bw));
     PetscCall(VecDuplicate(w->b, &w->yw));
-    if (w->fr) {
+    if (w->yref) { /* the law's slip reference in the frames */
       PetscCall(PetscMalloc1(ct->n * dim, &w->yrf));
       for (PetscInt i = 0; i < ct->n; i++) SgFrameVectorToLocal(w->f, i, &w->yref[i * dim], &w->yrf[i * dim]);
       w->yref = w->yrf;
@@ -268,6 +221,11 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &hc, 1, MPIU_REAL, MPI_SUM, ct->comm));
   hc = dim == 2 ? hc / ct->nglobal : PetscSqrtReal(hc / ct->nglobal);
   if (pd->c == 0) pd->c = E / hc;
+  {
+    SgContactLawPdasSetup s = {ct->n, dim, ct->off, w->axis, ct->w, w->nax, w->yref, pd->c, pd->coupled};
+    PetscCall(SgContactLawPdasCreate(c->law, ct->comm, &s, &w->lp));
+    PetscCall(SgContactLawPdasGetInfo(w->lp, &w->states, &w->roundoff));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -275,10 +233,9 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
    the first normal set and friction states */
 static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
 {
-  PDAS          *pd  = (PDAS *)ct->data;
-  const PetscInt dim = w->dim;
-  Vec            diag;
-  PetscInt       N;
+  PDAS    *pd = (PDAS *)ct->data;
+  Vec      diag;
+  PetscInt N;
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(w->b, &w->rhs));
@@ -291,11 +248,6 @@ static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
   PetscCall(VecDestroy(&diag));
   PetscCall(MatGetOwnershipRange(w->A, &w->rstart, NULL));
   PetscCall(MatSetOption(w->A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  if (w->fr) {
-    PetscCall(PetscCalloc4(ct->n, &w->fst, ct->n, &w->fnext, ct->n * dim, &w->tdir, ct->n, &w->gb));
-    PetscCall(PetscCalloc2(ct->n, &w->zn, ct->n * dim * dim, &w->blk));
-    PetscCall(VecDuplicate(w->b, &w->R));
-  }
   if (w->f) { /* the start in the frames */
     PetscCall(VecCopy(ct->y, w->yw));
     PetscCall(SgFrameToLocal(w->f, w->yw));
@@ -306,53 +258,54 @@ static PetscErrorCode StartSets_PDAS(SgCont ct, PdasWork *w)
     w->act[i]  = ct->warm ? (char)(ct->lam[i] + pd->c * w->g[i] > 0) : (char)(w->g[i] > 0);
     ct->lam[i] = 0;
   }
-  if (w->fr && ct->warm) { /* a load step: the states from the last step's solution under the new load */
-    PetscCall(MatMult(w->Kw, w->yw, w->R));
-    PetscCall(VecAXPY(w->R, -1.0, w->bw));
-    PetscCall(FrictionStates(ct, pd->c, w->axis, w->nax, w->yref, w->yw, w->R, w->act, w->gb, w->tdir, w->zn, w->fst, NULL));
-  } else if (w->fr) PetscCall(FrictionStates(ct, pd->c, w->axis, w->nax, w->yref, w->yw, NULL, w->act, w->gb, w->tdir, w->zn, w->fst, NULL));
+  /* the law's states: at a load step from the last step's solution under the new load, else from lam = 0 */
+  PetscCall(SgContactLawPdasUpdate(w->lp, w->Kw, w->bw, w->yw, ct->warm, w->act, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* A coupled row of the law (a slip force from lam_N of the same solve, Coulomb's -F t w lam_N with
+   w lam_N = -n_a (K y - b)_a): row rj of A takes -v times row ra of K, and *r -= v b_a (la: ra's local index) */
+static PetscErrorCode CoupledRow(PdasWork *w, PetscInt ra, PetscInt rj, PetscReal v, PetscScalar *r, PetscInt la)
+{
+  const PetscScalar *va, *ba;
+  const PetscInt    *ca;
+  PetscInt           nc;
+  PetscScalar       *vv;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetRow(w->Kw, ra, &nc, &ca, &va));
+  PetscCall(PetscMalloc1(nc, &vv));
+  for (PetscInt q = 0; q < nc; q++) vv[q] = -v * va[q];
+  PetscCall(MatSetValues(w->A, 1, &rj, nc, ca, vv, ADD_VALUES));
+  PetscCall(PetscFree(vv));
+  PetscCall(MatRestoreRow(w->Kw, ra, &nc, &ca, &va));
+  PetscCall(VecGetArrayRead(w->bw, &ba));
+  *r -= v * ba[la];
+  PetscCall(VecRestoreArrayRead(w->bw, &ba));
   PetscFunctionReturn(0);
 }
 
 /* The system of an iteration into A, rhs and x: K with the active normal components eliminated symmetrically (fixed
-   at tau_N y = d), with friction the stick vertices' tangential components too (fixed at T y = T yref), the slip
-   vertices' forces (and their springs across the slip direction in 3D) */
+   at tau_N y = d) and the law's rows of its states (SgContactLawPdasGetRows: with friction the stick vertices'
+   tangential components eliminated too, fixed at T y = T yref, the slip vertices' forces and their springs across the
+   slip direction in 3D) */
 static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
 {
-  PDAS                *pd  = (PDAS *)ct->data;
-  const SgContactView *c   = &ct->cv;
-  const PetscInt       dim = w->dim, rstart = w->rstart;
-  const PetscBool      fr = w->fr, coupled = w->coupled;
-  const PetscInt      *axis = w->axis;
-  const PetscReal     *sign = w->sign, *nax = w->nax, *yref = w->yref, *gb = w->gb, *zn = w->zn, *tdir = w->tdir;
-  const char          *act = w->act, *fst = w->fst;
-  const PetscReal      dmean = w->dmean;
-  PetscReal           *blk   = w->blk;
-  PetscInt            *rows  = w->rows;
-  Mat                  A = w->A, Kw = w->Kw;
-  Vec                  bw = w->bw, rhs = w->rhs, x = w->x;
-  PetscInt             nrows = 0, ncoupled = 0;
-  PetscScalar         *xa;
+  const PetscInt              dim = w->dim, rstart = w->rstart;
+  const PetscInt             *axis = w->axis;
+  const PetscReal            *sign = w->sign, *yref = w->yref, *blk;
+  const SgContactLawPdasRows *tr;
+  const char                 *act  = w->act;
+  PetscInt                   *rows = w->rows;
+  Mat                         A = w->A, Kw = w->Kw;
+  Vec                         bw = w->bw, rhs = w->rhs, x = w->x;
+  PetscInt                    nrows = 0, nv, nspring, ncoupled;
+  PetscScalar                *xa, *ra;
 
   PetscFunctionBeginUser;
-  /* K with the active normal components eliminated symmetrically, fixed at tau_N y = d */
+  PetscCall(SgContactLawPdasGetRows(w->lp, &nv, &tr, &blk, &nspring, &ncoupled));
   PetscCall(MatCopy(Kw, A, SAME_NONZERO_PATTERN));
-  if (fr && dim == 3) {
-    /* 3D slip: the slip law lam_T = g z/|z| linearized at z = lam_T + c T y with lam_T eliminated: the force g t
-       along t, and across t a spring w beta (T - t t^T), beta = c a / (1 - a), a = g/|z| < 1; symmetric, and
-       without it the directions' fixed point does not converge where the slip turns (Example 2's body) */
-    for (PetscInt i = 0; i < ct->n; i++) {
-      PetscReal *B = &blk[i * dim * dim], a, beta;
-      for (PetscInt q = 0; q < dim * dim; q++) B[q] = 0;
-      if (fst[i] != 2) continue;
-      a    = PetscMin(gb[i] / zn[i], 1 - 1e-8);
-      beta = pd->c * a / (1 - a);
-      for (PetscInt p = 0; p < dim; p++)
-        for (PetscInt q = 0; q < dim; q++) {
-          if (p == axis[i] || q == axis[i]) continue;
-          B[p * dim + q] = ct->w[i] * beta * ((p == q ? 1 : 0) - tdir[i * dim + p] * tdir[i * dim + q]);
-        }
-    }
+  if (nspring) { /* the law's springs (3D slip) */
     PetscCall(SgContactAddBlocks(ct->c, blk, A));
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
@@ -364,52 +317,25 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
       rows[nrows++]            = rstart + ct->off[i] + axis[i];
       xa[ct->off[i] + axis[i]] = sign[i] * ct->d[i];
     }
-  if (fr) {
-    PetscScalar *ra;
-    PetscCall(VecGetArray(rhs, &ra));
-    for (PetscInt i = 0; i < ct->n; i++)
-      for (PetscInt j = 0; j < dim; j++) {
-        if (j == axis[i]) continue;
-        if (fst[i] == 1) { /* stick: no slip in this load step, T y = T yref (0 at the first step) */
-          rows[nrows++]      = rstart + ct->off[i] + j;
-          xa[ct->off[i] + j] = yref[i * dim + j];
-        } else if (fst[i] == 2) {
-          if (coupled) { /* Coulomb: the force -F t w lam_N with w lam_N = -n_a (K y - b)_a, in the same solve */
-            const PetscInt ra_ = rstart + ct->off[i] + axis[i], rj = rstart + ct->off[i] + j;
-            PetscReal      gi, dg;
-            SgContactLawBound(c->law, i, 0, &gi, &dg);
-            const PetscReal    fc = dg * tdir[i * dim + j] * nax[i];
-            const PetscScalar *va;
-            const PetscInt    *ca;
-            PetscInt           nc;
-            PetscScalar       *vv;
-            const PetscScalar *ba;
-            PetscCall(MatGetRow(Kw, ra_, &nc, &ca, &va));
-            PetscCall(PetscMalloc1(nc, &vv));
-            for (PetscInt q = 0; q < nc; q++) vv[q] = -fc * va[q];
-            PetscCall(MatSetValues(A, 1, &rj, nc, ca, vv, ADD_VALUES));
-            PetscCall(PetscFree(vv));
-            PetscCall(MatRestoreRow(Kw, ra_, &nc, &ca, &va));
-            PetscCall(VecGetArrayRead(bw, &ba));
-            ra[ct->off[i] + j] -= fc * ba[ct->off[i] + axis[i]];
-            PetscCall(VecRestoreArrayRead(bw, &ba));
-            ncoupled++;
-          } else ra[ct->off[i] + j] -= ct->w[i] * gb[i] * tdir[i * dim + j]; /* slip: the force -w g t */
-          if (dim == 3)                                                      /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
-            for (PetscInt q = 0; q < dim; q++) ra[ct->off[i] + j] += blk[i * dim * dim + j * dim + q] * yref[i * dim + q];
-        }
-      }
-    PetscCall(VecRestoreArray(rhs, &ra));
-    if (coupled) {
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ncoupled, 1, MPIU_INT, MPI_SUM, ct->comm));
-      if (ncoupled) {
-        PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-        PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-      }
+  PetscCall(VecGetArray(rhs, &ra));
+  for (PetscInt i = 0; i < nv; i++) /* the law's rows (none without a tangential part) */
+    for (PetscInt j = 0; j < dim; j++) {
+      const PetscInt o = ct->off[i] + j;
+      if (tr[i].kind[j] == SG_PDAS_ROW_FIXED) {
+        rows[nrows++] = rstart + o;
+        xa[o]         = yref[i * dim + j];
+      } else if (tr[i].kind[j] == SG_PDAS_ROW_FORCE) ra[o] -= tr[i].v[j];
+      else if (tr[i].kind[j] == SG_PDAS_ROW_COUPLED) PetscCall(CoupledRow(w, rstart + ct->off[i] + axis[i], rstart + o, tr[i].v[j], &ra[o], ct->off[i] + axis[i]));
+      if (tr[i].spring && j != axis[i]) /* the spring acts on the load step's slip T (y - yref): its part of yref to the right */
+        for (PetscInt q = 0; q < dim; q++) ra[o] += tr[i].B[j * dim + q] * yref[i * dim + q];
     }
+  PetscCall(VecRestoreArray(rhs, &ra));
+  if (ncoupled) {
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
   PetscCall(VecRestoreArray(x, &xa));
-  PetscCall(MatZeroRowsColumns(A, nrows, rows, dmean, x, rhs));
+  PetscCall(MatZeroRowsColumns(A, nrows, rows, w->dmean, x, rhs));
   PetscFunctionReturn(0);
 }
 
@@ -418,34 +344,25 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
 static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt *nact_, PetscInt *entered_, PetscInt *left_)
 {
   PDAS            *pd   = (PDAS *)ct->data;
-  const PetscBool  fr   = w->fr;
   const PetscInt  *axis = w->axis;
-  const PetscReal *sign = w->sign, *nax = w->nax, *yref = w->yref;
-  PetscReal       *g = w->g, *gb = w->gb, *tdir = w->tdir, *zn = w->zn;
-  char            *act = w->act, *next = w->next, *fst = w->fst, *fnext = w->fnext;
-  SgFrame          f  = w->f;
-  Mat              Kw = w->Kw;
-  Vec              yw = w->yw, bw = w->bw, R = w->R;
-  PetscInt         nact = 0, entered = 0, left = 0;
+  const PetscReal *sign = w->sign;
+  PetscReal       *g    = w->g;
+  char            *act = w->act, *next = w->next;
+  PetscInt         nact = 0, entered = 0, left = 0, changed;
 
   PetscFunctionBeginUser;
   /* multiplier from the equilibrium on the active set, then the next active set */
   PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
-  PetscCall(Gap(ct, f, axis, sign, yw, g));
+  PetscCall(Gap(ct, w->f, axis, sign, w->yw, g));
   for (PetscInt i = 0; i < ct->n; i++) {
     if (!act[i]) ct->lam[i] = 0;
     next[i] = (char)(ct->lam[i] + pd->c * g[i] > 0);
   }
   PetscCall(SetChanges(ct, act, next, &nact, &entered, &left));
-  if (fr) {
-    PetscInt fchanged;
-    PetscCall(MatMult(Kw, yw, R));
-    PetscCall(VecAXPY(R, -1.0, bw));
-    PetscCall(FrictionStates(ct, pd->c, axis, nax, yref, yw, R, next, gb, tdir, zn, fnext, &fchanged));
-    PetscCall(PetscArraycpy(fst, fnext, ct->n));
-    if (pd->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, fchanged));
-    entered += fchanged; /* counted as changes of the sets */
-  }
+  /* the law's next states (nothing without them), their changes counted as changes of the sets */
+  PetscCall(SgContactLawPdasUpdate(w->lp, w->Kw, w->bw, w->yw, PETSC_TRUE, next, &changed));
+  if (pd->monitor && w->states) PetscCall(PetscPrintf(ct->comm, "  PDAS %2" PetscInt_FMT " friction: %" PetscInt_FMT " vertices changed state, direction or bound\n", k, changed));
+  entered += changed;
   *nact_    = nact;
   *entered_ = entered;
   *left_    = left;
@@ -481,7 +398,6 @@ static PetscErrorCode RecordIteration_PDAS(SgCont ct, PetscInt k, PetscInt nact,
    failed (an active set came back: cycling), or the next set becomes the active one (*done = PETSC_FALSE) */
 static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt entered, PetscInt left, PetscBool *done_)
 {
-  const PetscBool   fr = w->fr, coupled = w->coupled;
   const PetscReal  *g     = w->g;
   const PetscInt64 *hash  = w->hash;
   const PetscInt    nhash = w->nhash;
@@ -498,10 +414,11 @@ static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt e
     /* the iterate solves (P) to the tolerance while the sets still change on gaps and multipliers at round-off (a
        body that just touches under a tangential load), where the test lam + c g > 0 flips on noise */
     done = PETSC_TRUE;
-  } else if (coupled && k > 1) {
-    /* Coulomb: where a slip vertex's increment in this step is round-off (a load step of an ulp, the last step's
-       slip bound met exactly) its state and direction are decided on noise and may change for ever: the iterate
-       that meets the KKT tolerance of (P), and no longer halves it, has converged whatever they do */
+  } else if (w->roundoff && k > 1) {
+    /* the law's states may change on round-off (Coulomb, coupled): where a slip vertex's increment in this step is
+       round-off (a load step of an ulp, the last step's slip bound met exactly) its state and direction are decided
+       on noise and may change for ever: the iterate that meets the KKT tolerance of (P), and no longer halves it, has
+       converged whatever they do */
     PetscCall(SgContMeasure(ct));
     if (ct->kkt.residual <= ct->kkt_tol && !(ct->kkt.residual < 0.5 * kktprev)) { /* and no longer improving */
       done          = PETSC_TRUE;
@@ -509,7 +426,7 @@ static PetscErrorCode Decide_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt e
       PetscCall(PetscSNPrintf(ct->reason, sizeof(ct->reason), "PDAS_KKT_BELOW_TOL: KKT residual %.3e <= %.3e in iteration %" PetscInt_FMT ", while %" PetscInt_FMT " vertices still changed their friction state or slip direction on round-off", (double)ct->kkt.residual, (double)ct->kkt_tol, k, entered + left));
     } else PetscCall(PetscArraycpy(act, next, ct->n));
     kktprev = ct->kkt.residual;
-  } else if (!fr) { /* with friction the iterate depends on the directions and bounds, not on the sets alone */
+  } else if (!w->states) { /* with the law's states the iterate depends on their directions and bounds, not on the sets alone */
     PetscInt64 h;
     PetscCall(SgContactActiveSetHash(ct->c, next, &h));
     for (PetscInt j = 0; j < nhash - 1; j++)
@@ -537,6 +454,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(SetUpWork_PDAS(ct, &w));
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
+    PetscCall(SgContactLawPdasDestroy(&w.lp));
     PetscCall(PdasFrameFree(&w.f, &w.Af, w.b, &w.bw, &w.yw, &w.nax, &w.yrf));
     PetscCall(PetscFree6(w.axis, w.sign, w.g, w.act, w.next, w.rows));
     PetscCall(PetscFree(w.hash));
@@ -577,9 +495,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   PetscCall(SgContCheckBaseline(ct));
   PetscCall(VecDestroy(&w.rhs));
   PetscCall(VecDestroy(&w.x));
-  PetscCall(VecDestroy(&w.R));
-  PetscCall(PetscFree4(w.fst, w.fnext, w.tdir, w.gb));
-  PetscCall(PetscFree2(w.zn, w.blk));
+  PetscCall(SgContactLawPdasDestroy(&w.lp));
   PetscCall(PdasFrameFree(&w.f, &w.Af, w.b, &w.bw, &w.yw, &w.nax, &w.yrf));
   PetscCall(PetscFree6(w.axis, w.sign, w.g, w.act, w.next, w.rows));
   PetscCall(PetscFree(w.hash));

@@ -48,6 +48,16 @@ typedef struct {
   PetscBool zero;
 } KKTScales;
 
+/* what the op pdasrows reads of a contact vertex (law_pdas.c), in PDAS's working coordinates */
+typedef struct {
+  PetscInt         dim, axis; /* the normal's dof */
+  PetscReal        nax, w, c; /* the normal's component on it, the lumped weight, the constant of the state test */
+  PetscBool        couple;    /* the law's bound from lam_N may take lam_N of the same solve */
+  char             st;        /* its state (SG_FRICTION_FREE/STICK/SLIP), bound, |z| at the state test, slip direction */
+  PetscReal        g, zn;
+  const PetscReal *t;
+} SgContactLawPdasVertex;
+
 /* law.c: the contact law, a type of the registry SgContactLawList (-friction_type, SgContactLawRegister). A type's
    create function sets its ops, data and the flags friction and coupled; the bound op is a pointwise kernel. */
 typedef struct {
@@ -102,14 +112,19 @@ typedef struct {
   PetscErrorCode (*stepsummary)(SgContactLaw, PetscInt, const SgFrictionSummary[], SgContactLawKeys *);
   /* PDAS (Hueber-Stadler-Wohlmuth): the state of vertex i for the next solve from lamN and z = lam_T + c T (y - yref)
      of length nz (dim components, the normal's axis component 0), its last state st and slip direction t (updated
-     on slip; *dt its largest change); the bound into *g. NULL: free */
+     on slip; *dt its largest change); the bound into *g. NULL without a tangential part (SgContactLawPdasCreate:
+     an empty object); a type with one gets law_pdas.c's unless it sets its own */
   char (*pdasstate)(SgContactLaw, PetscInt, PetscReal, PetscInt, const PetscReal[], PetscReal, char, PetscReal[], PetscReal *, PetscReal *);
+  /* PDAS: the rows of vertex i in its state v->st (SgContactLawPdasRows of sg.h, zeroed before), a pointwise kernel.
+     A type with a tangential part that does not set it gets law_pdas.c's (stick rows fixed, slip forces, springs) */
+  void (*pdasrows)(SgContactLaw, PetscInt, const SgContactLawPdasVertex *, SgContactLawPdasRows *);
   /* the properties the solvers ask for (SgContactLawGetProperties; sg.h describes them), filled beforehand with those
      that follow from the flags friction and coupled; NULL: those */
   PetscErrorCode (*getproperties)(SgContactLaw, SgContactLawProperties *);
 } SgContactLawOps;
 
 PetscErrorCode SgContactLawSetRegularizedOps(SgContactLaw); /* law_regularized.c */
+PetscErrorCode SgContactLawSetPdasOps(SgContactLaw);        /* law_pdas.c */
 
 struct _n_SgContactLaw {
   MPI_Comm         comm;

@@ -257,6 +257,7 @@ PetscErrorCode SgContactLawCreateFromOptions(PetscOptionItems *PetscOptionsObjec
   if (law->ops.setup) PetscCall(law->ops.setup(law));
   if (law->friction) PetscCall(SgContactLawSetRegularizedOps(law)); /* the terms the type does not set itself */
   if (law->friction) PetscCall(SgContactLawSetMeasureOps(law));     /* and its measures, fields and summary keys */
+  if (law->friction) PetscCall(SgContactLawSetPdasOps(law));        /* and its part of PDAS (law_pdas.c) */
   PetscFunctionReturn(0);
 }
 
@@ -479,15 +480,6 @@ PetscErrorCode SgContactLawStepSummary(SgContactLaw law, PetscInt n, const SgFri
   PetscFunctionBeginUser;
   if (law && law->ops.stepsummary) PetscCall(law->ops.stepsummary(law, n, fs, sum));
   PetscFunctionReturn(0);
-}
-
-/* PDAS's state of owned vertex i for its next solve (the op pdasstate; free without it); see SgContactLawOps */
-char SgContactLawPdasState(SgContactLaw law, PetscInt i, PetscReal lamN, PetscInt dim, const PetscReal z[], PetscReal nz, char st, PetscReal t[], PetscReal *g, PetscReal *dt)
-{
-  *dt = 0;
-  if (law->ops.pdasstate) return law->ops.pdasstate(law, i, lamN, dim, z, nz, st, t, g, dt);
-  *g = 0;
-  return SG_FRICTION_FREE;
 }
 
 /* The checkpoint's part of the law: its number in the registry (friction_type, 0 without friction or a law), its

@@ -344,31 +344,6 @@ static PetscErrorCode StepLoad_Regularized(SgContactLaw law, PetscInt n, SgFrict
   PetscFunctionReturn(0);
 }
 
-/* PDAS's state of vertex i for the next solve: the bound g = g_i(lamN); free (g = 0), stick (|z| <= g), slip
-   (t = z/|z|). A slip whose direction turned by more than 90 degrees since the last solve sticks in the next one (its
-   force then comes from the equilibrium, not from the old direction): with nearly every vertex slipping, the forces
-   g t of the old directions can push the whole contact zone back and forth between +t and -t for ever (the same
-   safeguard as the SSN's, law_regularized.c) */
-static char PdasState_Regularized(SgContactLaw law, PetscInt i, PetscReal lamN, PetscInt dim, const PetscReal z[], PetscReal nz, char st, PetscReal t[], PetscReal *g, PetscReal *dt)
-{
-  char s;
-
-  SgContactLawBound(law, i, lamN, g, NULL);
-  s = !(*g > 0) ? 0 : (nz <= *g ? 1 : 2);
-  if (s == 2 && st == 2) {
-    PetscReal tt = 0;
-    for (PetscInt j = 0; j < dim; j++) tt += z[j] / nz * t[j];
-    if (tt <= 0) s = 1;
-  }
-  *dt = 0;
-  if (s == 2)
-    for (PetscInt j = 0; j < dim; j++) {
-      *dt  = PetscMax(*dt, PetscAbsReal(z[j] / nz - t[j]));
-      t[j] = z[j] / nz;
-    }
-  return s;
-}
-
 PetscErrorCode SgContactLawSetMeasureOps(SgContactLaw law)
 {
   PetscFunctionBeginUser;
@@ -384,6 +359,5 @@ PetscErrorCode SgContactLawSetMeasureOps(SgContactLaw law)
     law->ops.stepsave = StepSave_Regularized;
     law->ops.stepload = StepLoad_Regularized;
   }
-  if (!law->ops.pdasstate) law->ops.pdasstate = PdasState_Regularized;
   PetscFunctionReturn(0);
 }
