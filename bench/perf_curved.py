@@ -13,7 +13,12 @@ the default controller and linear solver choose themselves) on
          124,128 and 1,074,513 unknowns);
   cyl    the 2D half disc on a plane (plane strain, options/cv_halfdisc.opts, meshes/cv_halfdisc.geo) on 2 ranks at
          mesh scale --cyl-scale (default 60, an estimate of 5e5 unknowns from 2,338 at scale 4 and about 3.6x per doubling:
-         check the unknowns printed).
+         check the unknowns printed); with --cyl-refine N the mesh is also refined N times by -dm_refine N (about 4x the
+         unknowns per refinement; the default then starts by nested iteration from the gmsh mesh), case cyl_sS_rN_np2;
+  ex2c   the flat Example 2 as its default is measured (bench/nested.md): meshes/ex2_coarse.msh (2,733 unknowns) refined
+         by -dm_refine N for each N of --ex2c-refine (e.g. 2,3: 144,666 and 1,115,460 unknowns), with its yardstick,
+         run in the same rounds as the curved cases so that their cost ratios are measured side by side (not merged into
+         cost_ratio_3d_curved), case ex2c_rN.
 Each contact solve is set against the yardstick of scripts/bench.py: the fastest configured linear solve of the same
 mesh (the same body and Dirichlet data without contact, each of bench.py's YARDSTICK_3D configurations at its
 YARD_RTOL), one rank, minimum over --repeat runs made in rounds (so that every case sees the same load of a shared
@@ -26,7 +31,8 @@ and prints a markdown section for bench/results.md. Goals of issue 30: the defau
 against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 within 20 % of the unturned; at most 8
 SSN steps. A benchmark, not a test: never run by make test.
 
-usage: perf_curved.py [--only hemi,ex2,cyl] [--hemi-scales 4,8.5,18] [--hemi-refine N] [--ex2-scales 2,4.2] [--cyl-scale 60] [--repeat N]
+usage: perf_curved.py [--only hemi,ex2,cyl,ex2c] [--hemi-scales 4,8.5,18] [--hemi-refine N] [--ex2-scales 2,4.2] [--cyl-scale 60]
+                      [--cyl-refine N] [--ex2c-refine 2,3] [--repeat N]
                       [--yard-repeat N] [--yard-configs NAME,...]
                       [--json FILE|none] [--out DIR]
 The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
@@ -99,6 +105,8 @@ def main():
     ap.add_argument("--hemi-refine", type=int, default=0, help="-dm_refine N on each hemisphere mesh (0: none)")
     ap.add_argument("--ex2-scales", default="2,4.2")
     ap.add_argument("--cyl-scale", default="60")
+    ap.add_argument("--cyl-refine", type=int, default=0, help="-dm_refine N on the half disc's mesh (0: none)")
+    ap.add_argument("--ex2c-refine", default="2,3", help="the -dm_refine levels of the flat Example 2 from meshes/ex2_coarse.msh (case ex2c)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--yard-repeat", type=int, default=None, help="rounds of the yardsticks (default: --repeat)")
     ap.add_argument("--yard-configs", default=None, help="comma-separated parts of the names of the yardstick configurations "
@@ -123,7 +131,13 @@ def main():
                           "-dm_plex_filename %s %s %s" % (turned, EX2_ELASTIC, EX2_VALUES_R30), 1))
     if "cyl" in only:
         m = mesh("meshes/cv_halfdisc_s%s.msh" % opt.cyl_scale)
-        cases.append(("cyl_s%s_np2" % opt.cyl_scale, "%s -dm_plex_filename %s" % (CYL, m), None, 2))
+        ref, tag = (" -dm_refine %d" % opt.cyl_refine, "_r%d" % opt.cyl_refine) if opt.cyl_refine else ("", "")
+        cases.append(("cyl_s%s%s_np2" % (opt.cyl_scale, tag), "%s -dm_plex_filename %s%s" % (CYL, m, ref), None, 2))
+    if "ex2c" in only:
+        for n in opt.ex2c_refine.split(","):
+            m = "meshes/ex2_coarse.msh -dm_refine %s" % n
+            cases.append(("ex2c_r%s" % n, "-options_file options/ex2_problem.opts -dm_plex_filename %s" % m,  # as scripts/bench.py's nested_default
+                          "-dm_plex_filename %s %s %s" % (m, EX2_ELASTIC, EX2_VALUES), 1))
     runs = {k: [] for k, _, _, _ in cases}
     for r in range(opt.repeat):  # rounds: every case once per round
         for key, args, _, np in cases:
@@ -149,7 +163,7 @@ def main():
                       opt.yard_configs.split(",") if opt.yard_configs else None)
         yards[key] = y
         s = res[key]
-        if y["time"] and s.get("converged") and s.get("dofs"):
+        if y["time"] and s.get("converged") and s.get("dofs") and not key.startswith("ex2c"):  # ex2c: the flat reference
             cost[str(s["dofs"])] = s["solve_time"] / y["time"]
     for key in res:
         if key.endswith("_r30"):
