@@ -10,6 +10,7 @@
    themselves (the columns below this rank's, its own, those above), the ghost rows' a buffer (all at va) that goes to
    their owners once the cells are done; one rank: K's values, all at va. */
 typedef struct {
+  PetscBool     ranks;      /* several ranks: K's two parts and the ghost buffer */
   PetscInt      nown, nrow; /* owned block rows, all local block rows (ghost rows after the owned) */
   PetscInt     *row, *bi, *bj, *nlo, *nd, *La, *Lb;
   PetscScalar **va, **vb;
@@ -79,6 +80,136 @@ static PetscErrorCode SetRows(SgElasticity p, const KPattern *kp, PetscInt r0, P
   }
   PetscCall(PetscFree(cols));
   PetscCall(PetscFree(zero));
+  PetscFunctionReturn(0);
+}
+
+/* Several ranks: K's preallocation, upper bounds of the owned rows' lengths: each rank's distinct free neighbours of
+   its local rows, summed over the ranks by the owner of the row (diagonal or off-diagonal block column by the owner's
+   range), exact where a row is not shared */
+static PetscErrorCode PreallocateRanks(SgElasticity p, const KPattern *kp)
+{
+  const SgMesh   *m   = &p->mesh;
+  const PetscInt  dim = p->dim;
+  const PetscInt *ranges;
+  PetscInt        n, N, bstart, bend, *dnz, *onz;
+  PetscMPIInt     size;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, &n));
+  PetscCall(VecGetSize(p->b, &N));
+  PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
+  bstart /= dim;
+  bend /= dim;
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCall(VecGetOwnershipRanges(p->b, &ranges));
+  PetscCall(PetscCalloc2(kp->nrow * 2 + 1, &dnz, n / dim + 1, &onz));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt r = kp->row[v];
+    PetscInt       o = 0, lo, hi;
+    if (r < 0) continue;
+    while (o < size - 1 && m->gblock[v] * dim >= ranges[o + 1]) o++;
+    lo = ranges[o] / dim;
+    hi = ranges[o + 1] / dim;
+    for (PetscInt k = kp->bi[r]; k < kp->bi[r + 1]; k++) {
+      if (kp->bj[k] >= lo && kp->bj[k] < hi) dnz[2 * r]++;
+      else dnz[2 * r + 1]++;
+    }
+  }
+  { /* summed by the owners through the vertex vectors of dim numbers (the first two used) */
+    Vec          cloc, cglob;
+    PetscScalar *ca;
+    PetscSection vs;
+    PetscCall(DMGetLocalVector(p->dmVec, &cloc));
+    PetscCall(VecZeroEntries(cloc));
+    PetscCall(DMGetLocalSection(p->dmVec, &vs));
+    PetscCall(VecGetArray(cloc, &ca));
+    for (PetscInt v = 0; v < m->nv; v++) {
+      PetscInt off;
+      if (kp->row[v] < 0) continue;
+      PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+      ca[off]     = dnz[2 * kp->row[v]];
+      ca[off + 1] = dnz[2 * kp->row[v] + 1];
+    }
+    PetscCall(VecRestoreArray(cloc, &ca));
+    PetscCall(DMGetGlobalVector(p->dmVec, &cglob));
+    PetscCall(VecZeroEntries(cglob));
+    PetscCall(DMLocalToGlobal(p->dmVec, cloc, ADD_VALUES, cglob));
+    PetscCall(DMGlobalToLocal(p->dmVec, cglob, INSERT_VALUES, cloc));
+    PetscCall(DMRestoreGlobalVector(p->dmVec, &cglob));
+    PetscCall(VecGetArray(cloc, &ca));
+    for (PetscInt v = 0; v < m->nv; v++) {
+      PetscInt off;
+      if (m->goff[v] < 0) continue;
+      PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+      dnz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off]), bend - bstart);
+      onz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off + 1]), N / dim - (bend - bstart));
+    }
+    PetscCall(VecRestoreArray(cloc, &ca));
+    PetscCall(DMRestoreLocalVector(p->dmVec, &cloc));
+  }
+  PetscCall(MatXAIJSetPreallocation(p->K, dim, dnz, onz, NULL, NULL));
+  PetscCall(PetscFree2(dnz, onz));
+  PetscFunctionReturn(0);
+}
+
+/* Several ranks, after the first assembly: the owned rows' whole pattern (every rank's cells) read back from K's two
+   parts (columns of the off-diagonal part: garray, increasing), the places of their values there, and the ghost
+   rows' buffer (their local pattern) */
+static PetscErrorCode OwnedRows(SgElasticity p, KPattern *kp)
+{
+  const PetscInt  dim = p->dim, nown = kp->nown;
+  const PetscInt *ia, *ja, *ib, *jb, *garray;
+  PetscInt        n, bstart, *bi, *bj, na, nb;
+  PetscBool       done;
+  Mat             A, B;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, &n));
+  PetscCall(VecGetOwnershipRange(p->b, &bstart, NULL));
+  bstart /= dim;
+  kp->ranks = PETSC_TRUE;
+  PetscCall(MatMPIAIJGetSeqAIJ(p->K, &A, &B, &garray));
+  PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
+  PetscCheck(done && na == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's diagonal part");
+  PetscCall(MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
+  PetscCheck(done && nb == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's off-diagonal part");
+  PetscCall(MatSeqAIJGetArray(A, &kp->aa));
+  PetscCall(MatSeqAIJGetArray(B, &kp->ba));
+  PetscCall(PetscMalloc1(kp->nrow + 1, &bi));
+  bi[0] = 0;
+  for (PetscInt r = 0; r < nown; r++) bi[r + 1] = bi[r] + (ia[r * dim + 1] - ia[r * dim] + ib[r * dim + 1] - ib[r * dim]) / dim;
+  for (PetscInt r = nown; r < kp->nrow; r++) bi[r + 1] = bi[r] + kp->bi[r + 1] - kp->bi[r];
+  PetscCall(PetscMalloc1(bi[kp->nrow] + 1, &bj));
+  for (PetscInt r = 0; r < nown; r++) {
+    const PetscInt la = ia[r * dim + 1] - ia[r * dim], lb = ib[r * dim + 1] - ib[r * dim];
+    PetscInt       nlo = 0, q = bi[r];
+    for (PetscInt i = 1; i < dim; i++)
+      PetscCheck(ia[r * dim + i + 1] - ia[r * dim + i] == la && ib[r * dim + i + 1] - ib[r * dim + i] == lb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the scalar rows of block row %" PetscInt_FMT " differ", bstart + r);
+    while (nlo * dim < lb && garray[jb[ib[r * dim] + nlo * dim]] < bstart * dim) nlo++;
+    for (PetscInt k = 0; k < nlo; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
+    for (PetscInt k = 0; k < la / dim; k++) bj[q++] = bstart + ja[ia[r * dim] + k * dim] / dim;
+    for (PetscInt k = nlo; k < lb / dim; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
+    kp->nlo[r] = nlo;
+    kp->nd[r]  = la / dim;
+    kp->La[r]  = la;
+    kp->Lb[r]  = lb;
+    kp->va[r]  = kp->aa + ia[r * dim];
+    kp->vb[r]  = kp->ba + ib[r * dim];
+  }
+  PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
+  PetscCall(MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
+  PetscCall(PetscArraycpy(bj + bi[nown], kp->bj + kp->bi[nown], bi[kp->nrow] - bi[nown]));
+  PetscCall(PetscFree(kp->bi));
+  PetscCall(PetscFree(kp->bj));
+  kp->bi = bi;
+  kp->bj = bj;
+  PetscCall(PetscCalloc1((bi[kp->nrow] - bi[nown]) * dim * dim + 1, &kp->ghost));
+  for (PetscInt r = nown; r < kp->nrow; r++) {
+    kp->nlo[r] = 0;
+    kp->nd[r]  = bi[r + 1] - bi[r];
+    kp->La[r] = kp->Lb[r] = kp->nd[r] * dim;
+    kp->va[r] = kp->vb[r] = kp->ghost + (bi[r] - bi[nown]) * dim * dim;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -158,61 +289,9 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
       kp->va[r] = kp->vb[r] = kp->aa + kp->bi[r] * dim * dim;
     }
   } else {
-    const PetscInt *ranges, *ia, *ja, *ib, *jb, *garray;
-    PetscInt       *dnz, *onz, *grow, *bi, *bj, na, nb;
-    PetscBool       done;
-    Mat             A, B;
+    PetscInt *grow;
 
-    /* upper bounds of the owned rows' lengths: each rank's distinct free neighbours, summed over the ranks by the owner
-       of the row (diagonal or off-diagonal block column by the owner's range) */
-    PetscCall(VecGetOwnershipRanges(p->b, &ranges));
-    PetscCall(PetscCalloc2(kp->nrow * 2 + 1, &dnz, n / dim + 1, &onz));
-    for (PetscInt v = 0; v < m->nv; v++) {
-      const PetscInt r = kp->row[v];
-      PetscInt       o = 0, lo, hi;
-      if (r < 0) continue;
-      while (o < size - 1 && m->gblock[v] * dim >= ranges[o + 1]) o++;
-      lo = ranges[o] / dim;
-      hi = ranges[o + 1] / dim;
-      for (PetscInt k = kp->bi[r]; k < kp->bi[r + 1]; k++) {
-        if (kp->bj[k] >= lo && kp->bj[k] < hi) dnz[2 * r]++;
-        else dnz[2 * r + 1]++;
-      }
-    }
-    { /* summed by the owners through the vertex vectors of dim numbers (the first two used) */
-      Vec          cloc, cglob;
-      PetscScalar *ca;
-      PetscSection vs;
-      PetscCall(DMGetLocalVector(p->dmVec, &cloc));
-      PetscCall(VecZeroEntries(cloc));
-      PetscCall(DMGetLocalSection(p->dmVec, &vs));
-      PetscCall(VecGetArray(cloc, &ca));
-      for (PetscInt v = 0; v < m->nv; v++) {
-        PetscInt off;
-        if (kp->row[v] < 0) continue;
-        PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
-        ca[off]     = dnz[2 * kp->row[v]];
-        ca[off + 1] = dnz[2 * kp->row[v] + 1];
-      }
-      PetscCall(VecRestoreArray(cloc, &ca));
-      PetscCall(DMGetGlobalVector(p->dmVec, &cglob));
-      PetscCall(VecZeroEntries(cglob));
-      PetscCall(DMLocalToGlobal(p->dmVec, cloc, ADD_VALUES, cglob));
-      PetscCall(DMGlobalToLocal(p->dmVec, cglob, INSERT_VALUES, cloc));
-      PetscCall(DMRestoreGlobalVector(p->dmVec, &cglob));
-      PetscCall(VecGetArray(cloc, &ca));
-      for (PetscInt v = 0; v < m->nv; v++) {
-        PetscInt off;
-        if (m->goff[v] < 0) continue;
-        PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
-        dnz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off]), bend - bstart);
-        onz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off + 1]), N / dim - (bend - bstart));
-      }
-      PetscCall(VecRestoreArray(cloc, &ca));
-      PetscCall(DMRestoreLocalVector(p->dmVec, &cloc));
-    }
-    PetscCall(MatXAIJSetPreallocation(p->K, dim, dnz, onz, NULL, NULL));
-    PetscCall(PetscFree2(dnz, onz));
+    PetscCall(PreallocateRanks(p, kp));
     PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
     PetscCall(PetscMalloc1(nghost + 1, &grow));
     for (PetscInt v = 0; v < m->nv; v++)
@@ -222,49 +301,7 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
     PetscCall(PetscFree(grow));
     PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
-    /* the owned rows' whole pattern, from K's two parts (columns of the off-diagonal part: garray, increasing) */
-    PetscCall(MatMPIAIJGetSeqAIJ(p->K, &A, &B, &garray));
-    PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
-    PetscCheck(done && na == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's diagonal part");
-    PetscCall(MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
-    PetscCheck(done && nb == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's off-diagonal part");
-    PetscCall(MatSeqAIJGetArray(A, &kp->aa));
-    PetscCall(MatSeqAIJGetArray(B, &kp->ba));
-    PetscCall(PetscMalloc1(kp->nrow + 1, &bi));
-    bi[0] = 0;
-    for (PetscInt r = 0; r < nown; r++) bi[r + 1] = bi[r] + (ia[r * dim + 1] - ia[r * dim] + ib[r * dim + 1] - ib[r * dim]) / dim;
-    for (PetscInt r = nown; r < kp->nrow; r++) bi[r + 1] = bi[r] + kp->bi[r + 1] - kp->bi[r];
-    PetscCall(PetscMalloc1(bi[kp->nrow] + 1, &bj));
-    for (PetscInt r = 0; r < nown; r++) {
-      const PetscInt la = ia[r * dim + 1] - ia[r * dim], lb = ib[r * dim + 1] - ib[r * dim];
-      PetscInt       nlo = 0, q = bi[r];
-      for (PetscInt i = 1; i < dim; i++)
-        PetscCheck(ia[r * dim + i + 1] - ia[r * dim + i] == la && ib[r * dim + i + 1] - ib[r * dim + i] == lb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the scalar rows of block row %" PetscInt_FMT " differ", bstart + r);
-      while (nlo * dim < lb && garray[jb[ib[r * dim] + nlo * dim]] < bstart * dim) nlo++;
-      for (PetscInt k = 0; k < nlo; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
-      for (PetscInt k = 0; k < la / dim; k++) bj[q++] = bstart + ja[ia[r * dim] + k * dim] / dim;
-      for (PetscInt k = nlo; k < lb / dim; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
-      kp->nlo[r] = nlo;
-      kp->nd[r]  = la / dim;
-      kp->La[r]  = la;
-      kp->Lb[r]  = lb;
-      kp->va[r]  = kp->aa + ia[r * dim];
-      kp->vb[r]  = kp->ba + ib[r * dim];
-    }
-    PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
-    PetscCall(MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
-    PetscCall(PetscArraycpy(bj + bi[nown], kp->bj + kp->bi[nown], bi[kp->nrow] - bi[nown]));
-    PetscCall(PetscFree(kp->bi));
-    PetscCall(PetscFree(kp->bj));
-    kp->bi = bi;
-    kp->bj = bj;
-    PetscCall(PetscCalloc1((bi[kp->nrow] - bi[nown]) * dim * dim + 1, &kp->ghost));
-    for (PetscInt r = nown; r < kp->nrow; r++) {
-      kp->nlo[r] = 0;
-      kp->nd[r]  = bi[r + 1] - bi[r];
-      kp->La[r] = kp->Lb[r] = kp->nd[r] * dim;
-      kp->va[r] = kp->vb[r] = kp->ghost + (bi[r] - bi[nown]) * dim * dim;
-    }
+    PetscCall(OwnedRows(p, kp));
   }
   PetscCall(PetscFree3(vcoff, vcell, mark));
   PetscFunctionReturn(0);
@@ -275,7 +312,7 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
 static PetscErrorCode FinishStiffness(SgElasticity p, KPattern *kp)
 {
   PetscFunctionBeginUser;
-  if (kp->ba) {
+  if (kp->ranks) {
     Mat             A, B;
     const PetscInt *garray;
     PetscInt       *grow;
@@ -287,7 +324,7 @@ static PetscErrorCode FinishStiffness(SgElasticity p, KPattern *kp)
       if (kp->row[v] >= kp->nown) grow[kp->row[v] - kp->nown] = p->mesh.gblock[v];
     PetscCall(SetRows(p, kp, kp->nown, kp->nrow, -1, grow, kp->ghost));
     PetscCall(PetscFree(grow));
-  } else if (kp->aa) PetscCall(MatSeqAIJRestoreArray(p->K, &kp->aa));
+  } else if (p->K) PetscCall(MatSeqAIJRestoreArray(p->K, &kp->aa));
   PetscCall(PetscFree(kp->row));
   PetscCall(PetscFree(kp->bi));
   PetscCall(PetscFree(kp->bj));
