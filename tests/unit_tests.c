@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -90,6 +90,58 @@ static PetscErrorCode TestRigid(SgSummary s)
   PetscCall(SgSummarySetInt(s, "modes", nvec));
   PetscCall(SgSummarySetReal(s, "max_relative_residual", worst));
   PetscCall(VecDestroy(&Kz));
+  PetscCall(SgElasticityDestroy(&p));
+  PetscFunctionReturn(0);
+}
+
+/* The stiffness on any number of ranks (src/fem/assembly.c: one rank adds the cells into K's values through the mesh
+   graph's pattern; more ranks into their owned rows and a buffer of their ghost rows, summed by the owners): K applied
+   to a smooth field of the vertex coordinates (the same on every partition), K's nonzero count and Frobenius norm, and
+   K u against K^T u; tests/parallel/asm27.ini compares them between rank counts. */
+static PetscErrorCode TestStiffness(SgSummary s)
+{
+  SgElasticity p;
+  Vec          u, y, yt;
+  PetscScalar *ua;
+  MatInfo      info;
+  PetscReal    fro, ynorm, yinf, uKu, asym;
+  PetscInt     N;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityCreate(PETSC_COMM_WORLD, NULL, &p));
+  PetscCall(SgElasticitySetFromOptions(p, NULL, NULL));
+  PetscCall(SgElasticitySetUp(p));
+  PetscCall(VecDuplicate(p->b, &u));
+  PetscCall(VecDuplicate(p->b, &y));
+  PetscCall(VecDuplicate(p->b, &yt));
+  PetscCall(VecGetArray(u, &ua));
+  for (PetscInt v = 0; v < p->mesh.nv; v++) {
+    const PetscReal *x  = p->mesh.x + v * p->dim;
+    const PetscReal  x2 = p->dim > 2 ? x[2] : 0;
+    if (p->mesh.goff[v] < 0) continue;
+    for (PetscInt d = 0; d < p->dim; d++) ua[p->mesh.goff[v] + d] = PetscSinReal(1.3 * x[0] + 0.7 * x[1] + 0.4 * x2 + d) * PetscCosReal(0.9 * x[0] - 1.1 * x[1] + 0.5 * d);
+  }
+  PetscCall(VecRestoreArray(u, &ua));
+  PetscCall(MatMult(p->K, u, y));
+  PetscCall(MatMultTranspose(p->K, u, yt));
+  PetscCall(VecNorm(y, NORM_2, &ynorm));
+  PetscCall(VecNorm(y, NORM_INFINITY, &yinf));
+  PetscCall(VecDot(u, y, &uKu));
+  PetscCall(VecAXPY(yt, -1.0, y));
+  PetscCall(VecNorm(yt, NORM_2, &asym));
+  PetscCall(MatGetInfo(p->K, MAT_GLOBAL_SUM, &info));
+  PetscCall(MatNorm(p->K, NORM_FROBENIUS, &fro));
+  PetscCall(VecGetSize(u, &N));
+  PetscCall(SgSummarySetInt(s, "dofs", N));
+  PetscCall(SgSummarySetInt(s, "nonzeros", (PetscInt)info.nz_used));
+  PetscCall(SgSummarySetReal(s, "frobenius", fro));
+  PetscCall(SgSummarySetReal(s, "Ku_norm", ynorm));
+  PetscCall(SgSummarySetReal(s, "Ku_max", yinf));
+  PetscCall(SgSummarySetReal(s, "uKu", uKu));
+  PetscCall(SgSummarySetReal(s, "asymmetry", asym / ynorm));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&y));
+  PetscCall(VecDestroy(&yt));
   PetscCall(SgElasticityDestroy(&p));
   PetscFunctionReturn(0);
 }
@@ -1117,6 +1169,7 @@ int main(int argc, char **argv)
   if (PetscStrcmp(test, "element2d", &eq) == 0 && eq) PetscCall(TestElement2D(s));
   else if (PetscStrcmp(test, "element3d", &eq) == 0 && eq) PetscCall(TestElement3D(s));
   else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
+  else if (PetscStrcmp(test, "stiffness", &eq) == 0 && eq) PetscCall(TestStiffness(s));
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));

@@ -2,35 +2,97 @@
    the lumped volumes and the energy shift. */
 #include "fem/femimpl.h"
 
-/* The pattern of K's owned block rows from this rank's cells: block row r (owned, from 0) couples with the block
-   columns bj[bi[r] .. bi[r+1]-1], in increasing order. On one rank K is filled through it (AddElementStiffness). */
+/* Where the cells add K's values. Local block row r (a free local vertex v: r = row[v]; one rank: r = its global
+   block row; more ranks: the owned vertices first, in global order, then the ghost ones) couples with the global block
+   columns bj[bi[r] .. bi[r+1]-1], in increasing order. The first nlo[r] of them and those after the next nd[r] go to
+   the scalar rows at vb[r] (stride Lb[r] from one scalar row of the block row to the next), the nd[r] in between to
+   those at va[r] (stride La[r]): on more ranks the owned rows' values are K's off-diagonal and diagonal parts
+   themselves (the columns below this rank's, its own, those above), the ghost rows' a buffer (all at va) that goes to
+   their owners once the cells are done; one rank: K's values, all at va. */
 typedef struct {
-  PetscInt    *bi, *bj;
-  PetscScalar *a; /* K's values (one rank: the whole pattern, rows of equal length within a block row) */
+  PetscBool     ranks;      /* several ranks: K's two parts and the ghost buffer */
+  PetscInt      nown, nrow; /* owned block rows, all local block rows (ghost rows after the owned) */
+  PetscInt     *row, *bi, *bj, *nlo, *nd, *La, *Lb;
+  PetscScalar **va, **vb;
+  PetscScalar  *ghost;   /* the ghost rows' values */
+  PetscScalar  *aa, *ba; /* one rank: K's values; more ranks: those of its diagonal and off-diagonal parts */
 } KPattern;
 
-/* The stiffness (AIJ, block size dim) with its nonzero pattern from the mesh graph: block row v couples v with the
-   vertices of its cells.
-   Rows of vertices shared between ranks get the counts of every rank added, an upper bound only there (the other
-   ranks' cells are not local). DMCreateMatrix() and MATPREALLOCATOR cost several times the assembly itself.
-   K was BAIJ, converted to AIJ (what MUMPS and hypre take) once assembled: the conversion took 65-95 % of the
-   assembly at 1.1e6 unknowns and held two copies of K for a moment. AIJ's own insertion (MatSetValues) finds every
-   scalar entry anew and took longer than both; so on one rank the pattern is set whole (sorted rows, zeros) and the
-   cells add into K's values directly (*kp, AddElementStiffness), and on more ranks the owned rows' pattern is put in
-   first (each row in increasing order, so that no insertion moves a row's tail). Either way every entry gets the same
-   values in the same order of the cells as before (0 + a value is that value): the same K to the bit on one rank; on
-   more ranks the other ranks' parts of a shared row are summed among themselves before they are added (PETSc's stash),
-   in an order that differs from BAIJ's block stash by round-off (1 ulp seen in shared rows). */
-static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
+/* The distinct free block columns of the local block rows, from this rank's cells: kp->bi (nrow + 1) and kp->bj,
+   each row sorted */
+static PetscErrorCode LocalPattern(SgElasticity p, const PetscInt vcoff[], const PetscInt vcell[], PetscInt mark[], KPattern *kp)
+{
+  const SgMesh  *m  = &p->mesh;
+  const PetscInt nv = p->dim + 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(kp->nrow + 1, &kp->bi));
+  for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    if (kp->row[v] < 0) continue;
+    for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
+      for (PetscInt a = 0; a < nv; a++) {
+        const PetscInt u = m->cellv[vcell[k] * nv + a];
+        if (m->gblock[u] < 0 || mark[u] == v) continue;
+        mark[u] = v;
+        kp->bi[kp->row[v] + 1]++;
+      }
+  }
+  for (PetscInt r = 0; r < kp->nrow; r++) kp->bi[r + 1] += kp->bi[r];
+  PetscCall(PetscMalloc1(kp->bi[kp->nrow] + 1, &kp->bj));
+  for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt r  = kp->row[v];
+    PetscInt       nb = 0;
+    if (r < 0) continue;
+    for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
+      for (PetscInt a = 0; a < nv; a++) {
+        const PetscInt u = m->cellv[vcell[k] * nv + a];
+        if (m->gblock[u] < 0 || mark[u] == v) continue;
+        mark[u]                  = v;
+        kp->bj[kp->bi[r] + nb++] = m->gblock[u];
+      }
+    PetscCall(PetscSortInt(nb, kp->bj + kp->bi[r]));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Local block rows r0 .. r1-1 into K, each block row's scalar rows in one call, values val (NULL: zeros) in the
+   layout of the ghost buffer (block row r at (bi[r] - bi[r0]) dim^2); first is the global block row of r0 (the owned rows: bstart; the ghost rows: -1, their
+   global block rows from grow[]) */
+static PetscErrorCode SetRows(SgElasticity p, const KPattern *kp, PetscInt r0, PetscInt r1, PetscInt first, const PetscInt grow[], const PetscScalar *val)
+{
+  const PetscInt dim = p->dim;
+  PetscInt      *cols, nmax = 0;
+  PetscScalar   *zero;
+
+  PetscFunctionBeginUser;
+  for (PetscInt r = r0; r < r1; r++) nmax = PetscMax(nmax, kp->bi[r + 1] - kp->bi[r]);
+  PetscCall(PetscMalloc1(nmax * dim + 1, &cols));
+  PetscCall(PetscCalloc1(val ? 1 : nmax * dim * dim + 1, &zero));
+  for (PetscInt r = r0; r < r1; r++) {
+    const PetscInt g = first >= 0 ? first + r - r0 : grow[r - r0];
+    PetscInt       rows[3], nb = kp->bi[r + 1] - kp->bi[r];
+    for (PetscInt k = 0; k < nb; k++)
+      for (PetscInt j = 0; j < dim; j++) cols[k * dim + j] = kp->bj[kp->bi[r] + k] * dim + j;
+    for (PetscInt i = 0; i < dim; i++) rows[i] = g * dim + i;
+    PetscCall(MatSetValues(p->K, dim, rows, nb * dim, cols, val ? val + (kp->bi[r] - kp->bi[r0]) * dim * dim : zero, ADD_VALUES));
+  }
+  PetscCall(PetscFree(cols));
+  PetscCall(PetscFree(zero));
+  PetscFunctionReturn(0);
+}
+
+/* Several ranks: K's preallocation, upper bounds of the owned rows' lengths: each rank's distinct free neighbours of
+   its local rows, summed over the ranks by the owner of the row (diagonal or off-diagonal block column by the owner's
+   range), exact where a row is not shared */
+static PetscErrorCode PreallocateRanks(SgElasticity p, const KPattern *kp)
 {
   const SgMesh   *m   = &p->mesh;
-  const PetscInt  dim = p->dim, nv = dim + 1;
-  PetscInt        n, N, bstart, bend, *vcoff, *vcell, *mark, *dnz, *onz;
+  const PetscInt  dim = p->dim;
   const PetscInt *ranges;
+  PetscInt        n, N, bstart, bend, *dnz, *onz;
   PetscMPIInt     size;
-  Vec             cloc, cglob;
-  PetscScalar    *ca;
-  PetscSection    vs;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(p->b, &n));
@@ -38,7 +100,149 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
   PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
   bstart /= dim;
   bend /= dim;
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
   PetscCall(VecGetOwnershipRanges(p->b, &ranges));
+  PetscCall(PetscCalloc2(kp->nrow * 2 + 1, &dnz, n / dim + 1, &onz));
+  for (PetscInt v = 0; v < m->nv; v++) {
+    const PetscInt r = kp->row[v];
+    PetscInt       o = 0, lo, hi;
+    if (r < 0) continue;
+    while (o < size - 1 && m->gblock[v] * dim >= ranges[o + 1]) o++;
+    lo = ranges[o] / dim;
+    hi = ranges[o + 1] / dim;
+    for (PetscInt k = kp->bi[r]; k < kp->bi[r + 1]; k++) {
+      if (kp->bj[k] >= lo && kp->bj[k] < hi) dnz[2 * r]++;
+      else dnz[2 * r + 1]++;
+    }
+  }
+  { /* summed by the owners through the vertex vectors of dim numbers (the first two used) */
+    Vec          cloc, cglob;
+    PetscScalar *ca;
+    PetscSection vs;
+    PetscCall(DMGetLocalVector(p->dmVec, &cloc));
+    PetscCall(VecZeroEntries(cloc));
+    PetscCall(DMGetLocalSection(p->dmVec, &vs));
+    PetscCall(VecGetArray(cloc, &ca));
+    for (PetscInt v = 0; v < m->nv; v++) {
+      PetscInt off;
+      if (kp->row[v] < 0) continue;
+      PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+      ca[off]     = dnz[2 * kp->row[v]];
+      ca[off + 1] = dnz[2 * kp->row[v] + 1];
+    }
+    PetscCall(VecRestoreArray(cloc, &ca));
+    PetscCall(DMGetGlobalVector(p->dmVec, &cglob));
+    PetscCall(VecZeroEntries(cglob));
+    PetscCall(DMLocalToGlobal(p->dmVec, cloc, ADD_VALUES, cglob));
+    PetscCall(DMGlobalToLocal(p->dmVec, cglob, INSERT_VALUES, cloc));
+    PetscCall(DMRestoreGlobalVector(p->dmVec, &cglob));
+    PetscCall(VecGetArray(cloc, &ca));
+    for (PetscInt v = 0; v < m->nv; v++) {
+      PetscInt off;
+      if (m->goff[v] < 0) continue;
+      PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
+      dnz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off]), bend - bstart);
+      onz[kp->row[v]] = PetscMin((PetscInt)PetscRealPart(ca[off + 1]), N / dim - (bend - bstart));
+    }
+    PetscCall(VecRestoreArray(cloc, &ca));
+    PetscCall(DMRestoreLocalVector(p->dmVec, &cloc));
+  }
+  PetscCall(MatXAIJSetPreallocation(p->K, dim, dnz, onz, NULL, NULL));
+  PetscCall(PetscFree2(dnz, onz));
+  PetscFunctionReturn(0);
+}
+
+/* Several ranks, after the first assembly: the owned rows' whole pattern (every rank's cells) read back from K's two
+   parts (columns of the off-diagonal part: garray, increasing), the places of their values there, and the ghost
+   rows' buffer (their local pattern) */
+static PetscErrorCode OwnedRows(SgElasticity p, KPattern *kp)
+{
+  const PetscInt  dim = p->dim, nown = kp->nown;
+  const PetscInt *ia, *ja, *ib, *jb, *garray;
+  PetscInt        n, bstart, *bi, *bj, na, nb;
+  PetscBool       done;
+  Mat             A, B;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, &n));
+  PetscCall(VecGetOwnershipRange(p->b, &bstart, NULL));
+  bstart /= dim;
+  kp->ranks = PETSC_TRUE;
+  PetscCall(MatMPIAIJGetSeqAIJ(p->K, &A, &B, &garray));
+  PetscCall(MatGetRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
+  PetscCheck(done && na == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's diagonal part");
+  PetscCall(MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
+  PetscCheck(done && nb == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rows of K's off-diagonal part");
+  PetscCall(MatSeqAIJGetArray(A, &kp->aa));
+  PetscCall(MatSeqAIJGetArray(B, &kp->ba));
+  PetscCall(PetscMalloc1(kp->nrow + 1, &bi));
+  bi[0] = 0;
+  for (PetscInt r = 0; r < nown; r++) bi[r + 1] = bi[r] + (ia[r * dim + 1] - ia[r * dim] + ib[r * dim + 1] - ib[r * dim]) / dim;
+  for (PetscInt r = nown; r < kp->nrow; r++) bi[r + 1] = bi[r] + kp->bi[r + 1] - kp->bi[r];
+  PetscCall(PetscMalloc1(bi[kp->nrow] + 1, &bj));
+  for (PetscInt r = 0; r < nown; r++) {
+    const PetscInt la = ia[r * dim + 1] - ia[r * dim], lb = ib[r * dim + 1] - ib[r * dim];
+    PetscInt       nlo = 0, q = bi[r];
+    for (PetscInt i = 1; i < dim; i++)
+      PetscCheck(ia[r * dim + i + 1] - ia[r * dim + i] == la && ib[r * dim + i + 1] - ib[r * dim + i] == lb, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the scalar rows of block row %" PetscInt_FMT " differ", bstart + r);
+    while (nlo * dim < lb && garray[jb[ib[r * dim] + nlo * dim]] < bstart * dim) nlo++;
+    for (PetscInt k = 0; k < nlo; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
+    for (PetscInt k = 0; k < la / dim; k++) bj[q++] = bstart + ja[ia[r * dim] + k * dim] / dim;
+    for (PetscInt k = nlo; k < lb / dim; k++) bj[q++] = garray[jb[ib[r * dim] + k * dim]] / dim;
+    kp->nlo[r] = nlo;
+    kp->nd[r]  = la / dim;
+    kp->La[r]  = la;
+    kp->Lb[r]  = lb;
+    kp->va[r]  = kp->aa + ia[r * dim];
+    kp->vb[r]  = kp->ba + ib[r * dim];
+  }
+  PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &na, &ia, &ja, &done));
+  PetscCall(MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nb, &ib, &jb, &done));
+  PetscCall(PetscArraycpy(bj + bi[nown], kp->bj + kp->bi[nown], bi[kp->nrow] - bi[nown]));
+  PetscCall(PetscFree(kp->bi));
+  PetscCall(PetscFree(kp->bj));
+  kp->bi = bi;
+  kp->bj = bj;
+  PetscCall(PetscCalloc1((bi[kp->nrow] - bi[nown]) * dim * dim + 1, &kp->ghost));
+  for (PetscInt r = nown; r < kp->nrow; r++) {
+    kp->nlo[r] = 0;
+    kp->nd[r]  = bi[r + 1] - bi[r];
+    kp->La[r] = kp->Lb[r] = kp->nd[r] * dim;
+    kp->va[r] = kp->vb[r] = kp->ghost + (bi[r] - bi[nown]) * dim * dim;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The stiffness (AIJ, block size dim) with its nonzero pattern from the mesh graph: block row v couples v with the
+   vertices of its cells; the places of the cells' values in kp (see KPattern).
+   K was BAIJ, converted to AIJ (what MUMPS and hypre take) once assembled: the conversion took 65-95 % of the
+   assembly at 1.1e6 unknowns and held two copies of K for a moment. AIJ's own insertion (MatSetValues) finds every
+   scalar entry anew and took longer than both; so the pattern is put in whole first (zeros, each block row's scalar
+   rows in one call, in increasing order, so that no insertion moves a row's tail), and the cells add into K's values
+   directly (AddElementStiffness). One rank: the exact row lengths; every entry gets the same values in the same order
+   of the cells as with MatSetValues (0 + a value is that value): the same K to the bit.
+   More ranks: rows of vertices shared between ranks get the counts of every rank added, an upper bound only there
+   (the other ranks' cells are not local; DMCreateMatrix() and MATPREALLOCATOR cost several times the assembly
+   itself). Each rank puts in its owned rows' pattern and sends the ghost rows' pattern to their owners (PETSc's
+   stash), so that after the first assembly every owned row holds the whole pattern of the cells of every rank; the
+   cells then add into the owned rows' values in K's diagonal and off-diagonal parts and into the ghost buffer, which
+   is summed into the owners' rows by a second assembly, one call per ghost block row (before: one
+   MatSetValuesBlocked per cell into the MPIAIJ matrix and the stash, the owned rows' scalar entries each searched
+   anew: no faster on 2 ranks than on one). The sums in shared rows come in another order than on one rank
+   (round-off). */
+static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
+{
+  const SgMesh  *m   = &p->mesh;
+  const PetscInt dim = p->dim, nv = dim + 1;
+  PetscInt       n, N, bstart, bend, *vcoff, *vcell, *mark, nown = 0, nghost = 0;
+  PetscMPIInt    size;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, &n));
+  PetscCall(VecGetSize(p->b, &N));
+  PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
+  bstart /= dim;
+  bend /= dim;
   PetscCallMPI(MPI_Comm_size(p->comm, &size));
   /* vertex -> cells */
   PetscCall(PetscCalloc3(m->nv + 1, &vcoff, m->nc * nv, &vcell, m->nv, &mark));
@@ -46,136 +250,93 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
   for (PetscInt v = 0; v < m->nv; v++) vcoff[v + 1] += vcoff[v];
   for (PetscInt c = 0; c < m->nc; c++)
     for (PetscInt a = 0; a < nv; a++) vcell[vcoff[m->cellv[c * nv + a]] + mark[m->cellv[c * nv + a]]++] = c;
-  for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
-  /* local counts of distinct free neighbours (diagonal / off-diagonal block columns), summed over ranks */
-  PetscCall(DMGetLocalVector(p->dmVec, &cloc));
-  PetscCall(VecZeroEntries(cloc));
-  PetscCall(DMGetLocalSection(p->dmVec, &vs));
-  PetscCall(VecGetArray(cloc, &ca));
+  /* the local block rows: the owned ones by their global block row, then the ghost ones */
+  PetscCall(PetscMalloc1(m->nv, &kp->row));
   for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off, d = 0, o = 0, lo, hi, r = 0;
-    if (m->gblock[v] < 0) continue;
-    /* diagonal or off-diagonal block is decided by the owner of row v */
-    while (r < size - 1 && m->gblock[v] * dim >= ranges[r + 1]) r++;
-    lo = ranges[r] / dim;
-    hi = ranges[r + 1] / dim;
-    for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
-      for (PetscInt a = 0; a < nv; a++) {
-        const PetscInt u = m->cellv[vcell[k] * nv + a], g = m->gblock[u];
-        if (g < 0 || mark[u] == v) continue;
-        mark[u] = v;
-        if (g >= lo && g < hi) d++;
-        else o++;
-      }
-    PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
-    ca[off]     = d;
-    ca[off + 1] = o;
+    kp->row[v] = -1;
+    if (m->goff[v] >= 0) {
+      kp->row[v] = m->gblock[v] - bstart;
+      nown++;
+    }
   }
-  PetscCall(VecRestoreArray(cloc, &ca));
-  PetscCall(DMGetGlobalVector(p->dmVec, &cglob));
-  PetscCall(VecZeroEntries(cglob));
-  PetscCall(DMLocalToGlobal(p->dmVec, cloc, ADD_VALUES, cglob));
-  PetscCall(DMGlobalToLocal(p->dmVec, cglob, INSERT_VALUES, cloc));
-  PetscCall(DMRestoreGlobalVector(p->dmVec, &cglob));
-  PetscCall(PetscMalloc2(n / dim, &dnz, n / dim, &onz));
-  PetscCall(VecGetArray(cloc, &ca));
-  for (PetscInt v = 0; v < m->nv; v++) {
-    PetscInt off;
-    if (m->goff[v] < 0) continue; /* owned free vertices have rows here */
-    PetscCall(PetscSectionGetOffset(vs, m->vStart + v, &off));
-    dnz[m->goff[v] / dim] = PetscMin((PetscInt)PetscRealPart(ca[off]), bend - bstart);
-    onz[m->goff[v] / dim] = PetscMin((PetscInt)PetscRealPart(ca[off + 1]), N / dim - (bend - bstart));
-  }
-  PetscCall(VecRestoreArray(cloc, &ca));
-  PetscCall(DMRestoreLocalVector(p->dmVec, &cloc));
+  PetscCheck(nown == bend - bstart, PETSC_COMM_SELF, PETSC_ERR_PLIB, "owned free vertices %" PetscInt_FMT " != block rows %" PetscInt_FMT, nown, bend - bstart);
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (m->gblock[v] >= 0 && m->goff[v] < 0) kp->row[v] = nown + nghost++;
+  kp->nown = nown;
+  kp->nrow = nown + nghost;
+  PetscCall(LocalPattern(p, vcoff, vcell, mark, kp));
+  PetscCall(PetscMalloc6(kp->nrow, &kp->nlo, kp->nrow, &kp->nd, kp->nrow, &kp->La, kp->nrow, &kp->Lb, kp->nrow, &kp->va, kp->nrow, &kp->vb));
   PetscCall(MatCreate(p->comm, &p->K));
   PetscCall(MatSetSizes(p->K, n, n, N, N));
   PetscCall(MatSetBlockSize(p->K, dim));
   PetscCall(MatSetType(p->K, MATAIJ));
-  { /* the owned block rows' neighbours, sorted */
-    PetscInt nown = 0, nnzb = 0;
-    for (PetscInt v = 0; v < m->nv; v++)
-      if (m->goff[v] >= 0) nown++;
-    PetscCheck(nown == bend - bstart, PETSC_COMM_SELF, PETSC_ERR_PLIB, "owned free vertices %" PetscInt_FMT " != block rows %" PetscInt_FMT, nown, bend - bstart);
-    PetscCall(PetscCalloc1(nown + 1, &kp->bi));
-    for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
-    for (PetscInt v = 0; v < m->nv; v++) {
-      if (m->goff[v] < 0) continue;
-      for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
-        for (PetscInt a = 0; a < nv; a++) {
-          const PetscInt u = m->cellv[vcell[k] * nv + a];
-          if (m->gblock[u] < 0 || mark[u] == v) continue;
-          mark[u] = v;
-          kp->bi[m->gblock[v] - bstart + 1]++;
-        }
-    }
-    for (PetscInt r = 0; r < nown; r++) kp->bi[r + 1] += kp->bi[r];
-    nnzb = kp->bi[nown];
-    PetscCall(PetscMalloc1(nnzb + 1, &kp->bj));
-    for (PetscInt v = 0; v < m->nv; v++) mark[v] = -1;
-    for (PetscInt v = 0; v < m->nv; v++) {
-      const PetscInt r  = m->goff[v] < 0 ? -1 : m->gblock[v] - bstart;
-      PetscInt       nb = 0;
-      if (r < 0) continue;
-      for (PetscInt k = vcoff[v]; k < vcoff[v + 1]; k++)
-        for (PetscInt a = 0; a < nv; a++) {
-          const PetscInt u = m->cellv[vcell[k] * nv + a];
-          if (m->gblock[u] < 0 || mark[u] == v) continue;
-          mark[u]                  = v;
-          kp->bj[kp->bi[r] + nb++] = m->gblock[u];
-        }
-      PetscCall(PetscSortInt(nb, kp->bj + kp->bi[r]));
-    }
-  }
-  if (size == 1) { /* the exact row lengths, then the whole pattern, each block row's scalar rows in one call */
-    const PetscInt nb = bend - bstart;
-    PetscInt      *len, *cols, nmax = 0;
-    PetscScalar   *zero;
+  if (size == 1) { /* the exact row lengths, then the whole pattern */
+    PetscInt *len;
     PetscCall(PetscMalloc1(n + 1, &len));
-    for (PetscInt r = 0; r < nb; r++) {
-      nmax = PetscMax(nmax, kp->bi[r + 1] - kp->bi[r]);
+    for (PetscInt r = 0; r < nown; r++)
       for (PetscInt i = 0; i < dim; i++) len[r * dim + i] = (kp->bi[r + 1] - kp->bi[r]) * dim;
-    }
     PetscCall(MatSeqAIJSetPreallocation(p->K, 0, len));
     PetscCall(PetscFree(len));
     PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-    PetscCall(PetscCalloc2(nmax * dim + 1, &cols, nmax * dim * dim + 1, &zero));
-    for (PetscInt r = 0; r < nb; r++) {
-      PetscInt rows[3], nc = kp->bi[r + 1] - kp->bi[r];
-      for (PetscInt k = 0; k < nc; k++)
-        for (PetscInt j = 0; j < dim; j++) cols[k * dim + j] = kp->bj[kp->bi[r] + k] * dim + j;
-      for (PetscInt i = 0; i < dim; i++) rows[i] = r * dim + i;
-      PetscCall(MatSetValues(p->K, dim, rows, nc * dim, cols, zero, INSERT_VALUES));
-    }
-    PetscCall(PetscFree2(cols, zero));
+    PetscCall(SetRows(p, kp, 0, nown, 0, NULL, NULL));
     PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatSeqAIJGetArray(p->K, &kp->a));
-  } else { /* the owned rows' pattern, each row in increasing order */
-    PetscInt    *cols, nmax = 0;
-    PetscScalar *zero;
-    PetscCall(MatXAIJSetPreallocation(p->K, dim, dnz, onz, NULL, NULL));
-    PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-    for (PetscInt r = 0; r < bend - bstart; r++) nmax = PetscMax(nmax, kp->bi[r + 1] - kp->bi[r]);
-    PetscCall(PetscCalloc2(nmax * dim + 1, &cols, nmax * dim * dim + 1, &zero));
-    for (PetscInt r = 0; r < bend - bstart; r++) {
-      PetscInt rows[3], nb = kp->bi[r + 1] - kp->bi[r];
-      for (PetscInt k = 0; k < nb; k++)
-        for (PetscInt j = 0; j < dim; j++) cols[k * dim + j] = kp->bj[kp->bi[r] + k] * dim + j;
-      for (PetscInt i = 0; i < dim; i++) rows[i] = (bstart + r) * dim + i;
-      PetscCall(MatSetValues(p->K, dim, rows, nb * dim, cols, zero, ADD_VALUES));
+    PetscCall(MatSeqAIJGetArray(p->K, &kp->aa));
+    for (PetscInt r = 0; r < nown; r++) {
+      kp->nlo[r] = 0;
+      kp->nd[r]  = kp->bi[r + 1] - kp->bi[r];
+      kp->La[r] = kp->Lb[r] = kp->nd[r] * dim;
+      kp->va[r] = kp->vb[r] = kp->aa + kp->bi[r] * dim * dim;
     }
-    PetscCall(PetscFree2(cols, zero));
+  } else {
+    PetscInt *grow;
+
+    PetscCall(PreallocateRanks(p, kp));
+    PetscCall(MatSetOption(p->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCall(PetscMalloc1(nghost + 1, &grow));
+    for (PetscInt v = 0; v < m->nv; v++)
+      if (kp->row[v] >= nown) grow[kp->row[v] - nown] = m->gblock[v];
+    PetscCall(SetRows(p, kp, 0, nown, bstart, NULL, NULL));
+    PetscCall(SetRows(p, kp, nown, kp->nrow, -1, grow, NULL));
+    PetscCall(PetscFree(grow));
+    PetscCall(MatAssemblyBegin(p->K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(p->K, MAT_FINAL_ASSEMBLY));
+    PetscCall(OwnedRows(p, kp));
   }
-  PetscCall(PetscFree2(dnz, onz));
   PetscCall(PetscFree3(vcoff, vcell, mark));
+  PetscFunctionReturn(0);
+}
+
+/* The cells' values are in: K's arrays back, the ghost rows' values to their owners (into the stash: summed there by
+   the assembly of AssembleOperators), kp freed */
+static PetscErrorCode FinishStiffness(SgElasticity p, KPattern *kp)
+{
+  PetscFunctionBeginUser;
+  if (kp->ranks) {
+    Mat             A, B;
+    const PetscInt *garray;
+    PetscInt       *grow;
+    PetscCall(MatMPIAIJGetSeqAIJ(p->K, &A, &B, &garray));
+    PetscCall(MatSeqAIJRestoreArray(A, &kp->aa));
+    PetscCall(MatSeqAIJRestoreArray(B, &kp->ba));
+    PetscCall(PetscMalloc1(kp->nrow - kp->nown + 1, &grow));
+    for (PetscInt v = 0; v < p->mesh.nv; v++)
+      if (kp->row[v] >= kp->nown) grow[kp->row[v] - kp->nown] = p->mesh.gblock[v];
+    PetscCall(SetRows(p, kp, kp->nown, kp->nrow, -1, grow, kp->ghost));
+    PetscCall(PetscFree(grow));
+  } else if (p->K) PetscCall(MatSeqAIJRestoreArray(p->K, &kp->aa));
+  PetscCall(PetscFree(kp->row));
+  PetscCall(PetscFree(kp->bi));
+  PetscCall(PetscFree(kp->bj));
+  PetscCall(PetscFree(kp->ghost));
+  PetscCall(PetscFree6(kp->nlo, kp->nd, kp->La, kp->Lb, kp->va, kp->vb));
   PetscFunctionReturn(0);
 }
 
 /* The element stiffness Ke of cell cv into K (block columns gb); partial: the cell has a partly fixed vertex, whose
    fixed components get their row and column decoupled, their diagonal kept (the scale of its neighbours for the
-   preconditioners), so that their unknowns stay 0; their values enter by the lifting. One rank: added into K's
-   values at the places the pattern kp gives (each block row's scalar rows have the same columns) */
+   preconditioners), so that their unknowns stay 0; their values enter by the lifting. Added at the places kp gives
+   (each block row's scalar rows have the same columns) */
 static PetscErrorCode AddElementStiffness(SgElasticity p, const KPattern *kp, const PetscInt cv[], const PetscInt gb[], PetscBool partial, const PetscReal Ke[])
 {
   const SgMesh    *m   = &p->mesh;
@@ -195,20 +356,28 @@ static PetscErrorCode AddElementStiffness(SgElasticity p, const KPattern *kp, co
       }
     Ka = Kd;
   }
-  if (!kp->a) {
-    PetscCall(MatSetValuesBlocked(p->K, nv, gb, nv, gb, Ka, ADD_VALUES));
-    PetscFunctionReturn(0);
-  }
   for (PetscInt a = 0; a < nv; a++) {
-    const PetscInt r = gb[a], lo = r < 0 ? 0 : kp->bi[r], L = r < 0 ? 0 : (kp->bi[r + 1] - lo) * dim;
+    const PetscInt r = kp->row[cv[a]];
+    PetscInt       lo, nr;
     if (r < 0) continue;
+    lo = kp->bi[r];
+    nr = kp->bi[r + 1] - lo;
     for (PetscInt b = 0; b < nv; b++) {
-      PetscInt     k;
+      PetscInt     k, L;
       PetscScalar *row;
       if (gb[b] < 0) continue;
-      PetscCall(PetscFindInt(gb[b], kp->bi[r + 1] - lo, kp->bj + lo, &k));
-      PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "block column %" PetscInt_FMT " not in the pattern of block row %" PetscInt_FMT, gb[b], r);
-      row = kp->a + lo * dim * dim + k * dim;
+      PetscCall(PetscFindInt(gb[b], nr, kp->bj + lo, &k));
+      PetscCheck(k >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "block column %" PetscInt_FMT " not in the pattern of block row %" PetscInt_FMT, gb[b], gb[a]);
+      if (k < kp->nlo[r]) {
+        row = kp->vb[r] + k * dim;
+        L   = kp->Lb[r];
+      } else if (k < kp->nlo[r] + kp->nd[r]) {
+        row = kp->va[r] + (k - kp->nlo[r]) * dim;
+        L   = kp->La[r];
+      } else {
+        row = kp->vb[r] + (k - kp->nd[r]) * dim;
+        L   = kp->Lb[r];
+      }
       for (PetscInt i = 0; i < dim; i++)
         for (PetscInt j = 0; j < dim; j++) row[i * L + j] += Ka[(a * dim + i) * ne + b * dim + j];
     }
@@ -358,11 +527,12 @@ PetscErrorCode SgElasticityAssemble(SgElasticity p)
   PetscScalar       *fa, *ma, *pa;
   PetscReal          shift = 0;
   PetscLogDouble     t0, t1;
-  KPattern           kp = {NULL, NULL, NULL};
+  KPattern           kp;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_Assembly, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
+  PetscCall(PetscMemzero(&kp, sizeof(kp)));
   PetscCall(DMCreateGlobalVector(p->dm, &p->b));
   PetscCall(PetscObjectSetName((PetscObject)p->b, "load"));
   PetscCall(CreateStiffness(p, &kp));
@@ -382,9 +552,7 @@ PetscErrorCode SgElasticityAssemble(SgElasticity p)
   PetscCall(VecGetArray(mloc, &ma));
   PetscCall(VecGetArray(p->fpart, &pa));
   PetscCall(AssembleCells(p, &kp, ua, fa, ma, pa, &shift));
-  if (kp.a) PetscCall(MatSeqAIJRestoreArray(p->K, &kp.a));
-  PetscCall(PetscFree(kp.bi));
-  PetscCall(PetscFree(kp.bj));
+  PetscCall(FinishStiffness(p, &kp));
   PetscCall(AssembleNeumann(p, ua, fa, pa, &shift));
   SgMeshZeroFixedComponents(m, p->dim, fa);
   PetscCall(VecRestoreArray(floc, &fa));

@@ -167,15 +167,26 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
   PetscFunctionReturn(0);
 }
 
-/* The coarsest level's solver: sparse Cholesky (MUMPS; its ordering keeps the fill of a 3D mesh small, and it runs
-   on every rank), refactored for every active set; -tmg_mg_coarse_* (under the KSP's prefix) override. */
+/* The coarsest level's solver: sparse Cholesky (MUMPS; its ordering keeps the fill of a 3D mesh small), refactored
+   for every active set; -tmg_mg_coarse_* (under the KSP's prefix) override. On several ranks every rank factors the
+   whole coarse matrix (PCREDUNDANT, -tmg_mg_coarse_redundant_*; asm27): MUMPS spread over the ranks spent more in its
+   messages than in the arithmetic of a few thousand unknowns, at every set-up and in every V-cycle's solve. */
 PetscErrorCode SgGMGCoarseSolver(KSP ksp)
 {
-  PC pc;
+  PC          pc;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)ksp), &size));
+  if (size > 1) {
+    KSP inner;
+    PetscCall(PCSetType(pc, PCREDUNDANT));
+    PetscCall(PCRedundantGetKSP(pc, &inner));
+    PetscCall(KSPSetType(inner, KSPPREONLY));
+    PetscCall(KSPGetPC(inner, &pc));
+  }
   PetscCall(PCSetType(pc, PCCHOLESKY));
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscFunctionReturn(0);

@@ -98,97 +98,113 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    backward one up is symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
    on one rank the smoothers stay PCSOR (the same sweeps: no rows of other ranks). */
 typedef struct {
-  Mat              Ad;      /* the diagonal block of the smoothers' matrix, its diagonal plus l1 */
-  PetscObjectId    id;      /* the operator it was made from, */
-  PetscObjectState state;   /* at this state of its values */
-  PetscObjectId    blockid; /* the operator's diagonal block that Ad is a copy of, */
-  PetscObjectState nzstate; /* at this state of its nonzero pattern, */
-  PetscObjectState adnz;    /* and Ad's own pattern state after the set-up */
+  PetscScalar     *idiag; /* 1 / (a_ii + l1_i) of the local rows */
+  PetscInt         m;     /* their number */
+  PetscObjectId    id;    /* the operator they were made from, */
+  PetscObjectState state; /* at this state of its values */
   PetscInt         refs;
 } L1GSMat;
 
 typedef struct {
-  L1GSMat  *m;      /* shared by the level's two sweeps (SetL1GS) */
-  Vec       xl, yl; /* sequential views of the local parts */
-  PetscBool back;   /* a backward sweep */
+  L1GSMat  *m;    /* shared by the level's two sweeps (SetL1GS) */
+  PetscBool back; /* a backward sweep */
 } L1GS;
 
-/* Both sweeps of a level see the same operator: the first one set up makes Ad, the second finds it made (the same
-   operator at the same state). Every SSN step changes the operators' values, not their patterns: Ad's storage is
-   kept and the new values copied in (a new duplicate of the finest diagonal block, per sweep and step, took 4 s of
-   the 2-rank run of Example 2 at 1.1e6 unknowns, bench/nested.md par27). */
+/* Both sweeps of a level see the same operator: the first one set up makes the inverted diagonal, the second finds it
+   made (the same operator at the same state). The sweeps run on the operator's own diagonal block with that diagonal
+   (Apply_L1GS): every SSN step changes the operators' values, and a copy of each level's diagonal block with l1 added
+   (for MatSOR) cost a copy of the finest Jacobian's local rows in time and memory at every step (asm27; before that a
+   new duplicate per sweep and step, bench/nested.md par27). */
 static PetscErrorCode SetUp_L1GS(PC pc)
 {
   L1GS              *g;
   L1GSMat           *lm;
   Mat                P, Ad, Ao;
-  Vec                d;
-  PetscScalar       *da;
-  const PetscScalar *va;
-  PetscInt           m;
-  PetscObjectId      id, bid;
-  PetscObjectState   state, nz, adnz = 0;
+  const PetscInt    *ia, *ja;
+  const PetscScalar *aa, *va;
+  PetscInt           m, nr;
+  PetscBool          done;
+  PetscObjectId      id;
+  PetscObjectState   state;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
   lm = g->m;
   PetscCall(PCGetOperators(pc, NULL, &P));
-  PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
-  PetscCall(MatGetLocalSize(Ad, &m, NULL));
-  if (!g->xl) {
-    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->xl));
-    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, m, NULL, &g->yl));
-  }
   PetscCall(PetscObjectGetId((PetscObject)P, &id));
   state = ((PetscObject)P)->state;
-  if (lm->Ad && lm->id == id && lm->state == state) PetscFunctionReturn(0); /* the level's other sweep made it */
-  PetscCall(PetscObjectGetId((PetscObject)Ad, &bid));
-  PetscCall(MatGetNonzeroState(Ad, &nz));
-  if (lm->Ad) PetscCall(MatGetNonzeroState(lm->Ad, &adnz));
-  if (lm->Ad && lm->blockid == bid && lm->nzstate == nz && lm->adnz == adnz) PetscCall(MatCopy(Ad, lm->Ad, SAME_NONZERO_PATTERN));
-  else {
-    PetscCall(MatDestroy(&lm->Ad));
-    PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &lm->Ad));
+  if (lm->idiag && lm->id == id && lm->state == state) PetscFunctionReturn(0); /* the level's other sweep made it */
+  PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
+  PetscCall(MatGetLocalSize(Ad, &m, NULL));
+  if (lm->m != m) {
+    PetscCall(PetscFree(lm->idiag));
+    PetscCall(PetscMalloc1(m + 1, &lm->idiag));
+    lm->m = m;
   }
-  PetscCall(MatCreateVecs(lm->Ad, &d, NULL));
-  PetscCall(MatGetDiagonal(lm->Ad, d));
-  PetscCall(VecGetArray(d, &da));
+  PetscCall(MatGetRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+  PetscCheck(done && nr == m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "l1 Gauss-Seidel: no rows of the diagonal block");
+  PetscCall(MatSeqAIJGetArrayRead(Ad, &aa));
   for (PetscInt i = 0; i < m; i++) {
-    PetscInt  nc;
-    PetscReal l1 = 0;
+    PetscInt    nc;
+    PetscReal   l1 = 0;
+    PetscScalar d  = 0;
+    for (PetscInt k = ia[i]; k < ia[i + 1]; k++)
+      if (ja[k] == i) d = aa[k];
     PetscCall(MatGetRow(Ao, i, &nc, NULL, &va));
     for (PetscInt k = 0; k < nc; k++) l1 += PetscAbsScalar(va[k]);
     PetscCall(MatRestoreRow(Ao, i, &nc, NULL, &va));
-    da[i] = l1 > PetscAbsScalar(da[i]) / 3 ? l1 : 0;
+    d += l1 > PetscAbsScalar(d) / 3 ? l1 : 0;
+    PetscCheck(d != 0.0, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "l1 Gauss-Seidel: zero diagonal in local row %" PetscInt_FMT, i);
+    lm->idiag[i] = 1.0 / d;
   }
-  PetscCall(VecRestoreArray(d, &da));
-  PetscCall(MatDiagonalSet(lm->Ad, d, ADD_VALUES));
-  PetscCall(VecDestroy(&d));
-  lm->id      = id;
-  lm->state   = state;
-  lm->blockid = bid;
-  lm->nzstate = nz;
-  PetscCall(MatGetNonzeroState(lm->Ad, &lm->adnz));
+  PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
+  PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+  lm->id    = id;
+  lm->state = state;
   PetscFunctionReturn(0);
 }
 
+/* One sweep from a zero start over the local rows of the operator's diagonal block (rows sorted by column), the
+   diagonal replaced by a_ii + l1_i: what MatSOR did on the copy with the shifted diagonal, in the same order */
 static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
 {
   L1GS              *g;
-  const PetscScalar *xa;
+  Mat                P, Ad;
+  const PetscInt    *ia, *ja;
+  const PetscScalar *xa, *aa, *idiag;
   PetscScalar       *ya;
+  PetscInt           m;
+  PetscBool          done;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
+  PetscCall(PCGetOperators(pc, NULL, &P));
+  PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, NULL, NULL));
+  PetscCall(MatGetRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &m, &ia, &ja, &done));
+  PetscCheck(done && m == g->m->m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "l1 Gauss-Seidel: the operator changed after its set-up");
+  PetscCall(MatSeqAIJGetArrayRead(Ad, &aa));
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
-  PetscCall(VecPlaceArray(g->xl, xa));
-  PetscCall(VecPlaceArray(g->yl, ya));
-  PetscCall(MatSOR(g->m->Ad, g->xl, 1.0, (MatSORType)((g->back ? SOR_BACKWARD_SWEEP : SOR_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, g->yl));
-  PetscCall(VecResetArray(g->xl));
-  PetscCall(VecResetArray(g->yl));
+  idiag = g->m->idiag;
+  if (!g->back)
+    for (PetscInt i = 0; i < m; i++) {
+      PetscScalar s = xa[i];
+      for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s -= aa[k] * ya[ja[k]];
+      ya[i] = s * idiag[i];
+    }
+  else
+    for (PetscInt i = m - 1; i >= 0; i--) {
+      PetscScalar s = xa[i];
+      PetscInt    k = ia[i + 1] - 1;
+      for (; k >= ia[i] && ja[k] > i; k--) continue;
+      for (k++; k < ia[i + 1]; k++) s -= aa[k] * ya[ja[k]];
+      ya[i] = s * idiag[i];
+    }
+  PetscCall(PetscLogFlops(ia[m]));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
+  PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &m, &ia, &ja, &done));
   PetscFunctionReturn(0);
 }
 
@@ -199,11 +215,9 @@ static PetscErrorCode Destroy_L1GS(PC pc)
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
   if (--g->m->refs == 0) {
-    PetscCall(MatDestroy(&g->m->Ad));
+    PetscCall(PetscFree(g->m->idiag));
     PetscCall(PetscFree(g->m));
   }
-  PetscCall(VecDestroy(&g->xl));
-  PetscCall(VecDestroy(&g->yl));
   PetscCall(PetscFree(g));
   PetscFunctionReturn(0);
 }
