@@ -40,12 +40,69 @@ static PetscErrorCode Hierarchy(DM dm, PetscInt *nlv, DM **lv)
   PetscFunctionReturn(0);
 }
 
+/* The entries of the rows of fine vertex v (owned and free) of the interpolation from mesh c to mesh f (the next
+   refinement; map from SgMeshRefinementMap): *nr rows (global numbers row[a]), row a with nc[a] entries at columns
+   col[a][.] (global) with values val[a][.]. With a frame (cidx[v] >= 0: its contact vertex, rotated), the rows of
+   Q_i^T P. */
+static void VertexRows(const SgMesh *c, const SgMesh *f, const PetscInt map[], SgFrame frame, const PetscInt cidx[], PetscInt v, PetscInt *nr, PetscInt row[3], PetscInt nc[3], PetscInt col[3][6], PetscReal val[3][6])
+{
+  const PetscInt  dim = f->dim, v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
+  const PetscReal w = v0 == v1 ? 1.0 : 0.5;
+  PetscInt        cols[2][3]; /* the Cartesian row of component d: the column of parent k, or -1 */
+  PetscReal       vals[2][3];
+
+  for (PetscInt d = 0; d < dim; d++)
+    for (PetscInt k = 0; k < 2; k++) {
+      const PetscInt p = par[k];
+      cols[k][d]       = -1;
+      vals[k][d]       = 0;
+      if (k >= np || c->gblock[p] < 0) continue;
+      if (SgMeshFixed(f, v, d) != SgMeshFixed(c, p, d)) continue; /* free from free, fixed from the same fixed one */
+      if (SgMeshFixed(f, v, d) && np > 1) continue;
+      cols[k][d] = c->gblock[p] * dim + d;
+      vals[k][d] = w;
+    }
+  *nr = dim;
+  if (cidx && cidx[v] >= 0) { /* row a of Q_i^T P: sum_d (Q_i^T)_{ad} (row d) */
+    PetscReal qt[3][3];
+    for (PetscInt d = 0; d < dim; d++) {
+      PetscReal e[3] = {0, 0, 0}, r[3];
+      e[d]           = 1;
+      SgFrameVectorToLocal(frame, cidx[v], e, r);
+      for (PetscInt a = 0; a < dim; a++) qt[a][d] = r[a];
+    }
+    for (PetscInt a = 0; a < dim; a++) {
+      row[a] = f->gblock[v] * dim + a;
+      nc[a]  = 0;
+      for (PetscInt k = 0; k < np; k++)
+        for (PetscInt d = 0; d < dim; d++)
+          if (cols[k][d] >= 0 && qt[a][d] != 0) {
+            col[a][nc[a]]   = cols[k][d];
+            val[a][nc[a]++] = qt[a][d] * vals[k][d];
+          }
+    }
+    return;
+  }
+  for (PetscInt d = 0; d < dim; d++) {
+    row[d] = f->gblock[v] * dim + d;
+    nc[d]  = 0;
+    for (PetscInt k = 0; k < np; k++)
+      if (cols[k][d] >= 0) {
+        col[d][nc[d]]   = cols[k][d];
+        val[d][nc[d]++] = vals[k][d];
+      }
+  }
+}
+
 /* The interpolation from the free dofs of mesh c to those of mesh f (the next refinement; map from
-   SgMeshRefinementMap); with a frame, the rows of the rotated contact vertices (ncv, their local vertex numbers cvert) in their frames. */
+   SgMeshRefinementMap); with a frame, the rows of the rotated contact vertices (ncv, their local vertex numbers cvert) in their frames.
+   Preallocated exactly (each row's entries in the diagonal and off-diagonal blocks counted first): an AIJ matrix keeps
+   the storage it was preallocated with, and a bound of 2 dim per row and block held 3-6 times the one or two entries
+   of a row, twice on several ranks (the off-diagonal block), through the whole solve (bench/nested.md, mem27). */
 static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh *f, const PetscInt map[], SgFrame frame, PetscInt ncv, const PetscInt cvert[], Mat *P)
 {
   const PetscInt   dim = f->dim;
-  PetscInt         nr = 0, nc = 0, *cidx = NULL;
+  PetscInt         nr = 0, nc = 0, rstart = 0, cstart = 0, *cidx = NULL, *dnz, *onz;
   const PetscBool *rot = NULL;
 
   PetscFunctionBeginUser;
@@ -53,7 +110,13 @@ static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh
     if (f->goff[v] >= 0) nr += dim;
   for (PetscInt v = 0; v < c->nv; v++)
     if (c->goff[v] >= 0) nc += dim;
-  PetscCall(MatCreateAIJ(comm, nr, nc, PETSC_DETERMINE, PETSC_DETERMINE, 2 * dim, NULL, 2 * dim, NULL, P));
+  PetscCallMPI(MPI_Exscan(&nr, &rstart, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Exscan(&nc, &cstart, 1, MPIU_INT, MPI_SUM, comm));
+  {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) rstart = cstart = 0; /* (MPI_Exscan leaves rank 0's undefined) */
+  }
   if (frame) {
     PetscCall(SgFrameGetAxes(frame, NULL, NULL, &rot));
     PetscCall(PetscMalloc1(f->nv, &cidx));
@@ -61,42 +124,33 @@ static PetscErrorCode Interpolation(MPI_Comm comm, const SgMesh *c, const SgMesh
     for (PetscInt i = 0; i < ncv; i++)
       if (rot[i]) cidx[cvert[i]] = i;
   }
+  PetscCall(PetscCalloc2(nr, &dnz, nr, &onz));
   for (PetscInt v = 0; v < f->nv; v++) {
-    const PetscInt  v0 = map[2 * v], v1 = map[2 * v + 1], np = v0 == v1 ? 1 : 2, par[2] = {v0, v1};
-    const PetscReal w = v0 == v1 ? 1.0 : 0.5;
-    PetscInt        cols[2][3]; /* the Cartesian row of component d: the column of parent k, or -1 */
-    PetscReal       vals[2][3];
+    PetscInt  n, row[3], cnt[3], col[3][6];
+    PetscReal val[3][6];
     if (f->goff[v] < 0) continue;
-    for (PetscInt d = 0; d < dim; d++)
-      for (PetscInt k = 0; k < 2; k++) {
-        const PetscInt p = par[k];
-        cols[k][d]       = -1;
-        vals[k][d]       = 0;
-        if (k >= np || c->gblock[p] < 0) continue;
-        if (SgMeshFixed(f, v, d) != SgMeshFixed(c, p, d)) continue; /* free from free, fixed from the same fixed one */
-        if (SgMeshFixed(f, v, d) && np > 1) continue;
-        cols[k][d] = c->gblock[p] * dim + d;
-        vals[k][d] = w;
+    VertexRows(c, f, map, frame, cidx, v, &n, row, cnt, col, val);
+    for (PetscInt a = 0; a < n; a++) {
+      const PetscInt r = row[a] - rstart;
+      PetscCheck(r >= 0 && r < nr, PETSC_COMM_SELF, PETSC_ERR_PLIB, "geometric multigrid: the row %" PetscInt_FMT " of an owned vertex is not this rank's (%" PetscInt_FMT " ... %" PetscInt_FMT ")", row[a], rstart, rstart + nr - 1);
+      for (PetscInt k = 0; k < cnt[a]; k++) {
+        if (col[a][k] >= cstart && col[a][k] < cstart + nc) dnz[r]++;
+        else onz[r]++;
       }
-    if (cidx && cidx[v] >= 0) { /* row a of Q_i^T P: sum_d (Q_i^T)_{ad} (row d) */
-      PetscReal qt[3][3];
-      for (PetscInt d = 0; d < dim; d++) {
-        PetscReal e[3] = {0, 0, 0}, r[3];
-        e[d]           = 1;
-        SgFrameVectorToLocal(frame, cidx[v], e, r);
-        for (PetscInt a = 0; a < dim; a++) qt[a][d] = r[a];
-      }
-      for (PetscInt a = 0; a < dim; a++) {
-        const PetscInt row = f->gblock[v] * dim + a;
-        for (PetscInt k = 0; k < np; k++)
-          for (PetscInt d = 0; d < dim; d++)
-            if (cols[k][d] >= 0 && qt[a][d] != 0) PetscCall(MatSetValue(*P, row, cols[k][d], qt[a][d] * vals[k][d], INSERT_VALUES));
-      }
-      continue;
     }
-    for (PetscInt d = 0; d < dim; d++)
-      for (PetscInt k = 0; k < np; k++)
-        if (cols[k][d] >= 0) PetscCall(MatSetValue(*P, f->gblock[v] * dim + d, cols[k][d], vals[k][d], INSERT_VALUES));
+  }
+  PetscCall(MatCreate(comm, P));
+  PetscCall(MatSetSizes(*P, nr, nc, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(*P, MATAIJ));
+  PetscCall(MatXAIJSetPreallocation(*P, 1, dnz, onz, NULL, NULL));
+  PetscCall(PetscFree2(dnz, onz));
+  for (PetscInt v = 0; v < f->nv; v++) {
+    PetscInt  n, row[3], cnt[3], col[3][6];
+    PetscReal val[3][6];
+    if (f->goff[v] < 0) continue;
+    VertexRows(c, f, map, frame, cidx, v, &n, row, cnt, col, val);
+    for (PetscInt a = 0; a < n; a++)
+      for (PetscInt k = 0; k < cnt[a]; k++) PetscCall(MatSetValue(*P, row[a], col[a][k], val[a][k], INSERT_VALUES));
   }
   PetscCall(MatAssemblyBegin(*P, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*P, MAT_FINAL_ASSEMBLY));
