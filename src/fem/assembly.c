@@ -18,6 +18,19 @@ typedef struct {
   PetscScalar  *aa, *ba; /* one rank: K's values; more ranks: those of its diagonal and off-diagonal parts */
 } KPattern;
 
+/* the sizes of K's rows on this rank: n of N rows, the owned vertices [bstart, bend), the ranks */
+static PetscErrorCode OwnedVertices(SgElasticity p, PetscInt *n, PetscInt *N, PetscInt *bstart, PetscInt *bend, PetscMPIInt *size)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(p->b, n));
+  PetscCall(VecGetSize(p->b, N));
+  PetscCall(VecGetOwnershipRange(p->b, bstart, bend));
+  *bstart /= p->dim;
+  *bend /= p->dim;
+  PetscCallMPI(MPI_Comm_size(p->comm, size));
+  PetscFunctionReturn(0);
+}
+
 /* The distinct free block columns of the local block rows, from this rank's cells: kp->bi (nrow + 1) and kp->bj,
    each row sorted */
 static PetscErrorCode LocalPattern(SgElasticity p, const PetscInt vcoff[], const PetscInt vcell[], PetscInt mark[], KPattern *kp)
@@ -95,12 +108,7 @@ static PetscErrorCode PreallocateRanks(SgElasticity p, const KPattern *kp)
   PetscMPIInt     size;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(p->b, &n));
-  PetscCall(VecGetSize(p->b, &N));
-  PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
-  bstart /= dim;
-  bend /= dim;
-  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCall(OwnedVertices(p, &n, &N, &bstart, &bend, &size));
   PetscCall(VecGetOwnershipRanges(p->b, &ranges));
   PetscCall(PetscCalloc2(kp->nrow * 2 + 1, &dnz, n / dim + 1, &onz));
   for (PetscInt v = 0; v < m->nv; v++) {
@@ -238,12 +246,7 @@ static PetscErrorCode CreateStiffness(SgElasticity p, KPattern *kp)
   PetscMPIInt    size;
 
   PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(p->b, &n));
-  PetscCall(VecGetSize(p->b, &N));
-  PetscCall(VecGetOwnershipRange(p->b, &bstart, &bend));
-  bstart /= dim;
-  bend /= dim;
-  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCall(OwnedVertices(p, &n, &N, &bstart, &bend, &size));
   /* vertex -> cells */
   PetscCall(PetscCalloc3(m->nv + 1, &vcoff, m->nc * nv, &vcell, m->nv, &mark));
   for (PetscInt c = 0; c < m->nc * nv; c++) vcoff[m->cellv[c] + 1]++;
