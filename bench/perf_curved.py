@@ -29,7 +29,9 @@ the default controller and linear solver choose themselves) on
          --ex2t-refine (2: 144,666 unknowns, 3: 1,115,460), options/cv_ex2_r30.opts, with its yardstick, against its
          flat partner (meshes/ex2_coarse.msh, the same N) run in the same rounds; both with -contact_kkt_scale vertex
          (the scales the same turned; the default's component maxima are not), so the flat partner is not ex2c's run:
-         cases ex2t_rN_r30 and ex2t_rN_flat; into turned_vs_flat and (the turned) cost_ratio_3d_curved.
+         cases ex2t_rN_r30 and ex2t_rN_flat; into turned_vs_flat and (the turned) cost_ratio_3d_curved. With
+         --ex2t-extra OPTS a third case ex2t_rN_r30x, the turned run with OPTS added (e.g. "-ssn_frame_global false"),
+         in the table and in curved.runs only.
 Each contact solve is set against the yardstick of scripts/bench.py: the fastest configured linear solve of the same
 mesh (the same body and Dirichlet data without contact, each of bench.py's YARDSTICK_3D configurations at its
 YARD_RTOL; 2D: YARDSTICK_2D), on the case's ranks, minimum over --repeat runs made in rounds (so that every case sees
@@ -45,7 +47,7 @@ against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 wit
 SSN steps. A benchmark, not a test: never run by make test.
 
 usage: perf_curved.py [--only hemi,ex2,cyl,ex2c,ex2t] [--hemi-scales 4,8.5,18] [--hemi-refine N] [--ex2-scales 2,4.2] [--cyl-scale 60]
-                      [--cyl-refine N] [--ex2c-refine 2,3] [--ex2t-refine 2,3] [--repeat N]
+                      [--cyl-refine N] [--ex2c-refine 2,3] [--ex2t-refine 2,3] [--ex2t-extra OPTS] [--repeat N]
                       [--yard-repeat N] [--yard-configs NAME,...]
                       [--json FILE|none] [--out DIR]
 The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
@@ -131,6 +133,7 @@ def main():
     ap.add_argument("--cyl-refine", type=int, default=0, help="-dm_refine N on the half disc's mesh (0: none)")
     ap.add_argument("--ex2c-refine", default="2,3", help="the -dm_refine levels of the flat Example 2 from meshes/ex2_coarse.msh (case ex2c)")
     ap.add_argument("--ex2t-refine", default="2,3", help="the -dm_refine levels of the turned Example 2 from meshes/cv_ex2_coarse_r30.msh (case ex2t)")
+    ap.add_argument("--ex2t-extra", default=None, help="case ex2t: also the turned run with these options added (case ex2t_rN_r30x)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--yard-repeat", type=int, default=None, help="rounds of the yardsticks (default: --repeat)")
     ap.add_argument("--yard-configs", default=None, help="comma-separated parts of the names of the yardstick configurations "
@@ -171,6 +174,9 @@ def main():
             cases.append(("ex2t_r%s_flat" % n, "%s -dm_plex_filename %s -dm_refine %s" % (EX2P, flat, n), None, 1))
             cases.append(("ex2t_r%s_r30" % n, "%s -dm_plex_filename %s -dm_refine %s -options_file options/cv_ex2_r30.opts" % (EX2P, turned, n),
                           "-dm_plex_filename %s -dm_refine %s %s %s" % (turned, n, EX2_ELASTIC, EX2_VALUES_R30), 1))
+            if opt.ex2t_extra:
+                cases.append(("ex2t_r%s_r30x" % n, "%s -dm_plex_filename %s -dm_refine %s -options_file options/cv_ex2_r30.opts %s"
+                              % (EX2P, turned, n, opt.ex2t_extra), None, 1))
     runs = {k: [] for k, _, _, _ in cases}
     for r in range(opt.repeat):  # rounds: every case once per round
         for key, args, _, np in cases:
