@@ -63,6 +63,8 @@ TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blo
 MATERIAL_MESHES = meshes/mat_bar2d.msh meshes/mat_two2d.msh meshes/mat_layers3d.msh meshes/mat_two3d.msh
 # The user guide's own-mesh example of a body resting on its support (options/newuser_holeplate.opts)
 MESHES += meshes/newuser_holeplate.msh
+# Example 2's second coarse mesh (bench/perf_nested.py --default ex2_coarse2:3): 9,432 unknowns, about 4e6 with -dm_refine 3
+MESHES += meshes/ex2_coarse2.msh
 SRC    := $(wildcard src/*/*.c)
 LIBOBJ := $(patsubst src/%.c,build/%.o,$(SRC))
 
@@ -167,6 +169,8 @@ meshes/ex2.msh: meshes/ex2.geo
 	gmsh -3 $< -o $@ > /dev/null
 meshes/ex2_coarse.msh: meshes/ex2.geo
 	gmsh -3 -setnumber scale 0.5 $< -o $@ > /dev/null
+meshes/ex2_coarse2.msh: meshes/ex2.geo
+	gmsh -3 -setnumber scale 0.8 $< -o $@ > /dev/null
 meshes/hertz_s%.msh: meshes/hertz.geo
 	gmsh -3 -setnumber scale $* $< -o $@ > /dev/null
 meshes/cattaneo_s%.msh: meshes/cattaneo.geo
