@@ -51,7 +51,7 @@ CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisp
           meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh meshes/ex2_s1.msh meshes/cv_ex2_s1_r30.msh meshes/cv_ex2_s1_r75.msh \
-          meshes/cv_ex2_s1_r15.msh meshes/cv_ex2_s1_r45.msh
+          meshes/cv_ex2_s1_r15.msh meshes/cv_ex2_s1_r45.msh meshes/cv_ex2_coarse_r30.msh meshes/cv_ex2_coarse_r75.msh
 # Two bodies in one mesh (tests/unit/kernels.ini, tests/*/twobody.ini, tests/*/twobody_fields.ini, options/twobody_hertz.opts,
 # options/twobody_sphere.opts); _r25: turned by 25 degrees
 TWOBODY_MESHES = meshes/tb_blocks2d.msh meshes/tb_blocks2d_r25.msh meshes/tb_blocks3d.msh meshes/tb_stack2d.msh meshes/tb_stack3d.msh \

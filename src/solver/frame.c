@@ -586,6 +586,13 @@ PetscBool SgFramePairTransform(SgFrame f)
   return (PetscBool)(f && f->T);
 }
 
+/* the one rotation R of the whole body (-ssn_frame_global; row-major, column b the frame's b-th vector), NULL where
+   the frames are the contact vertices' alone */
+const PetscReal *SgFrameGlobalRotation(SgFrame f)
+{
+  return f && f->global ? f->R : NULL;
+}
+
 PetscErrorCode SgFrameDestroy(SgFrame *frame)
 {
   SgFrame f = *frame;
