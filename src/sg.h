@@ -29,6 +29,7 @@ PetscErrorCode      SgOptionsBoolRenamed(PetscOptionItems *, const char[], const
 extern PetscClassId SG_PROBLEM_CLASSID, SG_CONT_CLASSID; /* the PETSc classes of SgProblem and SgCont (SgLogEventsRegister) */
 PetscErrorCode      SgValidProblem(SgProblem, const char[], int);
 PetscErrorCode      SgValidCont(SgCont, const char[], int);
+PetscErrorCode      SgOptionsPairDirectLimit2D(const char[], PetscBool *, PetscBool *); /* two bodies in 2D: in the dual-mortar basis; the limit SG_PAIR_DIRECT_MAX_2D applies (frictionless) */
 /* matrix.c: S = A + C with the union of their patterns, one pass over A (C a correction on a few rows); W = A - I
    without its zeros (the rows where a near-identity A differs from I) */
 PetscErrorCode SgMatAddSparse(Mat, Mat, Mat *);
