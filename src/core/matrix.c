@@ -75,7 +75,8 @@ static PetscErrorCode CSRMerge(PetscInt m, const CSR *x, const CSR *y, PetscInt 
    matrix wraps and a MatDuplicate copies (MatSetValues per entry cost 1.5 s at 3e5 unknowns, MatAXPY with
    DIFFERENT_NONZERO_PATTERN inserts both matrices' values so). A product P^T A P with P = I + W, W nonzero on a few rows,
    is A + (W^T A) + (W^T A)^T + (W^T A) W this way without MatPtAP's symbolic product over all of A. S's values are
-   A's to the bit where C has none (rows and entries); elsewhere a + c. S has A's type and block sizes. Collective. */
+   A's to the bit where C has none (rows and entries); elsewhere a + c. S has A's type and block sizes. Matrices of
+   other types than (MPI/Seq)AIJ by MatAXPY. Collective. */
 PetscErrorCode SgMatAddSparse(Mat A, Mat C, Mat *S)
 {
   MPI_Comm  comm;
@@ -95,6 +96,17 @@ PetscErrorCode SgMatAddSparse(Mat A, Mat C, Mat *S)
   }
   PetscCall(MatGetBlockSizes(A, &bs, &cbs));
   PetscCall(PetscObjectTypeCompare((PetscObject)A, MATSEQAIJ, &seq));
+  {
+    PetscBool mpi, cs, cm;
+    PetscCall(PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
+    PetscCall(PetscObjectTypeCompare((PetscObject)C, MATSEQAIJ, &cs));
+    PetscCall(PetscObjectTypeCompare((PetscObject)C, MATMPIAIJ, &cm));
+    if (!(seq && cs) && !(mpi && cm)) { /* other types: PETSc's general sum */
+      PetscCall(MatDuplicate(A, MAT_COPY_VALUES, S));
+      PetscCall(MatAXPY(*S, 1.0, C, DIFFERENT_NONZERO_PATTERN));
+      PetscFunctionReturn(0);
+    }
+  }
   if (seq) {
     CSR          a, c;
     PetscInt    *si, *sj;
