@@ -29,6 +29,11 @@ PetscErrorCode      SgOptionsBoolRenamed(PetscOptionItems *, const char[], const
 extern PetscClassId SG_PROBLEM_CLASSID, SG_CONT_CLASSID; /* the PETSc classes of SgProblem and SgCont (SgLogEventsRegister) */
 PetscErrorCode      SgValidProblem(SgProblem, const char[], int);
 PetscErrorCode      SgValidCont(SgCont, const char[], int);
+PetscErrorCode      SgOptionsPairDirectLimit2D(const char[], PetscBool *, PetscBool *); /* two bodies in 2D: in the dual-mortar basis; the limit SG_PAIR_DIRECT_MAX_2D applies (frictionless) */
+/* matrix.c: S = A + C with the union of their patterns, one pass over A (C a correction on a few rows); W = A - I
+   without its zeros (the rows where a near-identity A differs from I) */
+PetscErrorCode SgMatAddSparse(Mat, Mat, Mat *);
+PetscErrorCode SgMatOffIdentity(Mat, Mat *);
 
 /* ------------------------------------------------------------------ fem: mesh.c, gmshcheck.c, elasticity.c */
 /* A boundary part: the points of one DMLabel with the given values (nids = 0: every value). A part is empty
@@ -575,21 +580,21 @@ PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *); /* tmg.c: truncated 
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
-PetscErrorCode   SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *); /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
-PetscErrorCode   SgFrameCreatePair(SgElasticity, SgContact, SgFrame *);        /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform) */
-PetscBool        SgFramePairTransform(SgFrame);                                /* the frame carries that transformation */
-const PetscReal *SgFrameGlobalRotation(SgFrame);                               /* -ssn_frame_global: the body's one rotation R, else NULL */
-PetscErrorCode   SgFramePairInterpolation(SgFrame, Mat, Mat *);                /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
-PetscErrorCode   SgFrameDestroy(SgFrame *);
-PetscErrorCode   SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
-PetscErrorCode   SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
-void             SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
-PetscErrorCode   SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
-PetscErrorCode   SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
-PetscErrorCode   SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
-PetscErrorCode   SgFrameDetachKSP(SgFrame, KSP);
-PetscErrorCode   SgFrameResidualWork(SgFrame, Vec, Vec *);                               /* a vector for the SSN's K y - b (SgFrameSetResidual) */
-PetscErrorCode   SgFrameSetResidual(SgFrame, Vec, const PetscReal[], const PetscReal[]); /* the SSN's residual F in the frames, the normal forces w m on the normal dofs */
+PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *);     /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
+PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, PetscBool, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform); PETSC_TRUE: its products by MatPtAP (-ssn_pair_transform_ptap) */
+PetscBool      SgFramePairTransform(SgFrame);                                    /* the frame carries that transformation */
+PetscErrorCode SgFrameGetGlobalRotation(SgFrame, const PetscReal **);            /* -ssn_frame_global: the body's one rotation R, else NULL */
+PetscErrorCode SgFramePairInterpolation(SgFrame, Mat, Mat *);                    /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
+PetscErrorCode SgFrameDestroy(SgFrame *);
+PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
+PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
+void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
+PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
+PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);
+PetscErrorCode SgFrameAttachKSP(SgFrame, KSP); /* the KSP solves in the frames, its vectors in the original coordinates */
+PetscErrorCode SgFrameDetachKSP(SgFrame, KSP);
+PetscErrorCode SgFrameResidualWork(SgFrame, Vec, Vec *);                               /* a vector for the SSN's K y - b (SgFrameSetResidual) */
+PetscErrorCode SgFrameSetResidual(SgFrame, Vec, const PetscReal[], const PetscReal[]); /* the SSN's residual F in the frames, the normal forces w m on the normal dofs */
 
 /* ------------------------------------------------------------------ cont: cont.c (the object), cont_options.c,
    cont_step.c, cont_loop.c (the outer loop), cont_solve.c (SgContSolve, load steps), report.c (views, summary,

@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties|mataddsparse -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -1152,6 +1152,93 @@ static PetscErrorCode TestLawPdas(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* core/matrix.c: SgMatAddSparse (A + C, the union of their patterns, one pass over A's arrays) against MatAXPY with
+   DIFFERENT_NONZERO_PATTERN, and SgMatOffIdentity (A - I without its zeros) against its definition, on a banded A of
+   60 rows per rank with a C on a few rows whose columns reach other ranks (on several ranks the off-diagonal parts) and
+   a near-identity I + E (E on a few rows, stored zeros on the others' diagonal blocks). Keys: the largest absolute
+   difference of the values, the nonzero counts of both results. */
+static PetscErrorCode TestMatAddSparse(SgSummary s)
+{
+  PetscMPIInt rank, size;
+  PetscInt    m = 60, rs, re, N;
+  Mat         A, C, S, R, G, W, X;
+  PetscReal   d1, d2;
+  MatInfo     is, ir, iw;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, m, m, PETSC_DETERMINE, PETSC_DETERMINE, 7, NULL, 7, NULL, &A));
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, m, m, PETSC_DETERMINE, PETSC_DETERMINE, 6, NULL, 6, NULL, &C));
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, m, m, PETSC_DETERMINE, PETSC_DETERMINE, 6, NULL, 6, NULL, &G));
+  PetscCall(MatGetOwnershipRange(A, &rs, &re));
+  PetscCall(MatGetSize(A, &N, NULL));
+  for (PetscInt r = rs; r < re; r++) {
+    for (PetscInt k = -3; k <= 3; k++) {
+      PetscInt    c = r + k;
+      PetscScalar v = 1.0 / (1 + r + 2 * PetscAbsInt(k)) + (k == 0 ? 4 : 0);
+      if (c >= 0 && c < N) PetscCall(MatSetValues(A, 1, &r, 1, &c, &v, INSERT_VALUES));
+    }
+    for (PetscInt b = 0; b < 3; b++) { /* G: 3 x 3 diagonal blocks of the identity, stored whole */
+      PetscInt    c = r - r % 3 + b;
+      PetscScalar v = c == r;
+      PetscCall(MatSetValues(G, 1, &r, 1, &c, &v, ADD_VALUES));
+    }
+    if (r % 7 == 2) { /* C and E on every 7th row: the band (a shared entry), far columns (new ones, other ranks') */
+      PetscInt    cols[4] = {r, (r + 17) % N, (r + m + 5) % N, (r + N / 2) % N};
+      PetscScalar v[4]    = {0.5, -1.25, 2.0, 0.125};
+      for (PetscInt k = 0; k < 4; k++) PetscCall(MatSetValues(C, 1, &r, 1, &cols[k], &v[k], ADD_VALUES));
+      for (PetscInt k = 1; k < 4; k++)
+        if (cols[k] / 3 != r / 3) PetscCall(MatSetValues(G, 1, &r, 1, &cols[k], &v[k], ADD_VALUES));
+    }
+  }
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyBegin(G, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(G, MAT_FINAL_ASSEMBLY));
+  PetscCall(SgMatAddSparse(A, C, &S));
+  PetscCall(MatDuplicate(A, MAT_COPY_VALUES, &R));
+  PetscCall(MatAXPY(R, 1.0, C, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatGetInfo(S, MAT_GLOBAL_SUM, &is));
+  PetscCall(MatGetInfo(R, MAT_GLOBAL_SUM, &ir));
+  PetscCall(MatDuplicate(R, MAT_COPY_VALUES, &X));
+  PetscCall(MatAXPY(X, -1.0, S, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatNorm(X, NORM_MAX, &d1));
+  PetscCall(MatDestroy(&X));
+  PetscCall(SgSummarySetReal(s, "add_max_difference", d1));
+  PetscCall(SgSummarySetReal(s, "add_nonzeros", is.nz_used));
+  PetscCall(SgSummarySetReal(s, "axpy_nonzeros", ir.nz_used));
+  {
+    PetscReal na;
+    PetscCall(MatNorm(A, NORM_FROBENIUS, &na));
+    PetscCall(SgSummarySetReal(s, "a_norm", na));
+  }
+  PetscCall(SgMatOffIdentity(G, &W));
+  PetscCall(MatGetInfo(W, MAT_GLOBAL_SUM, &iw));
+  PetscCall(MatDuplicate(G, MAT_COPY_VALUES, &X)); /* G - I - W */
+  PetscCall(MatShift(X, -1.0));
+  PetscCall(MatAXPY(X, -1.0, W, DIFFERENT_NONZERO_PATTERN));
+  PetscCall(MatNorm(X, NORM_MAX, &d2));
+  PetscCall(MatDestroy(&X));
+  PetscCall(SgSummarySetReal(s, "offidentity_max_difference", d2));
+  PetscCall(SgSummarySetReal(s, "offidentity_nonzeros", iw.nz_used));
+  {
+    PetscInt rows = 0, all;
+    for (PetscInt r = rs; r < re; r++) rows += r % 7 == 2;
+    PetscCallMPI(MPI_Allreduce(&rows, &all, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    PetscCall(SgSummarySetInt(s, "correction_rows", all));
+  }
+  PetscCall(MatDestroy(&W));
+  PetscCall(MatDestroy(&R));
+  PetscCall(MatDestroy(&S));
+  PetscCall(MatDestroy(&G));
+  PetscCall(MatDestroy(&C));
+  PetscCall(MatDestroy(&A));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -1183,6 +1270,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "pairobstacleapi", &eq) == 0 && eq) PetscCall(TestPairObstacleAPI(s));
   else if (PetscStrcmp(test, "lawproperties", &eq) == 0 && eq) PetscCall(TestLawProperties(s));
   else if (PetscStrcmp(test, "lawpdas", &eq) == 0 && eq) PetscCall(TestLawPdas(s));
+  else if (PetscStrcmp(test, "mataddsparse", &eq) == 0 && eq) PetscCall(TestMatAddSparse(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

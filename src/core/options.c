@@ -249,3 +249,21 @@ PetscErrorCode SgOptionsBoolRenamed(PetscOptionItems *PetscOptionsObject, const 
   PetscCall(Renamed(PetscOptionsObject, newname, oldname, text, ReadBool, val, used));
   PetscFunctionReturn(0);
 }
+
+/* Two bodies (-contact_master_ids) in 2D: the default solver's rule for the pair's direct limit SG_PAIR_DIRECT_MAX_2D,
+   in one place for the solver (solver/linear.c) and the mesh's nested levels (fem/mesh.c, which must foresee it):
+   *tx whether the SSN solves in the dual-mortar basis (-ssn_pair_transform, on unless false), *limited whether the limit
+   applies on one rank (in the basis and frictionless: -friction_type unset or none; with friction one body's rule).
+   A malformed value is an error (PETSc's reader's). */
+PetscErrorCode SgOptionsPairDirectLimit2D(const char prefix[], PetscBool *tx, PetscBool *limited)
+{
+  char      law[64] = "";
+  PetscBool fset;
+
+  PetscFunctionBeginUser;
+  *tx = PETSC_TRUE;
+  PetscCall(PetscOptionsGetBool(NULL, prefix, "-ssn_pair_transform", tx, NULL));
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-friction_type", law, sizeof(law), &fset));
+  *limited = (PetscBool)(*tx && (!fset || !strcmp(law, "none")));
+  PetscFunctionReturn(0);
+}

@@ -223,9 +223,9 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
       PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
       { /* two bodies in the pair's dual-mortar basis: solver/linear.c's limit of a pair (with friction the levels are
            kept anyway, below) */
-        PetscBool pair = PETSC_FALSE, tx = PETSC_TRUE;
-        if (PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair) || PetscOptionsGetBool(NULL, prefix, "-ssn_pair_transform", &tx, NULL)) pair = PETSC_FALSE;
-        if (pair && tx) maxdirect = SG_PAIR_DIRECT_MAX_2D;
+        PetscBool pair = PETSC_FALSE, tx, limited = PETSC_FALSE;
+        if (PetscOptionsHasName(NULL, prefix, "-contact_master_ids", &pair) || SgOptionsPairDirectLimit2D(prefix, &tx, &limited)) pair = PETSC_FALSE;
+        if (pair && limited) maxdirect = SG_PAIR_DIRECT_MAX_2D;
       }
       if (PetscOptionsGetInt(NULL, prefix, "-cont_direct_max_unknowns", &maxdirect, &mset)) mset = PETSC_FALSE;
       PetscCall(PetscPopErrorHandler());

@@ -42,6 +42,7 @@ struct _n_SgFrame {
   Vec              b;       /* a solve's right-hand side, kept to give it back (PreSolve_Frame) */
   Mat              T, Tinv; /* two bodies (-ssn_pair_transform, SgFrameCreatePair): the dual-mortar basis transformation
                               u = T v before the rotations (u = T Q z), and its inverse; NULL otherwise */
+  PetscBool        ptap;    /* -ssn_pair_transform_ptap: (T Q)^T K (T Q) and (T Q)^-1 P by general products (MatPtAP) */
   Vec              w;       /* work for them */
   Vec              rnn;     /* the SSN's residual without its normal contact force (SgFrameResidualWork) */
   Vec              rloc;    /* that residual in the frames, the normal force on the normal dofs (SgFrameSetResidual) */
@@ -528,7 +529,36 @@ PetscErrorCode SgFrameCreate(SgElasticity el, SgContact c, PetscBool global, SgF
    is a diagonal entry on its normal dof (B T Q z = D_j sign_j z_j,axis), as against a rigid obstacle; so the AMG, the
    truncated multigrid and the friction blocks of the one-body path apply. (T Q)^T K (T Q) is formed once; its near
    null space is (T Q)^-1 applied to the rigid-body modes. Made even where every normal is an axis (T alone). */
-PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
+/* G^T K G for G = T Q, the identity but on the rows of the slave contact vertices: with W = G - I (those rows alone) and
+   H = W^T K (nonzero on the rows of the slave vertices and of their master vertices),
+   G^T K G = K + H + H^T + H W: K's values copied and corrected on the rows and columns of the pair's vertices
+   (SgMatAddSparse), where MatPtAP formed the symbolic and numeric products over the whole of K (4.6 s of the 299,316
+   unknowns' 4 levels, bench/results.md "pair5"). The same matrix to round-off (H^T stands for K W: K is symmetric);
+   -ssn_pair_transform_ptap forms it by MatPtAP. */
+static PetscErrorCode PairStiffness(Mat K, Mat G, Mat *Kr)
+{
+  Mat W, Wt, H, Ht, HW, C1, C;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgMatOffIdentity(G, &W));
+  PetscCall(MatTranspose(W, MAT_INITIAL_MATRIX, &Wt));
+  PetscCall(MatMatMult(Wt, K, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &H));
+  PetscCall(MatTranspose(H, MAT_INITIAL_MATRIX, &Ht));
+  PetscCall(MatMatMult(H, W, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &HW));
+  PetscCall(SgMatAddSparse(H, Ht, &C1)); /* not MatAXPY: that one passes over all rows by MatGetRow and MatSetValues */
+  PetscCall(SgMatAddSparse(C1, HW, &C));
+  PetscCall(SgMatAddSparse(K, C, Kr));
+  PetscCall(MatDestroy(&C));
+  PetscCall(MatDestroy(&C1));
+  PetscCall(MatDestroy(&HW));
+  PetscCall(MatDestroy(&Ht));
+  PetscCall(MatDestroy(&H));
+  PetscCall(MatDestroy(&Wt));
+  PetscCall(MatDestroy(&W));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, PetscBool ptap, SgFrame *frame)
 {
   SgFrame  f;
   Mat      K, Qm, G;
@@ -550,7 +580,9 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, SgFrame *frame)
   PetscCall(SgContactPairTransform(c, &f->T, &f->Tinv));
   PetscCall(FrameMatrix(f, K, &Qm));
   PetscCall(MatMatMult(f->T, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
-  PetscCall(MatPtAP(K, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+  f->ptap = ptap;
+  if (ptap) PetscCall(MatPtAP(K, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &f->Kr));
+  else PetscCall(PairStiffness(K, G, &f->Kr));
   PetscCall(MatDestroy(&G));
   PetscCall(MatDestroy(&Qm));
   PetscCall(MatSetBlockSize(f->Kr, dim));
@@ -572,9 +604,22 @@ PetscErrorCode SgFramePairInterpolation(SgFrame f, Mat P, Mat *Pv)
 
   PetscFunctionBeginUser;
   PetscCheck(f && f->Tinv, PETSC_COMM_SELF, PETSC_ERR_PLIB, "SgFramePairInterpolation: the frame has no pair transformation");
-  PetscCall(MatMatMult(f->Tinv, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
-  PetscCall(FrameMatrix(f, G, &Qm));
-  PetscCall(MatTransposeMatMult(Qm, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Pv));
+  if (f->ptap) {
+    PetscCall(MatMatMult(f->Tinv, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
+    PetscCall(FrameMatrix(f, G, &Qm));
+    PetscCall(MatTransposeMatMult(Qm, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Pv));
+  } else { /* P + W P, W = Q^T T^-1 - I: nonzero on the slave rows alone, so W P costs those rows (not P's all) */
+    Mat Qt, W, WP;
+    PetscCall(FrameMatrix(f, f->Tinv, &Qm));
+    PetscCall(MatTranspose(Qm, MAT_INITIAL_MATRIX, &Qt));
+    PetscCall(MatMatMult(Qt, f->Tinv, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
+    PetscCall(SgMatOffIdentity(G, &W));
+    PetscCall(MatMatMult(W, P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &WP));
+    PetscCall(SgMatAddSparse(P, WP, Pv));
+    PetscCall(MatDestroy(&WP));
+    PetscCall(MatDestroy(&W));
+    PetscCall(MatDestroy(&Qt));
+  }
   PetscCall(MatDestroy(&Qm));
   PetscCall(MatDestroy(&G));
   PetscFunctionReturn(0);
@@ -588,9 +633,11 @@ PetscBool SgFramePairTransform(SgFrame f)
 
 /* the one rotation R of the whole body (-ssn_frame_global; row-major, column b the frame's b-th vector), NULL where
    the frames are the contact vertices' alone */
-const PetscReal *SgFrameGlobalRotation(SgFrame f)
+PetscErrorCode SgFrameGetGlobalRotation(SgFrame f, const PetscReal **R)
 {
-  return f && f->global ? f->R : NULL;
+  PetscFunctionBeginUser;
+  *R = f && f->global ? f->R : NULL;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SgFrameDestroy(SgFrame *frame)

@@ -189,6 +189,7 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
   const SgBoundary *bd;
   const char       *prefix;
   const PetscBool   pair = SgFramePairTransform(s->frame);
+  const PetscReal  *Rg   = NULL; /* -ssn_frame_global: every level in the body's rotation R (VertexRows) */
 
   PetscFunctionBeginUser;
   *n = 0;
@@ -212,11 +213,12 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
     PetscCall(SgMeshSetUp(dmc[l], bd, &m[l]));
   }
   m[L] = *s->mesh;
+  if (!pair) PetscCall(SgFrameGetGlobalRotation(s->frame, &Rg));
   for (PetscInt l = 1; l <= L; l++) {
     PetscInt *map, bad;
     PetscCall(SgMeshRefinementMap(dmc[l - 1], &m[l - 1], &m[l], prefix, &map, &bad));
     PetscCheck(!bad, s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg_interp geometric: the mesh refined %" PetscInt_FMT " times fewer, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the refinement does not nest here; use -ssn_pc_truncated_mg_interp amg", L - l + 1, bad);
-    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L && !pair ? s->frame : NULL, pair ? NULL : SgFrameGlobalRotation(s->frame), s->n, s->vert, &(*P)[l]));
+    PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L && !pair ? s->frame : NULL, Rg, s->n, s->vert, &(*P)[l]));
     PetscCall(PetscFree(map));
     if (l == L && pair) { /* two bodies: the finest P taken into the pair's dual-mortar basis, as the AMG's (tmg.c) */
       Mat Pv;

@@ -174,17 +174,10 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity el, const char prefix[], Pets
                  step factors K), so the limit of several ranks (no condensation either): the two cylinders at 32,700,
                  129,752 and 516,912 unknowns took 0.6-0.8x, 0.4x and 0.35-0.45x the CPU time of MUMPS in CG +
                  BoomerAMG with nested iteration (-dm_refine), 3-5 SSN steps against 7-9 (bench/results.md, pair4) */
-    PetscBool tx = PETSC_TRUE;
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sssn_pair_transform", prefix ? prefix : ""));
-    PetscCall(PetscOptionsGetBool(NULL, NULL, opt, &tx, NULL));
+    PetscBool tx, limited;
+    PetscCall(SgOptionsPairDirectLimit2D(prefix, &tx, &limited)); /* limited: frictionless (friction: unmeasured, one body's rule, MUMPS) */
     if (!tx) maxdirect = PETSC_MAX_INT;
-    else if (dim == 2 && size == 1) { /* frictionless (friction: unmeasured, one body's rule, MUMPS) */
-      char      law[64] = "";
-      PetscBool fset;
-      PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sfriction_type", prefix ? prefix : ""));
-      PetscCall(PetscOptionsGetString(NULL, NULL, opt, law, sizeof(law), &fset));
-      if (!fset || !strcmp(law, "none")) maxdirect = SG_PAIR_DIRECT_MAX_2D;
-    }
+    else if (dim == 2 && size == 1 && limited) maxdirect = SG_PAIR_DIRECT_MAX_2D;
   }
   PetscOptionsBegin(comm, prefix, "Default linear solver", NULL);
   PetscCall(DirectMaxOption(PetscOptionsObject, &maxdirect));

@@ -33,6 +33,7 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
     s->frame_local = (PetscBool)!global;
   }
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_transform", "Two bodies (-contact_master_ids): solve the linear systems in the dual-mortar basis u = T v (v_s = u_s - D^-1 M u_m at the slave contact vertices) and the frames of the slave normals, where every condition of the pair is one diagonal entry, as against a rigid obstacle: AMG and the truncated multigrid then apply (default: on with an iterative linear solver, off with a direct one)", &s->pair_transform, &s->pair_transform_set));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_transform_ptap", "With -ssn_pair_transform: form the transformed stiffness (T Q)^T K (T Q) and the interpolations (T Q)^-1 P by general sparse products (MatPtAP, MatMatMult) instead of K's and P's values corrected on the pair's rows and columns; the same matrices to round-off, slower (a check of the default)", &s->pair_ptap, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pair_amg_displacements", "Two bodies in the dual-mortar basis with the truncated multigrid: set its AMG up on the stiffness in the displacements (the two bodies apart) and take the finest interpolation into the basis, (T Q)^-1 P, so that its coarse operators are the bodies' own; false: the AMG of the transformed stiffness (T Q)^T K (T Q)", &s->pair_amg_u, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_reuse_its", "Within one (P_gamma), keep the previous step's preconditioner while the last linear solve took at most this many iterations (0: rebuild every step)", &s->pc_reuse_its, NULL));
   PetscFunctionReturn(0);
@@ -253,7 +254,7 @@ PetscErrorCode SgSSNSetFromOptions(SgSSN s)
     PetscCall(SgContactIsPair(c, &pair));
     PetscCheck(pair, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform is for two-body contact (-contact_master_ids): this problem has no pair");
     PetscCheck(!condense, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform with -ssn_condense: condensation is not available for two bodies; leave -ssn_condense out");
-    PetscCall(SgFrameCreatePair(p, c, &s->frame));
+    PetscCall(SgFrameCreatePair(p, c, s->pair_ptap, &s->frame));
   } else if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
