@@ -146,6 +146,118 @@ static PetscErrorCode TestStiffness(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* The truncated multigrid's l1 Gauss-Seidel sweep on several ranks (tmg.c SgTMGL1GSSweep), from a zero start:
+   1. on a block-diagonal matrix of dense 3 x 3 blocks (block size 3; every rank's rows whole blocks, no coupling
+      across ranks, so no l1) the block sweep forward and backward is the exact solve; the same values with block size 1
+      (the point sweep) are not;
+   2. on K of the options' mesh on one rank (no rows of other ranks, no l1), forward and backward against MatSOR's
+      zero-start local sweeps on K's SeqAIJ (its inode sweep by a vertex's rows), the smoother of one rank. */
+static PetscErrorCode BlockDiagonal(PetscInt nb, PetscInt bs, Mat *A)
+{
+  PetscInt lo;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreate(PETSC_COMM_WORLD, A));
+  PetscCall(MatSetSizes(*A, 3 * nb, 3 * nb, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(*A, MATMPIAIJ));
+  PetscCall(MatSetBlockSize(*A, bs));
+  PetscCall(MatMPIAIJSetPreallocation(*A, 3, NULL, 0, NULL));
+  PetscCall(MatGetOwnershipRange(*A, &lo, NULL));
+  for (PetscInt b = 0; b < nb; b++) {
+    const PetscInt r0 = lo + 3 * b, idx[3] = {r0, r0 + 1, r0 + 2};
+    PetscScalar    v[9];
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = 0; j < 3; j++) v[i * 3 + j] = i == j ? 4.0 + (r0 + i) % 5 : 1.0 + 0.5 * PetscSinReal((PetscReal)(r0 + i + j));
+    PetscCall(MatSetValues(*A, 3, idx, 3, idx, v, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(*A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*A, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SweepError(Mat A, PetscBool back, Vec u, PetscReal *err)
+{
+  Vec       b, y;
+  PetscReal un;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateVecs(A, &y, &b));
+  PetscCall(MatMult(A, u, b));
+  PetscCall(SgTMGL1GSSweep(A, back, b, y));
+  PetscCall(VecAXPY(y, -1.0, u));
+  PetscCall(VecNorm(y, NORM_2, err));
+  PetscCall(VecNorm(u, NORM_2, &un));
+  *err /= un;
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&y));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestL1GS(SgSummary s)
+{
+  Mat         A, A1;
+  Vec         u;
+  PetscReal   e[4];
+  PetscMPIInt size;
+  PetscRandom r;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  PetscCall(BlockDiagonal(40, 3, &A));
+  PetscCall(BlockDiagonal(40, 1, &A1));
+  PetscCall(MatCreateVecs(A, &u, NULL));
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &r));
+  PetscCall(PetscRandomSetInterval(r, -1.0, 1.0));
+  PetscCall(VecSetRandom(u, r));
+  PetscCall(PetscRandomDestroy(&r));
+  PetscCall(SweepError(A, PETSC_FALSE, u, &e[0]));
+  PetscCall(SweepError(A, PETSC_TRUE, u, &e[1]));
+  PetscCall(SweepError(A1, PETSC_FALSE, u, &e[2]));
+  PetscCall(SweepError(A1, PETSC_TRUE, u, &e[3]));
+  PetscCall(SgSummarySetReal(s, "block_forward_err", e[0]));
+  PetscCall(SgSummarySetReal(s, "block_backward_err", e[1]));
+  PetscCall(SgSummarySetReal(s, "point_forward_err", e[2]));
+  PetscCall(SgSummarySetReal(s, "point_backward_err", e[3]));
+  PetscCall(VecDestroy(&u));
+  PetscCall(MatDestroy(&A));
+  PetscCall(MatDestroy(&A1));
+  if (size == 1) {
+    SgElasticity p;
+    Mat          K;
+    Vec          b, y, z;
+    PetscReal    d[2], zn;
+    PetscInt     bs;
+    PetscCall(SgElasticityCreate(PETSC_COMM_WORLD, NULL, &p));
+    PetscCall(SgElasticitySetFromOptions(p, NULL, NULL));
+    PetscCall(SgElasticitySetUp(p));
+    PetscCall(MatConvert(p->K, MATMPIAIJ, MAT_INITIAL_MATRIX, &K));
+    PetscCall(MatGetBlockSize(K, &bs));
+    PetscCall(VecDuplicate(p->b, &b));
+    PetscCall(VecDuplicate(p->b, &y));
+    PetscCall(VecDuplicate(p->b, &z));
+    PetscCall(VecSet(y, 1.0));
+    PetscCall(MatMult(p->K, y, b));
+    PetscCall(VecAXPY(b, 1.0, p->b));
+    for (PetscInt k = 0; k < 2; k++) {
+      PetscCall(SgTMGL1GSSweep(K, (PetscBool)k, b, y));
+      PetscCall(MatSOR(p->K, b, 1.0, (MatSORType)((k ? SOR_LOCAL_BACKWARD_SWEEP : SOR_LOCAL_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, z));
+      PetscCall(VecNorm(z, NORM_2, &zn));
+      PetscCall(VecAXPY(y, -1.0, z));
+      PetscCall(VecNorm(y, NORM_2, &d[k]));
+      d[k] /= zn;
+    }
+    PetscCall(SgSummarySetInt(s, "k_block_size", bs));
+    PetscCall(SgSummarySetReal(s, "sor_forward_diff", d[0]));
+    PetscCall(SgSummarySetReal(s, "sor_backward_diff", d[1]));
+    PetscCall(VecDestroy(&b));
+    PetscCall(VecDestroy(&y));
+    PetscCall(VecDestroy(&z));
+    PetscCall(MatDestroy(&K));
+    PetscCall(SgElasticityDestroy(&p));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Gaps of the registered obstacles at points with known distances. */
 static PetscErrorCode GapAt(const char *type, const char *opts, PetscInt dim, const PetscReal x[], const PetscReal n[], PetscReal *d)
 {
@@ -1257,6 +1369,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "element3d", &eq) == 0 && eq) PetscCall(TestElement3D(s));
   else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
   else if (PetscStrcmp(test, "stiffness", &eq) == 0 && eq) PetscCall(TestStiffness(s));
+  else if (PetscStrcmp(test, "l1gs", &eq) == 0 && eq) PetscCall(TestL1GS(s));
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));

@@ -50,8 +50,9 @@ struct _n_SgTMG {
   MatStructure *str; /* str[l]: D[l]'s pattern against AK[l]'s (the same, checked once) */
 };
 
-static PetscBool     tmg_registered = PETSC_FALSE;
-static PetscLogEvent SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp;
+static PetscBool      tmg_registered = PETSC_FALSE;
+static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS;
+static PetscErrorCode RegisterEvents(void);
 
 /* BoomerAMG's interpolation of the rigid-body modes (-pc_hypre_boomeramg_vec_interp_variant 1-3, with nodal
    coarsening): PETSc hands hypre every vector of the operator's near null space, and hypre's GM interpolation wants
@@ -95,11 +96,14 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    couples through the slave's rows to master vertices far away on other ranks, gave CG DIVERGED_INDEFINITE_PC on 2
    ranks (tests/parallel/twobody_ranks.ini). With W the sweep's lower (upper) triangle, W + W^T - A =
    D + 2 L1 - A_offrank is positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a
-   backward one up is symmetric positive definite. A PCSHELL, so that KSPRICHARDSON applies it to its residual (x += W^-1 (b - A x));
-   on one rank the smoothers stay PCSOR (the same sweeps: no rows of other ranks). */
+   backward one up is symmetric positive definite; swept by vertex blocks (SetUp_L1GS), D is the blocks' diagonal
+   (positive definite, as A's principal submatrices) and the same holds. A PCSHELL, so that KSPRICHARDSON applies it
+   to its residual (x += W^-1 (b - A x)); on one rank the smoothers stay PCSOR (the same sweeps: no rows of other
+   ranks). */
 typedef struct {
-  PetscScalar     *idiag; /* 1 / (a_ii + l1_i) of the local rows */
-  PetscInt         m;     /* their number */
+  PetscScalar     *idiag; /* point sweep: 1 / (a_ii + l1_i) of the local rows; block sweep: the inverted blocks */
+  PetscInt         m;     /* the number of local rows */
+  PetscInt         bs;    /* 1: point by point; else by vertex blocks of bs rows (SetUp_L1GS) */
   PetscObjectId    id;    /* the operator they were made from, */
   PetscObjectState state; /* at this state of its values */
   PetscInt         refs;
@@ -110,11 +114,59 @@ typedef struct {
   PetscBool back; /* a backward sweep */
 } L1GS;
 
+/* a <- a^-1 for a dense n x n matrix (row-major), Gauss-Jordan with partial pivoting; w: n ints. Returns PETSC_FALSE
+   where a pivot is zero. */
+static PetscBool InvertBlock(PetscInt n, PetscScalar *a, PetscInt *w)
+{
+  for (PetscInt k = 0; k < n; k++) {
+    PetscInt    p   = k;
+    PetscReal   big = PetscAbsScalar(a[k * n + k]);
+    PetscScalar piv;
+    for (PetscInt i = k + 1; i < n; i++)
+      if (PetscAbsScalar(a[i * n + k]) > big) {
+        big = PetscAbsScalar(a[i * n + k]);
+        p   = i;
+      }
+    if (big == 0.0) return PETSC_FALSE;
+    w[k] = p;
+    if (p != k)
+      for (PetscInt j = 0; j < n; j++) {
+        PetscScalar t = a[k * n + j];
+        a[k * n + j]  = a[p * n + j];
+        a[p * n + j]  = t;
+      }
+    piv          = 1.0 / a[k * n + k];
+    a[k * n + k] = 1.0;
+    for (PetscInt j = 0; j < n; j++) a[k * n + j] *= piv;
+    for (PetscInt i = 0; i < n; i++) {
+      PetscScalar f;
+      if (i == k) continue;
+      f            = a[i * n + k];
+      a[i * n + k] = 0.0;
+      for (PetscInt j = 0; j < n; j++) a[i * n + j] -= f * a[k * n + j];
+    }
+  }
+  for (PetscInt k = n - 1; k >= 0; k--) /* the row swaps undone as column swaps, last first */
+    if (w[k] != k)
+      for (PetscInt i = 0; i < n; i++) {
+        PetscScalar t   = a[i * n + k];
+        a[i * n + k]    = a[i * n + w[k]];
+        a[i * n + w[k]] = t;
+      }
+  return PETSC_TRUE;
+}
+
 /* Both sweeps of a level see the same operator: the first one set up makes the inverted diagonal, the second finds it
    made (the same operator at the same state). The sweeps run on the operator's own diagonal block with that diagonal
    (Apply_L1GS): every SSN step changes the operators' values, and a copy of each level's diagonal block with l1 added
    (for MatSOR) cost a copy of the finest Jacobian's local rows in time and memory at every step (asm27; before that a
-   new duplicate per sweep and step, bench/nested.md par27). */
+   new duplicate per sweep and step, bench/nested.md par27).
+   By vertex blocks where the operator has a block size bs > 1 and every rank's rows are whole blocks (the elasticity
+   operators: bs = dim): each block's bs x bs diagonal block, l1_i added to its diagonal entries (the same rule as the
+   point sweep's), inverted here and kept (bs^2 numbers a block, bs per row). That is the smoother MatSOR gave on the
+   former copy (its inode sweep: a vertex's rows have one pattern) and on one rank: the point sweep cost 34 -> 39 CG
+   iterations on the finest level of Example 2 at 1.1e6 unknowns on 2 ranks (bench/nested.md, gs28). Otherwise (no
+   block size, or a rank's rows not whole blocks) point by point. */
 static PetscErrorCode SetUp_L1GS(PC pc)
 {
   L1GS              *g;
@@ -122,10 +174,11 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   Mat                P, Ad, Ao;
   const PetscInt    *ia, *ja;
   const PetscScalar *aa, *va;
-  PetscInt           m, nr;
+  PetscInt           m, nr, bs, rlo, w[16];
   PetscBool          done;
   PetscObjectId      id;
   PetscObjectState   state;
+  PetscReal         *l1;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
@@ -136,27 +189,49 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   if (lm->idiag && lm->id == id && lm->state == state) PetscFunctionReturn(0); /* the level's other sweep made it */
   PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
   PetscCall(MatGetLocalSize(Ad, &m, NULL));
-  if (lm->m != m) {
+  PetscCall(MatGetBlockSize(P, &bs));
+  PetscCall(MatGetOwnershipRange(P, &rlo, NULL));
+  if (bs < 2 || bs > 16 || m % bs || rlo % bs) bs = 1; /* not whole vertex blocks: point by point */
+  if (lm->m != m || lm->bs != bs) {
     PetscCall(PetscFree(lm->idiag));
-    PetscCall(PetscMalloc1(m + 1, &lm->idiag));
-    lm->m = m;
+    PetscCall(PetscMalloc1(m * bs + 1, &lm->idiag));
+    lm->m  = m;
+    lm->bs = bs;
+    PetscCall(PetscInfo(pc, "l1 Gauss-Seidel on %" PetscInt_FMT " local rows, by blocks of %" PetscInt_FMT "\n", m, bs));
   }
   PetscCall(MatGetRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   PetscCheck(done && nr == m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "l1 Gauss-Seidel: no rows of the diagonal block");
   PetscCall(MatSeqAIJGetArrayRead(Ad, &aa));
-  for (PetscInt i = 0; i < m; i++) {
+  PetscCall(PetscMalloc1(m + 1, &l1));
+  for (PetscInt i = 0; i < m; i++) { /* l1_i, kept where it exceeds |a_ii| / 3 */
     PetscInt    nc;
-    PetscReal   l1 = 0;
-    PetscScalar d  = 0;
+    PetscReal   s = 0;
+    PetscScalar d = 0;
     for (PetscInt k = ia[i]; k < ia[i + 1]; k++)
       if (ja[k] == i) d = aa[k];
     PetscCall(MatGetRow(Ao, i, &nc, NULL, &va));
-    for (PetscInt k = 0; k < nc; k++) l1 += PetscAbsScalar(va[k]);
+    for (PetscInt k = 0; k < nc; k++) s += PetscAbsScalar(va[k]);
     PetscCall(MatRestoreRow(Ao, i, &nc, NULL, &va));
-    d += l1 > PetscAbsScalar(d) / 3 ? l1 : 0;
-    PetscCheck(d != 0.0, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "l1 Gauss-Seidel: zero diagonal in local row %" PetscInt_FMT, i);
-    lm->idiag[i] = 1.0 / d;
+    l1[i] = s > PetscAbsScalar(d) / 3 ? s : 0;
+    if (bs == 1) {
+      d += l1[i];
+      PetscCheck(d != 0.0, PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "l1 Gauss-Seidel: zero diagonal in local row %" PetscInt_FMT, i);
+      lm->idiag[i] = 1.0 / d;
+    }
   }
+  if (bs > 1)
+    for (PetscInt b = 0; b < m / bs; b++) {
+      const PetscInt r0 = b * bs;
+      PetscScalar   *a  = lm->idiag + (size_t)r0 * bs;
+      for (PetscInt r = 0; r < bs; r++) {
+        for (PetscInt c = 0; c < bs; c++) a[r * bs + c] = 0;
+        for (PetscInt k = ia[r0 + r]; k < ia[r0 + r + 1]; k++)
+          if (ja[k] >= r0 && ja[k] < r0 + bs) a[r * bs + ja[k] - r0] = aa[k];
+        a[r * bs + r] += l1[r0 + r];
+      }
+      PetscCheck(InvertBlock(bs, a, w), PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "l1 Gauss-Seidel: singular diagonal block at local rows %" PetscInt_FMT "-%" PetscInt_FMT, r0, r0 + bs - 1);
+    }
+  PetscCall(PetscFree(l1));
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   lm->id    = id;
@@ -165,11 +240,10 @@ static PetscErrorCode SetUp_L1GS(PC pc)
 }
 
 /* One sweep from a zero start over the local rows of the operator's diagonal block (rows sorted by column), the
-   diagonal replaced by a_ii + l1_i, point by point. Not quite what MatSOR did on the former copy with the shifted
-   diagonal: on an AIJ matrix with inodes (a vertex's consecutive rows of one pattern) MatSOR sweeps by those blocks,
-   each with its diagonal block inverted; the point sweep took 39 CG iterations on the finest level of Example 2 at
-   1.1e6 unknowns on 2 ranks against 34 (bench/nested.md, the lead's last section). A sweep by the same blocks, their
-   inverses kept in place of idiag, would keep the smoother and still hold no copy. */
+   diagonal replaced by a_ii + l1_i: point by point, or by vertex blocks (SetUp_L1GS): a block's right-hand side is
+   x less the rows' entries at the columns before the block (forward; after it, backward) times the values already
+   swept, its values the kept inverse times that; the entries inside the block are in the inverse. What MatSOR's inode
+   sweep did on the former copy, without the copy. */
 static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
 {
   L1GS              *g;
@@ -177,10 +251,11 @@ static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
   const PetscInt    *ia, *ja;
   const PetscScalar *xa, *aa, *idiag;
   PetscScalar       *ya;
-  PetscInt           m;
+  PetscInt           m, bs;
   PetscBool          done;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(SG_TMGL1GS, 0, 0, 0, 0));
   PetscCall(PCShellGetContext(pc, &g));
   PetscCall(PCGetOperators(pc, NULL, &P));
   PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, NULL, NULL));
@@ -190,7 +265,50 @@ static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
   idiag = g->m->idiag;
-  if (!g->back)
+  bs    = g->m->bs;
+  if (bs == 3) { /* the 3D vertex block, unrolled */
+    if (!g->back)
+      for (PetscInt i = 0; i < m; i += 3) {
+        PetscScalar        s0 = xa[i], s1 = xa[i + 1], s2 = xa[i + 2];
+        const PetscScalar *d = idiag + (size_t)i * 3;
+        for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s0 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 1]; k < ia[i + 2] && ja[k] < i; k++) s1 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 2]; k < ia[i + 3] && ja[k] < i; k++) s2 -= aa[k] * ya[ja[k]];
+        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
+        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
+        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
+      }
+    else
+      for (PetscInt i = m - 3; i >= 0; i -= 3) {
+        PetscScalar        s0 = xa[i], s1 = xa[i + 1], s2 = xa[i + 2];
+        const PetscScalar *d = idiag + (size_t)i * 3;
+        for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] > i + 2; k--) s0 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 2] - 1; k >= ia[i + 1] && ja[k] > i + 2; k--) s1 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 3] - 1; k >= ia[i + 2] && ja[k] > i + 2; k--) s2 -= aa[k] * ya[ja[k]];
+        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
+        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
+        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
+      }
+  } else if (bs > 1) {
+    PetscScalar s[16];
+    for (PetscInt b = 0; b < m / bs; b++) {
+      const PetscInt     r0 = g->back ? m - (b + 1) * bs : b * bs;
+      const PetscScalar *d  = idiag + (size_t)r0 * bs;
+      for (PetscInt r = 0; r < bs; r++) {
+        const PetscInt i = r0 + r;
+        s[r]             = xa[i];
+        if (!g->back)
+          for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < r0; k++) s[r] -= aa[k] * ya[ja[k]];
+        else
+          for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] >= r0 + bs; k--) s[r] -= aa[k] * ya[ja[k]];
+      }
+      for (PetscInt r = 0; r < bs; r++) {
+        PetscScalar v = 0;
+        for (PetscInt c = 0; c < bs; c++) v += d[r * bs + c] * s[c];
+        ya[r0 + r] = v;
+      }
+    }
+  } else if (!g->back)
     for (PetscInt i = 0; i < m; i++) {
       PetscScalar s = xa[i];
       for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s -= aa[k] * ya[ja[k]];
@@ -204,11 +322,12 @@ static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
       for (k++; k < ia[i + 1]; k++) s -= aa[k] * ya[ja[k]];
       ya[i] = s * idiag[i];
     }
-  PetscCall(PetscLogFlops(ia[m]));
+  PetscCall(PetscLogFlops(ia[m] + (bs > 1 ? (2.0 * bs - 1) * m : 0)));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &m, &ia, &ja, &done));
+  PetscCall(PetscLogEventEnd(SG_TMGL1GS, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -243,6 +362,24 @@ static PetscErrorCode SetL1GS(PC pc, PetscBool back, L1GSMat **lm)
   PetscCall(PCShellSetSetUp(pc, SetUp_L1GS));
   PetscCall(PCShellSetApply(pc, Apply_L1GS));
   PetscCall(PCShellSetDestroy(pc, Destroy_L1GS));
+  PetscFunctionReturn(0);
+}
+
+/* One l1 Gauss-Seidel sweep of the smoothers on several ranks (SetL1GS) on an MPIAIJ A from a zero start, y = W^-1 b,
+   on any number of ranks (tests/unit_tests.c: the block sweep against the exact solve and against MatSOR) */
+PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, Vec b, Vec y)
+{
+  PC       pc;
+  L1GSMat *lm = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(RegisterEvents());
+  PetscCall(PCCreate(PetscObjectComm((PetscObject)A), &pc));
+  PetscCall(SetL1GS(pc, back, &lm));
+  PetscCall(PCSetOperators(pc, A, A));
+  PetscCall(PCSetUp(pc));
+  PetscCall(PCApply(pc, b, y));
+  PetscCall(PCDestroy(&pc));
   PetscFunctionReturn(0);
 }
 
@@ -755,6 +892,20 @@ static PetscErrorCode View_TMG(PC pc, PetscViewer v)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode RegisterEvents(void)
+{
+  PetscFunctionBeginUser;
+  if (tmg_registered) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventRegister("SgTMGBuild", PC_CLASSID, &SG_TMGBuild));
+  PetscCall(PetscLogEventRegister("SgTMGUpdate", PC_CLASSID, &SG_TMGUpdate));
+  PetscCall(PetscLogEventRegister("SgTMGCorr", PC_CLASSID, &SG_TMGCorr));
+  PetscCall(PetscLogEventRegister("SgTMGCoarse", PC_CLASSID, &SG_TMGCoarse));
+  PetscCall(PetscLogEventRegister("SgTMGMGSetUp", PC_CLASSID, &SG_TMGMGSetUp));
+  PetscCall(PetscLogEventRegister("SgTMGL1GS", PC_CLASSID, &SG_TMGL1GS)); /* the l1 Gauss-Seidel sweeps (Apply_L1GS) */
+  tmg_registered = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* The KSP's configured preconditioner becomes the AMG whose interpolations the truncated multigrid keeps (geometric:
    the mesh hierarchy's interpolations instead, gmg.c, and the KSP's preconditioner is not used); the KSP gets the
    truncated multigrid (a PCSHELL) instead. */
@@ -767,14 +918,7 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   Mat      *Pgeo = NULL;
 
   PetscFunctionBeginUser;
-  if (!tmg_registered) {
-    PetscCall(PetscLogEventRegister("SgTMGBuild", PC_CLASSID, &SG_TMGBuild));
-    PetscCall(PetscLogEventRegister("SgTMGUpdate", PC_CLASSID, &SG_TMGUpdate));
-    PetscCall(PetscLogEventRegister("SgTMGCorr", PC_CLASSID, &SG_TMGCorr));
-    PetscCall(PetscLogEventRegister("SgTMGCoarse", PC_CLASSID, &SG_TMGCoarse));
-    PetscCall(PetscLogEventRegister("SgTMGMGSetUp", PC_CLASSID, &SG_TMGMGSetUp));
-    tmg_registered = PETSC_TRUE;
-  }
+  PetscCall(RegisterEvents());
   PetscCall(KSPGetPC(ksp, &pc));
   if (geometric) PetscCall(SgGMGInterpolations(s, &ngeo, &Pgeo));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hypre));
