@@ -48,7 +48,7 @@ MESHES  = meshes/beam.msh meshes/ex2.msh meshes/ex2_coarse.msh meshes/hertz_s1.m
 # Curved and tilted bodies (tests/verification/curved.ini): the coarse meshes its tests read; cv_*_rNN are rigidly turned copies of
 # a mesh (tests/rotate_msh.py: the same elements, nodes turned by NN degrees; see the rules below)
 CURVED_MESHES = meshes/cv_tilt2d_s1.msh meshes/cv_tilt3d_s1.msh meshes/cv_hemisphere_s1.msh meshes/cv_hemisphere_s2.msh \
-          meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_full.msh \
+          meshes/cv_halfdisc_s1.msh meshes/cv_halfdisc_s2.msh meshes/cv_halfdisc_s4.msh meshes/cv_halfdisc_s32.msh meshes/cv_halfdisc_full.msh \
           meshes/cv_halfdisc_full_r30.msh meshes/cv_halfdisc_full_r135.msh meshes/cv_block2d.msh meshes/cv_block2d_r20.msh \
           meshes/ex2_s0.3.msh meshes/cv_ex2_s0.3_r30.msh meshes/cv_ex2_s0.3_r75.msh meshes/ex2_s1.msh meshes/cv_ex2_s1_r30.msh meshes/cv_ex2_s1_r75.msh \
           meshes/cv_ex2_s1_r15.msh meshes/cv_ex2_s1_r45.msh meshes/cv_ex2_coarse_r30.msh meshes/cv_ex2_coarse_r75.msh

@@ -78,13 +78,22 @@ PetscErrorCode          SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);
 PetscErrorCode          SgBoundaryGetFacets(DM, const SgBoundary *, PetscInt *, PetscInt **, PetscInt **);
 PetscErrorCode          SgMeshSetUp(DM, const SgBoundary *, SgMesh *);
 PetscErrorCode          SgMeshDestroy(SgMesh *);
-PetscErrorCode          SgMeshRefinementMap(DM, const SgMesh *, const SgMesh *, const char[], PetscInt **, PetscInt *); /* mesh.c: a refined mesh's vertices as midpoints of the coarser one's */
+PetscErrorCode          SgMeshRefinementMap(DM, DM, const SgMesh *, const SgMesh *, const char[], PetscInt **, PetscInt *); /* mesh.c: a refined mesh's vertices as midpoints of the coarser one's */
 PetscErrorCode          SgMeshConstrainedDimension(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[3], PetscReal[3], PetscReal *);
 PetscErrorCode          SgMeshFreeRigidMotions(MPI_Comm, const SgMesh *, PetscInt *, PetscReal[], PetscReal[3]);
 static inline PetscBool SgMeshFixed(const SgMesh *m, PetscInt v, PetscInt d) { return (PetscBool)((m->bcmask[v] >> d) & 1); }
 static inline PetscBool SgMeshPartial(const SgMesh *m, PetscInt v) { return (PetscBool)(m->bcmask[v] && m->bcmask[v] != (1 << m->dim) - 1); }
 PetscErrorCode          SgFacetGeometry(DM, const SgMesh *, PetscInt, PetscInt *, PetscInt[], PetscReal *, PetscReal[]);
 PetscErrorCode          SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c: a .msh file's structure, before PETSc reads it */
+/* geometry.c: gmsh started once per process (with the CAD obstacle), and the refined boundary moved onto the CAD
+   geometry of -dm_refine_geometry */
+typedef struct _n_SgGeometry *SgGeometry;
+PetscErrorCode                SgGmshStart(MPI_Comm, PetscBool);
+void                          SgGmshError(char[], size_t);
+PetscErrorCode                SgGeometryCreate(DM, const char[], const char[], SgGeometry *);
+PetscErrorCode                SgGeometrySnap(SgGeometry, DM, DM);
+PetscErrorCode                SgGeometryCheck(SgGeometry, DM, PetscReal *);
+PetscErrorCode                SgGeometryDestroy(SgGeometry *);
 
 /* ------------------------------------------------------------------ elasticity.c */
 typedef struct _n_SgElasticity *SgElasticity;

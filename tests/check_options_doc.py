@@ -31,6 +31,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUR_VIEWER = re.compile(r"^Viewer \(-((?:cont|ssn|sg|contact|obstacle|friction|load)_[A-Za-z0-9_]*)\) options:")
 OPTION_LINE = re.compile(r"^\s+-([A-Za-z][A-Za-z0-9_]*)\b")
 # PETSc's objects (also under our prefix vi_ of the SNESVI baseline) print some options without a manual page too
+# ours under a PETSc object's prefix, named as the PETSc options they extend (-dm_refine_geometry: fem/geometry.c)
+OURS_UNDER_PETSC_PREFIX = {"dm_refine_geometry"}
 PETSC_PREFIX = re.compile(r"^(?:vi_)?(?:mat|pc|ksp|snes|dm|vec|is|sf|petscpartitioner|petscsection|tao|ts|viewer|draw|log|options|malloc)_")
 
 # meshed obstacle for the cad type's second run: a square in 2D, written at run time (no file in the tree needed)
@@ -92,7 +94,7 @@ def our_options(text):
             names.add(m.group(1))
             continue
         m = OPTION_LINE.match(line)
-        if m and (line.rstrip().endswith("(None)") or line.rstrip().endswith("((null))")) and not PETSC_PREFIX.match(m.group(1)):
+        if m and (line.rstrip().endswith("(None)") or line.rstrip().endswith("((null))")) and (not PETSC_PREFIX.match(m.group(1)) or m.group(1) in OURS_UNDER_PETSC_PREFIX):
             names.add(m.group(1))
     return names
 

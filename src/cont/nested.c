@@ -82,17 +82,18 @@ PetscErrorCode SgContNestedCheck(SgCont ct)
    midpoint of (the same one twice: a vertex of a's mesh). */
 static PetscErrorCode VertexMap(SgCont a, SgCont b, PetscInt **map)
 {
-  DM            dma;
+  DM            dma, dmb;
   const SgMesh *ma, *mb;
   const char   *prefix;
   PetscInt      bad;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetDMs(a->prob, &dma, NULL, NULL, NULL));
+  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
   PetscCall(SgElasticityGetMesh(a->prob, &ma));
   PetscCall(SgElasticityGetMesh(b->prob, &mb));
   PetscCall(SgProblemGetOptionsPrefix(a->problem_obj, &prefix));
-  PetscCall(SgMeshRefinementMap(dma, ma, mb, prefix, map, &bad));
+  PetscCall(SgMeshRefinementMap(dma, dmb, ma, mb, prefix, map, &bad));
   PetscCheck(!bad, a->comm, PETSC_ERR_SUP, "-cont_nested: the mesh of a coarse level, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the distribution or the refinement does not nest here (a partitioner that gives another distribution each time, or a transform that reorders the mesh); run without -cont_nested", bad);
   PetscFunctionReturn(0);
 }

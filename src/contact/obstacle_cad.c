@@ -30,48 +30,26 @@ typedef struct {
   double     hel;  /* the longest edge of the tessellation (0: not yet measured; -contact_normal obstacle) */
 } Obstacle_CAD;
 
-static PetscBool     gmsh_up = PETSC_FALSE;
 static PetscLogEvent CAD_SetUp, CAD_Gap;            /* -log_view: reading and tessellating the file; the gap queries */
 static char          gmsh_file[PETSC_MAX_PATH_LEN]; /* the file gmsh's current model was read from */
+static PetscBool     reset_registered = PETSC_FALSE;
 
-static PetscErrorCode GmshFinalize(void)
+static PetscErrorCode CadForget(void)
 {
-  int ierr;
-
   PetscFunctionBeginUser;
-  if (gmsh_up) gmshFinalize(&ierr);
-  gmsh_up      = PETSC_FALSE;
-  gmsh_file[0] = 0;
+  gmsh_file[0]     = 0;
+  reset_registered = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
-/* gmsh's last error message (or a general one) */
-static void GmshError(char msg[], size_t len)
-{
-  char *err = NULL;
-  int   ierr;
-
-  gmshLoggerGetLastError(&err, &ierr);
-  if (!ierr && err && err[0]) snprintf(msg, len, "%s", err);
-  else snprintf(msg, len, "gmsh could not read it");
-  if (err) gmshFree(err);
-}
-
-/* gmsh once per process, quiet unless -obstacle_cad_verbose; finalized by PetscFinalize */
+/* gmsh once per process (fem/geometry.c, shared with -dm_refine_geometry), quiet unless -obstacle_cad_verbose; the
+   file read is forgotten by PetscFinalize, which finalizes gmsh */
 static PetscErrorCode GmshStart(MPI_Comm comm, PetscBool verbose)
 {
-  int ierr;
-
   PetscFunctionBeginUser;
-  if (!gmsh_up) {
-    gmshInitialize(0, NULL, 0, &ierr);
-    PetscCheck(!ierr, comm, PETSC_ERR_LIB, "gmsh: gmshInitialize failed (%d)", ierr);
-    gmsh_up = PETSC_TRUE;
-    PetscCall(PetscRegisterFinalize(GmshFinalize));
-  }
-  gmshOptionSetNumber("General.Terminal", verbose ? 1 : 0, &ierr);
-  gmshOptionSetNumber("General.Verbosity", verbose ? 5 : 0, &ierr);
-  gmshLoggerStart(&ierr);
+  PetscCall(SgGmshStart(comm, verbose));
+  if (!reset_registered) PetscCall(PetscRegisterFinalize(CadForget));
+  reset_registered = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -86,7 +64,7 @@ static PetscErrorCode CadLoad(SgObstacle o, Obstacle_CAD *cad)
   gmshClear(&ierr);
   gmsh_file[0] = 0;
   gmshOpen(cad->file, &ierr);
-  if (ierr) GmshError(msg, sizeof(msg));
+  if (ierr) SgGmshError(msg, sizeof(msg));
   PetscCheck(!ierr, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: %s", cad->file, msg);
   PetscCall(PetscStrncpy(gmsh_file, cad->file, sizeof(gmsh_file)));
   PetscFunctionReturn(0);
@@ -152,7 +130,7 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   gmshOptionSetNumber("Mesh.MeshSizeFromCurvature", 36, &ierr);
   gmshModelMeshClear(NULL, 0, &ierr);
   gmshModelMeshGenerate((int)sdim, &ierr);
-  if (ierr) GmshError(msg, sizeof(msg));
+  if (ierr) SgGmshError(msg, sizeof(msg));
   PetscCheck(!ierr, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: gmsh could not tessellate the obstacle's %s: %s", cad->file, dim == 3 ? "surfaces" : "curves", msg);
   gmshModelMeshGetNodes(&ntags, &nntags, &ncoord, &nncoord, &npar, &nnpar, -1, -1, 0, 0, &ierr);
   PetscCheck(!ierr, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh gave no nodes", cad->file);

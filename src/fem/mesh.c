@@ -120,15 +120,18 @@ static PetscErrorCode MeshReadFile(MPI_Comm comm, const char fname[], DM *dm)
 }
 
 /* For every local vertex of mesh b (the next refinement of mesh a, dma: a's DM), the two local vertices of a it is
-   the midpoint of (the same one twice: a vertex of a); the transform's options under the prefix. NULL in *map and
+   the midpoint of (the same one twice: a vertex of a); the transform's options under the prefix. A vertex of b's DM
+   dmb that -dm_refine_geometry moved onto the geometry (label "SgSnapped", fem/geometry.c) may lie up to a quarter of
+   its edge from the midpoint. NULL in *map and
    the number of vertices that do not nest in *bad (on all ranks) if the refinement does not nest. Nested iteration's
    transfer (cont/nested.c) and the geometric multigrid's interpolations (solver/gmg.c). */
-PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, const char prefix[], PetscInt **map, PetscInt *nbad)
+PetscErrorCode SgMeshRefinementMap(DM dma, DM dmb, const SgMesh *ma, const SgMesh *mb, const char prefix[], PetscInt **map, PetscInt *nbad)
 {
   DMPlexTransform tr;
   PetscInt        eStart, eEnd, dim, bad = 0;
-  PetscReal       scale = 0;
-  MPI_Comm        comm  = PetscObjectComm((PetscObject)dma);
+  PetscReal       scale   = 0;
+  MPI_Comm        comm    = PetscObjectComm((PetscObject)dma);
+  PetscBool      *snapped = NULL;
 
   PetscFunctionBeginUser;
   dim = ma->dim;
@@ -136,6 +139,18 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
   PetscCall(DMPlexGetDepthStratum(dma, 1, &eStart, &eEnd));
   for (PetscInt i = 0; i < ma->nv * dim; i++) scale = PetscMax(scale, PetscAbsReal(ma->x[i]));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPIU_REAL, MPIU_MAX, comm));
+  {
+    DMLabel lab = NULL;
+    if (dmb) PetscCall(DMGetLabel(dmb, "SgSnapped", &lab));
+    if (lab) {
+      PetscCall(PetscCalloc1(mb->nv + 1, &snapped));
+      for (PetscInt v = 0; v < mb->nv; v++) {
+        PetscInt val;
+        PetscCall(DMLabelGetValue(lab, mb->vStart + v, &val));
+        snapped[v] = (PetscBool)(val == 1);
+      }
+    }
+  }
   if (mb->nv != ma->nv + (eEnd - eStart)) bad = PetscMax(1, mb->nv);
   else {
     /* the transform DMRefine applies (DMPlex's regular refinement, or -dm_plex_transform_type) numbers the new points */
@@ -158,6 +173,13 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
       if (v0 < 0 || v0 >= ma->nv || v1 < 0 || v1 >= ma->nv) {
         bad++;
         v0 = v1 = 0;
+      } else if (snapped && snapped[v]) {
+        PetscReal r = 0, h = 0;
+        for (PetscInt d = 0; d < dim; d++) {
+          r += PetscSqr(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d]));
+          h += PetscSqr(ma->x[v0 * dim + d] - ma->x[v1 * dim + d]);
+        }
+        if (!(PetscSqrtReal(r) <= 0.25 * PetscSqrtReal(h) + 1e-10 * scale)) bad++;
       } else
         for (PetscInt d = 0; d < dim; d++)
           if (!(PetscAbsReal(mb->x[v * dim + d] - 0.5 * (ma->x[v0 * dim + d] + ma->x[v1 * dim + d])) <= 1e-10 * scale)) {
@@ -169,9 +191,28 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
     }
     PetscCall(DMPlexTransformDestroy(&tr));
   }
+  PetscCall(PetscFree(snapped));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, comm));
   if (bad) PetscCall(PetscFree(*map));
   *nbad = bad;
+  PetscFunctionReturn(0);
+}
+
+/* The distributed mesh checked against the geometry (-dm_refine_geometry), then refined n times (not kept), each
+   refinement's boundary vertices moved onto it. */
+static PetscErrorCode MeshRefineOnGeometry(SgGeometry geo, PetscInt n, DM *dm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SgGeometryCheck(geo, *dm, NULL));
+  for (PetscInt r = 0; r < n; r++) {
+    DM rdm;
+    PetscCall(DMRefine(*dm, PetscObjectComm((PetscObject)*dm), &rdm));
+    PetscCheck(rdm, PetscObjectComm((PetscObject)*dm), PETSC_ERR_PLIB, "-dm_refine_geometry: DMRefine made no mesh");
+    PetscCall(SgGeometrySnap(geo, *dm, rdm));
+    PetscCall(DMDestroy(dm));
+    *dm = rdm;
+    PetscCall(DMPlexSetRefinementUniform(*dm, PETSC_TRUE));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -188,8 +229,11 @@ PetscErrorCode SgMeshRefinementMap(DM dma, const SgMesh *ma, const SgMesh *mb, c
    (L = N): nested iteration's default (SgContNestedDefault); so does a 2D one with friction, or where the linear solver may be iterative (2 x the
    fine mesh's vertices above the default's direct limit: 20000 on several ranks or -cont_direct_max_unknowns; or a
    Krylov -ksp_type): without friction SgContNestedDefault solves on them only if it is, a direct solve leaves them
-   unused. Two bodies (-contact_master_ids) as one. -cont_nested 0 keeps none. */
-static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *done)
+   unused. Two bodies (-contact_master_ids) as one. -cont_nested 0 keeps none.
+   With a geometry (geo, -dm_refine_geometry; fem/geometry.c) every refinement after distribution is made here, kept or
+   not, each followed by SgGeometrySnap (DMSetFromOptions distributes only); the unrefined mesh is checked against it.
+   Refinements before distribution (-dm_refine_pre) and -dm_refine_hierarchy are PETSc's and not snapped. */
+static PetscErrorCode MeshRefineNested(const char prefix[], SgGeometry geo, DM *dm, PetscBool *done)
 {
   PetscInt          nest = 0, nref = 0, interp = 0;
   PetscBool         nset, rset, gset;
@@ -262,10 +306,10 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
   }
   if (!nset || nest < 1 || nest > nref) nest = 0;
   if (gset && interp == 1 && rset && nref >= 1) nest = nref;
-  if (!rset || nest < 1) PetscFunctionReturn(0);
+  if (!rset || nref < 1 || (nest < 1 && !geo)) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_refine", prefix ? prefix : ""));
   PetscCall(PetscSNPrintf(was, sizeof(was), "%" PetscInt_FMT, nref));
-  PetscCall(PetscSNPrintf(now, sizeof(now), "%" PetscInt_FMT, nref - nest));
+  PetscCall(PetscSNPrintf(now, sizeof(now), "%" PetscInt_FMT, geo ? 0 : nref - nest));
   PetscCall(PetscOptionsSetValue(NULL, opt, now));
   {
     PetscErrorCode ierr = DMSetFromOptions(*dm);
@@ -273,12 +317,20 @@ static PetscErrorCode MeshRefineNested(const char prefix[], DM *dm, PetscBool *d
     PetscCall(ierr);
   }
   PetscCall(DMPlexSetRefinementUniform(*dm, PETSC_TRUE));
+  if (geo) PetscCall(MeshRefineOnGeometry(geo, nref - nest, dm));
+  if (nest < 1) { /* the refinements on the geometry, none kept */
+    PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)*dm, prefix));
+    *done = PETSC_TRUE;
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscMalloc1(nest, &lv));
   for (PetscInt r = 0; r < nest; r++) {
     DM rdm;
     lv[r] = *dm;
     PetscCall(DMRefine(lv[r], PetscObjectComm((PetscObject)lv[r]), &rdm));
     PetscCheck(rdm, PetscObjectComm((PetscObject)lv[r]), PETSC_ERR_PLIB, "-cont_nested: DMRefine made no mesh");
+    if (geo) PetscCall(SgGeometrySnap(geo, lv[r], rdm));
     *dm = rdm;
   }
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
@@ -327,9 +379,19 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
   PetscCall(SgMeshCheckDM(comm, file ? fname : "(box)", *dm));
   {
-    PetscBool nested;
-    PetscCall(MeshRefineNested(prefix, dm, &nested));
+    PetscBool  nested;
+    SgGeometry geo                       = NULL;
+    char       gfile[PETSC_MAX_PATH_LEN] = "";
+    PetscBool  gset                      = PETSC_FALSE;
+    PetscOptionsBegin(comm, prefix, "Refined boundary on the geometry", NULL);
+    PetscCall(PetscOptionsString("-dm_refine_geometry", "CAD file (.geo, .step, .brep) of the mesh: after each refinement (-dm_refine), the vertices of the boundary faces whose \"Face Sets\" value is a physical group of the file move to the closest point of its surfaces (2D: curves)", NULL, gfile, gfile, sizeof(gfile), &gset));
+    PetscOptionsEnd();
+    PetscCheck(!gset || gfile[0], comm, PETSC_ERR_USER_INPUT, "-%sdm_refine_geometry is given without a file", prefix ? prefix : "");
+    if (gset) PetscCall(SgGeometryCreate(*dm, prefix, gfile, &geo));
+    PetscCall(MeshRefineNested(prefix, geo, dm, &nested));
     if (!nested) PetscCall(DMSetFromOptions(*dm));
+    if (!nested && geo) PetscCall(SgGeometryCheck(geo, *dm, NULL)); /* not refined (-dm_refine 0) */
+    PetscCall(SgGeometryDestroy(&geo));
   }
   {
     /* the assembly and the energy visit every local cell once: cells shared by an overlap would count twice */

@@ -216,7 +216,7 @@ PetscErrorCode SgGMGInterpolations(SgSSN s, PetscInt *n, Mat **P)
   if (!pair) PetscCall(SgFrameGetGlobalRotation(s->frame, &Rg));
   for (PetscInt l = 1; l <= L; l++) {
     PetscInt *map, bad;
-    PetscCall(SgMeshRefinementMap(dmc[l - 1], &m[l - 1], &m[l], prefix, &map, &bad));
+    PetscCall(SgMeshRefinementMap(dmc[l - 1], l < L ? dmc[l] : dm, &m[l - 1], &m[l], prefix, &map, &bad));
     PetscCheck(!bad, s->comm, PETSC_ERR_SUP, "-ssn_pc_truncated_mg_interp geometric: the mesh refined %" PetscInt_FMT " times fewer, refined once, is not the next level's mesh vertex by vertex (%" PetscInt_FMT " vertices differ): the refinement does not nest here; use -ssn_pc_truncated_mg_interp amg", L - l + 1, bad);
     PetscCall(Interpolation(s->comm, &m[l - 1], &m[l], map, l == L && !pair ? s->frame : NULL, Rg, s->n, s->vert, &(*P)[l]));
     PetscCall(PetscFree(map));
