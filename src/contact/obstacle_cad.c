@@ -626,7 +626,7 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscInt      n = o->dim;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &fileset));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", cad->file, sizeof(cad->file), &fileset));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-obstacle_cad_translation", "Translation of the CAD model, x,y[,z]", 3, cad->shift, &n, &set));
   PetscCheck(!set || n == o->dim, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, n, o->dim);
   for (PetscInt k = 0; k < o->dim; k++) PetscCheck(PetscIsNormalReal(cad->shift[k]) || cad->shift[k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: entry %" PetscInt_FMT " is %g, must be finite", k, (double)cad->shift[k]);
