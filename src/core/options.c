@@ -30,10 +30,11 @@ PetscErrorCode SgOptionsFileName(PetscOptionItems *PetscOptionsObject, const cha
   PetscBool flg;
 
   PetscFunctionBeginUser;
-  SgValidPointer(PetscOptionsObject, 1);
-  SgValidPointer(opt, 2);
+  PetscCheck(PetscOptionsObject, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsFileName: argument 1 (PetscOptionsObject) is NULL: call it between PetscOptionsBegin and PetscOptionsEnd");
+  PetscCheck(opt && opt[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsFileName: argument 2 (the option's name) is NULL or empty");
   SgValidPointer(text, 3);
   SgValidPointer(file, 4);
+  PetscCheck(len > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgOptionsFileName: the buffer for the file name has length 0");
   PetscCall(PetscSNPrintf(help, sizeof(help), "%s (none: no file)", text));
   PetscCall(PetscStrncpy(def, file[0] ? file : "none", sizeof(def)));
   PetscCall(PetscOptionsString(opt, help, NULL, def, file, len, &flg));
