@@ -177,12 +177,12 @@ static PetscErrorCode OutputOptions(MPI_Comm comm, Output *o)
   PetscCall(PetscMemzero(o, sizeof(*o)));
   o->magnification = 20;
   PetscOptionsBegin(comm, NULL, "Output", NULL);
-  PetscCall(PetscOptionsString("-output_file", "HDF5 result file (fields for ParaView; an .xmf file is written beside it)", NULL, o->outfile, o->outfile, sizeof(o->outfile), NULL));
-  PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, o->sumfile, o->sumfile, sizeof(o->sumfile), NULL));
-  PetscCall(PetscOptionsString("-history_file", "CSV history: one row per SSN iteration and per outer step", NULL, o->histfile, o->histfile, sizeof(o->histfile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-output_file", "HDF5 result file (fields for ParaView; an .xmf file is written beside it)", o->outfile, sizeof(o->outfile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-summary_file", "JSON summary of the run", o->sumfile, sizeof(o->sumfile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-history_file", "CSV history: one row per SSN iteration and per outer step", o->histfile, sizeof(o->histfile), NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-output_magnification", "Displacement magnification stored for the pictures", &o->magnification, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-quiet", "Print the results only: neither the settings nor a line per outer step (-cont_monitor false)", &o->quiet, NULL));
-  PetscCall(PetscOptionsString("-load_curve_file", "CSV load-displacement curve: one row per load step (with -load_steps)", NULL, o->curvefile, o->curvefile, sizeof(o->curvefile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-load_curve_file", "CSV load-displacement curve: one row per load step (with -load_steps)", o->curvefile, sizeof(o->curvefile), NULL));
   PetscOptionsEnd();
   PetscCheck(PetscIsNormalReal(o->magnification) && o->magnification > 0, comm, PETSC_ERR_USER_INPUT, "-output_magnification: must be positive and finite, got %g", (double)o->magnification);
   /* refuse unwritable locations before any work is done */
@@ -327,7 +327,7 @@ static PetscErrorCode CheckFileOptions(MPI_Comm comm)
     PetscBool   set;
     size_t      len;
     PetscCall(PetscOptionsFindPair(NULL, NULL, opt, &val, &set));
-    if (!set || !val || !val[0]) continue;
+    if (!set || !val || !val[0] || SgFileNameIsNone(val)) continue; /* no file */
     PetscCall(PetscStrlen(val, &len));
     PetscCheck(len < PETSC_MAX_PATH_LEN - 6, comm, PETSC_ERR_USER_INPUT, "%s: the file name is %zu characters long, at most %d are supported", opt, len, PETSC_MAX_PATH_LEN - 7);
     if (k < 3) PetscCall(SgFileCheckInput(comm, opt, val));

@@ -35,6 +35,10 @@ PetscErrorCode SgOptionsRealValue(PetscOptionItems *, const char[], const char[]
 PetscErrorCode SgOptionsIntValue(PetscOptionItems *, const char[], const char[], PetscInt *, PetscBool *);
 PetscErrorCode SgOptionsBoolValue(PetscOptionItems *, const char[], const char[], PetscBool *, PetscBool *);
 PetscErrorCode SgOptionsName(const char[], const char[], char[], size_t);
+/* A file name: "none" (the documented default) is no file (name[0] = 0, *set false), as when the option is not
+   given, so that a command line turns off a file that an options file names. */
+PetscErrorCode SgOptionsFileName(PetscOptionItems *, const char[], const char[], char[], size_t, PetscBool *);
+PetscBool      SgFileNameIsNone(const char[]);
 
 /* Safe result files: a result is written to <name>.part and renamed when complete; these refuse, before any work, a
    location that cannot be written or is one of the run's inputs, and remove unfinished files on a fatal signal. */

@@ -89,6 +89,7 @@ PetscErrorCode          SgGmshCheckFile(MPI_Comm, const char[]); /* gmshcheck.c:
    geometry of -dm_refine_geometry */
 typedef struct _n_SgGeometry *SgGeometry;
 PetscErrorCode                SgGmshStart(MPI_Comm, PetscBool);
+PetscErrorCode                SgGmshClosestPoint(int, int, const double[3], double[3], double[2], PetscBool *);
 void                          SgGmshError(char[], size_t);
 PetscErrorCode                SgGeometryCreate(DM, const char[], const char[], SgGeometry *);
 PetscErrorCode                SgGeometrySnap(SgGeometry, DM, DM);

@@ -468,6 +468,7 @@ static PetscErrorCode CasesOptions(void)
   WRONG(SgOptionsRealValue(NULL, "-misuse_value", "help", &r1, NULL), PETSC_ERR_ARG_NULL, "PetscOptionsBegin");
   WRONG(SgOptionsIntValue(NULL, "-misuse_value", "help", &i1, NULL), PETSC_ERR_ARG_NULL, "PetscOptionsBegin");
   WRONG(SgOptionsBoolValue(NULL, "-misuse_value", "help", &b, NULL), PETSC_ERR_ARG_NULL, "PetscOptionsBegin");
+  WRONG(SgOptionsFileName(NULL, "-misuse_file", "help", name, sizeof(name), NULL), PETSC_ERR_ARG_NULL, "PetscOptionsBegin");
   WRONG(SgOptionsName(NULL, NULL, name, sizeof(name)), PETSC_ERR_ARG_NULL, "SgOptionsName");
   WRONG(SgOptionsName(NULL, "-x", NULL, sizeof(name)), PETSC_ERR_ARG_NULL, "SgOptionsName");
   WRONG(SgOptionsName(NULL, "-x", name, 0), PETSC_ERR_ARG_SIZ, "length 0");
@@ -476,6 +477,9 @@ static PetscErrorCode CasesOptions(void)
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "misuse", NULL);
   n = 1;
   WRONG(SgOptionsIntList(PetscOptionsObject, NULL, "help", 3, iv, &n, NULL), PETSC_ERR_ARG_NULL, "option's name");
+  WRONG(SgOptionsFileName(PetscOptionsObject, NULL, "help", name, sizeof(name), NULL), PETSC_ERR_ARG_NULL, "option's name");
+  WRONG(SgOptionsFileName(PetscOptionsObject, "-misuse_file", "help", NULL, sizeof(name), NULL), PETSC_ERR_ARG_NULL, "SgOptionsFileName");
+  WRONG(SgOptionsFileName(PetscOptionsObject, "-misuse_file", "help", name, 0, NULL), PETSC_ERR_ARG_SIZ, "length 0");
   WRONG(SgOptionsIntList(PetscOptionsObject, "-misuse_list", "help", 3, NULL, &n, NULL), PETSC_ERR_ARG_NULL, "array");
   WRONG(SgOptionsIntList(PetscOptionsObject, "-misuse_list", "help", 3, iv, NULL, NULL), PETSC_ERR_ARG_NULL, "count");
   WRONG(SgOptionsIntList(PetscOptionsObject, "-misuse_list", "help", 0, iv, &n, NULL), PETSC_ERR_ARG_OUTOFRANGE, "entries");

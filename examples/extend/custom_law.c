@@ -109,8 +109,8 @@ int main(int argc, char **argv)
   comm = PETSC_COMM_WORLD;
   PetscCall(SgContactLawRegister("tresca_x", LawCreate_TrescaX)); /* before any problem reads -friction_type */
   PetscOptionsBegin(comm, NULL, "custom_law: a friction law of one's own", NULL);
-  PetscCall(PetscOptionsString("-summary_file", "JSON summary of the run", NULL, sumfile, sumfile, sizeof(sumfile), NULL));
-  PetscCall(PetscOptionsString("-output_file", "HDF5 fields of the result (the law's too: traction, slip, state)", NULL, outfile, outfile, sizeof(outfile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-summary_file", "JSON summary of the run", sumfile, sizeof(sumfile), NULL));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-output_file", "HDF5 fields of the result (the law's too: traction, slip, state)", outfile, sizeof(outfile), NULL));
   PetscOptionsEnd();
   PetscCall(SgProblemCreate(comm, &prob));
   PetscCall(SgProblemSetFromOptions(prob));

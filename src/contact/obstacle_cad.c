@@ -88,6 +88,17 @@ static PetscErrorCode CadRefuseMeshFile(SgObstacle o, const char file[])
   PetscFunctionReturn(0);
 }
 
+/* gmsh's closest point c to x on the obstacle's entity tag (and its parameters, as SgGmshClosestPoint's) */
+static PetscErrorCode CadClosest(SgObstacle o, const Obstacle_CAD *cad, int tag, const double x[3], double c[3], double par[2])
+{
+  PetscBool found;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgGmshClosestPoint((int)o->dim - 1, tag, x, c, par, &found));
+  PetscCheck(found, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, tag);
+  PetscFunctionReturn(0);
+}
+
 /* The file read, checked and tessellated; errors name the option and the file. */
 static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
 {
@@ -163,15 +174,11 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   for (size_t k = 0; k < nents; k += 2) cad->maxent = PetscMax(cad->maxent, ents[k + 1]);
   PetscCall(PetscCalloc1(cad->maxent + 1, &cad->dev));
   for (PetscInt e = 0; e < cad->nel; e++) {
-    double g[3] = {0, 0, 0}, *c = NULL, *par = NULL, r = 0;
-    size_t nc, npar;
+    double g[3] = {0, 0, 0}, c[3], r = 0;
     for (PetscInt a = 0; a < nv; a++)
       for (PetscInt q = 0; q < 3; q++) g[q] += cad->xyz[(e * nv + a) * 3 + q] / nv;
-    gmshModelGetClosestPoint((int)sdim, cad->tag[e], g, 3, &c, &nc, &par, &npar, &ierr);
-    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, cad->tag[e]);
+    PetscCall(CadClosest(o, cad, cad->tag[e], g, c, NULL));
     for (PetscInt q = 0; q < 3; q++) r += PetscSqr(g[q] - c[q]);
-    gmshFree(c);
-    if (par) gmshFree(par);
     cad->dev[cad->tag[e]] = PetscMax(cad->dev[cad->tag[e]], PetscSqrtReal(r));
   }
   gmshFree(ntags);
@@ -181,6 +188,14 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   PetscCheck(cad->nel > 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: gmsh made no %s of the obstacle's %s", cad->file, dim == 3 ? "triangles" : "segments", dim == 3 ? "surfaces" : "curves");
   PetscCall(PetscInfo(NULL, "CAD obstacle %s: %" PetscInt_FMT " %s (size %g), %s\n", cad->file, cad->nel, dim == 3 ? "triangles" : "segments", (double)cad->msize, cad->solid ? "solid" : "sheet"));
   PetscFunctionReturn(0);
+}
+
+/* c = a x b */
+static void Cross3(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 /* The line x + t n against the plane of element v: *t, and how far outside the element the crossing lies
@@ -202,17 +217,13 @@ static PetscBool RayElement(PetscInt dim, const double *v, const double x[], con
       e2[k] = v[6 + k] - v[k];
       s[k]  = x[k] - v[k];
     }
-    p[0] = n[1] * e2[2] - n[2] * e2[1];
-    p[1] = n[2] * e2[0] - n[0] * e2[2];
-    p[2] = n[0] * e2[1] - n[1] * e2[0];
+    Cross3(n, e2, p);
     for (int k = 0; k < 3; k++) {
       det += e1[k] * p[k];
       h += e1[k] * e1[k] + e2[k] * e2[k];
     }
     if (PetscAbsReal(det) <= 1e-14 * h) return PETSC_FALSE;
-    q[0] = s[1] * e1[2] - s[2] * e1[1];
-    q[1] = s[2] * e1[0] - s[0] * e1[2];
-    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    Cross3(s, e1, q);
     for (int k = 0; k < 3; k++) {
       u += s[k] * p[k];
       w += n[k] * q[k];
@@ -256,9 +267,7 @@ static void ClosestElement(PetscInt dim, const double *v, const double p[3], dou
     e1[k] = v[3 + k] - v[k];
     e2[k] = v[6 + k] - v[k];
   }
-  m[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  m[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  m[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  Cross3(e1, e2, m);
   for (int k = 0; k < 3; k++) {
     mm += m[k] * m[k];
     h += (p[k] - v[k]) * m[k];
@@ -315,22 +324,18 @@ static int CompareHits(const void *a, const void *b)
    gmsh's projection (its closest point comes no nearer in 3 steps). */
 static PetscErrorCode Refine(SgObstacle o, Obstacle_CAD *cad, int tag, const double x[], const double n[], double *t, double *rfinal)
 {
-  int    sdim = (int)o->dim - 1, ierr, stall = 0;
+  int    stall = 0;
   double t0 = *t, tt = t0, tbest = t0, rbest = PETSC_MAX_REAL, a = -PETSC_MAX_REAL, b = PETSC_MAX_REAL;
 
   PetscFunctionBeginUser;
   for (int it = 0; it < 60; it++) {
-    double y[3], *c = NULL, *par = NULL, r = 0, rn = 0, tn;
-    size_t nc, npar;
+    double y[3], c[3], r = 0, rn = 0, tn;
     for (int k = 0; k < 3; k++) y[k] = x[k] + tt * n[k];
-    gmshModelGetClosestPoint(sdim, tag, y, 3, &c, &nc, &par, &npar, &ierr);
-    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, tag);
+    PetscCall(CadClosest(o, cad, tag, y, c, NULL));
     for (int k = 0; k < 3; k++) {
       r += PetscSqr(y[k] - c[k]);
       rn += (y[k] - c[k]) * n[k];
     }
-    gmshFree(c);
-    if (par) gmshFree(par);
     r = PetscSqrtReal(r);
     cad->nnewton++;
     if (r < 0.5 * rbest) stall = 0;
@@ -489,7 +494,7 @@ static PetscBool InsideSolid(Obstacle_CAD *cad, PetscInt dim, const double x[3])
 static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], const PetscReal xb[], double z[3], double *h, int *btag_, double bpar[2])
 {
   PetscInt  dim  = o->dim;
-  int       sdim = (int)dim - 1, ierr, btag = -1, ntag = 0, tags[64];
+  int       btag = -1, ntag = 0, tags[64];
   double    q[3], zt[3] = {0, 0, 0}, dbest = PETSC_MAX_REAL, dt = PETSC_MAX_REAL, tol = 1e-9 * cad->len, z2[3] = {0, 0, 0}, d2 = PETSC_MAX_REAL;
   PetscBool found = PETSC_FALSE;
 
@@ -511,13 +516,10 @@ static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], c
     for (int j = 0; j < ntag && !seen; j++) seen = (PetscBool)(tags[j] == tag);
     if (!seen) tags[ntag++] = tag;
   }
-  for (int j = 0; j < ntag; j++) { /* each made exact on its CAD entity */
-    double *c = NULL, *par = NULL, d, y[3];
-    size_t  nc, npar;
-    gmshModelGetClosestPoint(sdim, tags[j], x, 3, &c, &nc, &par, &npar, &ierr);
-    PetscCheck(!ierr && nc == 3, o->comm, PETSC_ERR_LIB, "-obstacle_cad_file %s: gmsh found no closest point on entity %d", cad->file, tags[j]);
+  for (int j = 0; j < ntag; j++) {               /* each made exact on its CAD entity */
+    double d, y[3], par[2] = {bpar[0], bpar[1]}; /* gmsh's count of parameters: the rest kept */
+    PetscCall(CadClosest(o, cad, tags[j], x, y, par));
     cad->nnewton++;
-    for (int k = 0; k < 3; k++) y[k] = c[k];
     d = Dist3(x, y);
     if (DistTessellation(cad, dim, tags[j], y) <= 4 * cad->dev[tags[j]] + tol) {
       if (d < dbest) {
@@ -528,15 +530,13 @@ static PetscErrorCode ClosestCAD(SgObstacle o, Obstacle_CAD *cad, double x[3], c
         dbest = d;
         btag  = tags[j];
         for (int k = 0; k < 3; k++) z[k] = y[k];
-        for (size_t k = 0; k < npar && k < 2; k++) bpar[k] = par[k];
+        for (int k = 0; k < 2; k++) bpar[k] = par[k];
         found = PETSC_TRUE;
       } else if (d < d2) {
         d2 = d;
         for (int k = 0; k < 3; k++) z2[k] = y[k];
       }
     }
-    gmshFree(c);
-    if (par) gmshFree(par);
   }
   if (!found || dbest > dt + 4 * cad->dev[btag] + tol) { /* an edge or corner: the tessellation's point */
     btag  = -1;
@@ -626,7 +626,7 @@ static PetscErrorCode SetFromOptions_CAD(SgObstacle o, PetscOptionItems *PetscOp
   PetscInt      n = o->dim;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsString("-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", NULL, cad->file, cad->file, sizeof(cad->file), &fileset));
+  PetscCall(SgOptionsFileName(PetscOptionsObject, "-obstacle_cad_file", "CAD file of the obstacle (.geo, .step, .brep; read by gmsh), or a triangulated surface: STL (ASCII or binary) or gmsh ASCII .msh (triangles in 3D, line segments in z = 0 in 2D), closed or open, consistently oriented, its outside where the triangle normals point (a segment a->b faces (b-a) turned clockwise)", cad->file, sizeof(cad->file), &fileset));
   PetscCall(SgOptionsRealList(PetscOptionsObject, "-obstacle_cad_translation", "Translation of the CAD model, x,y[,z]", 3, cad->shift, &n, &set));
   PetscCheck(!set || n == o->dim, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: got %" PetscInt_FMT " numbers, need %" PetscInt_FMT, n, o->dim);
   for (PetscInt k = 0; k < o->dim; k++) PetscCheck(PetscIsNormalReal(cad->shift[k]) || cad->shift[k] == 0, o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_translation: entry %" PetscInt_FMT " is %g, must be finite", k, (double)cad->shift[k]);

@@ -15,6 +15,37 @@ PetscErrorCode SgOptionsName(const char prefix[], const char opt[], char name[],
   PetscFunctionReturn(0);
 }
 
+/* The value that names no file: the default documented for every file option. */
+PetscBool SgFileNameIsNone(const char name[])
+{
+  return (PetscBool)(name && !strcmp(name, "none"));
+}
+
+/* -opt as a file name into file[len] (its value on entry is the default): "none" is no file (file[0] = 0, *set
+   false), the same as leaving the option unset, so that the command line turns off a result file an options file
+   names; -help shows "none" for no file. An empty value stays empty and set (the caller's "given without a file"). */
+PetscErrorCode SgOptionsFileName(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], char file[], size_t len, PetscBool *set)
+{
+  char      help[2048], def[PETSC_MAX_PATH_LEN];
+  PetscBool flg;
+
+  PetscFunctionBeginUser;
+  PetscCheck(PetscOptionsObject, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsFileName: argument 1 (PetscOptionsObject) is NULL: call it between PetscOptionsBegin and PetscOptionsEnd");
+  PetscCheck(opt && opt[0], PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "SgOptionsFileName: argument 2 (the option's name) is NULL or empty");
+  SgValidPointer(text, 3);
+  SgValidPointer(file, 4);
+  PetscCheck(len > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "SgOptionsFileName: the buffer for the file name has length 0");
+  PetscCall(PetscSNPrintf(help, sizeof(help), "%s (none: no file)", text));
+  PetscCall(PetscStrncpy(def, file[0] ? file : "none", sizeof(def)));
+  PetscCall(PetscOptionsString(opt, help, NULL, def, file, len, &flg));
+  if (SgFileNameIsNone(file)) {
+    file[0] = 0;
+    flg     = PETSC_FALSE;
+  }
+  if (set) *set = flg;
+  PetscFunctionReturn(0);
+}
+
 /* The arguments of the readers: between PetscOptionsBegin and PetscOptionsEnd, an option name, n in [0, max] and
    room for max values */
 static PetscErrorCode CheckReaderArgs(PetscOptionItems *obj, const char opt[], PetscInt max, const void *vals, const PetscInt *n, const char fn[])

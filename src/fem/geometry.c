@@ -49,6 +49,29 @@ PetscErrorCode SgGmshStart(MPI_Comm comm, PetscBool verbose)
   PetscFunctionReturn(0);
 }
 
+/* gmsh's closest point cp to x on the entity (dim, tag) of the current model, with its first parametric coordinates
+   (param[k] for k < min(2, gmsh's count); param may be NULL); found: PETSC_FALSE if gmsh found none (NULL: an error) */
+PetscErrorCode SgGmshClosestPoint(int dim, int tag, const double x[3], double cp[3], double param[2], PetscBool *found)
+{
+  double   *c = NULL, *par = NULL;
+  size_t    nc = 0, npar = 0;
+  int       ierr;
+  PetscBool ok;
+
+  PetscFunctionBeginUser;
+  gmshModelGetClosestPoint(dim, tag, (double *)x, 3, &c, &nc, &par, &npar, &ierr);
+  ok = (PetscBool)(!ierr && nc == 3);
+  if (ok) {
+    for (int q = 0; q < 3; q++) cp[q] = c[q];
+    for (size_t k = 0; param && k < npar && k < 2; k++) param[k] = par[k];
+  }
+  if (c) gmshFree(c);
+  if (par) gmshFree(par);
+  if (found) *found = ok;
+  else PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_LIB, "gmsh found no closest point to (%g, %g, %g) on the entity of dimension %d, tag %d", x[0], x[1], x[2], dim, tag);
+  PetscFunctionReturn(0);
+}
+
 /* gmsh's last error message (or a general one) */
 void SgGmshError(char msg[], size_t len)
 {
@@ -190,14 +213,8 @@ static PetscBool Closest(int d, const int tags[], size_t n, const double x[3], d
       double hi[3];
       gmshModelGetBoundingBox(0, tags[e], &c[0], &c[1], &c[2], &hi[0], &hi[1], &hi[2], &ierr);
     } else {
-      double *cc = NULL, *par = NULL;
-      size_t  nc = 0, npar = 0;
-      gmshModelGetClosestPoint(d, tags[e], (double *)x, 3, &cc, &nc, &par, &npar, &ierr);
-      if (!ierr && nc == 3)
-        for (int q = 0; q < 3; q++) c[q] = cc[q];
-      else ierr = 1;
-      if (cc) gmshFree(cc);
-      if (par) gmshFree(par);
+      PetscBool found;
+      ierr = SgGmshClosestPoint(d, tags[e], x, c, NULL, &found) || !found; /* none: the next entity */
     }
     if (ierr) continue;
     for (int q = 0; q < 3; q++) r += (c[q] - x[q]) * (c[q] - x[q]);

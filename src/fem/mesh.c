@@ -384,7 +384,7 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
     char       gfile[PETSC_MAX_PATH_LEN] = "";
     PetscBool  gset                      = PETSC_FALSE;
     PetscOptionsBegin(comm, prefix, "Refined boundary on the geometry", NULL);
-    PetscCall(PetscOptionsString("-dm_refine_geometry", "CAD file (.geo, .step, .brep) of the mesh: after each refinement (-dm_refine), the vertices of the boundary faces whose \"Face Sets\" value is a physical group of the file move to the closest point of its surfaces (2D: curves)", NULL, gfile, gfile, sizeof(gfile), &gset));
+    PetscCall(SgOptionsFileName(PetscOptionsObject, "-dm_refine_geometry", "CAD file (.geo, .step, .brep) of the mesh: after each refinement (-dm_refine), the vertices of the boundary faces whose \"Face Sets\" value is a physical group of the file move to the closest point of its surfaces (2D: curves)", gfile, sizeof(gfile), &gset));
     PetscOptionsEnd();
     PetscCheck(!gset || gfile[0], comm, PETSC_ERR_USER_INPUT, "-%sdm_refine_geometry is given without a file", prefix ? prefix : "");
     if (gset) PetscCall(SgGeometryCreate(*dm, prefix, gfile, &geo));
