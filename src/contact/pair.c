@@ -406,7 +406,31 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(VecCreateMPI(p->comm, nloc, PETSC_DETERMINE, &p->D));
   PetscCall(VecDuplicate(p->D, &p->g0));
   PetscCall(VecCreateMPI(p->comm, nloc * dim, PETSC_DETERMINE, &p->N));
-  PetscCall(MatCreateAIJ(p->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, 16, NULL, 16, NULL, &Ms));
+  { /* Ms's rows: at most as many entries as the row has triplets on all ranks (counted in a Vec); 16 on every row of
+       the free vertices, most of them off the slave side, cost an allocation and a compression of them all */
+    Vec                cnt;
+    const PetscScalar *ca;
+    PetscInt           N, *dz, *oz;
+    PetscCall(VecDuplicate(p->D, &cnt));
+    PetscCall(VecSet(cnt, 0));
+    for (PetscInt k = 0; k < nM; k++) {
+      PetscInt r = work.blk[Mr[k]], c = mall.blk[Mc[k]];
+      if (r >= 0 && c >= 0) PetscCall(VecSetValue(cnt, r, 1.0, ADD_VALUES));
+    }
+    PetscCall(VecAssemblyBegin(cnt));
+    PetscCall(VecAssemblyEnd(cnt));
+    PetscCall(VecGetSize(cnt, &N));
+    PetscCall(PetscMalloc2(nloc + 1, &dz, nloc + 1, &oz));
+    PetscCall(VecGetArrayRead(cnt, &ca));
+    for (PetscInt j = 0; j < nloc; j++) {
+      PetscInt t = (PetscInt)PetscRealPart(ca[j]);
+      dz[j] = PetscMin(t, nloc), oz[j] = PetscMin(t, N - nloc);
+    }
+    PetscCall(VecRestoreArrayRead(cnt, &ca));
+    PetscCall(VecDestroy(&cnt));
+    PetscCall(MatCreateAIJ(p->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, 0, dz, 0, oz, &Ms));
+    PetscCall(PetscFree2(dz, oz));
+  }
   PetscCall(MatSetOption(Ms, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   for (PetscInt v = 0; v < ss.nv; v++) {
     PetscInt  b = work.blk[v], f = v / dim;
