@@ -337,8 +337,8 @@ static void GridCollect(Grid *g, const PetscReal lo[], const PetscReal hi[], Pet
    partner (Pair2D, Pair3D) has a point q = p + g n of the master facet with p on the slave facet and |g| <= dmax (the
    master point of the overlap's centre and the slave point it projects to along n): q lies in the swept box, and in
    the master facet's box. (The slave box grown by dmax in every direction, as before, held the same partners among
-   about 300 candidates per slave facet at 40,866 unknowns of the sphere on a block, against about 25 now (53,301 for 2,096).) The margin
-   covers a normal of length 1 +- rounding and the rounding of the boxes. */
+   about 300 candidates per slave facet at 40,866 unknowns of the sphere on a block, against about 25 now: 53,301 for
+   2,096 slave facets.) The margin covers a normal of length 1 +- rounding and the rounding of the boxes. */
 static PetscErrorCode GridQuery(Grid *g, const SgMortarSurface *s, PetscInt f, PetscReal dmax, PetscInt *n, PetscInt cand[])
 {
   const PetscInt   dim = s->dim;
