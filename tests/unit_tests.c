@@ -840,7 +840,7 @@ static PetscErrorCode TestMortarCase(SgSummary sum, const char prefix[], const T
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc5(ts->nv, &D, ts->nv, &g0, ts->nv, &w, ts->nv, &rs, dim * ts->nv, &lin));
-  PetscCall(SgMortarIntegrals(&s, &m, dmax, D, g0, &nM, &Mr, &Mc, &Mv, &area, NULL));
+  PetscCall(SgMortarIntegrals(&s, &m, dmax, PETSC_FALSE, D, g0, &nM, &Mr, &Mc, &Mv, &area, NULL));
   TestLumped(ts, w);
   PetscCall(PetscArrayzero(rs, ts->nv));
   PetscCall(PetscArrayzero(lin, dim * ts->nv));
@@ -986,7 +986,7 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscCall(SgElasticityGetMesh(el, &m));
   PetscCall(SgElasticityGetOperators(el, &K, NULL));
   dim = m->dim;
-  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, PETSC_FALSE, NULL, &pair));
+  PetscCall(SgContactPairCreate(el, &sl, &ms, dmax, PETSC_FALSE, PETSC_FALSE, NULL, &pair));
   /* Y = A x and T = a translation, in the free dofs */
   PetscCall(MatCreateVecs(K, &Y, NULL));
   PetscCall(VecDuplicate(Y, &T));

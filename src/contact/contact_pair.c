@@ -29,6 +29,13 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
     PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_normal is given without -contact_master_ids (two-body contact)");
     c->pairavg = (PetscBool)(k == 1);
   }
+  {
+    const char *const kinds[] = {"grid", "brute"};
+    PetscInt          k       = c->pairbrute ? 1 : 0;
+    PetscCall(PetscOptionsEList("-contact_pair_search", "Two bodies: how the mortar integrals find the master facets opposite a slave facet: grid (buckets over the master facets) or brute (every master facet against every slave facet: the reference, quadratic in the mesh size)", NULL, kinds, 2, kinds[k], &k, &set));
+    PetscCheck(!set || c->master.nids, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-contact_pair_search is given without -contact_master_ids (two-body contact)");
+    c->pairbrute = (PetscBool)(k == 1);
+  }
   if (!c->master.nids) PetscFunctionReturn(0);
   PetscCheck(!c->obnd.label[0] || !strcmp(c->obnd.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the obstacle's faces' label '%s' is not the contact part's '%s' (the faces are values of one label)", c->obnd.label, c->bnd.label);
   PetscCheck(!c->master.label[0] || !strcmp(c->master.label, c->bnd.label), PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "SgProblemSetBoundary: the master side's label '%s' is not the contact part's '%s' (both sides are values of one label)", c->master.label, c->bnd.label);
@@ -56,6 +63,7 @@ static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
 
 static PetscErrorCode PairBlocksProduct(SgContact, const PetscReal[], Mat *);
 
+
 /* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
    owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
    from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
@@ -77,7 +85,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
     PetscCall(SgElasticityGetDataScales(c->prob, NULL, NULL, NULL, NULL, &diam));
     c->pairdist = 0.1 * diam;
   }
-  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, c->pairavg, c->obnd.nids ? &obst : NULL, &c->pair));
+  PetscCall(SgContactPairCreate(c->prob, &c->bnd, &c->master, c->pairdist, c->pairavg, c->pairbrute, c->obnd.nids ? &obst : NULL, &c->pair));
   c->area = c->pair->area;
   PetscCall(MatGetOwnershipRange(c->pair->B, &rstart, &rend));
   nrow = rend - rstart;
@@ -113,6 +121,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(PetscFree(vof));
   /* the Jacobian's pattern: K's and B^T B's (with friction that of R^T diag(B_i) R with full dim x dim blocks B_i,
      which holds B^T B's: B = diag(D) N^T R) */
+  PetscCall(SgPairLogEvent(SG_PAIR_PATTERN, PETSC_TRUE));
   if (c->tangpart) PetscCall(PairBlocksProduct(c, NULL, &BtB));
   else PetscCall(MatTransposeMatMult(c->pair->B, c->pair->B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BtB));
   PetscCall(MatZeroEntries(BtB));
@@ -138,6 +147,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
     PetscCall(MatNullSpaceDestroy(&sp));
   }
   PetscCall(MatDestroy(&BtB));
+  PetscCall(SgPairLogEvent(SG_PAIR_PATTERN, PETSC_FALSE));
   PetscCall(VecCreateMPIWithArray(c->comm, 1, nrow * dim, PETSC_DETERMINE, NULL, &c->pw));
   PetscCall(VecDuplicate(c->pw, &c->pf));
   PetscCall(MatCreateVecs(c->pair->B, NULL, &c->pl));

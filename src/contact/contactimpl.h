@@ -204,7 +204,8 @@ struct _n_SgContact {
      the Jacobian's term gamma B^T diag(act / D) B. NULL pair: the obstacle's nodal conditions. */
   SgBoundary    master;
   PetscReal     pairdist;
-  PetscBool     pairavg; /* -contact_pair_normal average */
+  PetscBool     pairavg;   /* -contact_pair_normal average */
+  PetscBool     pairbrute; /* -contact_pair_search brute */
   SgContactPair pair;
   PetscInt     *prow;
   /* a rigid obstacle besides the pair (-contact_obstacle_ids, the faces that may touch it): its nodal conditions are

@@ -31,7 +31,9 @@ typedef struct {
    such a vertex is (a contact vertex of its own, or one left out).
    *area returns the covered measure of the slave surface. The *nM triplets are allocated (PetscFree each array); a
    pair (j, k) may appear several times: add them. */
-/* *search (may be NULL) reports the slave facets that got no partner within dmax (the bad-input checks of the pair):
+/* brute: every master facet is tried against every slave facet (the reference of the search: -contact_pair_search
+   brute); else a grid of buckets over the master facets finds the candidates (the same integrals, added in the same order).
+   *search (may be NULL) reports the slave facets that got no partner within dmax (the bad-input checks of the pair):
    nbeyond of them face a master facet farther than dmax ahead (the bodies apart), and overlap > 0 is the largest
    depth at which such a facet lies behind a facing master facet (the slave facet inside the master body: the bodies
    overlap), foverlap that facet (-1: none). */
@@ -41,4 +43,4 @@ typedef struct {
   PetscInt  nbeyond;
 } SgMortarSearch;
 
-PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search);
+PetscErrorCode SgMortarIntegrals(const SgMortarSurface *s, const SgMortarSurface *m, PetscReal dmax, PetscBool brute, PetscReal D[], PetscReal g0[], PetscInt *nM, PetscInt **Mrow, PetscInt **Mcol, PetscReal **Mval, PetscReal *area, SgMortarSearch *search);

@@ -3,6 +3,24 @@
    per rank for its slave facets and assembled into the free displacement's numbering. */
 #include "contact/pair.h"
 
+static PetscLogEvent pair_events[SG_PAIR_NEVENTS];
+static PetscBool     pair_registered = PETSC_FALSE;
+
+PetscErrorCode SgPairLogEvent(SgPairPhase ph, PetscBool begin)
+{
+  PetscFunctionBeginUser;
+  if (!pair_registered) {
+    const char *const names[SG_PAIR_NEVENTS] = {"SgPairCollect", "SgPairGather", "SgPairMortar", "SgPairCheck", "SgPairAssemble", "SgPairBuildB", "SgPairPattern"};
+    PetscClassId      cid;
+    PetscCall(PetscClassIdRegister("SgContactPair", &cid));
+    for (PetscInt k = 0; k < SG_PAIR_NEVENTS; k++) PetscCall(PetscLogEventRegister(names[k], cid, &pair_events[k]));
+    pair_registered = PETSC_TRUE;
+  }
+  if (begin) PetscCall(PetscLogEventBegin(pair_events[ph], 0, 0, 0, 0));
+  else PetscCall(PetscLogEventEnd(pair_events[ph], 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* The facets of one side on this rank: per facet its dim vertices' coordinates (x: dim * dim reals), its outward unit
    normal (nrm: dim), measure (meas) and the vertices' free blocks (blk: dim, -1 for a vertex without dofs). */
 typedef struct {
@@ -95,29 +113,44 @@ static PetscErrorCode SideSurface(PetscInt dim, const Side *s, SgMortarSurface *
 static PetscErrorCode BuildB(SgContactPair p, Mat Ms, PetscInt nloc, Vec free)
 {
   const PetscInt     dim = p->dim;
-  PetscInt           rstart, maxc = 0;
+  PetscInt           rstart, cstart, cend, *bd, *bo, *rd, *ro;
   const PetscScalar *Da, *Na;
 
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(Ms, &rstart, NULL));
-  for (PetscInt j = rstart; j < rstart + nloc; j++) {
-    PetscInt nc;
-    PetscCall(MatGetRow(Ms, j, &nc, NULL, NULL));
-    maxc = PetscMax(maxc, nc);
-    PetscCall(MatRestoreRow(Ms, j, &nc, NULL, NULL));
+  PetscCall(VecGetOwnershipRange(free, &cstart, &cend));
+  /* the exact row lengths (diagonal and off-diagonal blocks) of B and R: the rows of the slave vertices opposite the
+     master only (a preallocation of the longest row on every row of the free vertices cost a pass over them all) */
+  PetscCall(PetscCalloc4(nloc + 1, &bd, nloc + 1, &bo, nloc * dim + 1, &rd, nloc * dim + 1, &ro));
+  PetscCall(VecGetArrayRead(p->D, &Da));
+  PetscCall(VecGetArrayRead(p->N, &Na));
+  for (PetscInt j = 0; j < nloc; j++) {
+    const PetscInt    *cols;
+    const PetscScalar *n = Na + j * dim;
+    PetscInt           nc, row = rstart + j, nd = 1, no = 0;
+    PetscCall(MatGetRow(Ms, row, &nc, &cols, NULL));
+    if ((nc > 0 || PetscRealPart(Da[j]) != 0) && (n[0] != 0 || n[1] != 0 || (dim == 3 && n[2] != 0))) {
+      for (PetscInt k = 0; k < nc; k++) {
+        if (cols[k] * dim >= cstart && cols[k] * dim < cend) nd++;
+        else no++;
+      }
+      bd[j] = nd * dim, bo[j] = no * dim;
+      if (PetscRealPart(Da[j]) > 0)
+        for (PetscInt c = 0; c < dim; c++) rd[j * dim + c] = nd, ro[j * dim + c] = no;
+    }
+    PetscCall(MatRestoreRow(Ms, row, &nc, &cols, NULL));
   }
   PetscCall(MatCreate(p->comm, &p->B));
   PetscCall(MatSetSizes(p->B, nloc, nloc * dim, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetType(p->B, MATAIJ));
-  PetscCall(MatSeqAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL));
-  PetscCall(MatMPIAIJSetPreallocation(p->B, (maxc + 1) * dim, NULL, (maxc + 1) * dim, NULL));
+  PetscCall(MatSeqAIJSetPreallocation(p->B, 0, bd));
+  PetscCall(MatMPIAIJSetPreallocation(p->B, 0, bd, 0, bo));
   PetscCall(MatCreate(p->comm, &p->R));
   PetscCall(MatSetSizes(p->R, nloc * dim, nloc * dim, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetType(p->R, MATAIJ));
-  PetscCall(MatSeqAIJSetPreallocation(p->R, maxc + 1, NULL));
-  PetscCall(MatMPIAIJSetPreallocation(p->R, maxc + 1, NULL, maxc + 1, NULL));
-  PetscCall(VecGetArrayRead(p->D, &Da));
-  PetscCall(VecGetArrayRead(p->N, &Na));
+  PetscCall(MatSeqAIJSetPreallocation(p->R, 0, rd));
+  PetscCall(MatMPIAIJSetPreallocation(p->R, 0, rd, 0, ro));
+  PetscCall(PetscFree4(bd, bo, rd, ro));
   for (PetscInt j = 0; j < nloc; j++) {
     const PetscInt    *cols;
     const PetscScalar *vals;
@@ -318,13 +351,14 @@ static PetscErrorCode ObstacleRows(SgContactPair p, Mat Ms, PetscInt nloc, const
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, const SgPairObstacleRows *obst, SgContactPair *pair)
+PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, PetscBool brute, const SgPairObstacleRows *obst, SgContactPair *pair)
 {
   SgContactPair   p;
   DM              dm;
   const SgMesh   *m;
   Mat             K, Ms;
-  Side            sl, ml, mall;
+  Side            sl, ml, mall, sall, work;
+  PetscMPIInt     size, rank;
   SgMortarSurface ss, ms;
   SgMortarSearch  search;
   PetscInt        dim, nloc, *sfac, *mfac, nM, *Mr, *Mc;
@@ -339,34 +373,78 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   dim = p->dim = m->dim;
   PetscCall(MatGetLocalSize(K, &nloc, NULL));
   nloc /= dim;
+  PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_TRUE));
   PetscCall(SideCollect(dm, m, slave, &sl));
   PetscCall(SideCollect(dm, m, master, &ml));
+  PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_FALSE));
+  PetscCall(SgPairLogEvent(SG_PAIR_GATHER, PETSC_TRUE));
   PetscCall(SideGather(p->comm, dim, &ml, &mall));
-  PetscCall(SideSurface(dim, &sl, &ss, &sfac));
+  /* the slave facets of all ranks in equal shares: the partition need not spread the slave surface (the sphere on a
+     block on 2 ranks: 64 and 2,032 of its facets at 40,866 unknowns), and the mortar integrals are a slave facet's
+     work; its rows go to the ranks that own them (D, g0, N and M by ADD_VALUES) */
+  PetscCallMPI(MPI_Comm_size(p->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(p->comm, &rank));
+  if (size > 1) {
+    PetscInt f0, f1;
+    PetscCall(SideGather(p->comm, dim, &sl, &sall));
+    f0 = (PetscInt)((PetscInt64)sall.nf * rank / size), f1 = (PetscInt)((PetscInt64)sall.nf * (rank + 1) / size);
+    work.nf = f1 - f0, work.x = sall.x + f0 * dim * dim, work.nrm = sall.nrm + f0 * dim, work.meas = sall.meas + f0, work.blk = sall.blk + f0 * dim;
+  } else work = sl;
+  PetscCall(SgPairLogEvent(SG_PAIR_GATHER, PETSC_FALSE));
+  PetscCall(SgPairLogEvent(SG_PAIR_MORTAR, PETSC_TRUE));
+  PetscCall(SideSurface(dim, &work, &ss, &sfac));
   PetscCall(SideSurface(dim, &mall, &ms, &mfac));
   PetscCall(PetscMalloc2(ss.nv + 1, &Dl, ss.nv + 1, &gl));
-  PetscCall(SgMortarIntegrals(&ss, &ms, dmax, Dl, gl, &nM, &Mr, &Mc, &Mv, &p->area, &search));
+  PetscCall(SgMortarIntegrals(&ss, &ms, dmax, brute, Dl, gl, &nM, &Mr, &Mc, &Mv, &p->area, &search));
+  PetscCall(SgPairLogEvent(SG_PAIR_MORTAR, PETSC_FALSE));
+  PetscCall(SgPairLogEvent(SG_PAIR_CHECK, PETSC_TRUE));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->area, 1, MPIU_REAL, MPI_SUM, p->comm));
-  PetscCall(CheckSearch(p->comm, dim, &sl, slave, master, dmax, &search, &p->nbeyond));
+  PetscCall(CheckSearch(p->comm, dim, &work, slave, master, dmax, &search, &p->nbeyond));
+  PetscCall(SgPairLogEvent(SG_PAIR_CHECK, PETSC_FALSE));
 
+  PetscCall(SgPairLogEvent(SG_PAIR_ASSEMBLE, PETSC_TRUE));
   PetscCall(VecCreateMPI(p->comm, nloc, PETSC_DETERMINE, &p->D));
   PetscCall(VecDuplicate(p->D, &p->g0));
   PetscCall(VecCreateMPI(p->comm, nloc * dim, PETSC_DETERMINE, &p->N));
-  PetscCall(MatCreateAIJ(p->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, 16, NULL, 16, NULL, &Ms));
+  { /* Ms's rows: at most as many entries as the row has triplets on all ranks (counted in a Vec); 16 on every row of
+       the free vertices, most of them off the slave side, cost an allocation and a compression of them all */
+    Vec                cnt;
+    const PetscScalar *ca;
+    PetscInt           N, *dz, *oz;
+    PetscCall(VecDuplicate(p->D, &cnt));
+    PetscCall(VecSet(cnt, 0));
+    for (PetscInt k = 0; k < nM; k++) {
+      PetscInt r = work.blk[Mr[k]], c = mall.blk[Mc[k]];
+      if (r >= 0 && c >= 0) PetscCall(VecSetValue(cnt, r, 1.0, ADD_VALUES));
+    }
+    PetscCall(VecAssemblyBegin(cnt));
+    PetscCall(VecAssemblyEnd(cnt));
+    PetscCall(VecGetSize(cnt, &N));
+    PetscCall(PetscMalloc2(nloc + 1, &dz, nloc + 1, &oz));
+    PetscCall(VecGetArrayRead(cnt, &ca));
+    for (PetscInt j = 0; j < nloc; j++) {
+      PetscInt t = (PetscInt)PetscRealPart(ca[j]);
+      dz[j] = PetscMin(t, nloc), oz[j] = PetscMin(t, N - nloc);
+    }
+    PetscCall(VecRestoreArrayRead(cnt, &ca));
+    PetscCall(VecDestroy(&cnt));
+    PetscCall(MatCreateAIJ(p->comm, nloc, nloc, PETSC_DETERMINE, PETSC_DETERMINE, 0, dz, 0, oz, &Ms));
+    PetscCall(PetscFree2(dz, oz));
+  }
   PetscCall(MatSetOption(Ms, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   for (PetscInt v = 0; v < ss.nv; v++) {
-    PetscInt  b = sl.blk[v], f = v / dim;
+    PetscInt  b = work.blk[v], f = v / dim;
     PetscReal wn[3];
     if (b < 0) continue; /* a slave vertex without dofs has no row */
     PetscCall(VecSetValue(p->D, b, Dl[v], ADD_VALUES));
     PetscCall(VecSetValue(p->g0, b, gl[v], ADD_VALUES));
     for (PetscInt c = 0; c < dim; c++) {
-      wn[c] = sl.meas[f] / dim * sl.nrm[f * dim + c];
+      wn[c] = work.meas[f] / dim * work.nrm[f * dim + c];
       PetscCall(VecSetValue(p->N, b * dim + c, wn[c], ADD_VALUES));
     }
   }
   for (PetscInt k = 0; k < nM; k++) {
-    PetscInt r = sl.blk[Mr[k]], c = mall.blk[Mc[k]];
+    PetscInt r = work.blk[Mr[k]], c = mall.blk[Mc[k]];
     if (r < 0 || c < 0) continue; /* a fixed master vertex does not move */
     PetscCall(MatSetValue(Ms, r, c, Mv[k], ADD_VALUES));
   }
@@ -378,6 +456,8 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(VecAssemblyEnd(p->N));
   PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
+  PetscCall(SgPairLogEvent(SG_PAIR_ASSEMBLE, PETSC_FALSE));
+  PetscCall(SgPairLogEvent(SG_PAIR_BUILDB, PETSC_TRUE));
   if (obst) PetscCall(ObstacleRows(p, Ms, nloc, obst));
   if (average) PetscCall(AverageNormals(p, Ms, &ml));
   {
@@ -395,6 +475,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
     PetscCall(BuildB(p, Ms, nloc, free));
     PetscCall(VecDestroy(&free));
   }
+  PetscCall(SgPairLogEvent(SG_PAIR_BUILDB, PETSC_FALSE));
 
   PetscCall(MatDestroy(&Ms));
   PetscCall(PetscFree(Mr));
@@ -406,6 +487,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SideDestroy(&sl));
   PetscCall(SideDestroy(&ml));
   PetscCall(SideDestroy(&mall));
+  if (size > 1) PetscCall(SideDestroy(&sall));
   *pair = p;
   PetscFunctionReturn(0);
 }

@@ -48,6 +48,23 @@ typedef struct {
 /* slave, master: the two sides (label and values); dmax: the largest distance along the slave normal at which a
    master facet is a partner (larger than the initial gap, smaller than the bodies' thickness); average: the rows'
    directions the mean of the slave's normal and the master's opposite one (-contact_pair_normal average), else the
-   slave's; obst: rows against a rigid obstacle, or NULL */
-PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, const SgPairObstacleRows *obst, SgContactPair *);
+   slave's; brute: the mortar search's reference (SgMortarIntegrals); obst: rows against a rigid obstacle, or NULL */
+PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, PetscBool brute, const SgPairObstacleRows *obst, SgContactPair *);
 PetscErrorCode SgContactPairDestroy(SgContactPair *);
+
+/* The phases of the pair's set-up as log events (-log_view; registered on first use): SgPairCollect (the local slave
+   and master facets' geometry), SgPairGather (the master surface on every rank), SgPairMortar (the search and the
+   mortar integrals of this rank's slave facets), SgPairCheck (the search's report, all ranks), SgPairAssemble (D, g0,
+   the normals and M into the free numbering), SgPairBuildB (the normals' averaging and normalization, B and R),
+   SgPairPattern (K's pattern extended by B^T B, contact_pair.c) */
+typedef enum {
+  SG_PAIR_COLLECT,
+  SG_PAIR_GATHER,
+  SG_PAIR_MORTAR,
+  SG_PAIR_CHECK,
+  SG_PAIR_ASSEMBLE,
+  SG_PAIR_BUILDB,
+  SG_PAIR_PATTERN,
+  SG_PAIR_NEVENTS
+} SgPairPhase;
+PetscErrorCode SgPairLogEvent(SgPairPhase, PetscBool begin);
