@@ -575,8 +575,14 @@ PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
-PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                                /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                             /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);    /* keep the preconditioner while gamma and the active set stay */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
+typedef enum {
+  SG_SSN_MARGIN_OFF,
+  SG_SSN_MARGIN_START,
+  SG_SSN_MARGIN_ON
+} SgSSNMargin;
+PetscErrorCode SgSSNCountSetChangesMargin(SgSSN, Vec, SgSSNMargin, PetscInt *);          /* the same for a linear solve's iterates: a change counted only beyond its change since the last one */
 PetscErrorCode SgSSNPrintHelp(MPI_Comm, const char[]);                                   /* -help without a problem: the SSN's options */
 PetscErrorCode SgSSNKSPVectorToGlobal(SgSSN, Vec);                                       /* a vector of the KSP's solve (in the contact frames) back to the original coordinates */
 PetscErrorCode SgSSNGetFriction(SgSSN, PetscReal **, const PetscReal **, const char **); /* lamhat_T, lam_T, states */

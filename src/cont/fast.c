@@ -20,6 +20,7 @@ typedef struct {
   PetscReal start_rtol; /* tolerance of the unconstrained start */
   PetscReal loose;      /* the early CG stop is tested once ||r|| <= loose ||r_0|| */
   PetscBool early;      /* CG stops when the prospective active set changes */
+  PetscBool margin;     /* ... counting a change only beyond its change since the last iterate */
   PetscBool kkt_stop;   /* CG stops when the prospective iterate meets the KKT tolerance of (P) */
   PetscInt  max_it;     /* SSN steps per (P_gamma) */
   /* run time */
@@ -51,6 +52,7 @@ static PetscErrorCode SetFromOptions_Fast(SgCont ct, PetscOptionItems *PetscOpti
   }
   PetscCall(SgOptionsRealRenamed(PetscOptionsObject, "-cont_fast_ksp_loose", "-fast_ksp_loose", "CG stops when the prospective active set changes, tested once ||r|| <= this ||r_0||", &f->loose, &o3));
   PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_fast_early", "-fast_early", "Stop CG when its prospective iterate changes the active set", &f->early, &o4));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_fast_early_margin", "The early CG stop counts a change of the active set only where the vertex's decision value lamhat + gamma g exceeds its change since the last CG iterate", &f->margin, NULL));
   PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_fast_ksp_kkt", "-fast_ksp_kkt", "Stop CG when its prospective iterate keeps the active set and meets the KKT tolerance of (P)", &f->kkt_stop, &o5));
   PetscCall(SgOptionsIntRenamed(PetscOptionsObject, "-cont_fast_max_it", "-fast_max_it", "Maximum number of SSN steps per (P_gamma)", &f->max_it, &o6));
   PetscCheck(f->gamma >= 0 && !PetscIsInfOrNanReal(f->gamma), ct->comm, PETSC_ERR_USER_INPUT, "%s: must be >= 0 and finite, got %g", o1, (double)f->gamma);
@@ -83,17 +85,21 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
     if (*reason > 0) f->last_full = PETSC_TRUE;
     PetscFunctionReturn(0);
   }
-  if ((f->early || f->kkt_stop) && it > 0 && rnorm <= f->loose * f->rnorm0) {
-    Vec      x, y;
-    PetscInt changed;
-    SNES     snes;
+  if (it == 0 && f->early && f->margin) PetscCall(SgSSNCountSetChangesMargin(s, NULL, SG_SSN_MARGIN_START, NULL));
+  /* with the margin, the iterates from 10 loose ||r_0|| on give the decision values the first test compares with */
+  if ((f->early || f->kkt_stop) && it > 0 && rnorm <= (f->early && f->margin ? 10 : 1) * f->loose * f->rnorm0) {
+    Vec       x, y;
+    PetscInt  changed;
+    SNES      snes;
+    PetscBool test = (PetscBool)(rnorm <= f->loose * f->rnorm0);
     PetscCall(SgSSNGetSNES(s, &snes));
     PetscCall(KSPBuildSolution(ksp, NULL, &x));
     PetscCall(SNESGetSolution(snes, &y));
     PetscCall(VecCopy(x, f->w));
     PetscCall(SgSSNKSPVectorToGlobal(s, f->w)); /* the KSP iterates in the contact frames (-ssn_frame) */
     PetscCall(VecAYPX(f->w, -1.0, y));
-    PetscCall(SgSSNCountSetChanges(s, f->w, &changed));
+    PetscCall(SgSSNCountSetChangesMargin(s, f->w, f->early && f->margin ? SG_SSN_MARGIN_ON : SG_SSN_MARGIN_OFF, &changed));
+    if (!test) PetscFunctionReturn(0);
     if (changed && f->early) {
       *reason      = KSP_CONVERGED_RTOL;
       f->last_full = PETSC_FALSE;
@@ -327,6 +333,7 @@ PetscErrorCode SgContCreate_Fast(SgCont ct)
   f->start_rtol          = 1e-2;
   f->loose               = 1e-1;
   f->early               = PETSC_TRUE;
+  f->margin              = PETSC_TRUE;
   f->kkt_stop            = PETSC_TRUE;
   f->max_it              = 30;
   ct->data               = f;

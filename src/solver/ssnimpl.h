@@ -69,6 +69,8 @@ struct _n_SgSSN {
   void             *stop_ctx;
   PetscBool         pc_same_set; /* keep the preconditioner on an unchanged active set (SgSSNSetKeepPCOnSameSet) */
   PetscReal        *gy;          /* gaps of a prospective iterate (SgSSNCountSetChanges) */
+  PetscReal        *zy;          /* decision values lamhat + gamma g of the last prospective iterate (SgSSNCountSetChangesMargin) */
+  PetscBool         zy_valid;
   /* friction (cv.props.tangential: the law has a tangential part): lam_T = P_g(lamhat_T + gamma_T T y), gamma_T = cv.fgfac gamma */
   PetscReal *lamhatT, *mT; /* tangential shift and multiplier at the last residual evaluation, n*dim */
   PetscReal *uv, *ft;      /* work, n*dim: the contact vertices' displacements (two bodies: relative) and forces on them */
