@@ -405,6 +405,57 @@ PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, Vec b, Vec y)
    bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
 static PetscErrorCode BuildRanks(SgTMG);
 
+static PetscBool IsMPIAIJ(Mat A)
+{
+  PetscBool is = PETSC_FALSE;
+  if (PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &is)) return PETSC_FALSE;
+  return is;
+}
+
+/* K P at the rows of the contact vertices' normal dofs (K's rows there, the others empty; K's row layout): the rows of
+   the whole product that UpdateRanks reads (the active normal dofs), each the same row of K times P */
+static PetscErrorCode ContactRowsTimesP(SgTMG t, Mat *KP)
+{
+  const PetscInt n = t->nlevels;
+  Mat            K = t->ssn->Klin, Kc, Kd, Ko;
+  PetscInt       m, mc, rstart, *dnz, *onz;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetLocalSize(K, &m, &mc));
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  PetscCall(MatMPIAIJGetSeqAIJ(K, &Kd, &Ko, NULL));
+  PetscCall(PetscCalloc2(m + 1, &dnz, m + 1, &onz));
+  for (PetscInt i = 0; i < t->ssn->n; i++) {
+    const PetscInt r = t->ssn->off[i] + t->axis[i];
+    PetscInt       nc;
+    PetscCall(MatGetRow(Kd, r, &nc, NULL, NULL));
+    dnz[r] = nc; /* (MatRestoreRow zeroes the count) */
+    PetscCall(MatRestoreRow(Kd, r, &nc, NULL, NULL));
+    PetscCall(MatGetRow(Ko, r, &nc, NULL, NULL));
+    onz[r] = nc;
+    PetscCall(MatRestoreRow(Ko, r, &nc, NULL, NULL));
+  }
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)K), &Kc));
+  PetscCall(MatSetSizes(Kc, m, mc, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(Kc, MATMPIAIJ));
+  PetscCall(MatMPIAIJSetPreallocation(Kc, 0, dnz, 0, onz));
+  PetscCall(PetscFree2(dnz, onz));
+  for (PetscInt i = 0; i < t->ssn->n; i++) {
+    const PetscInt     row = rstart + t->ssn->off[i] + t->axis[i];
+    PetscInt           nc;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(K, row, &nc, &cols, &vals));
+    PetscCall(MatSetValues(Kc, 1, &row, nc, cols, vals, INSERT_VALUES));
+    PetscCall(MatRestoreRow(K, row, &nc, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatMatMult(Kc, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, KP));
+  PetscCall(MatDestroy(&Kc));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
@@ -449,8 +500,16 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     }
   }
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
-  PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
-  PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  if (size > 1 && n > 1 && IsMPIAIJ(t->ssn->Klin) && IsMPIAIJ(t->P[n - 1])) {
+    /* several ranks: P^T K P by one PtAP, and K P only at the rows a truncation can take (UpdateRanks reads no others):
+       MatTransposeMatMult of P and the whole K P cost each rank 3 times one rank's product at 144,666 unknowns (CPU
+       time; bench/nested.md, prof27), and the whole K P was a matrix of 40 entries a row */
+    PetscCall(ContactRowsTimesP(t, &t->KP));
+    PetscCall(MatPtAP(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  } else {
+    PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
+    PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  }
   for (PetscInt l = n - 2; l > 0; l--) PetscCall(MatPtAP(t->AK[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[l - 1]));
   /* the products are never recomputed in place (a later update patches rows): drop the data PETSc keeps for a reuse, on
      several ranks a local copy of K P's rows (bench/nested.md, mem27: 79 MB of 2 ranks' peak at 144,666 unknowns) */
