@@ -195,6 +195,8 @@ PetscErrorCode SgContSolve(SgCont ct)
   if (ct->warm) PetscCall(PrepareWarm(ct));
   if (ct->ops.solve) PetscCall(ct->ops.solve(ct));
   else PetscCall(SgContSolveContinuation(ct));
+  if (ct->nested_stage) PetscCall(PetscLogStagePop()); /* the finest level's stage (SgContNestedStart) */
+  ct->nested_stage = PETSC_FALSE;
   ct->nested_start = PETSC_FALSE; /* the next solve (a load step) is warm from this one */
   PetscCall(PetscTime(&ct->t1));
   PetscCall(SgElasticityEnergy(ct->prob, ct->y, &ct->V));

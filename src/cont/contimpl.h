@@ -139,6 +139,7 @@ struct _n_SgCont {
   PetscLogDouble nested_time;                    /* their time, set-up included */
   PetscReal      nested_rim;                     /* -cont_nested_rim: the rim test's factor of n^T K_ii n / w_i (0: off) */
   PetscInt       nested_rim_added;               /* contact vertices the rim test moved onto the obstacle (PlaceRim) */
+  PetscBool      nested_stage;                   /* the finest level's log stage is pushed (SgContNestedStart), popped after its solve */
 };
 
 extern PetscFunctionList SgContList;

@@ -278,6 +278,32 @@ PetscErrorCode SgContNestedResume(SgCont ct)
   PetscFunctionReturn(0);
 }
 
+/* The log stage of nested level `level` (1: the coarsest) with nunk unknowns, "Level 3: 144,666 unknowns", registered
+   the first time: -log_view shows each level's events apart (doc/performance.md). A coarse level's stage holds its
+   controller's set-up (the linear solver's included), the transfer to it and its solve; the finest level's, the
+   transfer and its solve up to the end of SgContSolve. The meshes' and problems' set-up (assembly) stay in the stage
+   around them (the Main Stage of the program). */
+static PetscErrorCode PushLevelStage(PetscInt level, PetscInt nunk)
+{
+  char          name[64], num[32], sep[32];
+  PetscLogStage stage;
+  size_t        len, k = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(num, sizeof(num), "%" PetscInt_FMT, nunk));
+  PetscCall(PetscStrlen(num, &len));
+  for (size_t i = 0; i < len; i++) { /* thousands separated by commas, as in the bench notes */
+    if (i > 0 && (len - i) % 3 == 0) sep[k++] = ',';
+    sep[k++] = num[i];
+  }
+  sep[k] = 0;
+  PetscCall(PetscSNPrintf(name, sizeof(name), "Level %" PetscInt_FMT ": %s unknowns", level, sep));
+  PetscCall(PetscLogStageGetId(name, &stage));
+  if (stage < 0) PetscCall(PetscLogStageRegister(name, &stage));
+  PetscCall(PetscLogStagePush(stage));
+  PetscFunctionReturn(0);
+}
+
 /* The coarse levels, coarsest first, each from the one below it; then ct (the finest) starts from the last one. */
 PetscErrorCode SgContNestedStart(SgCont ct)
 {
@@ -314,12 +340,14 @@ PetscErrorCode SgContNestedStart(SgCont ct)
     }
     PetscCall(SgContSetFromOptions(cc));
     cc->ckfile[0] = cc->rsfile[0] = 0; /* the finest level's files */
-    PetscCall(SgContSetUp(cc));
     PetscCall(SgProblemGetSizes(cc->problem_obj, &nunk[ct->nested - k], NULL, NULL));
+    PetscCall(PushLevelStage(ct->nested - k + 1, nunk[ct->nested - k]));
+    PetscCall(SgContSetUp(cc));
     if (ct->monitor) PetscCall(PetscPrintf(ct->comm, "  nested level %" PetscInt_FMT " of %" PetscInt_FMT ": %" PetscInt_FMT " unknowns (-dm_refine %" PetscInt_FMT ")\n", ct->nested - k + 1, ct->nested + 1, nunk[ct->nested - k], nref - k));
     if (prev) PetscCall(Transfer(prev, cc));
     PetscCall(SgContDestroy(&prev));
     PetscCall(SgContSolve(cc));
+    PetscCall(PetscLogStagePop());
     ct->nested_ssn_its += cc->ssn_its;
     ct->nested_ksp_its += cc->ksp_its;
     PetscCall(SgContGetConvergedReason(cc, &conv, &reason));
@@ -329,8 +357,10 @@ PetscErrorCode SgContNestedStart(SgCont ct)
     } else ct->nested_done++;
     prev = cc;
   }
+  PetscCall(SgProblemGetSizes(ct->problem_obj, &nunk[ct->nested], NULL, NULL));
+  PetscCall(PushLevelStage(ct->nested + 1, nunk[ct->nested])); /* popped by SgContSolve after the finest level's solve */
+  ct->nested_stage = PETSC_TRUE;
   if (ok) {
-    PetscCall(SgProblemGetSizes(ct->problem_obj, &nunk[ct->nested], NULL, NULL));
     if (ct->monitor) PetscCall(PetscPrintf(ct->comm, "  nested level %" PetscInt_FMT " of %" PetscInt_FMT ": %" PetscInt_FMT " unknowns (-dm_refine %" PetscInt_FMT "), from the interpolated solution at gamma %g\n", ct->nested + 1, ct->nested + 1, nunk[ct->nested], nref, (double)prev->gamma_warm));
     PetscCall(Transfer(prev, ct));
     if (ct->monitor && ct->nested_rim > 0) PetscCall(PetscPrintf(ct->comm, "  nested rim: %" PetscInt_FMT " contact vertices of the finest level moved onto the obstacle (-cont_nested_rim %g)\n", ct->nested_rim_added, (double)ct->nested_rim));

@@ -51,7 +51,7 @@ struct _n_SgTMG {
 };
 
 static PetscBool      tmg_registered = PETSC_FALSE;
-static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS;
+static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS, SG_TMGL1GSSetUp;
 static PetscErrorCode RegisterEvents(void);
 
 /* BoomerAMG's interpolation of the rigid-body modes (-pc_hypre_boomeramg_vec_interp_variant 1-3, with nodal
@@ -156,6 +156,17 @@ static PetscBool InvertBlock(PetscInt n, PetscScalar *a, PetscInt *w)
   return PETSC_TRUE;
 }
 
+/* the first k in [lo, hi) with ja[k] >= c (hi if none), ja sorted */
+static inline PetscInt First(const PetscInt ja[], PetscInt lo, PetscInt hi, PetscInt c)
+{
+  while (lo < hi) {
+    const PetscInt mid = lo + (hi - lo) / 2;
+    if (ja[mid] < c) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
 /* Both sweeps of a level see the same operator: the first one set up makes the inverted diagonal, the second finds it
    made (the same operator at the same state). The sweeps run on the operator's own diagonal block with that diagonal
    (Apply_L1GS): every SSN step changes the operators' values, and a copy of each level's diagonal block with l1 added
@@ -172,7 +183,7 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   L1GS              *g;
   L1GSMat           *lm;
   Mat                P, Ad, Ao;
-  const PetscInt    *ia, *ja;
+  const PetscInt    *ia, *ja, *oi, *oj;
   const PetscScalar *aa, *va;
   PetscInt           m, nr, bs, rlo, w[16];
   PetscBool          done;
@@ -187,6 +198,7 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   PetscCall(PetscObjectGetId((PetscObject)P, &id));
   state = ((PetscObject)P)->state;
   if (lm->idiag && lm->id == id && lm->state == state) PetscFunctionReturn(0); /* the level's other sweep made it */
+  PetscCall(PetscLogEventBegin(SG_TMGL1GSSetUp, 0, 0, 0, 0));
   PetscCall(MatMPIAIJGetSeqAIJ(P, &Ad, &Ao, NULL));
   PetscCall(MatGetLocalSize(Ad, &m, NULL));
   PetscCall(MatGetBlockSize(P, &bs));
@@ -201,17 +213,18 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   }
   PetscCall(MatGetRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   PetscCheck(done && nr == m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "l1 Gauss-Seidel: no rows of the diagonal block");
+  PetscCall(MatGetRowIJ(Ao, 0, PETSC_FALSE, PETSC_FALSE, &nr, &oi, &oj, &done));
+  PetscCheck(done && nr == m, PETSC_COMM_SELF, PETSC_ERR_PLIB, "l1 Gauss-Seidel: no rows of the off-diagonal block");
   PetscCall(MatSeqAIJGetArrayRead(Ad, &aa));
+  PetscCall(MatSeqAIJGetArrayRead(Ao, &va));
   PetscCall(PetscMalloc1(m + 1, &l1));
+  /* the rows' columns are sorted: a row's entries in [c, c + bs) start at First(.., c); the off-diagonal rows read
+     in place (MatGetRow per row and scans of whole rows cost 3 products with the operator at every SSN step, prof27) */
   for (PetscInt i = 0; i < m; i++) { /* l1_i, kept where it exceeds |a_ii| / 3 */
-    PetscInt    nc;
-    PetscReal   s = 0;
-    PetscScalar d = 0;
-    for (PetscInt k = ia[i]; k < ia[i + 1]; k++)
-      if (ja[k] == i) d = aa[k];
-    PetscCall(MatGetRow(Ao, i, &nc, NULL, &va));
-    for (PetscInt k = 0; k < nc; k++) s += PetscAbsScalar(va[k]);
-    PetscCall(MatRestoreRow(Ao, i, &nc, NULL, &va));
+    const PetscInt k = First(ja, ia[i], ia[i + 1], i);
+    PetscReal      s = 0;
+    PetscScalar    d = k < ia[i + 1] && ja[k] == i ? aa[k] : 0;
+    for (PetscInt q = oi[i]; q < oi[i + 1]; q++) s += PetscAbsScalar(va[q]);
     l1[i] = s > PetscAbsScalar(d) / 3 ? s : 0;
     if (bs == 1) {
       d += l1[i];
@@ -225,17 +238,19 @@ static PetscErrorCode SetUp_L1GS(PC pc)
       PetscScalar   *a  = lm->idiag + (size_t)r0 * bs;
       for (PetscInt r = 0; r < bs; r++) {
         for (PetscInt c = 0; c < bs; c++) a[r * bs + c] = 0;
-        for (PetscInt k = ia[r0 + r]; k < ia[r0 + r + 1]; k++)
-          if (ja[k] >= r0 && ja[k] < r0 + bs) a[r * bs + ja[k] - r0] = aa[k];
+        for (PetscInt k = First(ja, ia[r0 + r], ia[r0 + r + 1], r0); k < ia[r0 + r + 1] && ja[k] < r0 + bs; k++) a[r * bs + ja[k] - r0] = aa[k];
         a[r * bs + r] += l1[r0 + r];
       }
       PetscCheck(InvertBlock(bs, a, w), PETSC_COMM_SELF, PETSC_ERR_MAT_LU_ZRPVT, "l1 Gauss-Seidel: singular diagonal block at local rows %" PetscInt_FMT "-%" PetscInt_FMT, r0, r0 + bs - 1);
     }
+  PetscCall(MatSeqAIJRestoreArrayRead(Ao, &va));
+  PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, PETSC_FALSE, &nr, &oi, &oj, &done));
   PetscCall(PetscFree(l1));
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   lm->id    = id;
   lm->state = state;
+  PetscCall(PetscLogEventEnd(SG_TMGL1GSSetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -390,6 +405,57 @@ PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, Vec b, Vec y)
    bench/perf_notes.md); -<prefix>tmg_mg_levels_* override. */
 static PetscErrorCode BuildRanks(SgTMG);
 
+static PetscBool IsMPIAIJ(Mat A)
+{
+  PetscBool is = PETSC_FALSE;
+  if (PetscObjectTypeCompare((PetscObject)A, MATMPIAIJ, &is)) return PETSC_FALSE;
+  return is;
+}
+
+/* K P at the rows of the contact vertices' normal dofs (K's rows there, the others empty; K's row layout): the rows of
+   the whole product that UpdateRanks reads (the active normal dofs), each the same row of K times P */
+static PetscErrorCode ContactRowsTimesP(SgTMG t, Mat *KP)
+{
+  const PetscInt n = t->nlevels;
+  Mat            K = t->ssn->Klin, Kc, Kd, Ko;
+  PetscInt       m, mc, rstart, *dnz, *onz;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatGetLocalSize(K, &m, &mc));
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  PetscCall(MatMPIAIJGetSeqAIJ(K, &Kd, &Ko, NULL));
+  PetscCall(PetscCalloc2(m + 1, &dnz, m + 1, &onz));
+  for (PetscInt i = 0; i < t->ssn->n; i++) {
+    const PetscInt r = t->ssn->off[i] + t->axis[i];
+    PetscInt       nc;
+    PetscCall(MatGetRow(Kd, r, &nc, NULL, NULL));
+    dnz[r] = nc; /* (MatRestoreRow zeroes the count) */
+    PetscCall(MatRestoreRow(Kd, r, &nc, NULL, NULL));
+    PetscCall(MatGetRow(Ko, r, &nc, NULL, NULL));
+    onz[r] = nc;
+    PetscCall(MatRestoreRow(Ko, r, &nc, NULL, NULL));
+  }
+  PetscCall(MatCreate(PetscObjectComm((PetscObject)K), &Kc));
+  PetscCall(MatSetSizes(Kc, m, mc, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(Kc, MATMPIAIJ));
+  PetscCall(MatMPIAIJSetPreallocation(Kc, 0, dnz, 0, onz));
+  PetscCall(PetscFree2(dnz, onz));
+  for (PetscInt i = 0; i < t->ssn->n; i++) {
+    const PetscInt     row = rstart + t->ssn->off[i] + t->axis[i];
+    PetscInt           nc;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(K, row, &nc, &cols, &vals));
+    PetscCall(MatSetValues(Kc, 1, &row, nc, cols, vals, INSERT_VALUES));
+    PetscCall(MatRestoreRow(K, row, &nc, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Kc, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatMatMult(Kc, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, KP));
+  PetscCall(MatDestroy(&Kc));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
 {
   PetscInt    n, lo, hi;
@@ -434,8 +500,16 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
     }
   }
   /* the hierarchy of K: every later Jacobian differs from it by a few rows of the finest interpolation */
-  PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
-  PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  if (size > 1 && n > 1 && IsMPIAIJ(t->ssn->Klin) && IsMPIAIJ(t->P[n - 1])) {
+    /* several ranks: P^T K P by one PtAP, and K P only at the rows a truncation can take (UpdateRanks reads no others):
+       MatTransposeMatMult of P and the whole K P cost each rank 3 times one rank's product at 144,666 unknowns (CPU
+       time; bench/nested.md, prof27), and the whole K P was a matrix of 40 entries a row */
+    PetscCall(ContactRowsTimesP(t, &t->KP));
+    PetscCall(MatPtAP(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  } else {
+    PetscCall(MatMatMult(t->ssn->Klin, t->P[n - 1], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->KP));
+    PetscCall(MatTransposeMatMult(t->P[n - 1], t->KP, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[n - 2]));
+  }
   for (PetscInt l = n - 2; l > 0; l--) PetscCall(MatPtAP(t->AK[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->AK[l - 1]));
   /* the products are never recomputed in place (a later update patches rows): drop the data PETSc keeps for a reuse, on
      several ranks a local copy of K P's rows (bench/nested.md, mem27: 79 MB of 2 ranks' peak at 144,666 unknowns) */
@@ -901,7 +975,8 @@ static PetscErrorCode RegisterEvents(void)
   PetscCall(PetscLogEventRegister("SgTMGCorr", PC_CLASSID, &SG_TMGCorr));
   PetscCall(PetscLogEventRegister("SgTMGCoarse", PC_CLASSID, &SG_TMGCoarse));
   PetscCall(PetscLogEventRegister("SgTMGMGSetUp", PC_CLASSID, &SG_TMGMGSetUp));
-  PetscCall(PetscLogEventRegister("SgTMGL1GS", PC_CLASSID, &SG_TMGL1GS)); /* the l1 Gauss-Seidel sweeps (Apply_L1GS) */
+  PetscCall(PetscLogEventRegister("SgTMGL1GS", PC_CLASSID, &SG_TMGL1GS));           /* the l1 Gauss-Seidel sweeps (Apply_L1GS) */
+  PetscCall(PetscLogEventRegister("SgTMGL1GSSetUp", PC_CLASSID, &SG_TMGL1GSSetUp)); /* their inverted diagonal blocks (SetUp_L1GS) */
   tmg_registered = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
