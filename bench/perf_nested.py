@@ -10,7 +10,7 @@ CASE: PROBLEM:N:L, PROBLEM one of ex1@NX,NY (Example 1, -box_faces NX,NY, its de
 (Example 2 on meshes/MESH.msh, the default iterative configuration: -cont_direct_max_unknowns 0); N the -dm_refine
 count, L the -cont_nested levels (0: plain).
 
-usage: perf_nested.py --default MESH:N [--np 1,2] [--rounds R] [--yard-rounds R] [--json FILE] [--out DIR]
+usage: perf_nested.py --default MESH:N [--np 1,2] [--rounds R] [--yard-rounds R] [--geo-yard] [--json FILE] [--out DIR]
 The measurement of the idle-machine sections of bench/nested.md in one command: Example 2's default configuration
 alone (-options_file options/ex2_problem.opts -dm_plex_filename meshes/MESH.msh -dm_refine N: nested iteration and
 the geometric truncated multigrid) on each rank count of --np, the rank counts alternating, --rounds rounds; then
@@ -22,6 +22,12 @@ fastest yardstick, the cost ratio (median / fastest yardstick, the coarse levels
 the first rank count and the peak memory against the yardsticks'; --json writes it all (default: none; never
 bench/results.json). E.g. ex2_coarse2:3 (4.1e6 unknowns from meshes/ex2_coarse2.msh, made by make if missing),
 ex2_coarse:3 (1,115,460).
+With --geo-yard, also a geometric-multigrid linear yardstick in each yardstick round: the yardsticks' problem is a
+rigid translation of the block (zero strain), which the coarsest mesh represents exactly, so nested iteration would
+start the finest level at the answer; with a body force (0,0,-1e5) it has strain. That strained linear problem is
+solved (a) by the default itself with the obstacle out of reach (-obstacle_ball_center -0.3,0,-100: nothing
+touches, every SSN step a linear solve by nested iteration + the geometric multigrid, the coarse levels included)
+and (b) by the AMG yardsticks from zero; the summary adds the cost ratio against the fastest of (a) and (b).
 """
 import argparse
 import json
@@ -51,6 +57,9 @@ def options(case):
 
 # the yardsticks of --default: the two fastest of YARDSTICK_3D on Example 2's refined meshes (bench/nested.md)
 DEFAULT_YARDS = ("GAMG, no near null space", "BoomerAMG, nodal coarsening 4 + l1-Gauss-Seidel")
+# --geo-yard: the strained linear problem (a body force) and the obstacle out of reach (bench/nested.md, stop 42)
+GEO_FORCE = "-body_force 0,0,-1e5"
+GEO_FAR = "-obstacle_ball_center -0.3,0,-100"
 
 
 def timed(args, name, out, np):
@@ -77,7 +86,8 @@ def default_scale(opt):
     print("| run | ranks | unknowns | SSN / CG finest | SSN / CG coarse levels | contact or linear solve [s] | of it coarse levels [s] "
           "| whole run wall [s] | CPU all ranks [s] | peak MB summed (largest rank) | load before | energy |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    res = {"command": cargs, "default": {np: [] for np in nps}, "yardsticks": {np: {y: [] for y, _ in yards} for np in nps}}
+    res = {"command": cargs, "default": {np: [] for np in nps}, "yardsticks": {np: {y: [] for y, _ in yards} for np in nps},
+           "geo_yardsticks": {np: {} for np in nps}}
 
     def row(label, np, s, contact):
         if "dofs" not in s:
@@ -103,6 +113,20 @@ def default_scale(opt):
                           "yard_%s_r%s_np%d_%s_%d" % (mesh, n, np, "".join(c for c in name if c.isalnum())[:24], r), opt.out, np)
                 res["yardsticks"][np][name].append(s)
                 row("yardstick " + name, np, s, False)
+            if not opt.geo_yard:
+                continue
+            s = timed("%s %s %s" % (cargs, GEO_FAR, GEO_FORCE), "geo_%s_r%s_np%d_default_%d" % (mesh, n, np, r), opt.out, np)
+            if s.get("active_set_size", 0) != 0:
+                print("perf_nested.py: --geo-yard: %s vertices touch the obstacle moved out of reach" % s.get("active_set_size"))
+                s["converged"] = False
+            s["linear_solve_time"] = s.get("solve_time")  # the default's whole solve, coarse levels included
+            res["geo_yardsticks"][np].setdefault("default, nothing touching", []).append(s)
+            row("strained, the default, nothing touching", np, s, True)
+            for name, o in yards:
+                s = timed("-dm_plex_filename %s -dm_refine %s %s %s %s %s" % (path, n, EX2_ELASTIC, GEO_FORCE, o, YARD_RTOL),
+                          "geo_%s_r%s_np%d_%s_%d" % (mesh, n, np, "".join(c for c in name if c.isalnum())[:24], r), opt.out, np)
+                res["geo_yardsticks"][np].setdefault(name, []).append(s)
+                row("strained, " + name, np, s, False)
     print()
     summ = {}
     for np in nps:
@@ -125,6 +149,13 @@ def default_scale(opt):
               "ratio %.2f; peak %.0f MB, %s the yardsticks'" % (
                   np, ok[0]["dofs"], "/".join(map(str, summ[np]["ssn_finest"])), med, ", ".join("%.2f" % s["solve_time"] for s in ok),
                   fast, ys[fast], med / ys[fast], peak, ", ".join("%.2fx %s" % (v, k.split(",")[0]) for k, v in summ[np]["peak_ratio"].items())))
+        gs = {name: min((s["linear_solve_time"] for s in v if s.get("converged") and s.get("linear_solve_time")), default=None)
+              for name, v in res["geo_yardsticks"][np].items()}
+        gs = {k: v for k, v in gs.items() if v}
+        if gs:
+            gfast = min(gs, key=gs.get)
+            summ[np].update({"geo_yardstick": gfast, "geo_yardstick_time": gs[gfast], "cost_ratio_geometric": med / gs[gfast]})
+            print("%d rank(s): the strained linear problem's fastest solve %s %.2f s; cost ratio against it %.2f" % (np, gfast, gs[gfast], med / gs[gfast]))
     if len(summ) > 1 and nps[0] in summ:
         for np in nps[1:]:
             if np in summ:
@@ -144,6 +175,7 @@ def main():
     ap.add_argument("--np", default="1,2", help="with --default: the rank counts, alternating")
     ap.add_argument("--rounds", type=int, default=3, help="with --default: runs of the default per rank count")
     ap.add_argument("--yard-rounds", type=int, default=1, help="with --default: runs of each yardstick per rank count")
+    ap.add_argument("--geo-yard", action="store_true", help="with --default: also the strained linear problem by the default (nothing touching) and by the AMG yardsticks")
     ap.add_argument("--json", default="none", help="with --default: write the runs and the ratios here")
     opt = ap.parse_args()
     if opt.default:
