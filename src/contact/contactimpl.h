@@ -220,6 +220,14 @@ struct _n_SgContact {
 
 /* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
    vanishes but the measure does not */
+/* c = a x b (3D) */
+static inline void SgCross3(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 static inline PetscReal SafeRatio(PetscReal a, PetscReal b)
 {
   if (!(a > 0)) return a == 0 ? 0 : a; /* 0, or NaN passed on */

@@ -190,14 +190,6 @@ static PetscErrorCode CadSetUp(SgObstacle o, Obstacle_CAD *cad)
   PetscFunctionReturn(0);
 }
 
-/* c = a x b */
-static void Cross3(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* The line x + t n against the plane of element v: *t, and how far outside the element the crossing lies
    (*out <= 0: inside; in barycentric units); PETSC_FALSE if the line is parallel to the element. */
 static PetscBool RayElement(PetscInt dim, const double *v, const double x[], const double n[], double *t, double *out)
@@ -217,13 +209,13 @@ static PetscBool RayElement(PetscInt dim, const double *v, const double x[], con
       e2[k] = v[6 + k] - v[k];
       s[k]  = x[k] - v[k];
     }
-    Cross3(n, e2, p);
+    SgCross3(n, e2, p);
     for (int k = 0; k < 3; k++) {
       det += e1[k] * p[k];
       h += e1[k] * e1[k] + e2[k] * e2[k];
     }
     if (PetscAbsReal(det) <= 1e-14 * h) return PETSC_FALSE;
-    Cross3(s, e1, q);
+    SgCross3(s, e1, q);
     for (int k = 0; k < 3; k++) {
       u += s[k] * p[k];
       w += n[k] * q[k];
@@ -267,7 +259,7 @@ static void ClosestElement(PetscInt dim, const double *v, const double p[3], dou
     e1[k] = v[3 + k] - v[k];
     e2[k] = v[6 + k] - v[k];
   }
-  Cross3(e1, e2, m);
+  SgCross3(e1, e2, m);
   for (int k = 0; k < 3; k++) {
     mm += m[k] * m[k];
     h += (p[k] - v[k]) * m[k];

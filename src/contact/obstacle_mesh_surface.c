@@ -2,13 +2,6 @@
    normals, edges, the orientation of adjacent elements checked, pseudo-normals of edges and vertices. */
 #include "contact/obstacle_meshimpl.h"
 
-static void Cross(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Vertices welded (equal coordinates are one vertex), checks, normals, edges and pseudo-normals. */
 PetscErrorCode SgObstacleMeshBuildSurface(SgObstacle o, Obstacle_Mesh *m, const Soup *s)
 {
@@ -67,7 +60,7 @@ PetscErrorCode SgObstacleMeshBuildSurface(SgObstacle o, Obstacle_Mesh *m, const 
       const double *cc = Vtx(m, e, 2);
       double        t2[3];
       for (int k = 0; k < 3; k++) t2[k] = cc[k] - a[k];
-      Cross(t1, t2, c);
+      SgCross3(t1, t2, c);
       nc = PetscSqrtReal(Dot(c, c));
       PetscCheck(nc > 1e-12 * (Dot(t1, t1) + Dot(t2, t2)) && m->el[3 * e] != m->el[3 * e + 1] && m->el[3 * e + 1] != m->el[3 * e + 2] && m->el[3 * e] != m->el[3 * e + 2], o->comm, PETSC_ERR_USER_INPUT, "-obstacle_cad_file %s: triangle %" PetscInt_FMT " is degenerate (vertices (%g, %g, %g), (%g, %g, %g), (%g, %g, %g): no area)", m->file, e + 1, a[0], a[1], a[2], b[0], b[1], b[2], cc[0], cc[1], cc[2]);
     } else {

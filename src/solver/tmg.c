@@ -520,13 +520,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(ISCreateStride(t->ssn->comm, hi - lo, lo, 1, &t->cols));
   PetscCall(MatDuplicate(t->P[n - 1], MAT_COPY_VALUES, &t->Pt));
   PetscCall(MatSetOption(t->Pt, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  if (size > 1 && n > 1) {
-    PetscBool ka, pa, ma;
-    PetscCall(PetscObjectTypeCompare((PetscObject)t->ssn->Klin, MATMPIAIJ, &ka));
-    PetscCall(PetscObjectTypeCompare((PetscObject)t->P[n - 1], MATMPIAIJ, &pa));
-    PetscCall(PetscObjectTypeCompare((PetscObject)t->KP, MATMPIAIJ, &ma));
-    if (ka && pa && ma) PetscCall(BuildRanks(t));
-  }
+  if (size > 1 && n > 1 && IsMPIAIJ(t->ssn->Klin) && IsMPIAIJ(t->P[n - 1]) && IsMPIAIJ(t->KP)) PetscCall(BuildRanks(t));
 
   PetscCall(PCCreate(t->ssn->comm, &t->mg));
   PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
