@@ -204,6 +204,47 @@ static PetscErrorCode PlaceRim(SgCont b, const PetscReal lam[], PetscInt *added)
   PetscFunctionReturn(0);
 }
 
+/* -info: how many of b's contact vertices start inside the obstacle (g > 0 at the interpolated displacement, before
+   the rim is placed) and the deepest; and of the vertices that -dm_refine_geometry put on the geometry (label
+   "SgSnapped" of b's DM), which the interpolation carries along with their move: where the coarse level touched, a
+   moved vertex starts inside by about its chord's sagitta. Setting their gaps to the coarse level's interpolated ones
+   instead was measured worse (bench/results.md "snap32"). Reads only; nothing without -info. */
+static PetscErrorCode InfoStart(SgCont b)
+{
+  DM            dmb;
+  DMLabel       lab = NULL;
+  PetscScalar  *ya;
+  PetscReal    *g, st[2] = {0, 0};  /* deepest, deepest on the geometry */
+  PetscInt      cnt[3] = {0, 0, 0}; /* inside, on the geometry and inside, on the geometry */
+  PetscBool     pair, info;
+  const SgMesh *mb;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscInfoEnabled(SG_CONT_CLASSID, &info));
+  PetscCall(SgContactIsPair(b->c, &pair));
+  if (!info || pair) PetscFunctionReturn(0);
+  PetscCall(SgElasticityGetDMs(b->prob, &dmb, NULL, NULL, NULL));
+  PetscCall(DMGetLabel(dmb, "SgSnapped", &lab));
+  PetscCall(SgElasticityGetMesh(b->prob, &mb));
+  PetscCall(PetscMalloc1(b->n + 1, &g));
+  PetscCall(VecGetArray(b->y, &ya));
+  PetscCall(SgContactGap(b->c, ya, g));
+  PetscCall(VecRestoreArray(b->y, &ya));
+  for (PetscInt i = 0; i < b->n; i++) {
+    PetscInt val = -1;
+    if (lab) PetscCall(DMLabelGetValue(lab, mb->vStart + b->vert[i], &val));
+    if (val == 1) cnt[2]++;
+    if (!(g[i] > 0) || !(g[i] < 1e100)) continue;
+    cnt[0]++, st[0] = PetscMax(st[0], g[i]);
+    if (val == 1) cnt[1]++, st[1] = PetscMax(st[1], g[i]);
+  }
+  PetscCall(PetscFree(g));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, cnt, 3, MPIU_INT, MPI_SUM, b->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, st, 2, MPIU_REAL, MPIU_MAX, b->comm));
+  PetscCall(PetscInfo(b, "nested start: %" PetscInt_FMT " of %" PetscInt_FMT " contact vertices inside the obstacle (deepest %g); on the geometry %" PetscInt_FMT ", of them inside %" PetscInt_FMT " (deepest %g)\n", cnt[0], b->nglobal, (double)st[0], cnt[2], cnt[1], (double)st[1]));
+  PetscFunctionReturn(0);
+}
+
 /* b (the next finer level) starts from a's solution: y, the multipliers, gamma and V(0) */
 static PetscErrorCode Transfer(SgCont a, SgCont b)
 {
@@ -245,6 +286,7 @@ static PetscErrorCode Transfer(SgCont a, SgCont b)
   lb = b->nested_lamhat;
   PetscCall(TransferContactField(a, b, map, PETSC_FALSE, 1, a->lam, lb));
   PetscCall(PetscArraycpy(b->lam, lb, n));
+  PetscCall(InfoStart(b));
   PetscCall(PlaceRim(b, lb, &b->nested_rim_added));
   if (bs > 0) {
     SgContactLawState st;
