@@ -356,6 +356,74 @@ static PetscErrorCode MeshRefineNested(const char prefix[], SgGeometry geo, DM *
   PetscFunctionReturn(0);
 }
 
+/* MeshPartitionPairs: the boundary faces with the given values of the label, their centroids (x, 3 a face) and cells
+   (cell, numbered from cS) */
+static PetscErrorCode PairFaces(DM dm, DMLabel label, const PetscInt ids[], PetscInt nid, PetscInt cS, PetscInt fS, PetscInt fE, PetscInt cell[], PetscReal x[], PetscInt *cnt)
+{
+  PetscInt dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  *cnt = 0;
+  for (PetscInt k = 0; k < nid; k++) {
+    IS              is;
+    PetscInt        np;
+    const PetscInt *p;
+    PetscCall(DMLabelGetStratumIS(label, ids[k], &is));
+    if (!is) continue;
+    PetscCall(ISGetLocalSize(is, &np));
+    PetscCall(ISGetIndices(is, &p));
+    for (PetscInt q = 0; q < np; q++) {
+      PetscInt        nsup;
+      const PetscInt *sup;
+      PetscReal       v, cen[3] = {0, 0, 0};
+      if (p[q] < fS || p[q] >= fE) continue;
+      PetscCall(DMPlexGetSupportSize(dm, p[q], &nsup));
+      PetscCall(DMPlexGetSupport(dm, p[q], &sup));
+      if (nsup < 1) continue;
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, p[q], &v, cen, NULL));
+      cell[*cnt] = sup[0] - cS;
+      for (PetscInt d = 0; d < 3; d++) x[3 * *cnt + d] = d < dim ? cen[d] : 0;
+      (*cnt)++;
+    }
+    PetscCall(ISRestoreIndices(is, &p));
+    PetscCall(ISDestroy(&is));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* MeshPartitionPairs: each slave face's cell (sc) into the group of the nearest master face's cell (mc), by the face
+   centroids; the master faces sorted along x and scanned outwards from the slave face's x */
+static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const PetscReal sx[], PetscInt nmf, const PetscInt mc[], const PetscReal mx[], PetscInt grp[])
+{
+  PetscInt  *ord;
+  PetscReal *key;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(nmf, &ord, nmf, &key));
+  for (PetscInt j = 0; j < nmf; j++) ord[j] = j, key[j] = mx[3 * j];
+  PetscCall(PetscSortRealWithArrayInt(nmf, key, ord));
+  for (PetscInt i = 0; i < nsf; i++) {
+    PetscInt  lo = 0, hi = nmf, best = -1;
+    PetscReal bd = PETSC_MAX_REAL;
+    while (lo < hi) { /* the first key >= x */
+      PetscInt mid = (lo + hi) / 2;
+      if (key[mid] < sx[3 * i]) lo = mid + 1;
+      else hi = mid;
+    }
+    for (PetscInt dir = 0; dir < 2; dir++)
+      for (PetscInt j = dir ? lo - 1 : lo; j >= 0 && j < nmf; j += dir ? -1 : 1) {
+        PetscReal dx = key[j] - sx[3 * i], d2 = 0;
+        if (dx * dx >= bd) break;
+        for (PetscInt d = 0; d < 3; d++) d2 += PetscSqr(mx[3 * ord[j] + d] - sx[3 * i + d]);
+        if (d2 < bd) bd = d2, best = ord[j];
+      }
+    if (best >= 0 && grp[sc[i]] == sc[i]) grp[sc[i]] = mc[best];
+  }
+  PetscCall(PetscFree2(ord, key));
+  PetscFunctionReturn(0);
+}
+
 /* Two bodies (-contact_master_ids) on several ranks: the partitioner's cell graph has no edge between the bodies, so
    PT-Scotch put the slave and master sides of the pair on different ranks (the sphere on a block: 8,128 of 8,384 slave
    facets on one rank), and the rows of the pair's dual-mortar basis, which couple a slave vertex to its master
@@ -367,7 +435,7 @@ static PetscErrorCode MeshRefineNested(const char prefix[], SgGeometry geo, DM *
 static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM dm, PetscPartitioner part)
 {
   PetscMPIInt      size;
-  PetscInt         sids[64], mids[64], ns = 64, nm = 64, cS, cE, n, dim, nwith, fS, fE;
+  PetscInt         sids[64], mids[64], ns = 64, nm = 64, cS, cE, n, nwith, fS, fE;
   PetscBool        sset, mset, on = PETSC_TRUE, set;
   char             lname[256] = "Face Sets";
   DMLabel          label;
@@ -396,69 +464,17 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nwith, 1, MPIU_INT, MPI_SUM, comm));
   if (nwith != 1) PetscFunctionReturn(0); /* already distributed (or empty): PT-Scotch's partition as given */
   PetscCall(DMGetLabel(dm, lname, &label));
-  PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMPlexGetHeightStratum(dm, 1, &fS, &fE));
   /* the slave and master faces' centroids and cells (on the rank with the mesh) */
   PetscCall(PetscMalloc4(n > 0 ? fE - fS : 1, &sc, n > 0 ? fE - fS : 1, &mc, n > 0 ? 3 * (fE - fS) : 1, &sx, n > 0 ? 3 * (fE - fS) : 1, &mx));
-  if (n > 0 && label)
-    for (PetscInt side = 0; side < 2; side++) {
-      const PetscInt *ids = side ? mids : sids;
-      PetscInt        nid = side ? nm : ns, *cnt = side ? &nmf : &nsf, *cell = side ? mc : sc;
-      PetscReal      *x = side ? mx : sx;
-      for (PetscInt k = 0; k < nid; k++) {
-        IS              is;
-        PetscInt        np;
-        const PetscInt *p;
-        PetscCall(DMLabelGetStratumIS(label, ids[k], &is));
-        if (!is) continue;
-        PetscCall(ISGetLocalSize(is, &np));
-        PetscCall(ISGetIndices(is, &p));
-        for (PetscInt q = 0; q < np; q++) {
-          PetscInt        ns_;
-          const PetscInt *sup;
-          PetscReal       v, cen[3] = {0, 0, 0};
-          if (p[q] < fS || p[q] >= fE) continue;
-          PetscCall(DMPlexGetSupportSize(dm, p[q], &ns_));
-          PetscCall(DMPlexGetSupport(dm, p[q], &sup));
-          if (ns_ < 1) continue;
-          PetscCall(DMPlexComputeCellGeometryFVM(dm, p[q], &v, cen, NULL));
-          cell[*cnt] = sup[0] - cS;
-          for (PetscInt d = 0; d < 3; d++) x[3 * *cnt + d] = d < dim ? cen[d] : 0;
-          (*cnt)++;
-        }
-        PetscCall(ISRestoreIndices(is, &p));
-        PetscCall(ISDestroy(&is));
-      }
-    }
+  if (n > 0 && label) {
+    PetscCall(PairFaces(dm, label, sids, ns, cS, fS, fE, sc, sx, &nsf));
+    PetscCall(PairFaces(dm, label, mids, nm, cS, fS, fE, mc, mx, &nmf));
+  }
   /* groups: a slave face's cell joins the group of the nearest master face's cell (each cell in one group) */
   PetscCall(PetscMalloc2(n + 1, &grp, n + 1, &gid));
   for (PetscInt c = 0; c < n; c++) grp[c] = c;
-  if (nsf && nmf) {
-    /* the master faces sorted along x: the nearest by a scan outwards from the slave face's x */
-    PetscInt  *ord;
-    PetscReal *key;
-    PetscCall(PetscMalloc2(nmf, &ord, nmf, &key));
-    for (PetscInt j = 0; j < nmf; j++) ord[j] = j, key[j] = mx[3 * j];
-    PetscCall(PetscSortRealWithArrayInt(nmf, key, ord));
-    for (PetscInt i = 0; i < nsf; i++) {
-      PetscInt  lo = 0, hi = nmf, best = -1;
-      PetscReal bd = PETSC_MAX_REAL;
-      while (lo < hi) { /* the first key >= x */
-        PetscInt mid = (lo + hi) / 2;
-        if (key[mid] < sx[3 * i]) lo = mid + 1;
-        else hi = mid;
-      }
-      for (PetscInt dir = 0; dir < 2; dir++)
-        for (PetscInt j = dir ? lo - 1 : lo; j >= 0 && j < nmf; j += dir ? -1 : 1) {
-          PetscReal dx = key[j] - sx[3 * i], d2 = 0;
-          if (dx * dx >= bd) break;
-          for (PetscInt d = 0; d < 3; d++) d2 += PetscSqr(mx[3 * ord[j] + d] - sx[3 * i + d]);
-          if (d2 < bd) bd = d2, best = ord[j];
-        }
-      if (best >= 0 && grp[sc[i]] == sc[i]) grp[sc[i]] = mc[best];
-    }
-    PetscCall(PetscFree2(ord, key));
-  }
+  if (nsf && nmf) PetscCall(PairNearest(nsf, sc, sx, nmf, mc, mx, grp));
   PetscCall(PetscFree4(sc, mc, sx, mx));
   for (PetscInt c = 0; c < n; c++) /* a cell with both sides' faces (one body's): in its own group */
     if (grp[grp[c]] != grp[c]) grp[c] = c;
