@@ -356,6 +356,203 @@ static PetscErrorCode MeshRefineNested(const char prefix[], SgGeometry geo, DM *
   PetscFunctionReturn(0);
 }
 
+/* MeshPartitionPairs: the boundary faces with the given values of the label, their centroids (x, 3 a face) and cells
+   (cell, numbered from cS) */
+static PetscErrorCode PairFaces(DM dm, DMLabel label, const PetscInt ids[], PetscInt nid, PetscInt cS, PetscInt fS, PetscInt fE, PetscInt cell[], PetscReal x[], PetscInt *cnt)
+{
+  PetscInt dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  *cnt = 0;
+  for (PetscInt k = 0; k < nid; k++) {
+    IS              is;
+    PetscInt        np;
+    const PetscInt *p;
+    PetscCall(DMLabelGetStratumIS(label, ids[k], &is));
+    if (!is) continue;
+    PetscCall(ISGetLocalSize(is, &np));
+    PetscCall(ISGetIndices(is, &p));
+    for (PetscInt q = 0; q < np; q++) {
+      PetscInt        nsup;
+      const PetscInt *sup;
+      PetscReal       v, cen[3] = {0, 0, 0};
+      if (p[q] < fS || p[q] >= fE) continue;
+      PetscCall(DMPlexGetSupportSize(dm, p[q], &nsup));
+      PetscCall(DMPlexGetSupport(dm, p[q], &sup));
+      if (nsup < 1) continue;
+      PetscCall(DMPlexComputeCellGeometryFVM(dm, p[q], &v, cen, NULL));
+      cell[*cnt] = sup[0] - cS;
+      for (PetscInt d = 0; d < 3; d++) x[3 * *cnt + d] = d < dim ? cen[d] : 0;
+      (*cnt)++;
+    }
+    PetscCall(ISRestoreIndices(is, &p));
+    PetscCall(ISDestroy(&is));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* MeshPartitionPairs: each slave face's cell (sc) into the group of the nearest master face's cell (mc), by the face
+   centroids; the master faces sorted along x and scanned outwards from the slave face's x */
+static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const PetscReal sx[], PetscInt nmf, const PetscInt mc[], const PetscReal mx[], PetscInt grp[])
+{
+  PetscInt  *ord;
+  PetscReal *key;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(nmf, &ord, nmf, &key));
+  for (PetscInt j = 0; j < nmf; j++) ord[j] = j, key[j] = mx[3 * j];
+  PetscCall(PetscSortRealWithArrayInt(nmf, key, ord));
+  for (PetscInt i = 0; i < nsf; i++) {
+    PetscInt  lo = 0, hi = nmf, best = -1;
+    PetscReal bd = PETSC_MAX_REAL;
+    while (lo < hi) { /* the first key >= x */
+      PetscInt mid = (lo + hi) / 2;
+      if (key[mid] < sx[3 * i]) lo = mid + 1;
+      else hi = mid;
+    }
+    for (PetscInt dir = 0; dir < 2; dir++)
+      for (PetscInt j = dir ? lo - 1 : lo; j >= 0 && j < nmf; j += dir ? -1 : 1) {
+        PetscReal dx = key[j] - sx[3 * i], d2 = 0;
+        if (dx * dx >= bd) break;
+        for (PetscInt d = 0; d < 3; d++) d2 += PetscSqr(mx[3 * ord[j] + d] - sx[3 * i + d]);
+        if (d2 < bd) bd = d2, best = ord[j];
+      }
+    if (best >= 0 && grp[sc[i]] == sc[i]) grp[sc[i]] = mc[best];
+  }
+  PetscCall(PetscFree2(ord, key));
+  PetscFunctionReturn(0);
+}
+
+/* Two bodies (-contact_master_ids) on several ranks: the partitioner's cell graph has no edge between the bodies, so
+   PT-Scotch put the slave and master sides of the pair on different ranks (the sphere on a block: 8,128 of 8,384 slave
+   facets on one rank), and the rows of the pair's dual-mortar basis, which couple a slave vertex to its master
+   vertices, were coupled mostly across ranks: there the several-rank smoother (l1 Gauss-Seidel, solver/tmg.c) is
+   weakest (bench/results.md, pair7: 37 CG against one rank's 22 at 40,866 unknowns). Here, on the undistributed mesh,
+   each cell with a slave face is grouped with the cell of the master face nearest to it (face centroids), the groups
+   partitioned as vertices of the contracted cell graph weighted by their cell counts (PT-Scotch, as before), and the
+   partition handed to the DM's partitioner (shell). -contact_pair_partition false keeps PT-Scotch's own. */
+static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM dm, PetscPartitioner part)
+{
+  PetscMPIInt      size;
+  PetscInt         sids[64], mids[64], ns = 64, nm = 64, cS, cE, n, nwith, fS, fE;
+  PetscBool        sset, mset, on = PETSC_TRUE, set;
+  char             lname[256] = "Face Sets";
+  DMLabel          label;
+  PetscInt        *grp, *gid, ng = 0, nv, *off = NULL, *adj = NULL, *goff, *gadj, ne = 0, *mark, *sizes, *pts;
+  PetscReal       *sx, *mx;
+  PetscInt        *sc, *mc, nsf = 0, nmf = 0;
+  IS               gnum, partition;
+  PetscSection     vsec, psec;
+  PetscPartitioner gp;
+  const PetscInt  *pv;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscOptionsBegin(comm, prefix, "Two bodies on several ranks", NULL);
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-contact_pair_partition", "Two bodies (-contact_master_ids) on several ranks: partition the mesh with each cell of a slave face grouped with the cell of the nearest master face (the pair's rows on one rank), instead of PT-Scotch's partition of the cell graph alone", &on, &set));
+  PetscOptionsEnd();
+  if (size < 2) PetscFunctionReturn(0); /* one rank: nothing to partition (bit-identical runs) */
+  PetscCall(PetscOptionsGetIntArray(NULL, prefix, "-contact_master_ids", mids, &nm, &mset));
+  PetscCall(PetscOptionsGetIntArray(NULL, prefix, "-contact_ids", sids, &ns, &sset));
+  if (!mset || !sset || nm < 1 || ns < 1) PetscFunctionReturn(0);
+  if (!on) PetscFunctionReturn(0);
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-contact_label", lname, sizeof(lname), &set));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cS, &cE));
+  n     = cE - cS;
+  nwith = n > 0 ? 1 : 0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nwith, 1, MPIU_INT, MPI_SUM, comm));
+  if (nwith != 1) PetscFunctionReturn(0); /* already distributed (or empty): PT-Scotch's partition as given */
+  PetscCall(DMGetLabel(dm, lname, &label));
+  PetscCall(DMPlexGetHeightStratum(dm, 1, &fS, &fE));
+  /* the slave and master faces' centroids and cells (on the rank with the mesh) */
+  PetscCall(PetscMalloc4(n > 0 ? fE - fS : 1, &sc, n > 0 ? fE - fS : 1, &mc, n > 0 ? 3 * (fE - fS) : 1, &sx, n > 0 ? 3 * (fE - fS) : 1, &mx));
+  if (n > 0 && label) {
+    PetscCall(PairFaces(dm, label, sids, ns, cS, fS, fE, sc, sx, &nsf));
+    PetscCall(PairFaces(dm, label, mids, nm, cS, fS, fE, mc, mx, &nmf));
+  }
+  /* groups: a slave face's cell joins the group of the nearest master face's cell (each cell in one group) */
+  PetscCall(PetscMalloc2(n + 1, &grp, n + 1, &gid));
+  for (PetscInt c = 0; c < n; c++) grp[c] = c;
+  if (nsf && nmf) PetscCall(PairNearest(nsf, sc, sx, nmf, mc, mx, grp));
+  PetscCall(PetscFree4(sc, mc, sx, mx));
+  for (PetscInt c = 0; c < n; c++) /* a cell with both sides' faces (one body's): in its own group */
+    if (grp[grp[c]] != grp[c]) grp[c] = c;
+  for (PetscInt c = 0; c < n; c++) gid[c] = -1;
+  for (PetscInt c = 0; c < n; c++) /* the group's number: its master cell's (a cell is a slave cell or a group's head) */
+    if (grp[c] == c) gid[c] = ng++;
+  for (PetscInt c = 0; c < n; c++) gid[c] = gid[grp[c]];
+  /* the contracted graph: groups adjacent where two of their cells share a face */
+  PetscCall(DMPlexCreatePartitionerGraph(dm, 0, &nv, &off, &adj, &gnum));
+  PetscCheck(nv == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "-contact_pair_partition: the cell graph has %" PetscInt_FMT " vertices for %" PetscInt_FMT " cells", nv, n);
+  PetscCall(PetscCalloc3(ng + 1, &goff, n > 0 ? off[n] + 1 : 1, &gadj, ng + 1, &mark));
+  {
+    PetscInt *first, *next; /* the groups' cells as lists */
+    PetscCall(PetscMalloc2(ng + 1, &first, n + 1, &next));
+    for (PetscInt g = 0; g < ng; g++) first[g] = -1, mark[g] = -1;
+    for (PetscInt c = n - 1; c >= 0; c--) next[c] = first[gid[c]], first[gid[c]] = c;
+    for (PetscInt g = 0; g < ng; g++) {
+      goff[g] = ne;
+      for (PetscInt c = first[g]; c >= 0; c = next[c])
+        for (PetscInt k = off[c]; k < off[c + 1]; k++) {
+          const PetscInt h = gid[adj[k]];
+          if (h != g && mark[h] != g) mark[h] = g, gadj[ne++] = h;
+        }
+      PetscCall(PetscSortInt(ne - goff[g], gadj + goff[g]));
+    }
+    goff[ng] = ne;
+    PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &vsec));
+    PetscCall(PetscSectionSetChart(vsec, 0, ng));
+    for (PetscInt g = 0; g < ng; g++) {
+      PetscInt w = 0;
+      for (PetscInt c = first[g]; c >= 0; c = next[c]) w++;
+      PetscCall(PetscSectionSetDof(vsec, g, w));
+    }
+    PetscCall(PetscSectionSetUp(vsec));
+    PetscCall(PetscFree2(first, next));
+  }
+  PetscCall(PetscFree(off));
+  PetscCall(PetscFree(adj));
+  PetscCall(ISDestroy(&gnum));
+  /* PT-Scotch on the groups, then each cell in its group's part */
+  PetscCall(PetscPartitionerCreate(comm, &gp));
+  PetscCall(PetscPartitionerSetType(gp, PETSCPARTITIONERPTSCOTCH));
+  PetscCall(PetscSectionCreate(comm, &psec));
+  {
+    PetscInt start[1] = {0};
+    PetscCall(PetscPartitionerPartition(gp, size, ng, ng ? goff : start, gadj, vsec, NULL, psec, &partition));
+  }
+  PetscCall(PetscMalloc2(size, &sizes, n + 1, &pts));
+  PetscCall(ISGetIndices(partition, &pv));
+  {
+    PetscInt *gpart, k = 0;
+    PetscCall(PetscMalloc1(ng + 1, &gpart));
+    for (PetscInt r = 0; r < size; r++) {
+      PetscInt dof, o;
+      PetscCall(PetscSectionGetDof(psec, r, &dof));
+      PetscCall(PetscSectionGetOffset(psec, r, &o));
+      for (PetscInt q = 0; q < dof; q++) gpart[pv[o + q]] = r;
+    }
+    for (PetscInt r = 0; r < size; r++) {
+      sizes[r] = 0;
+      for (PetscInt c = 0; c < n; c++)
+        if (gpart[gid[c]] == r) pts[k++] = c, sizes[r]++;
+    }
+    PetscCall(PetscFree(gpart));
+  }
+  PetscCall(ISRestoreIndices(partition, &pv));
+  PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERSHELL));
+  PetscCall(PetscPartitionerShellSetPartition(part, size, sizes, pts));
+  PetscCall(PetscFree2(sizes, pts));
+  PetscCall(ISDestroy(&partition));
+  PetscCall(PetscSectionDestroy(&psec));
+  PetscCall(PetscSectionDestroy(&vsec));
+  PetscCall(PetscPartitionerDestroy(&gp));
+  PetscCall(PetscFree3(goff, gadj, mark));
+  PetscCall(PetscFree2(grp, gid));
+  PetscFunctionReturn(0);
+}
+
 /* Create the distributed simplex mesh from a gmsh file (-dm_plex_filename) or the structured box (-box_*), options
    under the prefix. */
 PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
@@ -383,6 +580,7 @@ PetscErrorCode SgMeshCreateDM(MPI_Comm comm, const char prefix[], DM *dm)
   PetscCall(DMPlexGetPartitioner(*dm, &part));
   PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
   PetscCall(SgMeshCheckDM(comm, file ? fname : "(box)", *dm));
+  PetscCall(MeshPartitionPairs(comm, prefix, *dm, part));
   {
     PetscBool  nested;
     SgGeometry geo                       = NULL;
