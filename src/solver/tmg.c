@@ -47,8 +47,15 @@ struct _n_SgTMG {
   PetscInt     *jw;   /* listed */
   PetscInt     *pj, *mj, pcap, mcap, vcap;
   PetscScalar  *pv, *mv, *vw;
-  MatStructure *str; /* str[l]: D[l]'s pattern against AK[l]'s (the same, checked once) */
+  MatStructure *str;   /* str[l]: D[l]'s pattern against AK[l]'s (the same, checked once) */
+  PetscBool    *touch; /* touch[l]: carry level l's correction down by its touched rows (TouchedPtAP) */
+  PetscBool    *prod;  /* prod[l]: D[l] is MatPtAP's of D[l+1] (its symbolic product kept), not a copy's target */
 };
+
+/* Several ranks: a level's correction is carried to the next coarser one over its touched rows (TouchedPtAP) from this
+   many nonzeros of its kept operator up; below it the whole-pattern product with its symbolic part kept is cheaper
+   (fewer messages: bench/nested.md, coarse27) */
+#define SG_TMG_TOUCHED_NNZ 100000
 
 static PetscBool      tmg_registered = PETSC_FALSE;
 static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS, SG_TMGL1GSSetUp;
@@ -600,10 +607,16 @@ static PetscErrorCode BuildRanks(SgTMG t)
   PetscCall(ISDestroy(&isr));
   PetscCall(ISDestroy(&isc));
   PetscCall(PetscCalloc3(Nc, &t->acc, Nc, &t->mark, Nc, &t->jw));
-  PetscCall(PetscCalloc2(n, &t->D, n, &t->str));
+  PetscCall(PetscCalloc4(n, &t->D, n, &t->str, n, &t->touch, n, &t->prod));
+  for (PetscInt l = 1; l < n - 1; l++) { /* TouchedPtAP from the levels of at least SG_TMG_TOUCHED_NNZ nonzeros */
+    MatInfo info;
+    PetscCall(MatGetInfo(t->AK[l], MAT_GLOBAL_SUM, &info));
+    t->touch[l] = (PetscBool)(info.nz_used >= SG_TMG_TOUCHED_NNZ);
+  }
   PetscCall(MatDuplicate(t->AK[n - 2], MAT_DO_NOT_COPY_VALUES, &t->D[n - 2]));
   PetscCall(MatSetOption(t->D[n - 2], MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   t->str[n - 2] = SAME_NONZERO_PATTERN;
+  for (PetscInt l = 0; l < n - 1; l++) PetscCall(MatSetOption(t->A[l], MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
   /* the truncation zeroes rows in Pt's own blocks: its pattern must stay */
   PetscCall(MatMPIAIJGetSeqAIJ(t->Pt, &Pd, &Po, NULL));
   PetscCall(MatSetOption(Pd, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
@@ -714,13 +727,62 @@ static inline void Accumulate(SgTMG t, PetscInt J, PetscScalar v, PetscInt *nt)
   t->acc[J] += v;
 }
 
+/* Several ranks: the next coarser level's correction P^T D P from the rows of D that hold a nonzero and the same
+   columns (D is symmetric): D is zero away from the contact zone, and the product over D's whole pattern (the kept
+   operator's, MatPtAP with its symbolic product kept) cost each SSN step about what the kept operator's own product
+   costs (bench/nested.md, coarse27: 144,666 unknowns on 2 ranks, 0.123 s against 0.043 s for two SSN steps, loaded).
+   Zero rows and columns add nothing: the whole product up to the order of its sums (on Example 2 equal to the bit).
+   *Dc NULL where D is zero; *done false (nothing made) where more than half of D's rows are touched. */
+static PetscErrorCode TouchedPtAP(Mat D, Mat P, Mat *Dc, PetscBool *done)
+{
+  Mat      Db[2], Ds, Ps;
+  PetscInt m, N, rstart, ns = 0, nsg, *sr;
+  IS       is;
+  MPI_Comm comm = PetscObjectComm((PetscObject)D);
+
+  PetscFunctionBeginUser;
+  *Dc = NULL;
+  PetscCall(MatMPIAIJGetSeqAIJ(D, &Db[0], &Db[1], NULL));
+  PetscCall(MatGetLocalSize(D, &m, NULL));
+  PetscCall(MatGetOwnershipRange(D, &rstart, NULL));
+  PetscCall(PetscMalloc1(m, &sr));
+  for (PetscInt i = 0; i < m; i++) {
+    PetscBool nz = PETSC_FALSE;
+    for (PetscInt k = 0; k < 2 && !nz; k++) {
+      PetscInt           nc;
+      const PetscScalar *v;
+      PetscCall(MatGetRow(Db[k], i, &nc, NULL, &v));
+      for (PetscInt a = 0; a < nc && !nz; a++) nz = (PetscBool)(v[a] != 0.0);
+      PetscCall(MatRestoreRow(Db[k], i, &nc, NULL, &v));
+    }
+    if (nz) sr[ns++] = rstart + i;
+  }
+  PetscCall(MPIU_Allreduce(&ns, &nsg, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MatGetSize(D, &N, NULL));
+  *done = (PetscBool)(2 * nsg <= N);
+  if (nsg == 0 || !*done) {
+    PetscCall(PetscFree(sr));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(ISCreateGeneral(comm, ns, sr, PETSC_OWN_POINTER, &is));
+  PetscCall(MatCreateSubMatrix(D, is, is, MAT_INITIAL_MATRIX, &Ds));
+  PetscCall(MatCreateSubMatrix(P, is, NULL, MAT_INITIAL_MATRIX, &Ps));
+  PetscCall(MatPtAP(Ds, Ps, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Dc));
+  PetscCall(MatDestroy(&Ds));
+  PetscCall(MatDestroy(&Ps));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
 /* Update's correction on several ranks, from each rank's own active rows i and the kept data (BuildRanks):
    D = E^T K_AA E - E^T M - M^T E = sum_{i in A} P_i^T (g_i - M_i) - M_i^T P_i, with P_i, M_i = (K P)_i the rows of P
    and K P and g_i = sum_{j in A} K_ij P_j (P_j of a ghost column j from Poth, whether j is active from the scattered
    flags); added into D[n-2] (AK[n-2]'s pattern: the products' patterns hold every term) and carried to the coarser
-   levels by MatPtAP with the symbolic product kept. The sum is Update's in another order: the same operator up to
-   round-off. Update's general path (submatrices, products and transposes of new patterns, MatZeroRows' routing)
-   made new patterns and communication at every SSN step: 9x the 1-rank update time on 2 ranks (bench/nested.md par27). */
+   levels: a large level by the rows its correction touches (TouchedPtAP), a small one by MatPtAP over its whole pattern
+   with the symbolic product kept (-ssn_pc_truncated_mg_coarse_ptap: every level so). The sum is Update's in another
+   order: the same operator up to round-off. Update's general path (submatrices, products and transposes of new
+   patterns, MatZeroRows' routing) made new patterns and communication at every SSN step: 9x the 1-rank update time on
+   2 ranks (bench/nested.md par27). */
 static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], PetscInt nag)
 {
   const PetscInt     n  = t->nlevels;
@@ -824,20 +886,49 @@ static PetscErrorCode UpdateRanks(SgTMG t, PetscInt na, const PetscInt rows[], P
   PetscCall(MatAssemblyEnd(Dn, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(SG_TMGCorr, 0, 0, 0, 0));
   PetscCall(PetscLogEventBegin(SG_TMGCoarse, 0, 0, 0, 0));
-  /* A[l] = AK[l] + D[l], D[l-1] = P[l]^T D[l] P[l] (the symbolic product made at the first update) */
-  for (PetscInt l = n - 2; l >= 0; l--) {
-    PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
-    PetscCall(MatAXPY(t->A[l], 1.0, t->D[l], t->str[l]));
-    if (l > 0) {
-      if (t->D[l - 1]) PetscCall(MatPtAP(t->D[l], t->P[l], MAT_REUSE_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
-      else {
-        PetscBool same;
-        PetscCall(MatPtAP(t->D[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
-        PetscCall(SamePattern(t->D[l - 1], t->AK[l - 1], &same));
-        t->str[l - 1] = same ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN;
+  {
+    /* A[l] = AK[l] + D_l; D_{l-1} = P[l]^T D_l P[l] over D_l's touched rows where the level is large (TouchedPtAP), else
+       over AK[l]'s whole pattern into D[l-1] (the symbolic product made at the first update); D_l is D[l] itself where
+       `full` (D[n-2], the products over the whole pattern), else the touched product (AK[l]'s pattern in part) */
+    Mat       Dl   = t->D[n - 2];
+    PetscBool full = PETSC_TRUE;
+    PetscCall(PetscObjectReference((PetscObject)Dl));
+    for (PetscInt l = n - 2; l >= 0; l--) {
+      Mat       Dc    = NULL;
+      PetscBool cfull = PETSC_FALSE, done = PETSC_FALSE;
+      PetscCall(MatCopy(t->AK[l], t->A[l], SAME_NONZERO_PATTERN));
+      if (Dl) {
+        PetscCall(MatAXPY(t->A[l], 1.0, Dl, full ? t->str[l] : SUBSET_NONZERO_PATTERN));
+        if (l > 0 && t->touch[l] && !t->ssn->tmg_coarse_ptap) PetscCall(TouchedPtAP(Dl, t->P[l], &Dc, &done));
+        if (l > 0 && !done) {
+          if (!full) { /* the touched product into a matrix of AK[l]'s pattern */
+            if (!t->D[l]) {
+              PetscCall(MatDuplicate(t->AK[l], MAT_DO_NOT_COPY_VALUES, &t->D[l]));
+              PetscCall(MatSetOption(t->D[l], MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+              t->str[l] = SAME_NONZERO_PATTERN;
+            }
+            PetscCall(MatZeroEntries(t->D[l]));
+            PetscCall(MatAXPY(t->D[l], 1.0, Dl, SUBSET_NONZERO_PATTERN));
+          }
+          if (t->D[l - 1] && !t->prod[l - 1]) PetscCall(MatDestroy(&t->D[l - 1])); /* a copy's target: no product kept */
+          if (t->D[l - 1]) PetscCall(MatPtAP(t->D[l], t->P[l], MAT_REUSE_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
+          else {
+            PetscBool same;
+            PetscCall(MatPtAP(t->D[l], t->P[l], MAT_INITIAL_MATRIX, PETSC_DEFAULT, &t->D[l - 1]));
+            PetscCall(SamePattern(t->D[l - 1], t->AK[l - 1], &same));
+            t->str[l - 1]  = same ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN;
+            t->prod[l - 1] = PETSC_TRUE;
+          }
+          Dc = t->D[l - 1];
+          PetscCall(PetscObjectReference((PetscObject)Dc));
+          cfull = PETSC_TRUE;
+        }
       }
+      PetscCall(MatDestroy(&Dl));
+      Dl   = Dc;
+      full = cfull;
+      PetscCall(DeadDofs(t->A[l], t->AK[l]));
     }
-    PetscCall(DeadDofs(t->A[l], t->AK[l]));
   }
   PetscCall(PetscLogEventEnd(SG_TMGCoarse, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -1064,7 +1155,7 @@ PetscErrorCode SgTMGDestroy(SgTMG *tmg)
   PetscCall(PetscFree4(t->axis, t->sign, t->want, t->have));
   if (t->D) {
     for (PetscInt l = 0; l < t->nlevels; l++) PetscCall(MatDestroy(&t->D[l]));
-    PetscCall(PetscFree2(t->D, t->str));
+    PetscCall(PetscFree4(t->D, t->str, t->touch, t->prod));
     PetscCall(MatDestroy(&t->Poth));
     PetscCall(VecDestroy(&t->act));
     PetscCall(VecDestroy(&t->gact));
