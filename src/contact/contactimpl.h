@@ -218,8 +218,6 @@ struct _n_SgContact {
   Vec        pr;           /* with friction: R's row vector (pair.h: the relative displacements) */
 };
 
-/* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
-   vanishes but the measure does not */
 /* c = a x b (3D) */
 static inline void SgCross3(const double a[3], const double b[3], double c[3])
 {
@@ -228,6 +226,8 @@ static inline void SgCross3(const double a[3], const double b[3], double c[3])
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* a / b for a measure a >= 0 against its scale b >= 0: 0 when there is nothing to measure, infinite when the scale
+   vanishes but the measure does not */
 static inline PetscReal SafeRatio(PetscReal a, PetscReal b)
 {
   if (!(a > 0)) return a == 0 ? 0 : a; /* 0, or NaN passed on */
