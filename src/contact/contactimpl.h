@@ -26,6 +26,7 @@ struct _n_SgObstacle {
 PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
 PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
 PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
+PetscErrorCode SgObstacleMeshCheckClosest(SgObstacle, const PetscReal[], const PetscReal[]); /* -contact_normal obstacle: where a meshed obstacle's normal is undefined, an error */
 
 /* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
    stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):

@@ -375,10 +375,89 @@ static PetscErrorCode Gap_Mesh(SgObstacle o, const PetscReal x[], const PetscRea
   PetscFunctionReturn(0);
 }
 
+/* the closest point lies on the rim of an open surface: a boundary edge or vertex (3D), an end vertex (2D) */
+static PetscBool OnBoundary(const Obstacle_Mesh *m, const MeshClosest *c)
+{
+  if (c->feat >= 4) return (PetscBool)(m->vbnd[m->el[m->nv * c->e + c->feat - 4]] != 0);
+  if (c->feat >= 1) return (PetscBool)(m->ebnd[m->eedge[3 * c->e + c->feat - 1]] != 0);
+  return PETSC_FALSE;
+}
+
+/* elements e and f share a vertex */
+static PetscBool Adjacent(const Obstacle_Mesh *m, PetscInt e, PetscInt f)
+{
+  for (PetscInt i = 0; i < m->nv; i++)
+    for (PetscInt j = 0; j < m->nv; j++)
+      if (m->el[m->nv * e + i] == m->el[m->nv * f + j]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* another point of the surface as near to p as the closest one, best, (within tol), not the same point (farther
+   than sep from it) and on an element that shares no vertex with best's: then the closest point is not unique (p on
+   the medial axis, e.g. the centre of a triangulated sphere or of a regular polygon) and the normal is undefined.
+   Neighbouring elements are left out: inside a faceted curved surface every point on the bisector of two neighbours
+   has two closest points, whose normals differ by the facets' angle only (the faceting's, not the obstacle's). The
+   tree pruned at the distance d + tol. */
+static PetscBool SecondClosest(const Obstacle_Mesh *m, const double p[3], const MeshClosest *best, double tol, double sep, double q2[3])
+{
+  const double reach = PetscSqr(PetscSqrtReal(best->d2) + tol);
+  PetscInt     stack[256], sp = 0;
+
+  stack[sp++] = 0;
+  while (sp) {
+    const MeshNode *nd = &m->node[stack[--sp]];
+    double          d2 = 0;
+    for (int k = 0; k < 3; k++) d2 += PetscSqr(PetscMax(0, PetscMax(nd->lo[k] - p[k], p[k] - nd->hi[k])));
+    if (d2 > reach) continue;
+    if (nd->count) {
+      for (PetscInt i = nd->start; i < nd->start + nd->count; i++) {
+        MeshClosest c;
+        double      s2 = 0;
+        ClosestOnElement(m, m->perm[i], p, &c);
+        if (c.d2 > reach || Adjacent(m, c.e, best->e)) continue;
+        for (int k = 0; k < 3; k++) s2 += PetscSqr(c.q[k] - best->q[k]);
+        if (s2 > sep * sep) {
+          for (int k = 0; k < 3; k++) q2[k] = c.q[k];
+          return PETSC_TRUE;
+        }
+      }
+    } else if (sp + 2 <= 256) {
+      stack[sp++] = nd->left + 1;
+      stack[sp++] = nd->left;
+    }
+  }
+  return PETSC_FALSE;
+}
+
 static PetscErrorCode Distance_Mesh(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
 {
   PetscFunctionBeginUser;
   PetscCall(Query(o, PETSC_FALSE, x, NULL, NULL, g, n));
+  PetscFunctionReturn(0);
+}
+
+/* -contact_normal obstacle at a contact vertex xv, x in the obstacle's frame (SgObstacleDistance calls it after the distance op,
+   which stays a plain query; nothing for other types): as for the analytic ball and the CAD obstacles, an error naming
+   the file and the vertex where the obstacle's normal is undefined. Before, the tree's first element won: for a
+   vertex at the centre of a triangulated sphere or regular polygon one facet's normal, and behind the rim of an open
+   surface the rim's face decided inside and outside (a vertex there counted as deep inside, pushed sideways).
+   - behind the rim: the closest point on a boundary edge or vertex of an open surface and x on its inner side (not on
+     the surface itself): an open surface has no inside there;
+   - two closest points (x on the medial axis) on elements that share no vertex (SecondClosest). */
+PetscErrorCode SgObstacleMeshCheckClosest(SgObstacle o, const PetscReal x[], const PetscReal xv[])
+{
+  Obstacle_Mesh *m;
+  double         p[3], q2[3], gm, nm[3];
+  MeshClosest    c;
+
+  PetscFunctionBeginUser;
+  if (o->gap != Gap_Mesh) PetscFunctionReturn(0);
+  m = (Obstacle_Mesh *)o->data;
+  ToFile(o, m, x, p);
+  ClosestTree(m, p, &c);
+  SignedDistance(m, p, &c, &gm, nm);
+  PetscCheck(!(gm < 0 && PetscSqrtReal(c.d2) > 1e-8 * m->len && OnBoundary(m, &c)), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies behind the boundary of the open surface (its closest point (%g, %g, %g), file coordinates, is on the surface's rim): an open surface has no inside there, so the sign of its distance is undefined; close the surface or extend it beyond the body", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c.q[0], c.q[1], c.q[2]);
+  PetscCheck(!SecondClosest(m, p, &c, 1e-9 * m->len, 1e-6 * m->len, q2), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g) (file coordinates): its normal is undefined", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c.q[0], c.q[1], c.q[2], q2[0], q2[1], q2[2]);
   PetscFunctionReturn(0);
 }
 
@@ -402,6 +481,7 @@ static PetscErrorCode Destroy_Mesh(SgObstacle o)
   PetscCall(PetscFree2(m->x, m->el));
   PetscCall(PetscFree2(m->nrm, m->vnrm));
   PetscCall(PetscFree(m->eedge));
+  PetscCall(PetscFree2(m->vbnd, m->ebnd));
   PetscCall(PetscFree(m->enrm));
   PetscCall(PetscFree2(m->perm, m->node));
   PetscCall(PetscFree(m->soup.v));
@@ -441,13 +521,21 @@ PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle o, const char file[], const Petsc
   m->soup.n = m->soup.cap = 0;
   PetscCall(SgObstacleMeshOrient(o, m));
   PetscCall(BuildTree(m));
+  PetscCall(PetscCalloc2(m->nvert, &m->vbnd, o->dim == 3 ? m->nedge : 0, &m->ebnd));
   if (o->dim == 3) {
     PetscInt *cnt;
     PetscCall(PetscCalloc1(m->nedge, &cnt));
     for (PetscInt i = 0; i < 3 * m->nel; i++) cnt[m->eedge[i]]++;
-    for (PetscInt i = 0; i < m->nedge; i++) nbnd += cnt[i] == 1;
+    for (PetscInt i = 0; i < m->nedge; i++) nbnd += m->ebnd[i] = cnt[i] == 1;
+    for (PetscInt e = 0; e < m->nel; e++)
+      for (PetscInt k = 0; k < 3; k++)
+        if (cnt[m->eedge[3 * e + k]] == 1) m->vbnd[m->el[3 * e + k]] = m->vbnd[m->el[3 * e + (k + 1) % 3]] = 1;
     PetscCall(PetscFree(cnt));
-  } else nbnd = 2 * m->nvert - 2 * m->nel; /* vertices of one segment */
+  } else {
+    for (PetscInt i = 0; i < 2 * m->nel; i++) m->vbnd[m->el[i]]++;
+    for (PetscInt v = 0; v < m->nvert; v++) m->vbnd[v] = m->vbnd[v] == 1;
+    nbnd = 2 * m->nvert - 2 * m->nel; /* vertices of one segment */
+  }
   PetscCall(PetscInfo(NULL, "meshed obstacle %s: %" PetscInt_FMT " %s, %" PetscInt_FMT " vertices, %s surface (%" PetscInt_FMT " boundary %s), %" PetscInt_FMT " tree nodes\n", file, m->nel, el, m->nvert, nbnd ? "open" : "closed", nbnd, o->dim == 3 ? "edges" : "vertices", m->nnode));
   PetscCall(PetscLogEventEnd(MESH_SetUp, 0, 0, 0, 0));
   PetscFunctionReturn(0);

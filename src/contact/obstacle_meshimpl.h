@@ -31,7 +31,9 @@ typedef struct {
   MeshNode *node;
   PetscInt  nnode;
   PetscInt *perm;
-  double    len; /* diagonal of the bounding box */
+  double    len;  /* diagonal of the bounding box */
+  char     *vbnd; /* a vertex on the boundary of an open surface (3D: of a boundary edge; 2D: of one segment) */
+  char     *ebnd; /* 3D: an edge of one triangle (the boundary of an open surface) */
   PetscInt  nquery;
   Soup      soup; /* the elements as read (freed after set-up) */
 } Obstacle_Mesh;
