@@ -46,9 +46,18 @@ and prints a markdown section for bench/results.md. Goals of issue 30: the defau
 against the yardstick at most 2.5 from 1e5 unknowns on; the turned Example 2 within 20 % of the unturned; at most 8
 SSN steps. A benchmark, not a test: never run by make test.
 
+With --geo-yard (bench/perf_nested.py's geometric yardstick, bench/nested.md): beside the yardstick above, a strained
+linear problem on the same mesh, the case's Dirichlet data plus a body force (GEO below: hemisphere (0,0,-0.01), half
+disc (0,-0.01), Example 2 (0,0,-1e5), the turned one turned), solved (a) by the case's default itself with the
+obstacle moved out of reach (nothing touches: on a hierarchy every SSN step is a linear solve by nested iteration +
+the geometric multigrid, coarse levels included; a run in which a vertex touches is not counted) and (b) by the same
+AMG yardstick configurations from zero, --yard-repeat rounds each; cost_ratio_geometric = contact solve / the fastest
+of (a) and (b). Cases hemi, cyl, ex2c and ex2t (the turned); printed as a second table with the hemisphere's ratios
+against the flat Example 2's of the same -dm_refine, and in curved.runs.
+
 usage: perf_curved.py [--only hemi,ex2,cyl,ex2c,ex2t] [--hemi-scales 4,8.5,18] [--hemi-refine N] [--ex2-scales 2,4.2] [--cyl-scale 60]
                       [--cyl-refine N] [--ex2c-refine 2,3] [--ex2t-refine 2,3] [--ex2t-extra OPTS] [--repeat N]
-                      [--yard-repeat N] [--yard-configs NAME,...]
+                      [--yard-repeat N] [--yard-configs NAME,...] [--geo-yard]
                       [--json FILE|none] [--out DIR]
 The meshes are made with make (e.g. make meshes/cv_hemisphere_s8.msh meshes/cv_ex2_s2_r30.msh).
 """
@@ -64,6 +73,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import sgrun  # noqa: E402
 from bench import YARDSTICK_3D, YARD_RTOL  # noqa: E402
+from perf_nested import GEO_FAR, GEO_FORCE, timed  # noqa: E402
 
 # 2D (the half disc on 2 ranks): the iterative configurations of YARDSTICK_3D that work in 2D, and MUMPS (the fastest
 # linear solve of a 2D mesh of 5e5 unknowns may be the direct one)
@@ -83,6 +93,12 @@ EX2_VALUES_R30 = "-dirichlet_values -0.06666666666666667,0.04880338717125848,-0.
 CYL = "-options_file options/cv_halfdisc.opts"
 CYL_ELASTIC = "-E 1 -nu 0.3 -dirichlet_ids 2,6 -dirichlet_components xy,x -dirichlet_values 0,-0.01,0,0"  # options/cv_halfdisc.opts
 CYL_CLAMPED = "-E 1 -nu 0.3 -dirichlet_ids 2,6,1 -dirichlet_components xy,x,xy -dirichlet_values 0,-0.01,0,0,0,0"
+# --geo-yard: (the body force, the obstacle out of reach) per problem; Example 2's are perf_nested.py's, the turned
+# one's R (0,0,-1e5) and R c - 99 R e_z (options/cv_ex2_r30.opts' centre moved 99 along its up direction, as -0.3,0,-100)
+GEO = {"hemi": ("-body_force 0,0,-0.01", "-obstacle_plane_point 0,0,-100"), "cyl": ("-body_force 0,-0.01", "-obstacle_plane_point 0,-100"),
+       "ex2c": (GEO_FORCE, GEO_FAR),
+       "ex2t": ("-body_force -33333.33333333333,24401.69358562924,-91068.36025229591",
+                "-obstacle_ball_center -33.606538414090224,24.30169358562924,-90.99515517153903")}
 FIELDS = ("dofs", "cont_type", "linear_solver", "outer_iterations", "ssn_iterations", "ksp_iterations", "linear_setup_time",
           "linear_solve_time", "solve_time", "peak_rss_mb", "converged", "reason", "energy", "contact_force", "nested_levels",
           "nested_coarse_ssn_its", "nested_coarse_ksp_its", "nested_coarse_time")
@@ -119,6 +135,60 @@ def yardstick(args, tag, repeat, out, only=None, np=1, configs=YARDSTICK_3D):
             "candidates": {n: {"time": v["linear_solve_time"], "ksp_iterations": v["ksp_iterations"]} for n, v in best.items()}}
 
 
+def geo_yardstick(key, args, yargs, repeat, out, only, np, configs):
+    """--geo-yard: the strained linear problem by the default, nothing touching, and by the AMG yardsticks; the fastest"""
+    force, far = GEO[key.split("_")[0]]
+    y = yardstick("%s %s" % (yargs, force), key + "_geo", repeat, out, only, np, configs)
+    cand = dict(y.get("candidates") or {})
+    own = []
+    for r in range(repeat):
+        s = timed("%s %s %s" % (args, far, force), "G_%s_default_%d" % (key, r), out, np)
+        touching = s.get("active_set_size", 0) != 0
+        sys.stderr.write("%s strained, the default (load %.1f): %s s, %s\n" % (key, s["load_before"], s.get("solve_time"),
+                         "%s vertices touch: not counted" % s.get("active_set_size") if touching else s.get("reason")))
+        if s.get("converged") and s.get("solve_time") and not touching:
+            own.append(s)
+    if own:
+        b = min(own, key=lambda s: s["solve_time"])
+        cand["default, nothing touching"] = {"time": b["solve_time"], "ksp_iterations": b["ksp_iterations"], "times": [s["solve_time"] for s in own],
+                                             "coarse_ksp_iterations": b.get("nested_coarse_ksp_its"), "load_before": [s["load_before"] for s in own],
+                                             "linear_solver": b.get("linear_solver"), "cpu_time": [s["cpu_time"] for s in own]}
+    if not cand:
+        return {"name": None, "time": None, "candidates": {}}
+    name = min(cand, key=lambda n: cand[n]["time"])
+    return {"name": name, "time": cand[name]["time"], "ksp_iterations": cand[name]["ksp_iterations"], "candidates": cand}
+
+
+def geo_table(cases, res, geo, yards):
+    """--geo-yard's markdown: both ratios, and the hemisphere's against the flat Example 2 of the same -dm_refine"""
+    lines = ["", "The strained linear problem (--geo-yard: body force, obstacle out of reach), its fastest solve and both cost ratios; "
+             "load: the 1-minute load average before each contact round.", "",
+             "| case | unknowns | contact solve (rounds) | load | AMG yardstick (rigid data) | strained: default, nothing touching (CG finest / coarse) "
+             "| strained: fastest configured yardstick (CG) | cost ratio (AMG) | cost_ratio_geometric |", "|---|---|---|---|---|---|---|---|---|"]
+    for key, _, _, _ in cases:
+        if key not in geo:
+            continue
+        s, c = res[key], geo[key]["candidates"]
+        d = c.get("default, nothing touching", {})
+        amg = {n: v for n, v in c.items() if n != "default, nothing touching"}
+        fa = min(amg, key=lambda n: amg[n]["time"]) if amg else None
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            key, s.get("dofs"), ", ".join(fmt(t) for t in s["round_solve_times"]), ", ".join(fmt(x, "%.1f") for x in s["round_loads"]),
+            "%s (%s, %s)" % (fmt(yards[key]["time"]), yards[key]["name"], yards[key].get("ksp_iterations")) if yards[key].get("time") else "-",
+            "%s (%s / %s)" % (fmt(d.get("time")), d.get("ksp_iterations"), d.get("coarse_ksp_iterations")) if d else "-",
+            "%s (%s, %s)" % (fmt(amg[fa]["time"]), fa, amg[fa]["ksp_iterations"]) if fa else "-",
+            fmt(s.get("cost_ratio"), "%.2f"), fmt(s.get("cost_ratio_geometric"), "%.2f")))
+    for key in geo:
+        if key.startswith("hemi") and "_r" in key:
+            flat = res.get("ex2c_r" + key.rsplit("_r", 1)[1], {})
+            for f in ("cost_ratio", "cost_ratio_geometric"):
+                if res[key].get(f) and flat.get(f):
+                    q = res[key][f] / flat[f]
+                    lines.append("%s: %s %.2f against ex2c's %.2f: %.2fx (%s 20 %%)" % (key, f, res[key][f], flat[f], q,
+                                                                                      "within" if abs(q - 1) <= 0.2 else "NOT within"))
+    return lines
+
+
 def fmt(x, f="%.3g"):
     return "-" if x is None else f % x
 
@@ -139,6 +209,8 @@ def main():
     ap.add_argument("--yard-configs", default=None, help="comma-separated parts of the names of the yardstick configurations "
                     "to run (default: all of scripts/bench.py's YARDSTICK_3D), e.g. PCHMG,l1-Gauss-Seidel where an earlier run "
                     "showed the others slower on the same mesh")
+    ap.add_argument("--geo-yard", action="store_true", help="also the strained linear problem (a body force, the obstacle out of reach) "
+                    "by the default and by the AMG yardsticks, and cost_ratio_geometric (see the usage)")
     ap.add_argument("--json", default=os.path.join(HERE, "results.json"))
     ap.add_argument("--out", default=os.path.join(HERE, "runs", "curved"))
     opt = ap.parse_args()
@@ -195,7 +267,8 @@ def main():
         res[k]["round_loads"] = [s.get("load_before") for s in v]
         res[k]["round_cpu_times"] = [s.get("cpu_time") for s in v]
     yards, yards2, cost, turned = {}, {}, {}, {}
-    for key, _, yargs, np in cases:
+    geo = {}
+    for key, args, yargs, np in cases:
         if yargs is None:
             continue
         yrep = opt.repeat if opt.yard_repeat is None else opt.yard_repeat
@@ -211,6 +284,10 @@ def main():
             yards2[key] = y2
             if y2["time"] and s.get("converged"):
                 s["cost_ratio_clamped"] = s["solve_time"] / y2["time"]
+        if opt.geo_yard and key.split("_")[0] in GEO:
+            geo[key] = geo_yardstick(key, args, yargs, yrep, opt.out, only_y, np, configs)
+            if geo[key]["time"] and s.get("converged"):
+                s["cost_ratio_geometric"] = s["solve_time"] / geo[key]["time"]
         # ex2c: the flat reference; cyl: 2D (its ratios stay in curved.runs)
         if y["time"] and s.get("converged") and s.get("dofs") and not key.startswith(("ex2c", "cyl")):
             cost[str(s["dofs"])] = s["solve_time"] / y["time"]
@@ -239,6 +316,8 @@ def main():
             ystr(y2) if key in clamped else "-", fmt(s.get("cost_ratio_clamped"), "%.2f"), fmt(s.get("peak_rss_mb"), "%.0f"),
             "/".join(fmt(v.get("peak_rss_mb"), "%.0f") for v in (y, y2) if v.get("time")) or "-",
             "yes" if s.get("converged") else "NO: %s" % str(s.get("reason"))[:60]))
+    if geo:
+        lines += geo_table(cases, res, geo, yards)
     lines += ["", "Turned Example 2 against the unturned, contact solve time ratio: %s (goal: within 20 %%)." %
               (", ".join("%s unknowns %.2f" % (d, v) for d, v in turned.items()) or "-"), ""]
     print("\n".join(lines))
@@ -254,6 +333,7 @@ def main():
         cv.setdefault("runs", {}).update(res)
         cv.setdefault("yardsticks", {}).update(yards)
         cv.setdefault("yardsticks_clamped", {}).update(yards2)
+        cv.setdefault("yardsticks_geometric", {}).update(geo)
         cv["repeat"] = opt.repeat
         sgrun.write_atomic(opt.json, json.dumps(js, indent=1, sort_keys=False) + "\n")
 
