@@ -394,7 +394,7 @@ static PetscErrorCode PairFaces(DM dm, DMLabel label, const PetscInt ids[], Pets
 
 /* MeshPartitionPairs: each slave face's cell (sc) into the group of the nearest master face's cell (mc), by the face
    centroids; the master faces sorted along x and scanned outwards from the slave face's x */
-static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const PetscReal sx[], PetscInt nmf, const PetscInt mc[], const PetscReal mx[], PetscInt grp[])
+static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const PetscReal sx[], PetscInt nmf, const PetscInt mc[], const PetscReal mx[], PetscInt grp[], PetscReal dist[])
 {
   PetscInt  *ord;
   PetscReal *key;
@@ -419,8 +419,79 @@ static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const Petsc
         if (d2 < bd) bd = d2, best = ord[j];
       }
     if (best >= 0 && grp[sc[i]] == sc[i]) grp[sc[i]] = mc[best];
+    dist[i] = best >= 0 ? PetscSqrtReal(bd) : PETSC_MAX_REAL;
   }
   PetscCall(PetscFree2(ord, key));
+  PetscFunctionReturn(0);
+}
+
+/* MeshPartitionPairs: each cell's weight for the partition, in units of 1/120 of a vertex of the mesh refined -dm_refine
+   R times: its share of that mesh's vertices (regular refinement: an edge gets 2^R - 1 new vertices, a triangle
+   (2^R - 1)(2^R - 2)/2 inside, a tetrahedron (2^R - 1)(2^R - 2)(2^R - 3)/6; each point's shared equally by the cells
+   around it), and for each slave face within the pairing distance (dist: to the nearest master face's centroid;
+   -contact_pair_distance, by default a tenth of the mesh's diameter, as contact_pair.c) SG_PAIR_ROW_WEIGHT vertices
+   more for each of its refined vertices ((2^R)^2 / 2 in 3D, 2^R in 2D): the rows of the pair's dual-mortar basis at
+   the slave vertices opposite the master and at their master vertices are about four times as long as a body's
+   (186 against 45 nonzeros at 40,866 unknowns, the sphere on a block: about 3 vertices more for each such vertex of
+   either side); 6 halved the 2 ranks' nonzero imbalance there, 14 balanced it, 12 is taken (bench/results.md, pair8) */
+#define SG_PAIR_ROW_WEIGHT 12.0
+
+static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, PetscInt n, PetscInt nsf, const PetscInt sc[], const PetscReal dist[], PetscInt cw[])
+{
+  PetscInt  R = 0, pS, pE, *star, per[4], dim, depth;
+  PetscReal k, dmax = 0;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(DMPlexGetDepth(dm, &depth));
+  if (depth != dim) { /* not interpolated (no edges, faces): the cells' counts */
+    for (PetscInt c = 0; c < n; c++) cw[c] = 1;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscOptionsGetInt(NULL, prefix, "-dm_refine", &R, NULL));
+  k      = PetscPowInt(2, PetscMax(0, PetscMin(R, 12)));
+  per[0] = 1;
+  per[1] = (PetscInt)(k - 1);
+  per[2] = (PetscInt)((k - 1) * (k - 2) / 2);
+  per[3] = (PetscInt)((k - 1) * (k - 2) * (k - 3) / 6);
+  PetscCall(DMPlexGetChart(dm, &pS, &pE));
+  PetscCall(PetscCalloc1(pE - pS + 1, &star));
+  for (PetscInt pass = 0; pass < 2; pass++)
+    for (PetscInt c = 0; c < n; c++) {
+      PetscInt *cl = NULL, ncl;
+      PetscReal w  = 0;
+      PetscCall(DMPlexGetTransitiveClosure(dm, cS + c, PETSC_TRUE, &ncl, &cl));
+      for (PetscInt q = 0; q < ncl; q++) {
+        const PetscInt p = cl[2 * q] - pS;
+        PetscInt       d;
+        if (!pass) {
+          star[p]++;
+          continue;
+        }
+        PetscCall(DMPlexGetPointDepth(dm, cl[2 * q], &d));
+        w += (PetscReal)per[PetscMin(d, 3)] / star[p];
+      }
+      PetscCall(DMPlexRestoreTransitiveClosure(dm, cS + c, PETSC_TRUE, &ncl, &cl));
+      if (pass) cw[c] = PetscMax(1, (PetscInt)(120 * w + 0.5));
+    }
+  PetscCall(PetscFree(star));
+  PetscCall(PetscOptionsGetReal(NULL, prefix, "-contact_pair_distance", &dmax, &set));
+  if (!set) { /* a tenth of the mesh's diameter */
+    Vec                coords;
+    const PetscScalar *x;
+    PetscInt           nx;
+    PetscReal          lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL}, d2 = 0;
+    PetscCall(DMGetCoordinatesLocal(dm, &coords));
+    PetscCall(VecGetLocalSize(coords, &nx));
+    PetscCall(VecGetArrayRead(coords, &x));
+    for (PetscInt i = 0; i < nx; i++) lo[i % dim] = PetscMin(lo[i % dim], PetscRealPart(x[i])), hi[i % dim] = PetscMax(hi[i % dim], PetscRealPart(x[i]));
+    PetscCall(VecRestoreArrayRead(coords, &x));
+    for (PetscInt d = 0; d < dim; d++) d2 += nx ? PetscSqr(hi[d] - lo[d]) : 0;
+    dmax = 0.1 * PetscSqrtReal(d2);
+  }
+  for (PetscInt i = 0; i < nsf; i++)
+    if (dist[i] <= dmax) cw[sc[i]] += (PetscInt)(120 * SG_PAIR_ROW_WEIGHT * (dim == 3 ? k * k / 2 : k) + 0.5);
   PetscFunctionReturn(0);
 }
 
@@ -436,12 +507,13 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
 {
   PetscMPIInt      size;
   PetscInt         sids[64], mids[64], ns = 64, nm = 64, cS, cE, n, nwith, fS, fE;
-  PetscBool        sset, mset, on = PETSC_TRUE, set;
+  PetscBool        sset, mset, on = PETSC_TRUE, set, bycells = PETSC_FALSE;
   char             lname[256] = "Face Sets";
   DMLabel          label;
   PetscInt        *grp, *gid, ng = 0, nv, *off = NULL, *adj = NULL, *goff, *gadj, ne = 0, *mark, *sizes, *pts;
   PetscReal       *sx, *mx;
-  PetscInt        *sc, *mc, nsf = 0, nmf = 0;
+  PetscInt        *sc, *mc, nsf = 0, nmf = 0, *cw;
+  PetscReal       *sd;
   IS               gnum, partition;
   PetscSection     vsec, psec;
   PetscPartitioner gp;
@@ -451,6 +523,7 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscOptionsBegin(comm, prefix, "Two bodies on several ranks", NULL);
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-contact_pair_partition", "Two bodies (-contact_master_ids) on several ranks: partition the mesh with each cell of a slave face grouped with the cell of the nearest master face (the pair's rows on one rank), instead of PT-Scotch's partition of the cell graph alone", &on, &set));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-contact_pair_partition_cells", "-contact_pair_partition: weigh the groups by their cells alone, not by the vertices of the refined mesh (-dm_refine) they hold and the denser rows of the pair's contact zone", &bycells, NULL));
   PetscOptionsEnd();
   if (size < 2) PetscFunctionReturn(0); /* one rank: nothing to partition (bit-identical runs) */
   PetscCall(PetscOptionsGetIntArray(NULL, prefix, "-contact_master_ids", mids, &nm, &mset));
@@ -474,7 +547,10 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
   /* groups: a slave face's cell joins the group of the nearest master face's cell (each cell in one group) */
   PetscCall(PetscMalloc2(n + 1, &grp, n + 1, &gid));
   for (PetscInt c = 0; c < n; c++) grp[c] = c;
-  if (nsf && nmf) PetscCall(PairNearest(nsf, sc, sx, nmf, mc, mx, grp));
+  PetscCall(PetscMalloc2(n + 1, &cw, nsf + 1, &sd));
+  for (PetscInt i = 0; i < nsf; i++) sd[i] = PETSC_MAX_REAL;
+  if (nsf && nmf) PetscCall(PairNearest(nsf, sc, sx, nmf, mc, mx, grp, sd));
+  if (!bycells) PetscCall(PairCellWeights(dm, prefix, cS, n, nsf, sc, sd, cw));
   PetscCall(PetscFree4(sc, mc, sx, mx));
   for (PetscInt c = 0; c < n; c++) /* a cell with both sides' faces (one body's): in its own group */
     if (grp[grp[c]] != grp[c]) grp[c] = c;
@@ -505,7 +581,7 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
     PetscCall(PetscSectionSetChart(vsec, 0, ng));
     for (PetscInt g = 0; g < ng; g++) {
       PetscInt w = 0;
-      for (PetscInt c = first[g]; c >= 0; c = next[c]) w++;
+      for (PetscInt c = first[g]; c >= 0; c = next[c]) w += bycells ? 1 : cw[c];
       PetscCall(PetscSectionSetDof(vsec, g, w));
     }
     PetscCall(PetscSectionSetUp(vsec));
@@ -549,6 +625,7 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
   PetscCall(PetscSectionDestroy(&vsec));
   PetscCall(PetscPartitionerDestroy(&gp));
   PetscCall(PetscFree3(goff, gadj, mark));
+  PetscCall(PetscFree2(cw, sd));
   PetscCall(PetscFree2(grp, gid));
   PetscFunctionReturn(0);
 }
