@@ -144,6 +144,8 @@ PetscErrorCode SgElasticityDualNorm(SgElasticity, Vec, PetscReal *);
 PetscErrorCode SgElasticityReaction(SgElasticity, Vec, PetscReal[3]);
 /* the connected bodies of the mesh: a cell field 1, 2, ... (NULL: none) and their number (rigid.c) */
 PetscErrorCode SgElasticityBodyField(SgElasticity, Vec, PetscInt *);
+/* the body of each local vertex (m->nv entries), numbered 0.. alike on every rank, and their number (rigid.c) */
+PetscErrorCode SgElasticityVertexBodies(SgElasticity, PetscInt *, PetscInt[]);
 PetscErrorCode SgElasticityFixedResidual(SgElasticity, Vec, Vec); /* K u - f on the fixed components of partly fixed vertices */
 PetscErrorCode SgElasticityGetDirichletBoundary(SgElasticity, const SgBoundary **);
 PetscErrorCode SgElasticityForces(SgElasticity, Vec, PetscReal *, PetscReal *, PetscReal[3], PetscReal *);               /* loads and support forces at y: largest nodal (per vertex), resultant, sum of nodal magnitudes */

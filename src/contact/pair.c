@@ -294,6 +294,52 @@ static void IdList(const SgBoundary *b, char buf[], size_t len)
   for (PetscInt i = 0; i < b->nids && k + 24 < len; i++) k += (size_t)snprintf(buf + k, len - k, "%s%" PetscInt_FMT, i ? "," : "", b->ids[i]);
 }
 
+/* Marks on[k] = 1 for each body k (SgElasticityVertexBodies) that has a facet of the side on this rank */
+static PetscErrorCode SideBodies(DM dm, const SgMesh *m, const SgBoundary *bnd, const PetscInt comp[], PetscInt on[])
+{
+  PetscInt nf, *facets, *part;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgBoundaryGetFacets(dm, bnd, &nf, &facets, &part));
+  for (PetscInt f = 0; f < nf; f++) {
+    PetscInt  fv[3], nfv;
+    PetscReal meas, nrm[3];
+    PetscCall(SgFacetGeometry(dm, m, facets[f], &nfv, fv, &meas, nrm));
+    on[comp[fv[0]]] = 1;
+  }
+  PetscCall(PetscFree2(facets, part));
+  PetscFunctionReturn(0);
+}
+
+/* Contact of a body with itself is out of scope (issue 28): the slave and the master side must lie on different
+   bodies (connected parts of the mesh). Without this check such a pair ends in a message about overlap or about
+   sides that face away, which names the symptom, not the cause. Collective. */
+static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const SgBoundary *slave, const SgBoundary *master)
+{
+  MPI_Comm comm;
+  PetscInt nb, *comp, *on, same = -1;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetComm(el, &comm));
+  PetscCall(PetscMalloc1(m->nv + 1, &comp));
+  PetscCall(SgElasticityVertexBodies(el, &nb, comp));
+  PetscCall(PetscCalloc1(2 * nb + 1, &on));
+  PetscCall(SideBodies(dm, m, slave, comp, on));
+  PetscCall(SideBodies(dm, m, master, comp, on + nb));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, on, (PetscMPIInt)(2 * nb), MPIU_INT, MPI_MAX, comm));
+  for (PetscInt k = 0; k < nb && same < 0; k++)
+    if (on[k] && on[nb + k]) same = k;
+  PetscCall(PetscFree(on));
+  PetscCall(PetscFree(comp));
+  if (same >= 0) {
+    char ids[256], mids[256];
+    IdList(slave, ids, sizeof(ids));
+    IdList(master, mids, sizeof(mids));
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the slave and the master side lie on the same body (a connected part of the mesh; it has %" PetscInt_FMT "): contact of a body with itself is not supported; name a master side on another body", ids, mids, nb);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The slave facets that found no partner within dmax (mortar.h's search): one that lies deeper than dmax behind a
    facing master facet means that the bodies overlap at the start: an error naming the sides, the depth and the place.
    Those that face the master farther than dmax ahead are counted (nbeyond, all ranks): if no slave vertex gets a row,
@@ -374,6 +420,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(MatGetLocalSize(K, &nloc, NULL));
   nloc /= dim;
   PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_TRUE));
+  PetscCall(CheckBodies(el, dm, m, slave, master));
   PetscCall(SideCollect(dm, m, slave, &sl));
   PetscCall(SideCollect(dm, m, master, &ml));
   PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_FALSE));

@@ -342,6 +342,20 @@ static PetscErrorCode MeshBodies(DM dm, const SgMesh *m, PetscInt *ncomp, PetscI
   PetscFunctionReturn(0);
 }
 
+/* The connected body of each local vertex (comp, m->nv entries, the caller's), numbered 0..nbodies-1 alike on every
+   rank (MeshBodies: by the smallest global vertex number of each body); for checks that ask whether two boundary parts
+   lie on one body (a contact pair's sides). Collective. */
+PetscErrorCode SgElasticityVertexBodies(SgElasticity p, PetscInt *nbodies, PetscInt comp[])
+{
+  PetscBool *rep;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(p->mesh.nv + 1, &rep));
+  PetscCall(MeshBodies(p->dm, &p->mesh, nbodies, comp, rep));
+  PetscCall(PetscFree(rep));
+  PetscFunctionReturn(0);
+}
+
 /* A mesh of several bodies (connected parts: two materials glued at an interface are one body): each must be held by
    the Dirichlet data on its own vertices, as the whole mesh is (contact does not count); the message names the first
    body that is not, by a vertex of it and its materials, and its free rigid motions. */
