@@ -181,9 +181,13 @@ static PetscErrorCode VerticesDone(SgContact c)
   PetscCheck(c->nglobal > 0 || c->pair, c->comm, PETSC_ERR_USER_INPUT, "-contact_label/-contact_ids: every vertex of the contact boundary '%s' is a Dirichlet vertex: nothing can come into contact", c->bnd.label);
   /* two bodies without a slave vertex opposite the master: farther apart than the pairing distance (a valid problem:
      solved without contact, with a warning), or sides that do not face each other (an error) */
-  PetscCheck(c->nglobal > 0 || !c->pair || c->pair->nbeyond > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave facet of '%s' faces a master facet (the two sides face away from each other, or do not lie opposite each other)", c->bnd.label);
-  if (!c->nglobal && c->pair)
-    PetscCall(PetscPrintf(c->comm, "WARNING: -contact_ids/-contact_master_ids: the slave side of '%s' faces the master side only farther away than -contact_pair_distance %g: the pair has no contact vertices, and the problem is solved without contact (give a larger -contact_pair_distance if the bodies can come that close)\n", c->bnd.label, (double)c->pairdist));
+  if (!c->nglobal && c->pair) { /* the messages name the ids of both sides */
+    char ids[256], mids[256];
+    SgPairIdList(&c->bnd, ids, sizeof(ids));
+    SgPairIdList(&c->master, mids, sizeof(mids));
+    PetscCheck(c->pair->nbeyond > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave facet of '%s' faces a master facet (the two sides face away from each other, or do not lie opposite each other): -contact_ids %s, -contact_master_ids %s", c->bnd.label, ids, mids);
+    PetscCall(PetscPrintf(c->comm, "WARNING: -contact_ids/-contact_master_ids: the slave side of '%s' faces the master side only farther away than -contact_pair_distance %g: the pair has no contact vertices, and the problem is solved without contact (give a larger -contact_pair_distance if the bodies can come that close): -contact_ids %s, -contact_master_ids %s\n", c->bnd.label, (double)c->pairdist, ids, mids));
+  }
   PetscCall(PetscCalloc2(c->n + 1, &c->klam, c->n + 1, &c->kact));
   PetscFunctionReturn(0);
 }

@@ -286,8 +286,8 @@ static PetscErrorCode AverageNormals(SgContactPair p, Mat Ms, const Side *ml)
   PetscFunctionReturn(0);
 }
 
-/* "a,b,c": a side's values (for the messages) */
-static void IdList(const SgBoundary *b, char buf[], size_t len)
+/* "a,b,c": a side's values (for the messages; pair.h) */
+void SgPairIdList(const SgBoundary *b, char buf[], size_t len)
 {
   size_t k = 0;
   buf[0]   = 0;
@@ -333,8 +333,8 @@ static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const
   PetscCall(PetscFree(comp));
   if (same >= 0) {
     char ids[256], mids[256];
-    IdList(slave, ids, sizeof(ids));
-    IdList(master, mids, sizeof(mids));
+    SgPairIdList(slave, ids, sizeof(ids));
+    SgPairIdList(master, mids, sizeof(mids));
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the slave and the master side lie on the same body (a connected part of the mesh; it has %" PetscInt_FMT "): contact of a body with itself is not supported; name a master side on another body", ids, mids, nb);
   }
   PetscFunctionReturn(0);
@@ -360,8 +360,8 @@ static PetscErrorCode CheckSearch(MPI_Comm comm, PetscInt dim, const Side *sl, c
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x, 3, MPIU_REAL, MPI_MAX, comm));
   {
     char ids[256], mids[256], at[96];
-    IdList(slave, ids, sizeof(ids));
-    IdList(master, mids, sizeof(mids));
+    SgPairIdList(slave, ids, sizeof(ids));
+    SgPairIdList(master, mids, sizeof(mids));
     if (dim == 3) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]));
     else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)x[0], (double)x[1]));
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the bodies overlap at the start: the slave side near %s lies %g inside the master side (behind a facing master facet, deeper than -contact_pair_distance %g): move the bodies apart in the mesh", ids, mids, at, (double)depth, (double)dmax);

@@ -51,6 +51,7 @@ typedef struct {
    slave's; brute: the mortar search's reference (SgMortarIntegrals); obst: rows against a rigid obstacle, or NULL */
 PetscErrorCode SgContactPairCreate(SgElasticity, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, PetscBool brute, const SgPairObstacleRows *obst, SgContactPair *);
 PetscErrorCode SgContactPairDestroy(SgContactPair *);
+void           SgPairIdList(const SgBoundary *, char[], size_t); /* "a,b,c": a side's values, for messages */
 
 /* The phases of the pair's set-up as log events (-log_view; registered on first use): SgPairCollect (the local slave
    and master facets' geometry), SgPairGather (the master surface on every rank), SgPairMortar (the search and the
