@@ -187,6 +187,14 @@ static PetscBool Better(const MeshClosest *c, const MeshClosest *best)
   return (PetscBool)(c->d2 < best->d2 || (c->d2 == best->d2 && c->e < best->e));
 }
 
+/* the squared distance from p to a tree node's bounding box (0 inside it) */
+static double BoxDist2(const MeshNode *nd, const double p[3])
+{
+  double d2 = 0;
+  for (int k = 0; k < 3; k++) d2 += PetscSqr(PetscMax(0, PetscMax(nd->lo[k] - p[k], p[k] - nd->hi[k])));
+  return d2;
+}
+
 static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *best)
 {
   PetscInt stack[256], sp = 0;
@@ -197,9 +205,7 @@ static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *
   stack[sp++] = 0;
   while (sp) {
     const MeshNode *nd = &m->node[stack[--sp]];
-    double          d2 = 0;
-    for (int k = 0; k < 3; k++) d2 += PetscSqr(PetscMax(0, PetscMax(nd->lo[k] - p[k], p[k] - nd->hi[k])));
-    if (d2 > best->d2) continue;
+    if (BoxDist2(nd, p) > best->d2) continue;
     if (nd->count) {
       for (PetscInt i = nd->start; i < nd->start + nd->count; i++) {
         MeshClosest c;
@@ -207,12 +213,7 @@ static void ClosestTree(const Obstacle_Mesh *m, const double p[3], MeshClosest *
         if (Better(&c, best)) *best = c;
       }
     } else if (sp + 2 <= 256) {
-      const MeshNode *l = &m->node[nd->left], *r = &m->node[nd->left + 1];
-      double          dl = 0, dr = 0;
-      for (int k = 0; k < 3; k++) {
-        dl += PetscSqr(PetscMax(0, PetscMax(l->lo[k] - p[k], p[k] - l->hi[k])));
-        dr += PetscSqr(PetscMax(0, PetscMax(r->lo[k] - p[k], p[k] - r->hi[k])));
-      }
+      const double dl = BoxDist2(&m->node[nd->left], p), dr = BoxDist2(&m->node[nd->left + 1], p);
       /* the nearer child is visited first (pushed last) */
       stack[sp++] = dl <= dr ? nd->left + 1 : nd->left;
       stack[sp++] = dl <= dr ? nd->left : nd->left + 1;
@@ -406,9 +407,7 @@ static PetscBool SecondClosest(const Obstacle_Mesh *m, const double p[3], const 
   stack[sp++] = 0;
   while (sp) {
     const MeshNode *nd = &m->node[stack[--sp]];
-    double          d2 = 0;
-    for (int k = 0; k < 3; k++) d2 += PetscSqr(PetscMax(0, PetscMax(nd->lo[k] - p[k], p[k] - nd->hi[k])));
-    if (d2 > reach) continue;
+    if (BoxDist2(nd, p) > reach) continue;
     if (nd->count) {
       for (PetscInt i = nd->start; i < nd->start + nd->count; i++) {
         MeshClosest c;
