@@ -699,8 +699,8 @@ static PetscErrorCode TestMeshTree(SgSummary s)
     r = PetscSqrtReal(r);
     for (PetscInt k = 0; k < dim; k++) n[k] /= PetscSqrtReal(nn);
     PetscCall(SgObstacleGap(o, x, n, &dt));
-    PetscCall(o->distance(o, x, &gt, nt));
-    PetscCall(SgObstacleMeshQueryBrute(o, x, n, &db, &gb, nb));
+    PetscCall(SgObstacleMeshQuery(o, PETSC_FALSE, x, NULL, NULL, &gt, nt)); /* the tree (o->distance adds the checks) */
+    PetscCall(SgObstacleMeshQuery(o, PETSC_TRUE, x, n, &db, &gb, nb));
     if ((dt == PETSC_MAX_REAL) != (db == PETSC_MAX_REAL)) nmismatch++;
     else if (dt != PETSC_MAX_REAL) dgap = PetscMax(dgap, PetscAbsReal(dt - db));
     ddist = PetscMax(ddist, PetscAbsReal(gt - gb));

@@ -25,8 +25,7 @@ struct _n_SgObstacle {
 /* obstacle_mesh.c (obstacle_mesh_file.c, obstacle_mesh_surface.c): triangulated surfaces (STL, .msh) given as -obstacle_cad_file */
 PetscErrorCode SgObstacleMeshFileIs(const char[], PetscBool *);
 PetscErrorCode SgObstacleSetUp_Mesh(SgObstacle, const char[], const PetscReal[], PetscReal);
-PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
-PetscErrorCode SgObstacleMeshCheckClosest(SgObstacle, const PetscReal[], const PetscReal[]); /* -contact_normal obstacle: where a meshed obstacle's normal is undefined, an error */
+PetscErrorCode SgObstacleMeshQuery(SgObstacle, PetscBool brute, const PetscReal[], const PetscReal[], PetscReal *, PetscReal *, PetscReal[]);
 
 /* The scales of the KKT measures at y, from the forces acting on the body and the data, never from the volumetric
    stiffness lambda (||K|| ||y|| grows like lambda as nu -> 1/2, far beyond any force acting on the body):

@@ -347,7 +347,6 @@ PetscErrorCode SgObstacleDistance(SgObstacle o, const PetscReal x[], PetscReal *
   PetscCheck(o->distance, PETSC_COMM_SELF, PETSC_ERR_SUP, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", o->type);
   for (PetscInt k = 0; k < o->dim; k++) xs[k] = x[k] - o->placement * o->translation[k];
   PetscCall(o->distance(o, xs, g, n));
-  PetscCall(SgObstacleMeshCheckClosest(o, xs, x));
   for (PetscInt k = 0; k < o->dim; k++) s += n[k] * n[k];
   PetscCheck(PetscIsNormalReal(*g) || *g == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the distance from the contact vertex at (%g, %g, %g) to the obstacle '%s' is %g", (double)x[0], (double)x[1], (double)(o->dim == 3 ? x[2] : 0), o->type, (double)*g);
   PetscCheck(PetscAbsReal(s - 1) < 1e-6, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle '%s' has no unit normal at the closest point of the contact vertex at (%g, %g, %g) (length %g)", o->type, (double)x[0], (double)x[1], (double)(o->dim == 3 ? x[2] : 0), (double)PetscSqrtReal(s));

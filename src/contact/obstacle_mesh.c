@@ -342,7 +342,9 @@ static void ToFile(SgObstacle o, const Obstacle_Mesh *m, const PetscReal xb[], d
   for (PetscInt k = 0; k < o->dim; k++) x[k] = (xb[k] - m->shift[k]) / m->scale;
 }
 
-static PetscErrorCode Query(SgObstacle o, PetscBool brute, const PetscReal xb[], const PetscReal nb[], PetscReal *d, PetscReal *g, PetscReal nrm[])
+/* The query behind every op: the closest element c to xb (p: xb in file coordinates), the signed distance g and the
+   normal nrm there, and with nb the gap d along the ray xb + t nb; g, nrm, d, cc, p may be NULL */
+static PetscErrorCode QueryClosest(SgObstacle o, PetscBool brute, const PetscReal xb[], const PetscReal nb[], PetscReal *d, PetscReal *g, PetscReal nrm[], MeshClosest *cc, double p[3])
 {
   Obstacle_Mesh *m = (Obstacle_Mesh *)o->data;
   double         x[3], n[3] = {0, 0, 0}, gm, nm[3], t = 0;
@@ -365,7 +367,17 @@ static PetscErrorCode Query(SgObstacle o, PetscBool brute, const PetscReal xb[],
     else RayTree(m, x, n, (PetscBool)(gm < 0), 1e-10 * m->len, &found, &t);
     *d = found ? m->scale * t : PETSC_MAX_REAL;
   }
+  if (cc) *cc = c;
+  if (p)
+    for (int k = 0; k < 3; k++) p[k] = x[k];
   PetscCall(PetscLogEventEnd(MESH_Query, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Query(SgObstacle o, PetscBool brute, const PetscReal xb[], const PetscReal nb[], PetscReal *d, PetscReal *g, PetscReal nrm[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(QueryClosest(o, brute, xb, nb, d, g, nrm, NULL, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -428,45 +440,49 @@ static PetscBool SecondClosest(const Obstacle_Mesh *m, const double p[3], const 
   return PETSC_FALSE;
 }
 
-static PetscErrorCode Distance_Mesh(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
-{
-  PetscFunctionBeginUser;
-  PetscCall(Query(o, PETSC_FALSE, x, NULL, NULL, g, n));
-  PetscFunctionReturn(0);
-}
-
-/* -contact_normal obstacle at a contact vertex xv, x in the obstacle's frame (SgObstacleDistance calls it after the distance op,
-   which stays a plain query; nothing for other types): as for the analytic ball and the CAD obstacles, an error naming
+/* -contact_normal obstacle at a contact vertex, x in the obstacle's frame (p in the file's, c its closest element, gm
+   its signed distance there in file units; Distance_Mesh): as for the analytic ball and the CAD obstacles, an error naming
    the file and the vertex where the obstacle's normal is undefined. Before, the tree's first element won: for a
    vertex at the centre of a triangulated sphere or regular polygon one facet's normal, and behind the rim of an open
    surface the rim's face decided inside and outside (a vertex there counted as deep inside, pushed sideways).
    - behind the rim: the closest point on a boundary edge or vertex of an open surface and x on its inner side (not on
      the surface itself): an open surface has no inside there;
    - two closest points (x on the medial axis) on elements that share no vertex (SecondClosest). */
-PetscErrorCode SgObstacleMeshCheckClosest(SgObstacle o, const PetscReal x[], const PetscReal xv[])
+static PetscErrorCode CheckClosest(SgObstacle o, const PetscReal x[], const double p[3], const MeshClosest *c, double gm)
 {
-  Obstacle_Mesh *m;
-  double         p[3], q2[3], gm, nm[3];
-  MeshClosest    c;
+  const Obstacle_Mesh *m     = (const Obstacle_Mesh *)o->data;
+  PetscReal            xv[3] = {0, 0, 0}; /* the contact vertex: x moved back by the obstacle's placement */
+  double               q2[3];
 
   PetscFunctionBeginUser;
-  if (o->gap != Gap_Mesh) PetscFunctionReturn(0);
-  m = (Obstacle_Mesh *)o->data;
-  ToFile(o, m, x, p);
-  ClosestTree(m, p, &c);
-  SignedDistance(m, p, &c, &gm, nm);
-  PetscCheck(!(gm < 0 && PetscSqrtReal(c.d2) > 1e-8 * m->len && OnBoundary(m, &c)), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies behind the boundary of the open surface (its closest point (%g, %g, %g), file coordinates, is on the surface's rim): an open surface has no inside there, so the sign of its distance is undefined; close the surface or extend it beyond the body", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c.q[0], c.q[1], c.q[2]);
-  PetscCheck(!SecondClosest(m, p, &c, 1e-9 * m->len, 1e-6 * m->len, q2), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g) (file coordinates): its normal is undefined", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c.q[0], c.q[1], c.q[2], q2[0], q2[1], q2[2]);
+  for (PetscInt k = 0; k < o->dim; k++) xv[k] = x[k] + o->placement * o->translation[k];
+  PetscCheck(!(gm < 0 && PetscSqrtReal(c->d2) > 1e-8 * m->len && OnBoundary(m, c)), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) lies behind the boundary of the open surface (its closest point (%g, %g, %g), file coordinates, is on the surface's rim): an open surface has no inside there, so the sign of its distance is undefined; close the surface or extend it beyond the body", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c->q[0], c->q[1], c->q[2]);
+  PetscCheck(!SecondClosest(m, p, c, 1e-9 * m->len, 1e-6 * m->len, q2), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: -obstacle_cad_file %s: the contact vertex at (%g, %g, %g) has two closest points on the obstacle, (%g, %g, %g) and (%g, %g, %g) (file coordinates): its normal is undefined", m->file, (double)xv[0], (double)xv[1], (double)(o->dim == 3 ? xv[2] : 0), c->q[0], c->q[1], c->q[2], q2[0], q2[1], q2[2]);
   PetscFunctionReturn(0);
 }
 
-/* The gap along n, the signed distance and the normal of a meshed obstacle by brute force over all elements, the
-   tree left out (unit test of the tree: tests/unit_tests.c). x in the obstacle's frame, as the ops take it. */
-PetscErrorCode SgObstacleMeshQueryBrute(SgObstacle o, const PetscReal x[], const PetscReal n[], PetscReal *d, PetscReal *g, PetscReal nrm[])
+/* -contact_normal obstacle: the plain query, then where the obstacle's normal is undefined an error naming the file and
+   the contact vertex (CheckClosest), from the same closest element */
+static PetscErrorCode Distance_Mesh(SgObstacle o, const PetscReal x[], PetscReal *g, PetscReal n[])
+{
+  const Obstacle_Mesh *m = (const Obstacle_Mesh *)o->data;
+  MeshClosest          c;
+  double               p[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(QueryClosest(o, PETSC_FALSE, x, NULL, NULL, g, n, &c, p));
+  PetscCall(CheckClosest(o, x, p, &c, *g / m->scale));
+  PetscFunctionReturn(0);
+}
+
+/* The gap along n, the signed distance and the normal of a meshed obstacle, by the tree or by brute force over all
+   elements (the unit test of the tree: tests/unit_tests.c), without the checks of -contact_normal obstacle. x in the
+   obstacle's frame, as the ops take it. */
+PetscErrorCode SgObstacleMeshQuery(SgObstacle o, PetscBool brute, const PetscReal x[], const PetscReal n[], PetscReal *d, PetscReal *g, PetscReal nrm[])
 {
   PetscFunctionBeginUser;
-  PetscCheck(o->gap == Gap_Mesh, o->comm, PETSC_ERR_ARG_WRONG, "SgObstacleMeshQueryBrute: not a meshed obstacle");
-  PetscCall(Query(o, PETSC_TRUE, x, n, d, g, nrm));
+  PetscCheck(o->gap == Gap_Mesh, o->comm, PETSC_ERR_ARG_WRONG, "SgObstacleMeshQuery: not a meshed obstacle");
+  PetscCall(Query(o, brute, x, n, d, g, nrm));
   PetscFunctionReturn(0);
 }
 
