@@ -43,13 +43,28 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
 /* The frames of the bound-constrained baselines (pdas, vi): per contact vertex the dof of its normal (axis) and the
    sign with n = sign Q_i e_axis. *f is NULL where every normal is a coordinate axis (axis and sign as ever: nothing
    changes), else each vertex's dofs are rotated into its frame (n, t1, t2) where the normal is not an axis. With
-   -ssn_frame false (the frames turned off) every normal must be an axis: the error names the option. */
-PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], SgFrame *f, PetscInt axis[], PetscReal sign[])
+   -ssn_frame false (the frames turned off) every normal must be an axis: the error names the option.
+   Two bodies (pair: the caller takes them, pdas): the pair's dual-mortar basis with the frames, u = T Q v
+   (SgFrameCreatePair), always (also with -ssn_frame false: without T a condition couples the two sides), where
+   (B y)_j = D_j sign_j v_j[axis]; else (vi) refused by SgContactAxisAligned. */
+PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], PetscBool pairok, SgFrame *f, PetscInt axis[], PetscReal sign[])
 {
-  PetscBool aligned, frame = PETSC_TRUE, global = PETSC_TRUE;
+  PetscBool aligned, frame = PETSC_TRUE, global = PETSC_TRUE, pair;
 
   PetscFunctionBeginUser;
   *f = NULL;
+  PetscCall(SgContactIsPair(ct->c, &pair));
+  if (pair && pairok) {
+    const PetscInt  *fa;
+    const PetscReal *fs;
+    PetscBool        ptap = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_pair_transform_ptap", &ptap, NULL));
+    PetscCall(SgFrameCreatePair(ct->prob, ct->c, ptap, f));
+    PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
+    PetscCall(PetscArraycpy(axis, fa, ct->n));
+    PetscCall(PetscArraycpy(sign, fs, ct->n));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame", &frame, NULL));
   PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame_global", &global, NULL));
   PetscCall(SgContactNormalsAxisAligned(ct->c, &aligned));
@@ -167,6 +182,7 @@ typedef struct {
   SgContactLawPdas lp;       /* the law's part: its tangential states and the rows they give the system (empty without) */
   PetscBool        states;   /* the law keeps states: the iterate depends on their bounds and directions too */
   PetscBool        roundoff; /* and they may change on round-off for ever (a bound from lam_N of the same solve) */
+  PetscBool        pair;     /* two bodies: the working coordinates are the pair's basis v, u = T Q v */
 } PdasWork;
 
 /* The arrays of the sets, the working coordinates (the contact frames where a normal is not an axis) and the default
@@ -189,10 +205,11 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
   PetscCall(PetscMalloc6(ct->n, &w->axis, ct->n, &w->sign, ct->n, &w->g, ct->n, &w->act, ct->n, &w->next, ct->n * dim, &w->rows)); /* rows: the stick vertices' tangential ones too */
   PetscCall(PetscMalloc1(pd->maxit + 1, &w->hash));
   PetscCall(PetscMalloc1(ct->n, &w->nax));
-  PetscCall(SgContBoundFrame(ct, "-cont_type pdas", &w->f, w->axis, w->sign));
+  PetscCall(SgContBoundFrame(ct, "-cont_type pdas", PETSC_TRUE, &w->f, w->axis, w->sign));
   w->Kw = w->K;
   w->bw = w->b;
   w->yw = ct->y;
+  PetscCall(SgContactIsPair(ct->c, &w->pair));
   PetscCall(SgContactLawGetSlipReference(c->law, (PetscReal **)&w->yref)); /* the law's (NULL without friction) */
   if (w->f) {
     const PetscBool *rot;
@@ -208,7 +225,7 @@ static PetscErrorCode SetUpWork_PDAS(SgCont ct, PdasWork *w)
     w->A = w->Af;
     PetscCall(VecDuplicate(w->b, &w->bw));
     PetscCall(VecCopy(w->b, w->bw));
-    PetscCall(SgFrameToLocal(w->f, w->bw));
+    PetscCall(SgFrameForceToLocal(w->f, w->bw)); /* a force: Q^T b (a pair's: Q^T T^T b) */
     PetscCall(VecDuplicate(w->b, &w->yw));
     if (w->yref) { /* the law's slip reference in the frames */
       PetscCall(PetscMalloc1(ct->n * dim, &w->yrf));
@@ -339,6 +356,23 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: the multiplier of the equilibrium in the pair's basis, (T Q)^T (K y - b) + (B T Q)^T lam = 0, where row j
+   of B T Q is D_j sign_j e_(j, axis): lam_j = -sign_j (Kw yw - bw)_(j, axis) / D_j (D_j = ct->w[i]). Exact also where
+   a vertex with a row of its own (a rigid obstacle's) is a master vertex of the pair, which the nodal balance of
+   SgContactMultiplierFromResidual would take for its own. w->x is work here (AssembleSystem_PDAS sets it anew). */
+static PetscErrorCode PairMultiplier(SgCont ct, PdasWork *w)
+{
+  const PetscScalar *ra;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(w->Kw, w->yw, w->x));
+  PetscCall(VecAXPY(w->x, -1.0, w->bw));
+  PetscCall(VecGetArrayRead(w->x, &ra));
+  for (PetscInt i = 0; i < ct->n; i++) ct->lam[i] = -w->sign[i] * PetscRealPart(ra[ct->off[i] + w->axis[i]]) / ct->w[i];
+  PetscCall(VecRestoreArrayRead(w->x, &ra));
+  PetscFunctionReturn(0);
+}
+
 /* After a solve: the multiplier from the equilibrium on the active set, the next normal set (nact, entered, left: its
    size and changes) and, with friction, the next states (their changes counted as entered) */
 static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt *nact_, PetscInt *entered_, PetscInt *left_)
@@ -352,7 +386,8 @@ static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt
 
   PetscFunctionBeginUser;
   /* multiplier from the equilibrium on the active set, then the next active set */
-  PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
+  if (w->pair) PetscCall(PairMultiplier(ct, w));
+  else PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
   PetscCall(Gap(ct, w->f, axis, sign, w->yw, g));
   for (PetscInt i = 0; i < ct->n; i++) {
     if (!act[i]) ct->lam[i] = 0;
