@@ -8,7 +8,11 @@
    vertices the force lam_T = g t of the last iterate's direction t and bound g (Coulomb: g = F lam_N of the last
    iterate, a fixed point that keeps every system symmetric), free ones none; the next states from
    z = lam_T + c T (y - yref): stick |z| <= g, slip t = z/|z|. Done when the
-   sets are settled and the slip directions and bounds have stopped moving (relative 1e-12). */
+   sets are settled and the slip directions and bounds have stopped moving (relative 1e-12).
+   Two bodies (-contact_master_ids): the working coordinates are the pair's dual-mortar basis u = T Q v
+   (SgFrameCreatePair), where each pair row is the bound sign_j v_j[axis] <= d_j = g0_j / D_j and the other dofs of
+   v_j are the relative displacement of slave vertex j against the master surface (the friction's slip), D_j the
+   weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (PairMultiplier). */
 #include "cont/contimpl.h"
 
 typedef struct {
@@ -322,7 +326,17 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
   PetscFunctionBeginUser;
   PetscCall(SgContactLawPdasGetRows(w->lp, &nv, &tr, &blk, &nspring, &ncoupled));
   PetscCall(MatCopy(Kw, A, SAME_NONZERO_PATTERN));
-  if (nspring) { /* the law's springs (3D slip) */
+  if (nspring && w->pair) { /* the law's springs (3D slip); two bodies: in the pair's basis v_j is the relative
+                               displacement (R T = I on the contact rows), so the blocks are nodal, not R^T B R */
+    for (PetscInt i = 0; i < ct->n; i++) {
+      const PetscInt row = (rstart + ct->off[i]) / dim;
+      PetscScalar    b[9];
+      for (PetscInt q = 0; q < dim * dim; q++) b[q] = blk[i * dim * dim + q];
+      PetscCall(MatSetValuesBlocked(A, 1, &row, 1, &row, b, ADD_VALUES));
+    }
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  } else if (nspring) { /* the law's springs (3D slip) */
     PetscCall(SgContactAddBlocks(ct->c, blk, A));
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
