@@ -605,8 +605,9 @@ PetscBool      SgFramePairTransform(SgFrame);                                   
 PetscErrorCode SgFrameGetGlobalRotation(SgFrame, const PetscReal **);            /* -ssn_frame_global: the body's one rotation R, else NULL */
 PetscErrorCode SgFramePairInterpolation(SgFrame, Mat, Mat *);                    /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
 PetscErrorCode SgFrameDestroy(SgFrame *);
-PetscErrorCode SgFrameToLocal(SgFrame, Vec);  /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
-PetscErrorCode SgFrameToGlobal(SgFrame, Vec); /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
+PetscErrorCode SgFrameToLocal(SgFrame, Vec);      /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
+PetscErrorCode SgFrameForceToLocal(SgFrame, Vec); /* a force b_i <- Q_i^T b_i (a pair's frame: b <- Q^T T^T b) */
+PetscErrorCode SgFrameToGlobal(SgFrame, Vec);     /* x_i <- Q_i x_i (a pair's frame: x <- T Q x) */
 void           SgFrameVectorToLocal(SgFrame, PetscInt, const PetscReal[], PetscReal[]);
 PetscErrorCode SgFrameGetStiffness(SgFrame, Mat *); /* Q^T K Q, with the rotated near null space */
 PetscErrorCode SgFrameGetAxes(SgFrame, const PetscInt *[], const PetscReal *[], const PetscBool *[]);

@@ -175,9 +175,7 @@ PetscErrorCode SgContSetFromOptions(SgCont ct)
   PetscCheck(ct->stall_its > 0, ct->comm, PETSC_ERR_USER_INPUT, "-cont_stall_it: must be positive, got %" PetscInt_FMT, ct->stall_its);
   if (ct->c && ct->cv.props.nonlinear) {
     /* the controllers that drive the SSN of (P_gamma) with friction: none, alm, pf, ipf */
-    PetscBool pair;
-    PetscCall(SgContactIsPair(ct->c, &pair)); /* two bodies: pdas is refused for the pair itself */
-    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf%s", ct->type, SgLawName(ct->cv.law), pair ? " (two bodies: not pdas either)" : " or the baseline pdas");
+    PetscCheck(strcmp(ct->type, SGCONTFAST) && strcmp(ct->type, SGCONTVI), ct->comm, PETSC_ERR_SUP, "-cont_type %s is not built for friction (-friction_type %s) yet: use none, alm, pf, ipf or the baseline pdas", ct->type, SgLawName(ct->cv.law));
   }
   PetscCheck(ct->c || !strcmp(ct->type, SGCONTNONE), ct->comm, PETSC_ERR_USER_INPUT, "-cont_type %s needs a contact boundary: give -contact_label and/or -contact_ids", ct->type);
   PetscCall(SgFileCheckWritable(ct->comm, "-checkpoint_file", ct->ckfile));

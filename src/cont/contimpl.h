@@ -153,8 +153,8 @@ PetscErrorCode           SgContFail(SgCont, const char[], ...);
 PetscErrorCode           SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
 PetscErrorCode           SgContCheck(SgCont, PetscBool *);
 PetscErrorCode           SgContCheckBaseline(SgCont);
-PetscErrorCode           SgContSolveContinuation(SgCont);                                            /* cont_loop.c: the outer loop of the types without ops->solve */
-PetscErrorCode           SgContBoundFrame(SgCont, const char[], SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
+PetscErrorCode           SgContSolveContinuation(SgCont);                                                       /* cont_loop.c: the outer loop of the types without ops->solve */
+PetscErrorCode           SgContBoundFrame(SgCont, const char[], PetscBool, SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */
 PetscErrorCode           SgContCheckpointWrite(SgCont);
 PetscErrorCode           SgContCheckpointWriteStepEnd(SgCont);
 PetscErrorCode           SgContCheckpointRead(SgCont);

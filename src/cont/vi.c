@@ -51,7 +51,7 @@ static PetscErrorCode Solve_VI(SgCont ct)
   PetscCall(SgElasticityGetScales(ct->prob, &Knorm, &bnorm, NULL));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%svi_", ((PetscObject)ct)->prefix ? ((PetscObject)ct)->prefix : ""));
   PetscCall(PetscMalloc2(ct->n, &axis, ct->n, &sign));
-  PetscCall(SgContBoundFrame(ct, "-cont_type vi", &f, axis, sign));
+  PetscCall(SgContBoundFrame(ct, "-cont_type vi", PETSC_FALSE, &f, axis, sign));
   PetscCall(SgContStart(ct, &ok));
   if (!ok) {
     PetscCall(SgFrameDestroy(&f));

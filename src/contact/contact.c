@@ -938,7 +938,7 @@ PetscErrorCode SgContactAxisAligned(SgContact c, const char who[], PetscInt axis
   PetscReal      xn[6] = {0, 0, 0, 0, 0, 0}; /* the offending vertex and its normal */
 
   PetscFunctionBeginUser;
-  PetscCheck(!c->pair, c->comm, PETSC_ERR_SUP, "%s is not available for two-body contact (-contact_master_ids): its conditions couple the two sides; use an SSN-based controller (fast, ipf, pf, alm) with the default linear solver or MUMPS", who);
+  PetscCheck(!c->pair, c->comm, PETSC_ERR_SUP, "%s is not available for two-body contact (-contact_master_ids): its conditions couple the two sides; use an SSN-based controller (fast, ipf, pf, alm) with the default linear solver or MUMPS, or the baseline pdas (in the pair's basis)", who);
   for (PetscInt i = 0; i < c->n; i++) {
     axis[i] = NormalAxis(c, i, &sign[i]);
     if (axis[i] < 0 && bad < 0) bad = i;
@@ -964,7 +964,7 @@ PetscErrorCode SgContactNormalsAxisAligned(SgContact c, PetscBool *aligned)
   PetscReal sign;
 
   PetscFunctionBeginUser;
-  if (c->pair) { /* two bodies: no contact frames (a row couples both sides); the bound solvers refuse in SgContactAxisAligned */
+  if (c->pair) { /* two bodies: no contact frames of their own (a row couples both sides): pdas takes the pair's basis (SgContBoundFrame), vi is refused in SgContactAxisAligned */
     *aligned = PETSC_TRUE;
     PetscFunctionReturn(0);
   }

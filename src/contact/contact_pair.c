@@ -12,7 +12,7 @@ PetscErrorCode SgContactPairFromOptions(PetscOptionItems *PetscOptionsObject, Sg
 
   PetscFunctionBeginUser;
   c->master.what = "contact_master";
-  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless, or with -friction_type on the relative slip; the SSN-based controllers with CG/AMG or MUMPS)", SG_MAX_IDS, c->master.ids, &n, &set));
+  PetscCall(SgOptionsIntList(PetscOptionsObject, "-contact_master_ids", "Two elastic bodies in contact: values of -contact_label marking the master side (the other body's surface); the -contact_ids are then the slave side, coupled to it by dual mortar (frictionless, or with -friction_type on the relative slip; the SSN-based controllers with CG/AMG or MUMPS, and pdas)", SG_MAX_IDS, c->master.ids, &n, &set));
   if (set) c->master.nids = n, c->master.active = PETSC_TRUE;
   n            = c->obnd.nids; /* given through the interface (SG_BOUNDARY_CONTACT_OBSTACLE), or 0 */
   c->obnd.what = "contact_obstacle";

@@ -160,6 +160,14 @@ static PetscErrorCode ForceToLocal(SgFrame f, Vec b)
   PetscFunctionReturn(0);
 }
 
+/* a force (a right-hand side) into the frames: Q^T b, with a pair's basis Q^T T^T b (the bound solvers' load) */
+PetscErrorCode SgFrameForceToLocal(SgFrame f, Vec b)
+{
+  PetscFunctionBeginUser;
+  PetscCall(ForceToLocal(f, b));
+  PetscFunctionReturn(0);
+}
+
 /* v (dim components of contact vertex i, global) in the vertex's frame */
 void SgFrameVectorToLocal(SgFrame f, PetscInt i, const PetscReal v[], PetscReal r[])
 {
