@@ -72,6 +72,7 @@ typedef struct {
 
 PetscErrorCode          SgMeshCreateDM(MPI_Comm, const char[], DM *);
 PetscErrorCode          SgMeshCheckDM(MPI_Comm, const char[], DM);
+PetscErrorCode          SgMeshPartitionWeights(PetscInt, const PetscReal[], PetscInt[]); /* mesh.c: real partition weights as PetscInt, scaled down to fit */
 PetscErrorCode          SgBoundaryFromOptions(PetscOptionItems *, SgBoundary *, PetscInt, const char *, const char *);
 PetscErrorCode          SgBoundaryComponentsFromOptions(PetscOptionItems *, SgBoundary *, PetscInt);
 PetscErrorCode          SgBoundaryGetLabel(DM, const SgBoundary *, DMLabel *);

@@ -7,7 +7,7 @@
 #include "contact/mortar.h"
 #include "contact/pair.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties|mataddsparse -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties|mataddsparse|partitionweights -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -1269,6 +1269,36 @@ static PetscErrorCode TestLawPdas(SgSummary s)
    60 rows per rank with a C on a few rows whose columns reach other ranks (on several ranks the off-diagonal parts) and
    a near-identity I + E (E on a few rows, stored zeros on the others' diagonal blocks). Keys: the largest absolute
    difference of the values, the nonzero counts of both results. */
+/* SgMeshPartitionWeights (src/fem/mesh.c, -contact_pair_partition's group weights): small weights kept as their rounded
+   integers (the partitions of the runs so far unchanged); weights of a mesh refined 11 times (a tetrahedron's share
+   120 (2^11)^3 / 6 = 1.7e11 sixtieths of vertices, a contact cell's 120 * 12 * (2^11)^2 / 2 more, 5,000 groups: sum
+   8.6e14) scaled into PetscInt with their proportions kept, each at least 1, the sum below PETSC_MAX_INT */
+static PetscErrorCode TestPartitionWeights(SgSummary s)
+{
+  const PetscInt n = 5000;
+  PetscReal     *w, k = 2048, tw = 0, ti = 0, err = 0;
+  PetscInt      *iw, exact = 1, minw = PETSC_MAX_INT;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc2(n, &w, n, &iw));
+  for (PetscInt i = 0; i < n; i++) w[i] = 1 + (i % 977) + 0.3;
+  PetscCall(SgMeshPartitionWeights(n, w, iw));
+  for (PetscInt i = 0; i < n; i++) exact = exact && iw[i] == (PetscInt)(w[i] + 0.5);
+  for (PetscInt i = 0; i < n; i++) w[i] = 120 * (k - 1) * (k - 2) * (k - 3) / 6 * (1 + 0.5 * (i % 7)) + (i % 10 == 0 ? 120 * 12 * k * k / 2 : 0);
+  w[n - 1] = 0; /* a weight 0 becomes 1 */
+  PetscCall(SgMeshPartitionWeights(n, w, iw));
+  for (PetscInt i = 0; i < n; i++) tw += w[i], ti += iw[i], minw = PetscMin(minw, iw[i]);
+  for (PetscInt i = 0; i < n - 1; i++) err = PetscMax(err, PetscAbsReal(iw[i] / ti - w[i] / tw) / (w[i] / tw));
+  PetscCall(SgSummarySetBool(s, "small_exact", (PetscBool)exact));
+  PetscCall(SgSummarySetReal(s, "large_weight_sum", tw));
+  PetscCall(SgSummarySetReal(s, "scaled_sum", ti));
+  PetscCall(SgSummarySetReal(s, "max_int", (PetscReal)PETSC_MAX_INT));
+  PetscCall(SgSummarySetInt(s, "scaled_min", minw));
+  PetscCall(SgSummarySetReal(s, "scaled_max_share_error", err));
+  PetscCall(PetscFree2(w, iw));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode TestMatAddSparse(SgSummary s)
 {
   PetscMPIInt rank, size;
@@ -1384,6 +1414,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "lawproperties", &eq) == 0 && eq) PetscCall(TestLawProperties(s));
   else if (PetscStrcmp(test, "lawpdas", &eq) == 0 && eq) PetscCall(TestLawPdas(s));
   else if (PetscStrcmp(test, "mataddsparse", &eq) == 0 && eq) PetscCall(TestMatAddSparse(s));
+  else if (PetscStrcmp(test, "partitionweights", &eq) == 0 && eq) PetscCall(TestPartitionWeights(s));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-test: unknown unit test '%s'", test);
   PetscCall(SgSummaryWrite(PETSC_COMM_WORLD, s, "-summary_file", file));
   PetscCall(SgSummaryDestroy(&s));

@@ -425,6 +425,27 @@ static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const Petsc
   PetscFunctionReturn(0);
 }
 
+/* The partitioner's vertex weights from real ones (MeshPartitionPairs' groups: their refined vertices, in units of
+   1/120 of a vertex, pass 2^31 from -dm_refine 9 on for a tetrahedron's share alone, and their sum, which the vertex
+   section's offsets and PT-Scotch hold in PetscInt, from about 1.8e7 refined vertices on): the integers w[i] rounded
+   when their sum stays below a quarter of PETSC_MAX_INT (then exactly those integers), otherwise scaled down by one
+   factor for all so that it does; each at least 1 (PT-Scotch takes no zero weight). Public for the unit test. */
+PetscErrorCode SgMeshPartitionWeights(PetscInt n, const PetscReal w[], PetscInt iw[])
+{
+  const PetscReal cap = 0.25 * (PetscReal)PETSC_MAX_INT;
+  PetscReal       tot = 0, f = 1;
+
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 0 && (PetscReal)n < 0.5 * cap, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-contact_pair_partition: %" PetscInt_FMT " partition vertices, more than the weights' range %g holds", n, (double)(0.5 * cap));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscCheck(w[i] >= 0 && PetscIsNormalReal(w[i] + 1), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-contact_pair_partition: partition weight %g of vertex %" PetscInt_FMT " is not a finite number >= 0", (double)w[i], i);
+    tot += PetscFloorReal(w[i] + 0.5);
+  }
+  if (tot + n > cap) f = (cap - n) / tot; /* the rounding and the minimum 1 add at most n */
+  for (PetscInt i = 0; i < n; i++) iw[i] = (PetscInt)PetscMax(1, PetscFloorReal(f * w[i] + 0.5));
+  PetscFunctionReturn(0);
+}
+
 /* MeshPartitionPairs: each cell's weight for the partition, in units of 1/120 of a vertex of the mesh refined -dm_refine
    R times: its share of that mesh's vertices (regular refinement: an edge gets 2^R - 1 new vertices, a triangle
    (2^R - 1)(2^R - 2)/2 inside, a tetrahedron (2^R - 1)(2^R - 2)(2^R - 3)/6; each point's shared equally by the cells
@@ -436,10 +457,10 @@ static PetscErrorCode PairNearest(PetscInt nsf, const PetscInt sc[], const Petsc
    either side); 6 halved the 2 ranks' nonzero imbalance there, 14 balanced it, 12 is taken (bench/results.md, pair8) */
 #define SG_PAIR_ROW_WEIGHT 12.0
 
-static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, PetscInt n, PetscInt nsf, const PetscInt sc[], const PetscReal dist[], PetscInt cw[])
+static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, PetscInt n, PetscInt nsf, const PetscInt sc[], const PetscReal dist[], PetscReal cw[])
 {
-  PetscInt  R = 0, pS, pE, *star, per[4], dim, depth;
-  PetscReal k, dmax = 0;
+  PetscInt  R = 0, pS, pE, *star, dim, depth;
+  PetscReal k, per[4], dmax = 0;
   PetscBool set;
 
   PetscFunctionBeginUser;
@@ -450,11 +471,11 @@ static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, P
     PetscFunctionReturn(0);
   }
   PetscCall(PetscOptionsGetInt(NULL, prefix, "-dm_refine", &R, NULL));
-  k      = PetscPowInt(2, PetscMax(0, PetscMin(R, 12)));
+  k      = PetscPowReal(2.0, (PetscReal)PetscMax(0, PetscMin(R, 30))); /* reals: 120 k^3 / 6 passes 2^31 at k = 2^9 */
   per[0] = 1;
-  per[1] = (PetscInt)(k - 1);
-  per[2] = (PetscInt)((k - 1) * (k - 2) / 2);
-  per[3] = (PetscInt)((k - 1) * (k - 2) * (k - 3) / 6);
+  per[1] = k - 1;
+  per[2] = (k - 1) * (k - 2) / 2;
+  per[3] = (k - 1) * (k - 2) * (k - 3) / 6;
   PetscCall(DMPlexGetChart(dm, &pS, &pE));
   PetscCall(PetscCalloc1(pE - pS + 1, &star));
   for (PetscInt pass = 0; pass < 2; pass++)
@@ -470,10 +491,10 @@ static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, P
           continue;
         }
         PetscCall(DMPlexGetPointDepth(dm, cl[2 * q], &d));
-        w += (PetscReal)per[PetscMin(d, 3)] / star[p];
+        w += per[PetscMin(d, 3)] / star[p];
       }
       PetscCall(DMPlexRestoreTransitiveClosure(dm, cS + c, PETSC_TRUE, &ncl, &cl));
-      if (pass) cw[c] = PetscMax(1, (PetscInt)(120 * w + 0.5));
+      if (pass) cw[c] = PetscMax(1, PetscFloorReal(120 * w + 0.5));
     }
   PetscCall(PetscFree(star));
   PetscCall(PetscOptionsGetReal(NULL, prefix, "-contact_pair_distance", &dmax, &set));
@@ -491,7 +512,7 @@ static PetscErrorCode PairCellWeights(DM dm, const char prefix[], PetscInt cS, P
     dmax = 0.1 * PetscSqrtReal(d2);
   }
   for (PetscInt i = 0; i < nsf; i++)
-    if (dist[i] <= dmax) cw[sc[i]] += (PetscInt)(120 * SG_PAIR_ROW_WEIGHT * (dim == 3 ? k * k / 2 : k) + 0.5);
+    if (dist[i] <= dmax) cw[sc[i]] += PetscFloorReal(120 * SG_PAIR_ROW_WEIGHT * (dim == 3 ? k * k / 2 : k) + 0.5);
   PetscFunctionReturn(0);
 }
 
@@ -512,8 +533,8 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
   DMLabel          label;
   PetscInt        *grp, *gid, ng = 0, nv, *off = NULL, *adj = NULL, *goff, *gadj, ne = 0, *mark, *sizes, *pts;
   PetscReal       *sx, *mx;
-  PetscInt        *sc, *mc, nsf = 0, nmf = 0, *cw;
-  PetscReal       *sd;
+  PetscInt        *sc, *mc, nsf = 0, nmf = 0, *iw;
+  PetscReal       *sd, *cw, *gw;
   IS               gnum, partition;
   PetscSection     vsec, psec;
   PetscPartitioner gp;
@@ -577,14 +598,17 @@ static PetscErrorCode MeshPartitionPairs(MPI_Comm comm, const char prefix[], DM 
       PetscCall(PetscSortInt(ne - goff[g], gadj + goff[g]));
     }
     goff[ng] = ne;
+    PetscCall(PetscMalloc2(ng + 1, &gw, ng + 1, &iw));
+    for (PetscInt g = 0; g < ng; g++) {
+      gw[g] = 0;
+      for (PetscInt c = first[g]; c >= 0; c = next[c]) gw[g] += bycells ? 1 : cw[c];
+    }
+    PetscCall(SgMeshPartitionWeights(ng, gw, iw));
     PetscCall(PetscSectionCreate(PETSC_COMM_SELF, &vsec));
     PetscCall(PetscSectionSetChart(vsec, 0, ng));
-    for (PetscInt g = 0; g < ng; g++) {
-      PetscInt w = 0;
-      for (PetscInt c = first[g]; c >= 0; c = next[c]) w += bycells ? 1 : cw[c];
-      PetscCall(PetscSectionSetDof(vsec, g, w));
-    }
+    for (PetscInt g = 0; g < ng; g++) PetscCall(PetscSectionSetDof(vsec, g, iw[g]));
     PetscCall(PetscSectionSetUp(vsec));
+    PetscCall(PetscFree2(gw, iw));
     PetscCall(PetscFree2(first, next));
   }
   PetscCall(PetscFree(off));
