@@ -42,6 +42,10 @@ static PetscErrorCode CondenseUpdate(SgCondense cd)
           for (PetscInt b = 0; b < dim; b++) sa[(i * dim + b) * lda + i * dim + a] += s->gamma * s->w[i] * s->normal[i * dim + a] * s->normal[i * dim + b];
     }
   PetscCall(MatDenseRestoreArray(S, &sa));
+  /* K is SPD (assembly.c; MUMPS factors it without pivoting), so is S_K, and the contact blocks are positive
+     semidefinite: the dense factorization is then LAPACK's Cholesky (potrf) instead of Bunch-Kaufman (sytrf),
+     which PETSc picks for a Cholesky-type factor of a matrix not flagged SPD */
+  PetscCall(MatSetOption(S, MAT_SPD, PETSC_TRUE));
   PetscCall(MatFactorRestoreSchurComplement(cd->F, &S, MAT_FACTOR_SCHUR_UNFACTORED));
   PetscCall(MatFactorFactorizeSchurComplement(cd->F));
   PetscFunctionReturn(0);
