@@ -598,7 +598,7 @@ PetscErrorCode SgCondenseDestroy(SgCondense *);
 PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *); /* tmg.c: truncated multigrid on the KSP's AMG, or on the mesh hierarchy (PETSC_TRUE: gmg.c) */
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
-PetscErrorCode SgTMGL1GSSweep(Mat, PetscBool, Vec, Vec); /* tmg.c: one sweep of its several-rank smoother (tests/unit_tests.c) */
+PetscErrorCode SgTMGL1GSSweep(Mat, PetscBool, PetscBool, Vec, Vec); /* tmg.c: one sweep of its several-rank smoother (tests/unit_tests.c) */
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
 PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *);     /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
 PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, PetscBool, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform); PETSC_TRUE: its products by MatPtAP (-ssn_pair_transform_ptap) */

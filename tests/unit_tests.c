@@ -150,8 +150,8 @@ static PetscErrorCode TestStiffness(SgSummary s)
    1. on a block-diagonal matrix of dense 3 x 3 blocks (block size 3; every rank's rows whole blocks, no coupling
       across ranks, so no l1) the block sweep forward and backward is the exact solve; the same values with block size 1
       (the point sweep) are not;
-   2. on K of the options' mesh on one rank (no rows of other ranks, no l1), forward and backward against MatSOR's
-      zero-start local sweeps on K's SeqAIJ (its inode sweep by a vertex's rows), the smoother of one rank. */
+   2. on K of the options' mesh on one rank (no rows of other ranks, no l1), forward, backward and symmetric (forward
+      then backward, -ssn_pc_truncated_mg_l1gs_symmetric) against MatSOR's zero-start local sweeps on K's SeqAIJ (its inode sweep by a vertex's rows), the smoother of one rank. */
 static PetscErrorCode BlockDiagonal(PetscInt nb, PetscInt bs, Mat *A)
 {
   PetscInt lo;
@@ -175,7 +175,7 @@ static PetscErrorCode BlockDiagonal(PetscInt nb, PetscInt bs, Mat *A)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SweepError(Mat A, PetscBool back, Vec u, PetscReal *err)
+static PetscErrorCode SweepError(Mat A, PetscBool back, PetscBool sym, Vec u, PetscReal *err)
 {
   Vec       b, y;
   PetscReal un;
@@ -183,7 +183,7 @@ static PetscErrorCode SweepError(Mat A, PetscBool back, Vec u, PetscReal *err)
   PetscFunctionBeginUser;
   PetscCall(MatCreateVecs(A, &y, &b));
   PetscCall(MatMult(A, u, b));
-  PetscCall(SgTMGL1GSSweep(A, back, b, y));
+  PetscCall(SgTMGL1GSSweep(A, back, sym, b, y));
   PetscCall(VecAXPY(y, -1.0, u));
   PetscCall(VecNorm(y, NORM_2, err));
   PetscCall(VecNorm(u, NORM_2, &un));
@@ -197,7 +197,7 @@ static PetscErrorCode TestL1GS(SgSummary s)
 {
   Mat         A, A1;
   Vec         u;
-  PetscReal   e[4];
+  PetscReal   e[5];
   PetscMPIInt size;
   PetscRandom r;
 
@@ -210,14 +210,16 @@ static PetscErrorCode TestL1GS(SgSummary s)
   PetscCall(PetscRandomSetInterval(r, -1.0, 1.0));
   PetscCall(VecSetRandom(u, r));
   PetscCall(PetscRandomDestroy(&r));
-  PetscCall(SweepError(A, PETSC_FALSE, u, &e[0]));
-  PetscCall(SweepError(A, PETSC_TRUE, u, &e[1]));
-  PetscCall(SweepError(A1, PETSC_FALSE, u, &e[2]));
-  PetscCall(SweepError(A1, PETSC_TRUE, u, &e[3]));
+  PetscCall(SweepError(A, PETSC_FALSE, PETSC_FALSE, u, &e[0]));
+  PetscCall(SweepError(A, PETSC_TRUE, PETSC_FALSE, u, &e[1]));
+  PetscCall(SweepError(A1, PETSC_FALSE, PETSC_FALSE, u, &e[2]));
+  PetscCall(SweepError(A1, PETSC_TRUE, PETSC_FALSE, u, &e[3]));
+  PetscCall(SweepError(A, PETSC_FALSE, PETSC_TRUE, u, &e[4]));
   PetscCall(SgSummarySetReal(s, "block_forward_err", e[0]));
   PetscCall(SgSummarySetReal(s, "block_backward_err", e[1]));
   PetscCall(SgSummarySetReal(s, "point_forward_err", e[2]));
   PetscCall(SgSummarySetReal(s, "point_backward_err", e[3]));
+  PetscCall(SgSummarySetReal(s, "block_symmetric_err", e[4]));
   PetscCall(VecDestroy(&u));
   PetscCall(MatDestroy(&A));
   PetscCall(MatDestroy(&A1));
@@ -225,7 +227,7 @@ static PetscErrorCode TestL1GS(SgSummary s)
     SgElasticity p;
     Mat          K;
     Vec          b, y, z;
-    PetscReal    d[2], zn;
+    PetscReal    d[3], zn;
     PetscInt     bs;
     PetscCall(SgElasticityCreate(PETSC_COMM_WORLD, NULL, &p));
     PetscCall(SgElasticitySetFromOptions(p, NULL, NULL));
@@ -238,9 +240,11 @@ static PetscErrorCode TestL1GS(SgSummary s)
     PetscCall(VecSet(y, 1.0));
     PetscCall(MatMult(p->K, y, b));
     PetscCall(VecAXPY(b, 1.0, p->b));
-    for (PetscInt k = 0; k < 2; k++) {
-      PetscCall(SgTMGL1GSSweep(K, (PetscBool)k, b, y));
-      PetscCall(MatSOR(p->K, b, 1.0, (MatSORType)((k ? SOR_LOCAL_BACKWARD_SWEEP : SOR_LOCAL_FORWARD_SWEEP) | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, z));
+    for (PetscInt k = 0; k < 3; k++) {
+      const MatSORType st = k == 2 ? SOR_LOCAL_SYMMETRIC_SWEEP : k ? SOR_LOCAL_BACKWARD_SWEEP
+                                                                   : SOR_LOCAL_FORWARD_SWEEP;
+      PetscCall(SgTMGL1GSSweep(K, (PetscBool)(k == 1), (PetscBool)(k == 2), b, y));
+      PetscCall(MatSOR(p->K, b, 1.0, (MatSORType)(st | SOR_ZERO_INITIAL_GUESS), 0.0, 1, 1, z));
       PetscCall(VecNorm(z, NORM_2, &zn));
       PetscCall(VecAXPY(y, -1.0, z));
       PetscCall(VecNorm(y, NORM_2, &d[k]));
@@ -249,6 +253,7 @@ static PetscErrorCode TestL1GS(SgSummary s)
     PetscCall(SgSummarySetInt(s, "k_block_size", bs));
     PetscCall(SgSummarySetReal(s, "sor_forward_diff", d[0]));
     PetscCall(SgSummarySetReal(s, "sor_backward_diff", d[1]));
+    PetscCall(SgSummarySetReal(s, "sor_symmetric_diff", d[2]));
     PetscCall(VecDestroy(&b));
     PetscCall(VecDestroy(&y));
     PetscCall(VecDestroy(&z));

@@ -54,6 +54,10 @@ struct _n_SgSSN {
   PetscBool         pair_transform_set;  /* given (else on for a pair solved iteratively) */
   PetscBool         pair_ptap;           /* -ssn_pair_transform_ptap: the basis's products by MatPtAP (frame.c) */
   PetscBool         tmg_coarse_ptap;     /* -ssn_pc_truncated_mg_coarse_ptap: several ranks, the coarse corrections by whole-pattern MatPtAP (tmg.c) */
+  PetscBool         tmg_l1gs_sym;        /* -ssn_pc_truncated_mg_l1gs_symmetric: several ranks, symmetric l1 sweeps (tmg.c) */
+  PetscBool         tmg_l1gs_glob;       /* -ssn_pc_truncated_mg_l1gs_global: with them, the whole residual between */
+  PetscBool         tmg_l1gs_sym_set;    /* given (else on for a pair) */
+  PetscBool         tmg_l1gs_glob_set;   /* given (else SG_TMG_L1GS_GLOBAL_PAIR for a pair, tmg.c) */
   PetscBool         pair_amg_u;          /* -ssn_pair_amg_displacements: the truncated multigrid of a pair takes K's AMG, mapped */
   Mat               Klin;                /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
   Mat               Pf;                  /* with frames: the Jacobian assembled in them (the KSP's matrices) */

@@ -57,6 +57,11 @@ struct _n_SgTMG {
    (fewer messages: bench/nested.md, coarse27) */
 #define SG_TMG_TOUCHED_NNZ 100000
 
+/* The defaults of -ssn_pc_truncated_mg_l1gs_symmetric and _global for two bodies (a pair in the dual-mortar basis) on
+   several ranks; one body keeps the single sweeps (bench/results.md, l1sym) */
+#define SG_TMG_L1GS_SYM_PAIR    1
+#define SG_TMG_L1GS_GLOBAL_PAIR 0
+
 static PetscBool      tmg_registered = PETSC_FALSE;
 static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS, SG_TMGL1GSSetUp;
 static PetscErrorCode RegisterEvents(void);
@@ -109,6 +114,7 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    ranks). */
 typedef struct {
   PetscScalar     *idiag; /* point sweep: 1 / (a_ii + l1_i) of the local rows; block sweep: the inverted blocks */
+  PetscScalar     *w;     /* the symmetric sweep's kept right-hand sides (Sweep), m */
   PetscInt         m;     /* the number of local rows */
   PetscInt         bs;    /* 1: point by point; else by vertex blocks of bs rows (SetUp_L1GS) */
   PetscObjectId    id;    /* the operator they were made from, */
@@ -119,6 +125,9 @@ typedef struct {
 typedef struct {
   L1GSMat  *m;    /* shared by the level's two sweeps (SetL1GS) */
   PetscBool back; /* a backward sweep */
+  PetscBool sym;  /* the symmetric sweep, forward then backward (Apply_L1GS; back ignored) */
+  PetscBool glob; /* with sym: the whole residual updated in between (one product with the operator) */
+  Vec       r, z; /* its work vectors */
 } L1GS;
 
 /* a <- a^-1 for a dense n x n matrix (row-major), Gauss-Jordan with partial pivoting; w: n ints. Returns PETSC_FALSE
@@ -213,7 +222,9 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   if (bs < 2 || bs > 16 || m % bs || rlo % bs) bs = 1; /* not whole vertex blocks: point by point */
   if (lm->m != m || lm->bs != bs) {
     PetscCall(PetscFree(lm->idiag));
+    PetscCall(PetscFree(lm->w));
     PetscCall(PetscMalloc1(m * bs + 1, &lm->idiag));
+    PetscCall(PetscMalloc1(m + 1, &lm->w));
     lm->m  = m;
     lm->bs = bs;
     PetscCall(PetscInfo(pc, "l1 Gauss-Seidel on %" PetscInt_FMT " local rows, by blocks of %" PetscInt_FMT "\n", m, bs));
@@ -261,17 +272,99 @@ static PetscErrorCode SetUp_L1GS(PC pc)
   PetscFunctionReturn(0);
 }
 
-/* One sweep from a zero start over the local rows of the operator's diagonal block (rows sorted by column), the
-   diagonal replaced by a_ii + l1_i: point by point, or by vertex blocks (SetUp_L1GS): a block's right-hand side is
-   x less the rows' entries at the columns before the block (forward; after it, backward) times the values already
-   swept, its values the kept inverse times that; the entries inside the block are in the inverse. What MatSOR's inode
-   sweep did on the former copy, without the copy. */
+/* One sweep over the local rows of the operator's diagonal block (rows sorted by column), the diagonal replaced by
+   a_ii + l1_i: point by point, or by vertex blocks (SetUp_L1GS): a block's right-hand side is x less the rows' entries
+   at the columns before the block (forward; after it, backward) times the values already swept, its values the kept
+   inverse times that; the entries inside the block are in the inverse. What MatSOR's inode sweep did on the former
+   copy, without the copy. From a zero start, w NULL. The symmetric sweep (Apply_L1GS) passes w: forward keeps each
+   block's right-hand side there (x less the columns before the block), and backward starts from it instead of x: those
+   columns still hold the forward values when the backward sweep reaches the block, so the backward sweep from the
+   forward one's values reads only the columns after the block, and the two together read the rows once (as SSOR's
+   usual implementation). */
+static void Sweep(PetscInt m, PetscInt bs, const PetscInt *ia, const PetscInt *ja, const PetscScalar *aa, const PetscScalar *idiag, const PetscScalar *xa, PetscScalar *ya, PetscBool back, PetscScalar *w)
+{
+  const PetscScalar *xb = back && w ? w : xa;
+
+  if (bs == 3) { /* the 3D vertex block, unrolled */
+    if (!back)
+      for (PetscInt i = 0; i < m; i += 3) {
+        PetscScalar        s0 = xa[i], s1 = xa[i + 1], s2 = xa[i + 2];
+        const PetscScalar *d = idiag + (size_t)i * 3;
+        for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s0 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 1]; k < ia[i + 2] && ja[k] < i; k++) s1 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 2]; k < ia[i + 3] && ja[k] < i; k++) s2 -= aa[k] * ya[ja[k]];
+        if (w) {
+          w[i]     = s0;
+          w[i + 1] = s1;
+          w[i + 2] = s2;
+        }
+        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
+        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
+        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
+      }
+    else
+      for (PetscInt i = m - 3; i >= 0; i -= 3) {
+        PetscScalar        s0 = xb[i], s1 = xb[i + 1], s2 = xb[i + 2];
+        const PetscScalar *d = idiag + (size_t)i * 3;
+        for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] > i + 2; k--) s0 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 2] - 1; k >= ia[i + 1] && ja[k] > i + 2; k--) s1 -= aa[k] * ya[ja[k]];
+        for (PetscInt k = ia[i + 3] - 1; k >= ia[i + 2] && ja[k] > i + 2; k--) s2 -= aa[k] * ya[ja[k]];
+        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
+        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
+        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
+      }
+  } else if (bs > 1) {
+    PetscScalar s[16];
+    for (PetscInt b = 0; b < m / bs; b++) {
+      const PetscInt     r0 = back ? m - (b + 1) * bs : b * bs;
+      const PetscScalar *d  = idiag + (size_t)r0 * bs;
+      for (PetscInt r = 0; r < bs; r++) {
+        const PetscInt i = r0 + r;
+        s[r]             = xb[i];
+        if (!back) {
+          for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < r0; k++) s[r] -= aa[k] * ya[ja[k]];
+          if (w) w[i] = s[r];
+        } else
+          for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] >= r0 + bs; k--) s[r] -= aa[k] * ya[ja[k]];
+      }
+      for (PetscInt r = 0; r < bs; r++) {
+        PetscScalar v = 0;
+        for (PetscInt c = 0; c < bs; c++) v += d[r * bs + c] * s[c];
+        ya[r0 + r] = v;
+      }
+    }
+  } else if (!back)
+    for (PetscInt i = 0; i < m; i++) {
+      PetscScalar s = xa[i];
+      for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s -= aa[k] * ya[ja[k]];
+      if (w) w[i] = s;
+      ya[i] = s * idiag[i];
+    }
+  else
+    for (PetscInt i = m - 1; i >= 0; i--) {
+      PetscScalar s = xb[i];
+      PetscInt    k = ia[i + 1] - 1;
+      for (; k >= ia[i] && ja[k] > i; k--) continue;
+      for (k++; k < ia[i + 1]; k++) s -= aa[k] * ya[ja[k]];
+      ya[i] = s * idiag[i];
+    }
+}
+
+/* One application from a zero start: one sweep (forward or backward), or the symmetric sweep
+   (-ssn_pc_truncated_mg_l1gs_symmetric): forward, then backward from the forward one's values, the residual of the
+   rank's own rows updated in between (no communication: PCSOR's local symmetric sweep, with l1). Its M =
+   (D1 + L) D1^-1 (D1 + U) = B + L D1^-1 L^T >= B, B the diagonal block with l1 added to its diagonal (D1 its vertex
+   blocks), and B >= A where l1 is kept (the l1 sum dominates the rows of other ranks), so 2 M - A > 0: a convergent
+   smoother, and the V-cycle with it down and up is symmetric positive definite, as with the single sweeps. With
+   -ssn_pc_truncated_mg_l1gs_global the whole residual x - A y between the sweeps (one product with the operator), the
+   backward sweep from zero on it added: I - M^-1 A = (I - W_b^-1 A)(I - W_f^-1 A), two convergent steps, M symmetric
+   as W_b = W_f^T. */
 static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
 {
   L1GS              *g;
   Mat                P, Ad;
   const PetscInt    *ia, *ja;
-  const PetscScalar *xa, *aa, *idiag;
+  const PetscScalar *xa, *aa;
   PetscScalar       *ya;
   PetscInt           m, bs;
   PetscBool          done;
@@ -286,65 +379,27 @@ static PetscErrorCode Apply_L1GS(PC pc, Vec x, Vec y)
   PetscCall(MatSeqAIJGetArrayRead(Ad, &aa));
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
-  idiag = g->m->idiag;
-  bs    = g->m->bs;
-  if (bs == 3) { /* the 3D vertex block, unrolled */
-    if (!g->back)
-      for (PetscInt i = 0; i < m; i += 3) {
-        PetscScalar        s0 = xa[i], s1 = xa[i + 1], s2 = xa[i + 2];
-        const PetscScalar *d = idiag + (size_t)i * 3;
-        for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s0 -= aa[k] * ya[ja[k]];
-        for (PetscInt k = ia[i + 1]; k < ia[i + 2] && ja[k] < i; k++) s1 -= aa[k] * ya[ja[k]];
-        for (PetscInt k = ia[i + 2]; k < ia[i + 3] && ja[k] < i; k++) s2 -= aa[k] * ya[ja[k]];
-        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
-        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
-        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
-      }
-    else
-      for (PetscInt i = m - 3; i >= 0; i -= 3) {
-        PetscScalar        s0 = xa[i], s1 = xa[i + 1], s2 = xa[i + 2];
-        const PetscScalar *d = idiag + (size_t)i * 3;
-        for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] > i + 2; k--) s0 -= aa[k] * ya[ja[k]];
-        for (PetscInt k = ia[i + 2] - 1; k >= ia[i + 1] && ja[k] > i + 2; k--) s1 -= aa[k] * ya[ja[k]];
-        for (PetscInt k = ia[i + 3] - 1; k >= ia[i + 2] && ja[k] > i + 2; k--) s2 -= aa[k] * ya[ja[k]];
-        ya[i]     = d[0] * s0 + d[1] * s1 + d[2] * s2;
-        ya[i + 1] = d[3] * s0 + d[4] * s1 + d[5] * s2;
-        ya[i + 2] = d[6] * s0 + d[7] * s1 + d[8] * s2;
-      }
-  } else if (bs > 1) {
-    PetscScalar s[16];
-    for (PetscInt b = 0; b < m / bs; b++) {
-      const PetscInt     r0 = g->back ? m - (b + 1) * bs : b * bs;
-      const PetscScalar *d  = idiag + (size_t)r0 * bs;
-      for (PetscInt r = 0; r < bs; r++) {
-        const PetscInt i = r0 + r;
-        s[r]             = xa[i];
-        if (!g->back)
-          for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < r0; k++) s[r] -= aa[k] * ya[ja[k]];
-        else
-          for (PetscInt k = ia[i + 1] - 1; k >= ia[i] && ja[k] >= r0 + bs; k--) s[r] -= aa[k] * ya[ja[k]];
-      }
-      for (PetscInt r = 0; r < bs; r++) {
-        PetscScalar v = 0;
-        for (PetscInt c = 0; c < bs; c++) v += d[r * bs + c] * s[c];
-        ya[r0 + r] = v;
-      }
-    }
-  } else if (!g->back)
-    for (PetscInt i = 0; i < m; i++) {
-      PetscScalar s = xa[i];
-      for (PetscInt k = ia[i]; k < ia[i + 1] && ja[k] < i; k++) s -= aa[k] * ya[ja[k]];
-      ya[i] = s * idiag[i];
-    }
-  else
-    for (PetscInt i = m - 1; i >= 0; i--) {
-      PetscScalar s = xa[i];
-      PetscInt    k = ia[i + 1] - 1;
-      for (; k >= ia[i] && ja[k] > i; k--) continue;
-      for (k++; k < ia[i + 1]; k++) s -= aa[k] * ya[ja[k]];
-      ya[i] = s * idiag[i];
-    }
-  PetscCall(PetscLogFlops(ia[m] + (bs > 1 ? (2.0 * bs - 1) * m : 0)));
+  bs = g->m->bs;
+  if (g->sym && g->glob) {
+    PetscScalar *za;
+    Sweep(m, bs, ia, ja, aa, g->m->idiag, xa, ya, PETSC_FALSE, NULL);
+    PetscCall(VecRestoreArray(y, &ya));
+    if (!g->r) PetscCall(MatCreateVecs(P, &g->z, &g->r));
+    PetscCall(MatMult(P, y, g->r));
+    PetscCall(VecAYPX(g->r, -1.0, x)); /* r = x - A y */
+    PetscCall(VecGetArrayRead(g->r, &xa));
+    PetscCall(VecGetArray(g->z, &za));
+    Sweep(m, bs, ia, ja, aa, g->m->idiag, xa, za, PETSC_TRUE, NULL);
+    PetscCall(VecRestoreArray(g->z, &za));
+    PetscCall(VecRestoreArrayRead(g->r, &xa));
+    PetscCall(VecAXPY(y, 1.0, g->z));
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(VecGetArray(y, &ya));
+  } else if (g->sym) {
+    Sweep(m, bs, ia, ja, aa, g->m->idiag, xa, ya, PETSC_FALSE, g->m->w);
+    Sweep(m, bs, ia, ja, aa, g->m->idiag, xa, ya, PETSC_TRUE, g->m->w);
+  } else Sweep(m, bs, ia, ja, aa, g->m->idiag, xa, ya, g->back, NULL);
+  PetscCall(PetscLogFlops((g->sym ? 2.0 : 1.0) * (ia[m] + (bs > 1 ? (2.0 * bs - 1) * m : 0))));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(MatSeqAIJRestoreArrayRead(Ad, &aa));
@@ -359,16 +414,19 @@ static PetscErrorCode Destroy_L1GS(PC pc)
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &g));
+  PetscCall(VecDestroy(&g->r));
+  PetscCall(VecDestroy(&g->z));
   if (--g->m->refs == 0) {
     PetscCall(PetscFree(g->m->idiag));
+    PetscCall(PetscFree(g->m->w));
     PetscCall(PetscFree(g->m));
   }
   PetscCall(PetscFree(g));
   PetscFunctionReturn(0);
 }
 
-/* lm: the level's shared matrix (NULL: a new one, for the level's other sweep to share) */
-static PetscErrorCode SetL1GS(PC pc, PetscBool back, L1GSMat **lm)
+/* lm: the level's shared matrix (NULL: a new one, for the level's other sweep to share); sym: the symmetric sweep */
+static PetscErrorCode SetL1GS(PC pc, PetscBool back, PetscBool sym, PetscBool glob, L1GSMat **lm)
 {
   L1GS *g;
 
@@ -378,9 +436,12 @@ static PetscErrorCode SetL1GS(PC pc, PetscBool back, L1GSMat **lm)
   g->m = *lm;
   g->m->refs++;
   g->back = back;
+  g->sym  = sym;
+  g->glob = glob;
   PetscCall(PCSetType(pc, PCSHELL));
   PetscCall(PCShellSetContext(pc, g));
-  PetscCall(PCShellSetName(pc, back ? "backward l1 Gauss-Seidel" : "l1 Gauss-Seidel"));
+  PetscCall(PCShellSetName(pc, sym ? "symmetric l1 Gauss-Seidel" : back ? "backward l1 Gauss-Seidel"
+                                                                        : "l1 Gauss-Seidel"));
   PetscCall(PCShellSetSetUp(pc, SetUp_L1GS));
   PetscCall(PCShellSetApply(pc, Apply_L1GS));
   PetscCall(PCShellSetDestroy(pc, Destroy_L1GS));
@@ -388,8 +449,9 @@ static PetscErrorCode SetL1GS(PC pc, PetscBool back, L1GSMat **lm)
 }
 
 /* One l1 Gauss-Seidel sweep of the smoothers on several ranks (SetL1GS) on an MPIAIJ A from a zero start, y = W^-1 b,
-   on any number of ranks (tests/unit_tests.c: the block sweep against the exact solve and against MatSOR) */
-PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, Vec b, Vec y)
+   on any number of ranks (tests/unit_tests.c: the block sweep against the exact solve and against MatSOR); sym: the
+   symmetric sweep (back ignored) */
+PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, PetscBool sym, Vec b, Vec y)
 {
   PC       pc;
   L1GSMat *lm = NULL;
@@ -397,7 +459,7 @@ PetscErrorCode SgTMGL1GSSweep(Mat A, PetscBool back, Vec b, Vec y)
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
   PetscCall(PCCreate(PetscObjectComm((PetscObject)A), &pc));
-  PetscCall(SetL1GS(pc, back, &lm));
+  PetscCall(SetL1GS(pc, back, sym, PETSC_FALSE, &lm));
   PetscCall(PCSetOperators(pc, A, A));
   PetscCall(PCSetUp(pc));
   PetscCall(PCApply(pc, b, y));
@@ -471,10 +533,15 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   char        mgprefix[256];
   KSP         ksp;
   PetscMPIInt size;
+  PetscBool   sym, glob;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(SG_TMGBuild, 0, 0, 0, 0));
   PetscCallMPI(MPI_Comm_size(t->ssn->comm, &size));
+  /* the several-rank smoother's symmetric sweep and its whole residual between the sweeps (Apply_L1GS): as set, else
+     SG_TMG_L1GS_SYM_PAIR and SG_TMG_L1GS_GLOBAL_PAIR for a pair */
+  sym  = t->ssn->tmg_l1gs_sym_set ? t->ssn->tmg_l1gs_sym : (PetscBool)(SG_TMG_L1GS_SYM_PAIR && SgFramePairTransform(t->ssn->frame));
+  glob = t->ssn->tmg_l1gs_glob_set ? t->ssn->tmg_l1gs_glob : (PetscBool)(SG_TMG_L1GS_GLOBAL_PAIR && SgFramePairTransform(t->ssn->frame));
   if (t->geo) n = t->nlevels;
   else {
     /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
@@ -535,6 +602,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(PetscSNPrintf(mgprefix, sizeof(mgprefix), "%stmg_", prefix ? prefix : ""));
   PetscCall(PCSetOptionsPrefix(t->mg, mgprefix));
   PetscCall(PCSetType(t->mg, PCMG));
+  if (size > 1 && !t->gamg) PetscCall(PetscInfo(t->mg, "truncated multigrid: %s l1 Gauss-Seidel smoothers\n", sym ? (glob ? "symmetric (whole residual between the sweeps)" : "symmetric (local residual between the sweeps)") : "single-sweep"));
   PetscCall(PCMGSetLevels(t->mg, n, NULL));
   PetscCall(PCMGSetType(t->mg, PC_MG_MULTIPLICATIVE));
   PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_NONE));
@@ -568,7 +636,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
       PetscCall(KSPGetPC(sm[k], &spc));
       if (size > 1) { /* l1 Gauss-Seidel (SetL1GS) */
-        PetscCall(SetL1GS(spc, (PetscBool)(k == 1), &lm));
+        PetscCall(SetL1GS(spc, (PetscBool)(k == 1), sym, glob, &lm));
         continue;
       }
       PetscCall(PCSetType(spc, PCSOR));
