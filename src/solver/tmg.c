@@ -109,7 +109,8 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    ranks (tests/parallel/twobody_ranks.ini). With W the sweep's lower (upper) triangle, W + W^T - A =
    D + 2 L1 - A_offrank is positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a
    backward one up is symmetric positive definite; swept by vertex blocks (SetUp_L1GS), D is the blocks' diagonal
-   (positive definite, as A's principal submatrices) and the same holds. A PCSHELL, so that KSPRICHARDSON applies it
+   (positive definite, as A's principal submatrices) and the same holds. For two bodies each application is by
+   default a forward sweep then a backward one (-ssn_pc_truncated_mg_l1gs_symmetric, Apply_L1GS), convergent too. A PCSHELL, so that KSPRICHARDSON applies it
    to its residual (x += W^-1 (b - A x)); on one rank the smoothers stay PCSOR (the same sweeps: no rows of other
    ranks). */
 typedef struct {
