@@ -58,8 +58,10 @@ struct _n_SgTMG {
 #define SG_TMG_TOUCHED_NNZ 100000
 
 /* The defaults of -ssn_pc_truncated_mg_l1gs_symmetric and _global for two bodies (a pair in the dual-mortar basis) on
-   several ranks; one body keeps the single sweeps (bench/results.md, l1sym) */
-#define SG_TMG_L1GS_SYM_PAIR    1
+   several ranks, one body keeping the single sweeps: off, as for one body; the symmetric sweep took 32 CG against 41
+   at 299,316 unknowns on 2 ranks but 3.7-4.2 s against 3.5-3.8 s (bench/results.md, l1sym and the lead's section
+   after it) */
+#define SG_TMG_L1GS_SYM_PAIR    0
 #define SG_TMG_L1GS_GLOBAL_PAIR 0
 
 static PetscBool      tmg_registered = PETSC_FALSE;
@@ -109,8 +111,8 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    ranks (tests/parallel/twobody_ranks.ini). With W the sweep's lower (upper) triangle, W + W^T - A =
    D + 2 L1 - A_offrank is positive definite (diagonally dominant), so the V-cycle with a forward sweep down and a
    backward one up is symmetric positive definite; swept by vertex blocks (SetUp_L1GS), D is the blocks' diagonal
-   (positive definite, as A's principal submatrices) and the same holds. For two bodies each application is by
-   default a forward sweep then a backward one (-ssn_pc_truncated_mg_l1gs_symmetric, Apply_L1GS), convergent too. A PCSHELL, so that KSPRICHARDSON applies it
+   (positive definite, as A's principal submatrices) and the same holds. With -ssn_pc_truncated_mg_l1gs_symmetric each
+   application is a forward sweep then a backward one (Apply_L1GS), convergent too. A PCSHELL, so that KSPRICHARDSON applies it
    to its residual (x += W^-1 (b - A x)); on one rank the smoothers stay PCSOR (the same sweeps: no rows of other
    ranks). */
 typedef struct {
