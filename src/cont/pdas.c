@@ -12,7 +12,7 @@
    Two bodies (-contact_master_ids): the working coordinates are the pair's dual-mortar basis u = T Q v
    (SgFrameCreatePair), where each pair row is the bound sign_j v_j[axis] <= d_j = g0_j / D_j and the other dofs of
    v_j are the relative displacement of slave vertex j against the master surface (the friction's slip), D_j the
-   weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (PairMultiplier). */
+   weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (Multiplier_PDAS). */
 #include "cont/contimpl.h"
 
 typedef struct {
@@ -370,15 +370,20 @@ static PetscErrorCode AssembleSystem_PDAS(SgCont ct, PdasWork *w)
   PetscFunctionReturn(0);
 }
 
-/* Two bodies: the multiplier of the equilibrium in the pair's basis, (T Q)^T (K y - b) + (B T Q)^T lam = 0, where row j
+/* The multiplier from the equilibrium at the iterate: one body by the nodal balance (SgContactMultiplierFromResidual);
+   two bodies from the equilibrium in the pair's basis, (T Q)^T (K y - b) + (B T Q)^T lam = 0, where row j
    of B T Q is D_j sign_j e_(j, axis): lam_j = -sign_j (Kw yw - bw)_(j, axis) / D_j (D_j = ct->w[i]). Exact also where
    a vertex with a row of its own (a rigid obstacle's) is a master vertex of the pair, which the nodal balance of
    SgContactMultiplierFromResidual would take for its own. w->x is work here (AssembleSystem_PDAS sets it anew). */
-static PetscErrorCode PairMultiplier(SgCont ct, PdasWork *w)
+static PetscErrorCode Multiplier_PDAS(SgCont ct, PdasWork *w)
 {
   const PetscScalar *ra;
 
   PetscFunctionBeginUser;
+  if (!w->pair) {
+    PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatMult(w->Kw, w->yw, w->x));
   PetscCall(VecAXPY(w->x, -1.0, w->bw));
   PetscCall(VecGetArrayRead(w->x, &ra));
@@ -400,8 +405,7 @@ static PetscErrorCode NextSets_PDAS(SgCont ct, PdasWork *w, PetscInt k, PetscInt
 
   PetscFunctionBeginUser;
   /* multiplier from the equilibrium on the active set, then the next active set */
-  if (w->pair) PetscCall(PairMultiplier(ct, w));
-  else PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
+  PetscCall(Multiplier_PDAS(ct, w));
   PetscCall(Gap(ct, w->f, axis, sign, w->yw, g));
   for (PetscInt i = 0; i < ct->n; i++) {
     if (!act[i]) ct->lam[i] = 0;
@@ -531,8 +535,7 @@ static PetscErrorCode Refine_PDAS(SgCont ct, PdasWork *w)
       PetscCall(VecCopy(w->yw, ct->y));
       PetscCall(SgFrameToGlobal(w->f, ct->y));
     }
-    if (w->pair) PetscCall(PairMultiplier(ct, w));
-    else PetscCall(SgContactMultiplierFromResidual(ct->c, ct->y, ct->lam));
+    PetscCall(Multiplier_PDAS(ct, w));
     for (PetscInt i = 0; i < ct->n; i++)
       if (!w->act[i]) ct->lam[i] = 0;
     if (((PDAS *)ct->data)->monitor) PetscCall(PetscPrintf(ct->comm, "  PDAS refinement %" PetscInt_FMT ": the correction of the last system's residual, KSP %" PetscInt_FMT "\n", r + 1, kits));
