@@ -12,7 +12,11 @@
    Two bodies (-contact_master_ids): the working coordinates are the pair's dual-mortar basis u = T Q v
    (SgFrameCreatePair), where each pair row is the bound sign_j v_j[axis] <= d_j = g0_j / D_j and the other dofs of
    v_j are the relative displacement of slave vertex j against the master surface (the friction's slip), D_j the
-   weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (Multiplier_PDAS). */
+   weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (Multiplier_PDAS).
+   Preconditioner (-cont_pdas_pc_truncated_mg, on by default for two bodies with an iterative AMG solve): an active row
+   is a bound on one dof of the working coordinates, the one the SSN's truncated multigrid (solver/tmg.c) truncates;
+   with the KSP's AMG taken into it once per solve (SgTMGCreateBound) the active set changes the coarse operators by a
+   Galerkin correction instead of a new AMG setup of the eliminated system per iteration (TMGStart_PDAS). */
 #include "cont/contimpl.h"
 
 typedef struct {
@@ -20,6 +24,8 @@ typedef struct {
   PetscInt  maxit;
   PetscBool monitor;
   PetscBool coupled; /* Coulomb: the slip force F lam_N t with the normal reaction of the same solve */
+  PetscBool tmg;     /* -cont_pdas_pc_truncated_mg: the solves preconditioned by the truncated multigrid */
+  PetscBool tmg_set; /* given (else on for two bodies without friction, with CG or another Krylov method on an AMG) */
 } PDAS;
 
 static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOptionsObject)
@@ -33,6 +39,7 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_pdas_coulomb_coupled", "Coulomb: the slip force F lam_N t with the normal reaction lam_N of the same linear solve (nonsymmetric), not the last iterate's", &pd->coupled, NULL));
   /* pdas runs no SSN: its monitor has a name of its own (-ssn_monitor, the SSN's, is still read here with a notice) */
   PetscCall(SgOptionsBoolRenamed(PetscOptionsObject, "-cont_pdas_monitor", "-ssn_monitor", "Print the active set and the energy per PDAS iteration", &pd->monitor, &o3));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-cont_pdas_pc_truncated_mg", "Precondition the iterative PDAS solves with the truncated multigrid of the KSP's AMG (-pc_type hypre or gamg; the SSN's -ssn_pc_truncated_mg), truncated at the active set, instead of a new AMG setup per iteration; default on for two bodies without friction, off for one body; no effect on a direct solve (preonly)", &pd->tmg, &pd->tmg_set));
   {
     /* the SSN's -ssn_condense is not a pdas option (not listed under it): only refused when set true */
     PetscBool condense = PETSC_FALSE;
@@ -187,6 +194,8 @@ typedef struct {
   PetscBool        states;   /* the law keeps states: the iterate depends on their bounds and directions too */
   PetscBool        roundoff; /* and they may change on round-off for ever (a bound from lam_N of the same solve) */
   PetscBool        pair;     /* two bodies: the working coordinates are the pair's basis v, u = T Q v */
+  SgTMG            tmg;      /* the truncated multigrid of the solves (TMGStart_PDAS), or NULL */
+  PC               pc0;      /* with it: the KSP's own preconditioner (its AMG), given back after the solve */
 } PdasWork;
 
 /* The arrays of the sets, the working coordinates (the contact frames where a normal is not an axis) and the default
@@ -543,6 +552,50 @@ static PetscErrorCode Refine_PDAS(SgCont ct, PdasWork *w)
   PetscFunctionReturn(0);
 }
 
+/* The truncated multigrid of this solve's systems (-cont_pdas_pc_truncated_mg): by default for two bodies without
+   friction where the KSP iterates on an AMG; given true, refused with friction (the stick rows and the coupled slip rows
+   are not truncated) and for a preconditioner that is no AMG, and nothing on a direct solve (preonly: a coarse level of
+   nested iteration). The KSP's preconditioner is kept (pc0) and given back by TMGEnd_PDAS. */
+static PetscErrorCode TMGStart_PDAS(SgCont ct, PdasWork *w)
+{
+  PDAS     *pd  = (PDAS *)ct->data;
+  KSP       ksp = ct->ksp;
+  PC        pc;
+  PetscBool preonly, amg, on;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &amg, PCHYPRE, PCGAMG, ""));
+  on = pd->tmg_set ? pd->tmg : (PetscBool)(w->pair && !w->states && amg);
+  if (!on || preonly) PetscFunctionReturn(0);
+  PetscCheck(!w->states, ct->comm, PETSC_ERR_SUP, "-cont_pdas_pc_truncated_mg true: not built for friction (-friction_type %s): its stick and slip rows are not truncated; leave it out", SgLawName(ct->cv.law));
+  PetscCheck(amg, ct->comm, PETSC_ERR_USER_INPUT, "-cont_pdas_pc_truncated_mg true takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg, got -pc_type %s", ((PetscObject)pc)->type_name ? ((PetscObject)pc)->type_name : "(unset)");
+  PetscCall(PetscObjectReference((PetscObject)pc));
+  w->pc0 = pc;
+  PetscCall(SgTMGCreateBound(ct->prob, ct->c, ksp, w->Kw, w->f, &w->tmg));
+  PetscCall(PetscInfo(ct, "pdas: the truncated multigrid of the KSP's %s, truncated at the active set, preconditions the solves\n", ((PetscObject)pc)->type_name));
+  if (!strstr(ct->solver_desc, "-cont_pdas_pc_truncated_mg")) { /* the summary's linear_solver_choice (the KSP gets its AMG back) */
+    size_t len;
+    PetscCall(PetscStrlen(ct->solver_desc, &len));
+    PetscCall(PetscSNPrintf(ct->solver_desc + len, sizeof(ct->solver_desc) - len, "; pdas: its truncated multigrid (-cont_pdas_pc_truncated_mg)"));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The KSP's own preconditioner back (the next unconstrained solve runs on it), the truncated multigrid freed; the KSP
+   keeps the last system A as its operator, as without it */
+static PetscErrorCode TMGEnd_PDAS(SgCont ct, PdasWork *w)
+{
+  PetscFunctionBeginUser;
+  if (!w->tmg) PetscFunctionReturn(0);
+  PetscCall(KSPSetPC(ct->ksp, w->pc0));
+  PetscCall(KSPSetOperators(ct->ksp, w->A, w->A));
+  PetscCall(PCDestroy(&w->pc0));
+  PetscCall(SgTMGDestroy(&w->tmg));
+  PetscFunctionReturn(0);
+}
+
 /* The primal-dual active set iterations: a linear solve per iteration with the sets of the last one, until they settle */
 static PetscErrorCode Solve_PDAS(SgCont ct)
 {
@@ -563,6 +616,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
     PetscFunctionReturn(0);
   }
   PetscCall(StartSets_PDAS(ct, &w));
+  PetscCall(TMGStart_PDAS(ct, &w));
   ct->outer = 1;
   PetscCall(SgContAddGamma(ct, SG_NAN));
   for (k = 1; k <= pd->maxit && !done; k++) {
@@ -571,6 +625,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
 
     PetscCall(SgContactActiveSetHash(ct->c, w.act, &w.hash[w.nhash++]));
     PetscCall(AssembleSystem_PDAS(ct, &w));
+    PetscCall(SgTMGSetActiveSet(w.tmg, w.act)); /* (nothing without it) */
     PetscCall(PetscLogEventBegin(SG_LinearSolve, 0, 0, 0, 0));
     PetscCall(KSPSetOperators(ksp, w.A, w.A));
     PetscCall(KSPSolve(ksp, w.rhs, w.yw));
@@ -593,6 +648,7 @@ static PetscErrorCode Solve_PDAS(SgCont ct)
   }
   if (!done && !ct->converged && !strcmp(ct->reason, "NOT_RUN")) PetscCall(SgContFail(ct, "PDAS_MAX_IT: the active set still changed after %" PetscInt_FMT " iterations (-pdas_max_it)", pd->maxit));
   PetscCall(Refine_PDAS(ct, &w));
+  PetscCall(TMGEnd_PDAS(ct, &w));
   PetscCall(SgContMeasure(ct));
   PetscCall(SgContOuterRow(ct, ct->ssn_its, NULL));
   PetscCall(SgContCheckBaseline(ct));
@@ -612,6 +668,7 @@ static PetscErrorCode View_PDAS(SgCont ct, PetscViewer viewer)
   PetscFunctionBeginUser;
   if (pd->c > 0) PetscCall(PetscViewerASCIIPrintf(viewer, "; active-set constant c %g (-cont_pdas_c), at most %" PetscInt_FMT " iterations (-cont_pdas_max_it)", (double)pd->c, pd->maxit));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "; active-set constant c = E / contact mesh size (-cont_pdas_c 0), at most %" PetscInt_FMT " iterations (-cont_pdas_max_it)", pd->maxit));
+  if (pd->tmg_set) PetscCall(PetscViewerASCIIPrintf(viewer, "; truncated multigrid %s (-cont_pdas_pc_truncated_mg)", pd->tmg ? "on" : "off"));
   PetscFunctionReturn(0);
 }
 

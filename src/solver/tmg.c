@@ -19,8 +19,10 @@
 
 struct _n_SgTMG {
   SgSSN      ssn;
-  PC         amg; /* the configured AMG, set up once; destroyed after its interpolations are taken */
-  PC         mg;  /* PCMG on the interpolations, coarse operators set here */
+  SgSSN      host; /* SgTMGCreateBound: the SSN fields it reads, filled for a solver without an SSN (freed here) */
+  KSP        ksp;  /* the KSP whose preconditioner it is (its options prefix: -<prefix>tmg_*) */
+  PC         amg;  /* the configured AMG, set up once; destroyed after its interpolations are taken */
+  PC         mg;   /* PCMG on the interpolations, coarse operators set here */
   PetscInt   nlevels;
   Mat       *P;    /* P[l]: interpolation from level l-1 to l (PCMG numbering, 0 coarsest); P[n-1] the finest */
   Mat        Pt;   /* the finest one truncated (held by mg) */
@@ -534,7 +536,6 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   Mat        *P;
   const char *prefix;
   char        mgprefix[256];
-  KSP         ksp;
   PetscMPIInt size;
   PetscBool   sym, glob;
 
@@ -600,8 +601,7 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   if (size > 1 && n > 1 && IsMPIAIJ(t->ssn->Klin) && IsMPIAIJ(t->P[n - 1]) && IsMPIAIJ(t->KP)) PetscCall(BuildRanks(t));
 
   PetscCall(PCCreate(t->ssn->comm, &t->mg));
-  PetscCall(SNESGetKSP(t->ssn->snes, &ksp));
-  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(KSPGetOptionsPrefix(t->ksp, &prefix));
   PetscCall(PetscSNPrintf(mgprefix, sizeof(mgprefix), "%stmg_", prefix ? prefix : ""));
   PetscCall(PCSetOptionsPrefix(t->mg, mgprefix));
   PetscCall(PCSetType(t->mg, PCMG));
@@ -1157,6 +1157,7 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   PetscCheck(ngeo || hypre || gamg, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg");
   PetscCall(PetscNew(&t));
   t->ssn   = s;
+  t->ksp   = ksp;
   t->gamg  = gamg;
   t->fresh = PETSC_TRUE;
   PetscCall(PetscMalloc4(s->n, &t->axis, s->n, &t->sign, s->n, &t->want, s->n, &t->have));
@@ -1196,6 +1197,33 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   PetscFunctionReturn(0);
 }
 
+/* The truncated multigrid for the bound-constrained solves of a controller without an SSN (pdas, cont/pdas.c): each
+   system is Klin with the active normal dofs eliminated (their rows and columns zeroed, a positive diagonal), so that
+   with the finest interpolation truncated there the coarse operators are P_t^T Klin P_t, as for the SSN's Jacobians.
+   Klin: the working stiffness (K, or Q^T K Q in frame's coordinates: the contact frames or a pair's dual-mortar basis,
+   where a pair's AMG is set up on K in the displacements as with -ssn_pair_amg_displacements, its default); frame
+   NULL where every normal is a coordinate axis. The KSP's preconditioner (hypre or gamg) becomes the AMG, as in
+   SgTMGCreate; the AMG's interpolations only (no mesh hierarchy), the smoothers' defaults (one body's or a pair's). */
+PetscErrorCode SgTMGCreateBound(SgElasticity p, SgContact c, KSP ksp, Mat Klin, SgFrame frame, SgTMG *tmg)
+{
+  SgSSN s;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  s->prob = p;
+  s->c    = c;
+  PetscCall(SgElasticityGetComm(p, &s->comm));
+  PetscCall(SgElasticityGetDimension(p, &s->dim));
+  PetscCall(SgElasticityGetOperators(p, &s->K, &s->b));
+  PetscCall(SgContactGetVertices(c, &s->n, &s->nglobal, &s->vert, &s->off));
+  s->Klin       = Klin;
+  s->frame      = frame;
+  s->pair_amg_u = PETSC_TRUE;
+  PetscCall(SgTMGCreate(s, ksp, PETSC_FALSE, tmg));
+  (*tmg)->host = s;
+  PetscFunctionReturn(0);
+}
+
 /* the active set of the Jacobian about to be solved with (read at the next set-up) */
 PetscErrorCode SgTMGSetActiveSet(SgTMG t, const char act[])
 {
@@ -1224,6 +1252,7 @@ PetscErrorCode SgTMGDestroy(SgTMG *tmg)
   PetscCall(ISDestroy(&t->cols));
   PetscCall(MatDestroy(&t->Pt));
   PetscCall(PetscFree4(t->axis, t->sign, t->want, t->have));
+  PetscCall(PetscFree(t->host));
   if (t->D) {
     for (PetscInt l = 0; l < t->nlevels; l++) PetscCall(MatDestroy(&t->D[l]));
     PetscCall(PetscFree4(t->D, t->str, t->touch, t->prod));
