@@ -595,8 +595,8 @@ PetscErrorCode SgCheckSolverTypes(MPI_Comm, const char[]);
 PetscErrorCode SgSolverConfigured(MPI_Comm, PetscErrorCode);
 PetscErrorCode SgCondenseCreate(SgSSN, SgCondense *);
 PetscErrorCode SgCondenseDestroy(SgCondense *);
-PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *);                           /* tmg.c: truncated multigrid on the KSP's AMG, or on the mesh hierarchy (PETSC_TRUE: gmg.c) */
-PetscErrorCode SgTMGCreateBound(SgElasticity, SgContact, KSP, Mat, SgFrame, SgTMG *); /* tmg.c: the same for a solver without an SSN (pdas): its working stiffness and frame */
+PetscErrorCode SgTMGCreate(SgSSN, KSP, PetscBool, SgTMG *);                                      /* tmg.c: truncated multigrid on the KSP's AMG, or on the mesh hierarchy (PETSC_TRUE: gmg.c) */
+PetscErrorCode SgTMGCreateBound(SgElasticity, SgContact, KSP, Mat, SgFrame, PetscBool, SgTMG *); /* tmg.c: the same for a solver without an SSN (pdas): its working stiffness and frame; PETSC_TRUE: the mesh hierarchy's interpolations */
 PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 PetscErrorCode SgTMGL1GSSweep(Mat, PetscBool, PetscBool, Vec, Vec); /* tmg.c: one sweep of its several-rank smoother (tests/unit_tests.c) */

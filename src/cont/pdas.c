@@ -555,13 +555,15 @@ static PetscErrorCode Refine_PDAS(SgCont ct, PdasWork *w)
 /* The truncated multigrid of this solve's systems (-cont_pdas_pc_truncated_mg): by default for two bodies without
    friction where the KSP iterates on an AMG; given true, refused with friction (the stick rows and the coupled slip rows
    are not truncated) and for a preconditioner that is no AMG, and nothing on a direct solve (preonly: a coarse level of
-   nested iteration). The KSP's preconditioner is kept (pc0) and given back by TMGEnd_PDAS. */
+   nested iteration). Its interpolations as the SSN's of the default solver would take them (SgLinearSolverDefaultSSN,
+   as fast's): the mesh hierarchy's where the mesh kept the levels of -dm_refine (nested iteration), else the KSP's
+   AMG's. The KSP's preconditioner is kept (pc0) and given back by TMGEnd_PDAS. */
 static PetscErrorCode TMGStart_PDAS(SgCont ct, PdasWork *w)
 {
   PDAS     *pd  = (PDAS *)ct->data;
   KSP       ksp = ct->ksp;
   PC        pc;
-  PetscBool preonly, amg, on;
+  PetscBool preonly, amg, on, geo = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
@@ -570,15 +572,21 @@ static PetscErrorCode TMGStart_PDAS(SgCont ct, PdasWork *w)
   on = pd->tmg_set ? pd->tmg : (PetscBool)(w->pair && !w->states && amg);
   if (!on || preonly) PetscFunctionReturn(0);
   PetscCheck(!w->states, ct->comm, PETSC_ERR_SUP, "-cont_pdas_pc_truncated_mg true: not built for friction (-friction_type %s): its stick and slip rows are not truncated; leave it out", SgLawName(ct->cv.law));
-  PetscCheck(amg, ct->comm, PETSC_ERR_USER_INPUT, "-cont_pdas_pc_truncated_mg true takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg, got -pc_type %s", ((PetscObject)pc)->type_name ? ((PetscObject)pc)->type_name : "(unset)");
+  if (ct->lin.on) { /* the default solver: the SSN's choice of interpolations (a copy: ct->lin and its text stay) */
+    SgLinearDefault lin       = ct->lin;
+    char            desc[256] = "";
+    PetscCall(SgLinearSolverDefaultSSN(ct->prob, ct->c, ((PetscObject)ct)->prefix, PETSC_TRUE, &lin, desc, sizeof(desc)));
+    geo = (PetscBool)(lin.tmg && lin.geometric);
+  }
+  PetscCheck(amg || geo, ct->comm, PETSC_ERR_USER_INPUT, "-cont_pdas_pc_truncated_mg true takes the interpolations of an AMG: -pc_type hypre (BoomerAMG) or gamg, got -pc_type %s", ((PetscObject)pc)->type_name ? ((PetscObject)pc)->type_name : "(unset)");
   PetscCall(PetscObjectReference((PetscObject)pc));
   w->pc0 = pc;
-  PetscCall(SgTMGCreateBound(ct->prob, ct->c, ksp, w->Kw, w->f, &w->tmg));
-  PetscCall(PetscInfo(ct, "pdas: the truncated multigrid of the KSP's %s, truncated at the active set, preconditions the solves\n", ((PetscObject)pc)->type_name));
+  PetscCall(SgTMGCreateBound(ct->prob, ct->c, ksp, w->Kw, w->f, geo, &w->tmg));
+  PetscCall(PetscInfo(ct, "pdas: the truncated multigrid of %s, truncated at the active set, preconditions the solves\n", geo ? "the mesh hierarchy" : ((PetscObject)pc)->type_name));
   if (!strstr(ct->solver_desc, "-cont_pdas_pc_truncated_mg")) { /* the summary's linear_solver_choice (the KSP gets its AMG back) */
     size_t len;
     PetscCall(PetscStrlen(ct->solver_desc, &len));
-    PetscCall(PetscSNPrintf(ct->solver_desc + len, sizeof(ct->solver_desc) - len, "; pdas: its truncated multigrid (-cont_pdas_pc_truncated_mg)"));
+    PetscCall(PetscSNPrintf(ct->solver_desc + len, sizeof(ct->solver_desc) - len, "; pdas: %s truncated multigrid (-cont_pdas_pc_truncated_mg)", geo ? "the mesh hierarchy's" : "its AMG's"));
   }
   PetscFunctionReturn(0);
 }

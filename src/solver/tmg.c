@@ -1202,9 +1202,10 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
    with the finest interpolation truncated there the coarse operators are P_t^T Klin P_t, as for the SSN's Jacobians.
    Klin: the working stiffness (K, or Q^T K Q in frame's coordinates: the contact frames or a pair's dual-mortar basis,
    where a pair's AMG is set up on K in the displacements as with -ssn_pair_amg_displacements, its default); frame
-   NULL where every normal is a coordinate axis. The KSP's preconditioner (hypre or gamg) becomes the AMG, as in
-   SgTMGCreate; the AMG's interpolations only (no mesh hierarchy), the smoothers' defaults (one body's or a pair's). */
-PetscErrorCode SgTMGCreateBound(SgElasticity p, SgContact c, KSP ksp, Mat Klin, SgFrame frame, SgTMG *tmg)
+   NULL where every normal is a coordinate axis. As SgTMGCreate: the KSP's preconditioner (hypre or gamg) becomes the
+   AMG, or with geometric the interpolations of the mesh hierarchy (gmg.c); the smoothers' defaults (one body's or a
+   pair's). */
+PetscErrorCode SgTMGCreateBound(SgElasticity p, SgContact c, KSP ksp, Mat Klin, SgFrame frame, PetscBool geometric, SgTMG *tmg)
 {
   SgSSN s;
 
@@ -1214,12 +1215,13 @@ PetscErrorCode SgTMGCreateBound(SgElasticity p, SgContact c, KSP ksp, Mat Klin, 
   s->c    = c;
   PetscCall(SgElasticityGetComm(p, &s->comm));
   PetscCall(SgElasticityGetDimension(p, &s->dim));
+  PetscCall(SgElasticityGetMesh(p, &s->mesh));
   PetscCall(SgElasticityGetOperators(p, &s->K, &s->b));
   PetscCall(SgContactGetVertices(c, &s->n, &s->nglobal, &s->vert, &s->off));
   s->Klin       = Klin;
   s->frame      = frame;
   s->pair_amg_u = PETSC_TRUE;
-  PetscCall(SgTMGCreate(s, ksp, PETSC_FALSE, tmg));
+  PetscCall(SgTMGCreate(s, ksp, geometric, tmg));
   (*tmg)->host = s;
   PetscFunctionReturn(0);
 }
