@@ -15,8 +15,9 @@
    weight w_j; the load goes in as a force (Q^T T^T b), the multiplier from the equilibrium in v (Multiplier_PDAS).
    Preconditioner (-cont_pdas_pc_truncated_mg, on by default for two bodies with an iterative AMG solve): an active row
    is a bound on one dof of the working coordinates, the one the SSN's truncated multigrid (solver/tmg.c) truncates;
-   with the KSP's AMG taken into it once per solve (SgTMGCreateBound) the active set changes the coarse operators by a
-   Galerkin correction instead of a new AMG setup of the eliminated system per iteration (TMGStart_PDAS). */
+   with its interpolations made once per solve (SgTMGCreateBound: the mesh hierarchy's under nested iteration, else the
+   KSP's AMG's, as fast's default takes them) the active set changes the coarse operators by a Galerkin correction
+   instead of a new AMG setup of the eliminated system per iteration (TMGStart_PDAS; bench/results.md, pdastmg). */
 #include "cont/contimpl.h"
 
 typedef struct {
