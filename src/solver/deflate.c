@@ -1,7 +1,8 @@
 /* deflate.c: a small deflation space for CG with the truncated multigrid (-ssn_pc_truncated_mg_deflate, tmg.c).
    On one fine two-body mesh the preconditioned Jacobian of the last SSN steps has a few isolated small eigenvalues
    below the continuum (bench/results.md, tb1mesh: four from 1.3e-4 to 1.6e-2 under 0.04 at 117,693 unknowns), which
-   CG resolves one by one. Their vectors are taken from the previous solve's CG: the Lanczos matrix T of the
+   CG resolves one by one (they sit on a slave vertex whose row of the pair's D^-1 M is 100 times the others', defl).
+   Their vectors are taken from the previous solve's CG: the Lanczos matrix T of the
    preconditioned operator follows from CG's step lengths alpha and the ratios beta = rho_{j+1} / rho_j (rho = r^T z),
    its Lanczos vectors are the preconditioned residuals z_j / sqrt(rho_j) with alternating signs; the Ritz vectors of
    T's eigenvalues below a threshold join the space Z while it has room (the older ones stay). Each CG solve then uses

@@ -65,7 +65,9 @@ struct _n_SgTMG {
 #define SG_TMG_L1GS_SYM_PAIR    0
 #define SG_TMG_L1GS_GLOBAL_PAIR 0
 
-/* The default of -ssn_pc_truncated_mg_deflate for two bodies (one body: off) */
+/* The default of -ssn_pc_truncated_mg_deflate for two bodies (one body: off). Off: fast, the default controller, gets
+   nothing (its only long CG solve is its last: no Ritz vector before it), ipf/alm/pf take 8-45 % fewer CG iterations
+   (bench/results.md, defl), not checked against the suite's counts on several ranks */
 #define SG_TMG_DEFLATE_PAIR 0
 
 static PetscBool      tmg_registered = PETSC_FALSE;
