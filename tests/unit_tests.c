@@ -6,8 +6,9 @@
 #include "contact/contactimpl.h"
 #include "contact/mortar.h"
 #include "contact/pair.h"
+#include "solver/ssnimpl.h"
 
-static const char help[] = "Unit tests: -test element2d|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties|mataddsparse|partitionweights -summary_file FILE\n";
+static const char help[] = "Unit tests: -test element2d|deflate|element3d|rigid|stiffness|gap|modelfit|rollerapi|controllers|meshtree|mortar|pair|pairapi|pairobstacleapi|lawproperties|mataddsparse|partitionweights -summary_file FILE\n";
 
 /* Hand-computed stiffness of the reference triangle (0,0),(1,0),(0,1) with lambda = mu = 1, dofs (0x,0y,1x,1y,2x,2y):
    K = area (lambda G_ai G_bj + mu (G_aj G_bi + delta_ij G_a.G_b)), G_0 = (-1,-1), G_1 = (1,0), G_2 = (0,1), area = 1/2. */
@@ -1386,6 +1387,128 @@ static PetscErrorCode TestMatAddSparse(SgSummary s)
   PetscFunctionReturn(0);
 }
 
+/* The deflation of the truncated multigrid (src/solver/deflate.c) around a Jacobi preconditioner on the 1D Laplacian
+   (n = 300, distributed; condition about 160): CG records its preconditioned residuals; at the next solve the Lanczos matrix rebuilt from
+   CG's step lengths must have PETSc's smallest Ritz value (KSPComputeEigenvalues of the same solve), the Ritz vectors
+   below 0.03 form the space (8 of them), the balanced form must be exact on it (M_d J z = z), symmetric, and the deflated solve
+   must take fewer iterations to the same solution. */
+typedef struct {
+  SgDefl d;
+  KSP    ksp;
+  Mat    A;
+  PC     jac;
+} DeflCtx;
+
+static PetscErrorCode ApplyDeflTest(PC pc, Vec x, Vec y)
+{
+  DeflCtx *c;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(SgDeflApply(c->d, c->ksp, c->A, c->jac, x, y));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode TestDeflate(SgSummary s)
+{
+  const PetscInt n = 300;
+  PetscInt       lo, hi, its[2], neig, k, nritz;
+  Mat            A;
+  Vec            b, x0, x1, u, v, w;
+  KSP            ksp;
+  PC             pc;
+  DeflCtx        c;
+  PetscReal     *er, *ei, emin, ritz0, exact = 0, nrm, dif;
+  PetscScalar    s1, s2;
+  const Vec     *Z;
+  PetscRandom    r;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 2, NULL, &A));
+  PetscCall(MatGetOwnershipRange(A, &lo, &hi));
+  for (PetscInt i = lo; i < hi; i++) {
+    const PetscScalar di = 2.05 + 0.05 * PetscSinReal((PetscReal)i); /* > 2, varying: Jacobi is not trivial */
+    PetscCall(MatSetValue(A, i, i, di, INSERT_VALUES));
+    if (i > 0) PetscCall(MatSetValue(A, i, i - 1, -1.0, INSERT_VALUES));
+    if (i < n - 1) PetscCall(MatSetValue(A, i, i + 1, -1.0, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(A, &x0, &b));
+  PetscCall(VecDuplicate(b, &x1));
+  PetscCall(VecDuplicate(b, &u));
+  PetscCall(VecDuplicate(b, &v));
+  PetscCall(VecDuplicate(b, &w));
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &r));
+  PetscCall(PetscRandomSetInterval(r, -1.0, 1.0));
+  PetscCall(VecSetRandom(b, r));
+  PetscCall(SgDeflCreate(8, 300, 0.03, &c.d)); /* every step kept: the same Lanczos matrix as PETSc's */
+  c.A = A;
+  PetscCall(PCCreate(PETSC_COMM_WORLD, &c.jac));
+  PetscCall(PCSetType(c.jac, PCJACOBI));
+  PetscCall(PCSetOperators(c.jac, A, A));
+  PetscCall(PCSetUp(c.jac));
+  PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+  c.ksp = ksp;
+  PetscCall(KSPSetType(ksp, KSPCG));
+  PetscCall(KSPSetOperators(ksp, A, A));
+  PetscCall(KSPSetTolerances(ksp, 1e-10, 1e-50, PETSC_DEFAULT, 200));
+  PetscCall(KSPSetComputeEigenvalues(ksp, PETSC_TRUE));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, &c));
+  PetscCall(PCShellSetApply(pc, ApplyDeflTest));
+  PetscCall(KSPSolve(ksp, b, x0));
+  PetscCall(KSPGetIterationNumber(ksp, &its[0]));
+  PetscCall(PetscMalloc2(its[0], &er, its[0], &ei));
+  PetscCall(KSPComputeEigenvalues(ksp, its[0], er, ei, &neig));
+  emin = er[0];
+  for (PetscInt i = 1; i < neig; i++) emin = PetscMin(emin, er[i]);
+  PetscCall(PetscFree2(er, ei));
+  PetscCall(KSPSolve(ksp, b, x1)); /* the first application takes the previous solve's Ritz vectors */
+  PetscCall(KSPGetIterationNumber(ksp, &its[1]));
+  PetscCall(SgDeflGetSpace(c.d, &k, &Z, &nritz, &ritz0));
+  /* after the second solve the recording holds its own Lanczos matrix; ritz0 is the first solve's */
+  for (PetscInt i = 0; i < k; i++) { /* M_d J z = z on the space */
+    PetscCall(MatMult(A, Z[i], u));
+    PetscCall(SgDeflApply(c.d, NULL, A, c.jac, u, v));
+    PetscCall(VecAXPY(v, -1.0, Z[i]));
+    PetscCall(VecNorm(v, NORM_2, &dif));
+    PetscCall(VecNorm(Z[i], NORM_2, &nrm));
+    exact = PetscMax(exact, dif / nrm);
+  }
+  PetscCall(VecSetRandom(u, r)); /* symmetry: u^T M_d v = v^T M_d u */
+  PetscCall(VecSetRandom(v, r));
+  PetscCall(SgDeflApply(c.d, NULL, A, c.jac, v, w));
+  PetscCall(VecDot(u, w, &s1));
+  PetscCall(SgDeflApply(c.d, NULL, A, c.jac, u, w));
+  PetscCall(VecDot(v, w, &s2));
+  PetscCall(VecAXPY(x1, -1.0, x0));
+  PetscCall(VecNorm(x1, NORM_2, &dif));
+  PetscCall(VecNorm(x0, NORM_2, &nrm));
+  PetscCall(SgSummarySetInt(s, "cg_plain", its[0]));
+  PetscCall(SgSummarySetInt(s, "cg_deflated", its[1]));
+  PetscCall(SgSummarySetInt(s, "space", k));
+  PetscCall(SgSummarySetInt(s, "ritz_taken", nritz));
+  PetscCall(SgSummarySetReal(s, "ritz_min_petsc", emin));
+  PetscCall(SgSummarySetReal(s, "ritz_min_rel_diff", PetscAbsReal(ritz0 - emin) / emin));
+  PetscCall(SgSummarySetReal(s, "exact_on_space", exact));
+  PetscCall(SgSummarySetReal(s, "symmetry_rel", PetscAbsScalar(s1 - s2) / PetscMax(PetscAbsScalar(s1), PetscAbsScalar(s2))));
+  PetscCall(SgSummarySetReal(s, "solution_rel_diff", dif / nrm));
+  PetscCall(PetscRandomDestroy(&r));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(PCDestroy(&c.jac));
+  PetscCall(SgDeflDestroy(&c.d));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&x0));
+  PetscCall(VecDestroy(&x1));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecDestroy(&w));
+  PetscCall(MatDestroy(&A));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv)
 {
   char      test[64] = "", file[PETSC_MAX_PATH_LEN] = "";
@@ -1405,6 +1528,7 @@ int main(int argc, char **argv)
   else if (PetscStrcmp(test, "rigid", &eq) == 0 && eq) PetscCall(TestRigid(s));
   else if (PetscStrcmp(test, "stiffness", &eq) == 0 && eq) PetscCall(TestStiffness(s));
   else if (PetscStrcmp(test, "l1gs", &eq) == 0 && eq) PetscCall(TestL1GS(s));
+  else if (PetscStrcmp(test, "deflate", &eq) == 0 && eq) PetscCall(TestDeflate(s));
   else if (PetscStrcmp(test, "gap", &eq) == 0 && eq) PetscCall(TestGap(s));
   else if (PetscStrcmp(test, "modelfit", &eq) == 0 && eq) PetscCall(TestModelFit(s));
   else if (PetscStrcmp(test, "rollerapi", &eq) == 0 && eq) PetscCall(TestRollerAPI(s));

@@ -25,6 +25,11 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_coarse_ptap", "Truncated multigrid on several ranks: carry each SSN step's correction of the coarse operators down the levels by MatPtAP over the kept operators' whole patterns instead of over the coarse rows it touches; the same operators to round-off, slower (a check of the default)", &s->tmg_coarse_ptap, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_l1gs_symmetric", "Truncated multigrid on several ranks: each application of the l1 Gauss-Seidel smoother is a forward sweep then a backward one over the rank's rows (symmetric, as PCSOR's local sweeps, with the l1 terms: still convergent) instead of one sweep (forward down, backward up); default off (fewer CG iterations, more time: bench/results.md l1sym); no effect on one rank (PCSOR)", &s->tmg_l1gs_sym, &s->tmg_l1gs_sym_set));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_l1gs_global", "With the symmetric l1 Gauss-Seidel smoother (-ssn_pc_truncated_mg_l1gs_symmetric): update the whole residual between the forward and the backward sweep (one product with the operator and its communication per application: two l1 Gauss-Seidel steps composed, still convergent) instead of the rank's own rows' residual", &s->tmg_l1gs_glob, &s->tmg_l1gs_glob_set));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_deflate", "Truncated multigrid with CG: deflate the smallest eigenvalues of the preconditioned Jacobian, their vectors the Ritz vectors of the previous CG solve (balanced deflation: the preconditioner stays symmetric positive definite; a few vectors, no product with the Jacobian per iteration)", &s->tmg_defl, &s->tmg_defl_set));
+  PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_truncated_mg_deflate_max", "With -ssn_pc_truncated_mg_deflate: the deflation space's maximum size (1..64; the newest Ritz vectors kept)", &s->tmg_defl_max, NULL));
+  PetscCheck(s->tmg_defl_max >= 1 && s->tmg_defl_max <= 64, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg_deflate_max %" PetscInt_FMT ": must be 1..64", s->tmg_defl_max);
+  PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_pc_truncated_mg_deflate_ritz", "With -ssn_pc_truncated_mg_deflate: the Ritz values (of the preconditioned Jacobian, whose largest are about 1) below this join the deflation space", &s->tmg_defl_ritz, NULL));
+  PetscCheck(s->tmg_defl_ritz > 0 && s->tmg_defl_ritz < 1, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "-ssn_pc_truncated_mg_deflate_ritz %g: must lie in (0, 1)", (double)s->tmg_defl_ritz);
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_max_it", "Coulomb: when the Newton iteration on the coupled law fails, at most this many steps of a fixed point on the Tresca bound s = F lam_N (0: none)", &s->fp_max_it, NULL));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_coulomb_fp_m", "Coulomb: the number of past steps in the Anderson acceleration of that fixed point", &s->fp_m, NULL));
   PetscCall(SgOptionsRealValue(PetscOptionsObject, "-ssn_coulomb_fp_omega", "Coulomb: the damping of that fixed point's steps (0 < omega <= 1)", &s->fp_omega, NULL));
@@ -53,11 +58,13 @@ PetscErrorCode SgSSNPrintHelp(MPI_Comm comm, const char prefix[])
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   if (!help) PetscFunctionReturn(0);
   PetscCall(PetscMemzero(&s, sizeof(s)));
-  s.fp_max_it  = 50;
-  s.pair_amg_u = PETSC_TRUE;
-  s.fp_omega   = 1;
-  s.fp_m       = 8;
-  s.fp_rtol    = 1e-13;
+  s.fp_max_it     = 50;
+  s.pair_amg_u    = PETSC_TRUE;
+  s.fp_omega      = 1;
+  s.fp_m          = 8;
+  s.fp_rtol       = 1e-13;
+  s.tmg_defl_max  = SG_DEFL_MAX;
+  s.tmg_defl_ritz = SG_DEFL_RITZ;
   PetscOptionsBegin(comm, prefix, "Semismooth Newton (active set) solver", NULL);
   PetscCall(SSNOptions(PetscOptionsObject, &s, &condense, &tmg, &interp, &frame));
   PetscOptionsEnd();
@@ -183,12 +190,14 @@ PetscErrorCode SgSSNCreate(SgElasticity p, SgContact c, const char prefix[], KSP
   PetscCall(SNESLineSearchSetPreCheck(ls, SgSSNFrictionPreCheck, s)); /* the law's step correction (none without friction) */
   PetscCall(SNESMonitorSet(s->snes, SgSSNMonitor, s, NULL));
   PetscCall(SNESSetTolerances(s->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 100, PETSC_DEFAULT));
-  s->fp_max_it  = 50;
-  s->pair_amg_u = PETSC_TRUE;
-  s->fp_omega   = 1;
-  s->fp_m       = 8;
-  s->fp_rtol    = 1e-13;
-  *ssn          = s;
+  s->fp_max_it     = 50;
+  s->pair_amg_u    = PETSC_TRUE;
+  s->fp_omega      = 1;
+  s->fp_m          = 8;
+  s->fp_rtol       = 1e-13;
+  s->tmg_defl_max  = SG_DEFL_MAX;
+  s->tmg_defl_ritz = SG_DEFL_RITZ;
+  *ssn             = s;
   PetscFunctionReturn(0);
 }
 

@@ -58,6 +58,10 @@ struct _n_SgSSN {
   PetscBool         tmg_l1gs_glob;       /* -ssn_pc_truncated_mg_l1gs_global: with them, the whole residual between */
   PetscBool         tmg_l1gs_sym_set;    /* given (else on for a pair) */
   PetscBool         tmg_l1gs_glob_set;   /* given (else SG_TMG_L1GS_GLOBAL_PAIR for a pair, tmg.c) */
+  PetscBool         tmg_defl;            /* -ssn_pc_truncated_mg_deflate: CG's Ritz vectors deflated (deflate.c) */
+  PetscBool         tmg_defl_set;        /* given (else SG_TMG_DEFLATE_PAIR for a pair, tmg.c) */
+  PetscInt          tmg_defl_max;        /* -ssn_pc_truncated_mg_deflate_max: the space's maximum size */
+  PetscReal         tmg_defl_ritz;       /* -ssn_pc_truncated_mg_deflate_ritz: Ritz values below it join the space */
   PetscBool         pair_amg_u;          /* -ssn_pair_amg_displacements: the truncated multigrid of a pair takes K's AMG, mapped */
   Mat               Klin;                /* the stiffness the linear solves start from: K, or Q^T K Q in the frames */
   Mat               Pf;                  /* with frames: the Jacobian assembled in them (the KSP's matrices) */
@@ -112,7 +116,16 @@ static inline PetscReal SgSSNDecisionRoundoff(SgSSN s, PetscInt i, PetscReal g)
 /* What the files of the SSN share (ssn.c the object and its solve, residual.c, jacobian.c, friction.c, convergence.c,
    fallback.c): the SNES callbacks set in SgSSNCreate and the steps one file takes from another */
 PetscErrorCode SgSSNResidual(SNES, Vec, Vec, void *);
-PetscErrorCode SgSeqAIJSamePattern(Mat, Mat, PetscBool *); /* ssn.c: two SeqAIJ matrices' patterns equal (tmg.c compares MPIAIJ blocks with it) */
+PetscErrorCode SgSeqAIJSamePattern(Mat, Mat, PetscBool *);
+/* deflate.c: a deflation space from CG's Ritz vectors for the truncated multigrid */
+typedef struct _n_SgDefl *SgDefl;
+#define SG_DEFL_MAX  8    /* -ssn_pc_truncated_mg_deflate_max's default */
+#define SG_DEFL_RITZ 0.05 /* -ssn_pc_truncated_mg_deflate_ritz's: under the continuum's start (0.04-0.05 on tb_sphere_s7) */
+#define SG_DEFL_MCAP 80   /* preconditioned residuals kept per CG solve for the Ritz vectors */
+PetscErrorCode SgDeflCreate(PetscInt, PetscInt, PetscReal, SgDefl *);
+PetscErrorCode SgDeflApply(SgDefl, KSP, Mat, PC, Vec, Vec);
+PetscErrorCode SgDeflGetSpace(SgDefl, PetscInt *, const Vec **, PetscInt *, PetscReal *);
+PetscErrorCode SgDeflDestroy(SgDefl *); /* ssn.c: two SeqAIJ matrices' patterns equal (tmg.c compares MPIAIJ blocks with it) */
 PetscErrorCode SgSSNJacobian(SNES, Vec, Mat, Mat, void *);
 PetscErrorCode SgSSNConverged(SNES, PetscInt, PetscReal, PetscReal, PetscReal, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNMonitor(SNES, PetscInt, PetscReal, void *);
