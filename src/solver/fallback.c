@@ -32,11 +32,14 @@ PetscErrorCode SgSSNSolveL1GS(SgSSN s, PetscReal gamma, Vec y, PetscInt *its, Pe
   KSP      ksp;
   PetscInt its2;
 
+  KSPConvergedReason kr;
+
   PetscFunctionBeginUser;
   PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(KSPGetConvergedReason(ksp, &kr)); /* the failed solve's */
   PetscCall(SgLinearSolverFallback(ksp, done));
   if (!*done) PetscFunctionReturn(0);
-  PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s with PCSOR's local smoothers after %" PetscInt_FMT " iterations; solved again with the l1 Gauss-Seidel smoothers, and so from here on\n", (double)gamma, SgSSNReasons[s->reason], *its));
+  PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s (KSP %s) with PCSOR's local smoothers after %" PetscInt_FMT " iterations; solved again with the l1 Gauss-Seidel smoothers, and so from here on\n", (double)gamma, SgSSNReasons[s->reason], KSPConvergedReasons[kr], *its));
   PetscCall(VecCopy(s->y0, y));
   PetscCall(SolveAgain(s, y, reason, its, kits, &its2));
   PetscFunctionReturn(0);
