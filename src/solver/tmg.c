@@ -1109,7 +1109,16 @@ static PetscErrorCode Fallback_TMG(PC pc, PetscBool *done)
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &t));
   *done = PETSC_FALSE;
-  if (!t->sor || !t->mg) PetscFunctionReturn(0);
+  if (!t->sor || !t->mg || t->nlevels < 2) PetscFunctionReturn(0);
+  { /* smoothers of the user's (-tmg_mg_levels_pc_type) are theirs: no fallback */
+    KSP       sm;
+    PC        spc;
+    PetscBool is;
+    PetscCall(PCMGGetSmootherDown(t->mg, t->nlevels - 1, &sm));
+    PetscCall(KSPGetPC(sm, &spc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)spc, PCSOR, &is));
+    if (!is) PetscFunctionReturn(0);
+  }
   for (PetscInt l = 1; l < t->nlevels; l++) {
     KSP      sm[2];
     L1GSMat *lm = NULL;
