@@ -556,6 +556,7 @@ PetscErrorCode SgLinearSolverDefaults(SgElasticity, const char[], PetscBool, Pet
 PetscErrorCode SgLinearSolverDefaultSSN(SgElasticity, SgContact, const char[], PetscBool, SgLinearDefault *, char[], size_t);
 PetscErrorCode SgLinearSolverGeometricMG(const char[], PetscBool *); /* linear.c: -ssn_pc_truncated_mg_interp geometric given */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity, KSP, Mat, Vec, PetscInt *, KSPConvergedReason *, PetscLogDouble *, PetscLogDouble *);
+PetscErrorCode SgLinearSolverFallback(KSP, PetscBool *);
 PetscErrorCode SgSSNCreate(SgElasticity, SgContact, const char[], KSP, Mat, SgSSN *);
 PetscErrorCode SgSSNSetCondense(SgSSN, PetscBool);               /* the default of -ssn_condense (before SgSSNSetFromOptions) */
 PetscErrorCode SgSSNSetTruncatedMG(SgSSN, PetscBool, PetscBool); /* the defaults of -ssn_pc_truncated_mg and of its interpolations: geometric */

@@ -24,6 +24,27 @@ static PetscErrorCode SolveAgain(SgSSN s, Vec y, SNESConvergedReason *reason, Pe
   PetscFunctionReturn(0);
 }
 
+/* the truncated multigrid with PCSOR's local sweeps on several ranks (tmg.c) after a failed linear solve: its
+   smoothers become the l1 Gauss-Seidel sweeps (SgLinearSolverFallback, for the rest of the run) and this (P_gamma) is
+   solved again from the same start, its iterations added; said on the output; *done: it was redone */
+PetscErrorCode SgSSNSolveL1GS(SgSSN s, PetscReal gamma, Vec y, PetscInt *its, PetscInt *kits, SNESConvergedReason *reason, PetscBool *done)
+{
+  KSP      ksp;
+  PetscInt its2;
+
+  KSPConvergedReason kr;
+
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(s->snes, &ksp));
+  PetscCall(KSPGetConvergedReason(ksp, &kr)); /* the failed solve's */
+  PetscCall(SgLinearSolverFallback(ksp, done));
+  if (!*done) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(s->comm, "  SSN at gamma %g: %s (KSP %s) with PCSOR's local smoothers after %" PetscInt_FMT " iterations; solved again with the l1 Gauss-Seidel smoothers, and so from here on\n", (double)gamma, SgSSNReasons[s->reason], KSPConvergedReasons[kr], *its));
+  PetscCall(VecCopy(s->y0, y));
+  PetscCall(SolveAgain(s, y, reason, its, kits, &its2));
+  PetscFunctionReturn(0);
+}
+
 /* friction with an iterative linear solver: at a large gamma the slip blocks (Coulomb: the coupling F gamma t n^T,
    far from symmetric) defeat Krylov solvers with an AMG built for elasticity, which fail or whose inexact steps
    keep the SSN from converging (GMRES + BoomerAMG on the sliding block at gamma ~ 1e12): this (P_gamma) is solved

@@ -107,6 +107,22 @@ PetscErrorCode SgLinearSolverCreate(SgElasticity el, const char prefix[], const 
   PetscFunctionReturn(0);
 }
 
+/* After a failed solve: the KSP's preconditioner, if it has a safer configuration to fall back on (the truncated
+   multigrid's l1 Gauss-Seidel smoothers in place of PCSOR's local sweeps on several ranks, tmg.c), takes it; *done
+   says whether it did (then the solve is worth redoing) */
+PetscErrorCode SgLinearSolverFallback(KSP ksp, PetscBool *done)
+{
+  PC pc;
+  PetscErrorCode (*f)(PC, PetscBool *) = NULL;
+
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectQueryFunction((PetscObject)pc, "SgLinearSolverFallback_C", &f));
+  if (f) PetscCall((*f)(pc, done));
+  PetscFunctionReturn(0);
+}
+
 /* The elasticity solve without contact, K y = b, with the controller's linear solver (so a factorization's symbolic
    phase is shared with the later steps); the times of the preconditioner set-up and of the solve. */
 PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y, PetscInt *its, KSPConvergedReason *kr, PetscLogDouble *t_setup, PetscLogDouble *t_solve)
@@ -137,11 +153,25 @@ PetscErrorCode SgLinearSolveUnconstrained(SgElasticity el, KSP ksp, Mat J, Vec y
   PetscCall(SgSolverConfigured(comm, ierr));
   PetscCall(PetscTime(&t1));
   PetscCall(KSPSolve(ksp, b, y));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  PetscCall(KSPGetConvergedReason(ksp, kr));
+  if (*kr < 0) { /* a fallback of the preconditioner (SgLinearSolverFallback): the solve again, its iterations added */
+    PetscBool done, nz;
+    PetscInt  its2;
+    PetscCall(SgLinearSolverFallback(ksp, &done));
+    if (done) {
+      PetscCall(PetscPrintf(comm, "  the elasticity solve without contact: KSP %s after %" PetscInt_FMT " iterations with PCSOR's local smoothers; solved again with the l1 Gauss-Seidel smoothers, and so from here on\n", KSPConvergedReasons[*kr], *its));
+      PetscCall(KSPGetInitialGuessNonzero(ksp, &nz));
+      if (!nz) PetscCall(VecZeroEntries(y));
+      PetscCall(KSPSolve(ksp, b, y));
+      PetscCall(KSPGetIterationNumber(ksp, &its2));
+      PetscCall(KSPGetConvergedReason(ksp, kr));
+      *its += its2;
+    }
+  }
   PetscCall(PetscTime(&t2));
   if (t_setup) *t_setup = t1 - t0;
   if (t_solve) *t_solve = t2 - t1;
-  PetscCall(KSPGetIterationNumber(ksp, its));
-  PetscCall(KSPGetConvergedReason(ksp, kr));
   PetscCall(PetscLogEventEnd(SG_LinearSolve, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

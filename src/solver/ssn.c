@@ -24,6 +24,7 @@ static PetscErrorCode SSNOptions(PetscOptionItems *PetscOptionsObject, SgSSN s, 
   if (*interp == 1) *tmg = PETSC_TRUE;
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_coarse_ptap", "Truncated multigrid on several ranks: carry each SSN step's correction of the coarse operators down the levels by MatPtAP over the kept operators' whole patterns instead of over the coarse rows it touches; the same operators to round-off, slower (a check of the default)", &s->tmg_coarse_ptap, NULL));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_l1gs_symmetric", "Truncated multigrid on several ranks: each application of the l1 Gauss-Seidel smoother is a forward sweep then a backward one over the rank's rows (symmetric, as PCSOR's local sweeps, with the l1 terms: still convergent) instead of one sweep (forward down, backward up); default off (fewer CG iterations, more time: bench/results.md l1sym); no effect on one rank (PCSOR)", &s->tmg_l1gs_sym, &s->tmg_l1gs_sym_set));
+  PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_local_sor", "Truncated multigrid on several ranks: smooth with PCSOR's local symmetric sweeps (block Jacobi across ranks: fewer CG iterations, no guarantee) and, when a linear solve fails, with the l1 Gauss-Seidel sweeps from then on, that solve redone; default on for two bodies (-contact_master_ids) in the dual-mortar basis unless -ssn_pc_truncated_mg_l1gs_symmetric or _global is given, off otherwise (the l1 Gauss-Seidel sweeps); no effect on one rank (PCSOR, one sweep each way) nor with GAMG", &s->tmg_sor, &s->tmg_sor_set));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_l1gs_global", "With the symmetric l1 Gauss-Seidel smoother (-ssn_pc_truncated_mg_l1gs_symmetric): update the whole residual between the forward and the backward sweep (one product with the operator and its communication per application: two l1 Gauss-Seidel steps composed, still convergent) instead of the rank's own rows' residual", &s->tmg_l1gs_glob, &s->tmg_l1gs_glob_set));
   PetscCall(SgOptionsBoolValue(PetscOptionsObject, "-ssn_pc_truncated_mg_deflate", "Truncated multigrid with CG: deflate the smallest eigenvalues of the preconditioned Jacobian, their vectors the Ritz vectors of the previous CG solve (balanced deflation: the preconditioner stays symmetric positive definite; a few vectors, no product with the Jacobian per iteration)", &s->tmg_defl, &s->tmg_defl_set));
   PetscCall(SgOptionsIntValue(PetscOptionsObject, "-ssn_pc_truncated_mg_deflate_max", "With -ssn_pc_truncated_mg_deflate: the deflation space's maximum size (1..64; the newest Ritz vectors kept)", &s->tmg_defl_max, NULL));
@@ -518,7 +519,7 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s->dmax, 1, MPIU_REAL, MPI_MAX, s->comm));
   s->nhash    = 0;
   s->stagnant = PETSC_FALSE;
-  if ((s->cv.props.nonlinear && s->iterative) || s->cv.props.coupled) { /* the start, for the fallbacks below */
+  if ((s->cv.props.nonlinear && s->iterative) || s->cv.props.coupled || s->tmg) { /* the start, for the fallbacks below */
     if (!s->y0) PetscCall(VecDuplicate(y, &s->y0));
     PetscCall(VecCopy(y, s->y0));
   }
@@ -531,6 +532,12 @@ PetscErrorCode SgSSNSolve(SgSSN s, PetscReal gamma, PetscInt outer, Vec y, Petsc
     PetscCall(SNESGetLinearSolveIterations(s->snes, kits));
     PetscCall(SNESGetConvergedReason(s->snes, reason));
     s->reason = SgSSNReasonOf(s, *reason);
+  }
+  /* a failed linear solve with the truncated multigrid's PCSOR smoothers on several ranks: this (P_gamma) again from
+     the same start with its l1 Gauss-Seidel smoothers (fallback.c), and so from here on */
+  if (s->tmg && (s->reason == SG_SSN_LINEAR_SOLVE || s->reason == SG_SSN_NAN)) {
+    PetscBool done;
+    PetscCall(SgSSNSolveL1GS(s, gamma, y, its, kits, reason, &done));
   }
   /* friction with an iterative linear solver that failed: this (P_gamma) again with sparse LU (fallback.c), from the
      solve's initial guess; also after an iterate that overflowed (two bodies with Coulomb friction: inexact steps at a

@@ -57,6 +57,8 @@ struct _n_SgSSN {
   PetscBool         tmg_l1gs_sym;        /* -ssn_pc_truncated_mg_l1gs_symmetric: several ranks, symmetric l1 sweeps (tmg.c) */
   PetscBool         tmg_l1gs_glob;       /* -ssn_pc_truncated_mg_l1gs_global: with them, the whole residual between */
   PetscBool         tmg_l1gs_sym_set;    /* given (else on for a pair) */
+  PetscBool         tmg_sor;             /* -ssn_pc_truncated_mg_local_sor: several ranks, PCSOR's local sweeps with a fallback (tmg.c) */
+  PetscBool         tmg_sor_set;         /* given (else SG_TMG_LOCAL_SOR_PAIR for a pair, tmg.c) */
   PetscBool         tmg_l1gs_glob_set;   /* given (else SG_TMG_L1GS_GLOBAL_PAIR for a pair, tmg.c) */
   PetscBool         tmg_defl;            /* -ssn_pc_truncated_mg_deflate: CG's Ritz vectors deflated (deflate.c) */
   PetscBool         tmg_defl_set;        /* given (else SG_TMG_DEFLATE_PAIR for a pair, tmg.c) */
@@ -137,6 +139,7 @@ PetscErrorCode SgSSNFrictionJacobian(SgSSN, Vec, Mat);
 PetscErrorCode SgSSNAddBlocks(SgSSN, const PetscReal[], Mat); /* jacobian.c: contact blocks, nodal under -ssn_pair_transform */
 PetscErrorCode SgSSNFrictionPreCheck(SNESLineSearch, Vec, Vec, PetscBool *, void *);
 PetscErrorCode SgSSNSolveDirect(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);
+PetscErrorCode SgSSNSolveL1GS(SgSSN, PetscReal, Vec, PetscInt *, PetscInt *, SNESConvergedReason *, PetscBool *);
 PetscErrorCode SgGMGInterpolations(SgSSN, PetscInt *, Mat **); /* gmg.c: the mesh hierarchy's interpolations between free-dof spaces */
 PetscErrorCode SgGMGCoarseSolver(KSP);                         /* gmg.c: the coarsest level's solver */
 PetscErrorCode SgSSNCoulombFixedPoint(SgSSN, Vec, PetscInt *, PetscInt *, SNESConvergedReason *);

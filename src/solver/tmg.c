@@ -35,8 +35,11 @@ struct _n_SgTMG {
   char      *want; /* the active set of the last Jacobian (SgTMGSetActiveSet) */
   char      *have; /* the set the coarse operators were made for */
   PetscBool  has_set, fresh;
-  PetscBool  gamg; /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
-  PetscBool  geo;  /* the interpolations of the mesh hierarchy (gmg.c), given at creation: no AMG */
+  PetscBool  gamg;      /* the AMG was GAMG: its smoother (Chebyshev, Jacobi); BoomerAMG: Gauss-Seidel */
+  PetscBool  geo;       /* the interpolations of the mesh hierarchy (gmg.c), given at creation: no AMG */
+  PetscBool  sor;       /* several ranks: PCSOR's local symmetric sweeps smooth (-ssn_pc_truncated_mg_local_sor), until a
+                      failed solve puts the l1 Gauss-Seidel sweeps in their place (Fallback_TMG) */
+  PetscBool  sym, glob; /* the l1 Gauss-Seidel sweeps' kind (Build), for that fallback */
   /* several ranks (UpdateRanks): kept from Build, so that an update makes no new pattern or communication */
   Mat          *D;    /* D[l]: the correction of level l, with AK[l]'s pattern */
   PetscObjectId klin; /* the Klin they were made from */
@@ -71,6 +74,12 @@ struct _n_SgTMG {
    nothing (its only long CG solve is its last: no Ritz vector before it), ipf/alm/pf take 8-45 % fewer CG iterations
    (bench/results.md, defl), not checked against the suite's counts on several ranks */
 #define SG_TMG_DEFLATE_PAIR 0
+
+/* The default of -ssn_pc_truncated_mg_local_sor for two bodies on several ranks: PCSOR's local symmetric sweeps (block
+   Jacobi across ranks, no l1 terms: no guarantee of a positive definite V-cycle) smooth, and a failed linear solve
+   puts the l1 Gauss-Seidel sweeps in their place and is redone (Fallback_TMG); 32 CG against 41 and np 2 speedup 1.60
+   against 1.44-1.50 at 299,316 unknowns (bench/results.md, np2bal) */
+#define SG_TMG_LOCAL_SOR_PAIR 1
 
 static PetscBool      tmg_registered = PETSC_FALSE;
 static PetscLogEvent  SG_TMGBuild, SG_TMGUpdate, SG_TMGCorr, SG_TMGCoarse, SG_TMGMGSetUp, SG_TMGL1GS, SG_TMGL1GSSetUp;
@@ -122,7 +131,9 @@ static PetscErrorCode RotationsOnly(SgTMG t, Mat A, MatNullSpace *keep)
    (positive definite, as A's principal submatrices) and the same holds. With -ssn_pc_truncated_mg_l1gs_symmetric each
    application is a forward sweep then a backward one (Apply_L1GS), convergent too. A PCSHELL, so that KSPRICHARDSON applies it
    to its residual (x += W^-1 (b - A x)); on one rank the smoothers stay PCSOR (the same sweeps: no rows of other
-   ranks). */
+   ranks). Two bodies on several ranks (-ssn_pc_truncated_mg_local_sor, SG_TMG_LOCAL_SOR_PAIR) smooth with PCSOR's
+   local symmetric sweeps after all (with the pair partition they took fewer CG than one rank, and failed nowhere
+   measured) and fall back on the l1 sweeps when a solve fails (Fallback_TMG, SgLinearSolverFallback). */
 typedef struct {
   PetscScalar     *idiag; /* point sweep: 1 / (a_ii + l1_i) of the local rows; block sweep: the inverted blocks */
   PetscScalar     *w;     /* the symmetric sweep's kept right-hand sides (Sweep), m */
@@ -550,8 +561,12 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCallMPI(MPI_Comm_size(t->ssn->comm, &size));
   /* the several-rank smoother's symmetric sweep and its whole residual between the sweeps (Apply_L1GS): as set, else
      SG_TMG_L1GS_SYM_PAIR and SG_TMG_L1GS_GLOBAL_PAIR for a pair */
-  sym  = t->ssn->tmg_l1gs_sym_set ? t->ssn->tmg_l1gs_sym : (PetscBool)(SG_TMG_L1GS_SYM_PAIR && SgFramePairTransform(t->ssn->frame));
-  glob = t->ssn->tmg_l1gs_glob_set ? t->ssn->tmg_l1gs_glob : (PetscBool)(SG_TMG_L1GS_GLOBAL_PAIR && SgFramePairTransform(t->ssn->frame));
+  sym     = t->ssn->tmg_l1gs_sym_set ? t->ssn->tmg_l1gs_sym : (PetscBool)(SG_TMG_L1GS_SYM_PAIR && SgFramePairTransform(t->ssn->frame));
+  glob    = t->ssn->tmg_l1gs_glob_set ? t->ssn->tmg_l1gs_glob : (PetscBool)(SG_TMG_L1GS_GLOBAL_PAIR && SgFramePairTransform(t->ssn->frame));
+  t->sym  = sym;
+  t->glob = glob;
+  /* PCSOR's local sweeps: as set, else SG_TMG_LOCAL_SOR_PAIR for a pair unless the l1 sweeps' kind was asked for */
+  t->sor = (PetscBool)(size > 1 && !t->gamg && (t->ssn->tmg_sor_set ? t->ssn->tmg_sor : (PetscBool)(SG_TMG_LOCAL_SOR_PAIR && SgFramePairTransform(t->ssn->frame) && !t->ssn->tmg_l1gs_sym_set && !t->ssn->tmg_l1gs_glob_set)));
   if (t->geo) n = t->nlevels;
   else {
     /* the AMG of K (Klin), whatever the first operator: the unconstrained start's is K itself, but a solve started from a
@@ -611,7 +626,8 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
   PetscCall(PetscSNPrintf(mgprefix, sizeof(mgprefix), "%stmg_", prefix ? prefix : ""));
   PetscCall(PCSetOptionsPrefix(t->mg, mgprefix));
   PetscCall(PCSetType(t->mg, PCMG));
-  if (size > 1 && !t->gamg) PetscCall(PetscInfo(t->mg, "truncated multigrid: %s l1 Gauss-Seidel smoothers\n", sym ? (glob ? "symmetric (whole residual between the sweeps)" : "symmetric (local residual between the sweeps)") : "single-sweep"));
+  if (t->sor) PetscCall(PetscInfo(t->mg, "truncated multigrid: PCSOR's local symmetric sweeps smooth (the l1 Gauss-Seidel sweeps after a failed solve)\n"));
+  else if (size > 1 && !t->gamg) PetscCall(PetscInfo(t->mg, "truncated multigrid: %s l1 Gauss-Seidel smoothers\n", sym ? (glob ? "symmetric (whole residual between the sweeps)" : "symmetric (local residual between the sweeps)") : "single-sweep"));
   PetscCall(PCMGSetLevels(t->mg, n, NULL));
   PetscCall(PCMGSetType(t->mg, PC_MG_MULTIPLICATIVE));
   PetscCall(PCMGSetGalerkin(t->mg, PC_MG_GALERKIN_NONE));
@@ -644,6 +660,10 @@ static PetscErrorCode Build(SgTMG t, Mat A, Mat B)
       PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
       PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
       PetscCall(KSPGetPC(sm[k], &spc));
+      if (t->sor) { /* PCSOR's local symmetric sweep, down and up (its default), until Fallback_TMG */
+        PetscCall(PCSetType(spc, PCSOR));
+        continue;
+      }
       if (size > 1) { /* l1 Gauss-Seidel (SetL1GS) */
         PetscCall(SetL1GS(spc, (PetscBool)(k == 1), sym, glob, &lm));
         continue;
@@ -1084,6 +1104,49 @@ static PetscErrorCode Update(SgTMG t)
   PetscFunctionReturn(0);
 }
 
+/* A linear solve with PCSOR's local sweeps failed (CG: DIVERGED_INDEFINITE_PC where block Jacobi across ranks made the
+   V-cycle indefinite, or any other failure): every level's smoothers become the l1 Gauss-Seidel sweeps (SetL1GS, the
+   V-cycle SPD), for the rest of the run; *done says whether that happened (the caller redoes its solve). A
+   smoother's Richardson scale is reset to 1 (-tmg_mg_levels_ksp_richardson_scale -1 is how the tests make SOR fail). */
+static PetscErrorCode Fallback_TMG(PC pc, PetscBool *done)
+{
+  SgTMG t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &t));
+  *done = PETSC_FALSE;
+  if (!t->sor || !t->mg || t->nlevels < 2) PetscFunctionReturn(0);
+  { /* smoothers of the user's (-tmg_mg_levels_pc_type) are theirs: no fallback */
+    KSP       sm;
+    PC        spc;
+    PetscBool is;
+    PetscCall(PCMGGetSmootherDown(t->mg, t->nlevels - 1, &sm));
+    PetscCall(KSPGetPC(sm, &spc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)spc, PCSOR, &is));
+    if (!is) PetscFunctionReturn(0);
+  }
+  for (PetscInt l = 1; l < t->nlevels; l++) {
+    KSP      sm[2];
+    L1GSMat *lm = NULL;
+    PetscCall(PCMGGetSmootherDown(t->mg, l, &sm[0]));
+    PetscCall(PCMGGetSmootherUp(t->mg, l, &sm[1]));
+    for (PetscInt k = 0; k < 2; k++) {
+      PC spc;
+      PetscCall(KSPSetType(sm[k], KSPRICHARDSON));
+      PetscCall(KSPRichardsonSetScale(sm[k], 1.0));
+      PetscCall(KSPSetTolerances(sm[k], PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 1));
+      PetscCall(KSPSetNormType(sm[k], KSP_NORM_NONE));
+      PetscCall(KSPGetPC(sm[k], &spc));
+      PetscCall(SetL1GS(spc, (PetscBool)(k == 1), t->sym, t->glob, &lm));
+      PetscCall(PCSetUp(spc)); /* its operators stay; the new type's set-up now (the KSP's is done) */
+    }
+  }
+  t->sor = PETSC_FALSE;
+  *done  = PETSC_TRUE;
+  PetscCall(PetscInfo(t->mg, "truncated multigrid: a failed linear solve with PCSOR's local sweeps; the l1 Gauss-Seidel sweeps from here on\n"));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SetUp_TMG(PC pc)
 {
   SgTMG t;
@@ -1219,6 +1282,7 @@ PetscErrorCode SgTMGCreate(SgSSN s, KSP ksp, PetscBool geometric, SgTMG *tmg)
   PetscCall(PCShellSetSetUp(pc, SetUp_TMG));
   PetscCall(PCShellSetApply(pc, Apply_TMG));
   PetscCall(PCShellSetView(pc, View_TMG));
+  PetscCall(PetscObjectComposeFunction((PetscObject)pc, "SgLinearSolverFallback_C", Fallback_TMG)); /* SgLinearSolverFallback */
   PetscCall(KSPSetPC(ksp, pc));
   PetscCall(PCDestroy(&pc));
   *tmg = t;
@@ -1249,6 +1313,10 @@ PetscErrorCode SgTMGCreateBound(SgElasticity p, SgContact c, KSP ksp, Mat Klin, 
   s->Klin       = Klin;
   s->frame      = frame;
   s->pair_amg_u = PETSC_TRUE;
+  /* the l1 Gauss-Seidel sweeps on several ranks, not the pair's local SOR: a solver without an SSN has no fallback
+     (SgSSNSolveL1GS) to catch SOR's breakdown */
+  s->tmg_sor_set = PETSC_TRUE;
+  s->tmg_sor     = PETSC_FALSE;
   PetscCall(SgTMGCreate(s, ksp, geometric, tmg));
   (*tmg)->host = s;
   PetscFunctionReturn(0);
