@@ -578,8 +578,9 @@ PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
-PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);    /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
+PetscErrorCode SgSSNStatesAtRoundoff(SgSSN, PetscReal, PetscBool, PetscBool *); /* (||F||, settled): the states still changing do so on round-off and ||F|| is at its round-off floor */
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                       /* keep the preconditioner while gamma and the active set stay */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                    /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
 typedef enum {
   SG_SSN_MARGIN_OFF,
   SG_SSN_MARGIN_START,

@@ -31,6 +31,7 @@ typedef struct {
   PetscReal kkt_next; /* the KKT test waits until ||r|| / ||r_0|| falls below this */
   PetscBool on, last_full, stopped;
   PetscBool retry;         /* a failed SSN may be continued once at the same gamma */
+  PetscBool lowered;       /* gamma was lowered once to the cap from the multiplier found (states on round-off) */
   PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol or the KKT tolerance */
   PetscInt  nkkt;          /* linear solves stopped on the KKT tolerance */
 } Fast;
@@ -128,11 +129,12 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
    more step (on an unchanged set with the same preconditioner), so loose -ksp_rtol only costs steps. */
 static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscBool settled, SNESConvergedReason *reason, void *ctx)
 {
-  Fast  *f = (Fast *)ctx;
-  SgKKT  kkt;
-  Vec    y;
-  SNES   snes;
-  SgCont ct = f->ct;
+  Fast     *f = (Fast *)ctx;
+  SgKKT     kkt;
+  Vec       y;
+  SNES      snes;
+  SgCont    ct = f->ct;
+  PetscBool roundoff;
 
   PetscFunctionBeginUser;
   if (f->stopped) f->nearly++;
@@ -140,7 +142,8 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
   PetscCall(SgSSNGetSNES(s, &snes));
   PetscCall(SNESGetSolution(snes, &y));
   PetscCall(SgContactKKT(ct->c, y, &kkt));
-  PetscCall(PetscInfo(snes, "fast: SSN %" PetscInt_FMT " KKT %.3e (equilibrium %.3e dual %.3e infeasibility %.3e complementarity %.3e) settled %d last CG %s\n", it, (double)kkt.residual, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity, (int)settled, f->last_full ? "full" : "stopped early"));
+  PetscCall(SgSSNStatesAtRoundoff(s, fnorm, settled, &roundoff));
+  PetscCall(PetscInfo(snes, "fast: SSN %" PetscInt_FMT " KKT %.3e (equilibrium %.3e dual %.3e infeasibility %.3e complementarity %.3e) settled %d round-off %d last CG %s\n", it, (double)kkt.residual, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity, (int)settled, (int)roundoff, f->last_full ? "full" : "stopped early"));
   if (kkt.residual <= ct->kkt_tol) {
     *reason = SNES_CONVERGED_FNORM_ABS;
     PetscCall(SgSSNSetReason(s, SG_SSN_KKT));
@@ -148,6 +151,12 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
     /* only the infeasibility ||lam|| / gamma is left: gamma too small */
     *reason = SNES_CONVERGED_FNORM_ABS;
     PetscCall(SgSSNSetReason(s, SG_SSN_SETTLED));
+  } else if (roundoff && f->last_full) {
+    /* the states that still change do so on round-off and ||F|| is at its floor: the steps from here repeat the same
+       sets in turn (a rim vertex let go and taken again, until -fast_max_it); the controller decides what the KKT
+       residual reached means (Solve_Fast) */
+    *reason = SNES_CONVERGED_FNORM_ABS;
+    PetscCall(SgSSNSetReason(s, SG_SSN_ROUNDOFF));
   } else if (it >= f->max_it) {
     *reason = SNES_DIVERGED_MAX_IT;
     PetscCall(SgSSNSetReason(s, SG_SSN_MAX_IT));
@@ -155,15 +164,16 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
   PetscFunctionReturn(0);
 }
 
-/* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i */
-static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
+/* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i; and
+   gdp, the largest gamma double precision resolves (SgContGammaPrecision) with lam~ for the multiplier */
+static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma, PetscReal *gdp)
 {
   const PetscScalar *ya;
-  PetscReal          s = 0, *g, *kn, E;
+  PetscReal          s = 0, *g, *kn, *lam, E;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc2(ct->n, &g, ct->n, &kn));
+  PetscCall(PetscMalloc3(ct->n, &g, ct->n, &kn, ct->n + 1, &lam));
   PetscCall(SgContNormalStiffness(ct, kn));
   PetscCall(VecGetArrayRead(ct->y, &ya));
   PetscCall(SgContactGap(ct->c, ya, g));
@@ -171,10 +181,17 @@ static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
   for (PetscInt i = 0; i < ct->n; i++) {
     const PetscReal l = kn[i] * PetscMax(0, g[i]) / ct->w[i];
     s += ct->w[i] * l * l;
+    lam[i] = l;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
-  PetscCall(PetscFree2(g, kn));
   if (!(s > 0 && SgContGammaCap(ct, PetscSqrtReal(s), gamma))) *gamma = E;
+  { /* SgContGammaPrecision reads ct->lam: lam~ in its place for the call */
+    PetscReal *keep = ct->lam;
+    ct->lam         = lam;
+    PetscCall(SgContGammaPrecision(ct, gdp));
+    ct->lam = keep;
+  }
+  PetscCall(PetscFree3(g, kn, lam));
   PetscFunctionReturn(0);
 }
 
@@ -193,7 +210,8 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscCall(SgSSNGetSNES(s, &snes));
   /* a direct solve (preonly; -ssn_condense sets it too) calls no convergence test: every step is a full one */
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &exact));
-  f->retry = (PetscBool)(f->early || exact);
+  f->retry   = (PetscBool)(f->early || exact);
+  f->lowered = PETSC_FALSE;
   if (exact) {
     f->early     = PETSC_FALSE;
     f->last_full = PETSC_TRUE;
@@ -211,8 +229,13 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   else {
     /* the estimate is from above: where it passes -cont_gamma_max, the largest gamma allowed is tried (a gamma that
        proves too small is raised, and past -cont_gamma_max the run stops with GAMMA_OVERFLOW) */
-    PetscCall(EstimateGamma(ct, &ct->gamma));
-    ct->gamma = PetscMin(ct->gamma, ct->gamma_max);
+    PetscReal gdp;
+    PetscCall(EstimateGamma(ct, &ct->gamma, &gdp));
+    PetscCall(PetscInfo(snes, "fast: gamma estimated %g, double precision's limit at the start %g\n", (double)ct->gamma, (double)gdp));
+    /* past the precision limit the SSN decides states on round-off from its first step and cycles on iterates whose
+       multipliers say nothing (the limit evaluated there was 3e24 on twobody_punch): the limit at the start, with the
+       estimated multiplier (from above too), caps the estimate */
+    ct->gamma = PetscMin(PetscMin(ct->gamma, gdp), ct->gamma_max);
   }
   PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)", (double)ct->gamma, (double)ct->kkt.residual));
 
@@ -246,13 +269,28 @@ static PetscErrorCode Solve_Fast(SgCont ct)
       f->early = PETSC_FALSE;
       PetscCall(PetscInfo(snes, "fast: SSN failed (%s); the same gamma again, exact steps\n", SgSSNReasons[sr]));
     } else if (!ok1) break;
-    else if (ct->kkt.residual > ct->kkt_tol && sr == SG_SSN_SETTLED) {
-      /* gamma too small: IPF's cap from the multiplier found */
-      PetscReal l2 = 0, cap;
+    else if (ct->kkt.residual > ct->kkt_tol && (sr == SG_SSN_SETTLED || sr == SG_SSN_ROUNDOFF)) {
+      /* IPF's cap from the multiplier found */
+      PetscReal       l2         = 0, cap;
+      const PetscBool infeasible = (PetscBool)(PetscMax(PetscMax(ct->kkt.equilibrium, ct->kkt.dual), ct->kkt.complementarity) <= ct->kkt_tol);
+      PetscBool       hascap;
       for (PetscInt i = 0; i < ct->n; i++) l2 += ct->w[i] * PetscSqr(ct->lam[i]);
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &l2, 1, MPIU_REAL, MPI_SUM, ct->comm));
-      ct->gamma = PetscMax(10 * gamma, SgContGammaCap(ct, PetscSqrtReal(l2), &cap) ? cap : 10 * gamma);
-      PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+      hascap = SgContGammaCap(ct, PetscSqrtReal(l2), &cap);
+      if (sr == SG_SSN_SETTLED || infeasible) {
+        /* only the infeasibility ||lam|| / gamma is left: gamma too small */
+        ct->gamma = PetscMax(10 * gamma, hascap ? cap : 10 * gamma);
+        PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+      } else if (!f->lowered && hascap && cap < 0.5 * gamma) {
+        /* the states change on round-off at a gamma above what the multiplier found asks for (the estimate is from
+           above; twobody_punch at -cont_kkt_tol 1e-12: 6.4e13 against 4.7e12): that gamma, once */
+        f->lowered = PETSC_TRUE;
+        ct->gamma  = cap;
+        PetscCall(PetscInfo(snes, "fast: states decided on round-off with KKT residual %g: gamma %g -> %g, the cap from the multiplier found\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+      } else {
+        PetscCall(SgContFail(ct, "PRECISION_LIMIT: -cont_kkt_tol %.3e is not met at gamma %g, where the SSN's active set changes on round-off alone (decision values lamhat + gamma g below the round-off of forming them) with ||F|| at its round-off floor, so that more Newton steps only repeat the same sets; the KKT residual reached is %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); -cont_type alm, which moves the shift instead of gamma, can get below it", (double)ct->kkt_tol, (double)gamma, (double)ct->kkt.residual, (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium));
+        break;
+      }
     }
     PetscCall(SgContCheck(ct, &stop));
   }
