@@ -63,7 +63,7 @@ PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], PetscBool pairok, S
     const PetscReal *fs;
     PetscBool        ptap = PETSC_FALSE;
     PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_pair_transform_ptap", &ptap, NULL));
-    PetscCall(SgFrameCreatePair(ct->prob, ct->c, ptap, f));
+    PetscCall(SgFrameCreatePair(ct->prob, ct->c, who, "it solves a pair only in that basis: use an SSN-based controller (fast, ipf, pf, alm) with MUMPS (-options_file options/solver/mumps.opts), which needs no transformation", ptap, f));
     PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
     PetscCall(PetscArraycpy(axis, fa, ct->n));
     PetscCall(PetscArraycpy(sign, fs, ct->n));
