@@ -579,6 +579,7 @@ typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, S
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
 PetscErrorCode SgSSNStatesAtRoundoff(SgSSN, PetscReal, PetscBool, PetscBool *); /* (||F||, settled): the states still changing do so on round-off and ||F|| is at its round-off floor */
+PetscErrorCode SgSSNSetRevisited(SgSSN, PetscBool *);                           /* the active set at the last residual was the Jacobian's of an earlier step of this solve */
 PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                       /* keep the preconditioner while gamma and the active set stay */
 PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                    /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
 typedef enum {

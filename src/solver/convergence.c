@@ -16,6 +16,19 @@ PetscErrorCode SgSSNStatesAtRoundoff(SgSSN s, PetscReal fnorm, PetscBool settled
   PetscFunctionReturn(0);
 }
 
+/* Whether the active set at the last residual evaluation was the Jacobian's set of an earlier Newton step of this
+   solve (the cycle test below): with exact solves the steps from here repeat */
+PetscErrorCode SgSSNSetRevisited(SgSSN s, PetscBool *flg)
+{
+  PetscInt64 h;
+
+  PetscFunctionBeginUser;
+  *flg = PETSC_FALSE;
+  PetscCall(SgContactActiveSetHash(s->c, s->act, &h));
+  for (PetscInt j = 0; j < s->nhash - 1 && !*flg; j++) *flg = (PetscBool)(s->hash[j] == h);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
 {
   SgSSN     s = (SgSSN)ctx;
