@@ -437,9 +437,9 @@ PetscErrorCode SgContactFields(SgContact, Vec, const PetscReal[], Vec[4], Vec);
 PetscErrorCode SgContactForceVector(SgContact, Vec, PetscReal[3]); /* sum_i w_i lam_i n_i with SgContactKKT's multiplier */
 PetscErrorCode SgContactAxisAligned(SgContact, const char[], PetscInt[], PetscReal[]);
 PetscErrorCode SgContactNormalsAxisAligned(SgContact, PetscBool *);
-PetscErrorCode SgContactIsPair(SgContact, PetscBool *);         /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
-PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *);    /* two bodies: |B^T 1| on the master side, NULL without a pair */
-PetscErrorCode SgContactPairTransform(SgContact, Mat *, Mat *); /* two bodies: the dual-mortar basis transformation T (u = T v: the pair's conditions nodal in v) and T^-1 */
+PetscErrorCode SgContactIsPair(SgContact, PetscBool *);                                     /* two bodies (-contact_master_ids): the conditions are the rows of a mortar pair */
+PetscErrorCode SgContactPairMasterWeights(SgContact, Vec *);                                /* two bodies: |B^T 1| on the master side, NULL without a pair */
+PetscErrorCode SgContactPairTransform(SgContact, const char[], const char[], Mat *, Mat *); /* two bodies: the dual-mortar basis transformation T (u = T v: the pair's conditions nodal in v) and T^-1; who asks and the refusal's advice for it */
 /* two bodies (pair_fields.c): y -> the slave's pressure projected on the master side (a vertex field); y -> sum D lam,
    the forces on the slave body and on the master body */
 PetscErrorCode SgContactPairMasterPressure(SgContact, Vec, Vec);
@@ -579,8 +579,10 @@ PetscErrorCode SgSSNPathMeasures(SgSSN, PetscReal *, PetscReal *);
 typedef PetscErrorCode (*SgSSNStopTest)(SgSSN, PetscInt, PetscReal, PetscBool, SNESConvergedReason *, void *);
 PetscErrorCode SgSSNSetStopTest(SgSSN, SgSSNStopTest, void *);
 PetscErrorCode SgSSNSetReason(SgSSN, SgSSNReason);
-PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);    /* keep the preconditioner while gamma and the active set stay */
-PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *); /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
+PetscErrorCode SgSSNStatesAtRoundoff(SgSSN, PetscReal, PetscBool, PetscBool *); /* (||F||, settled): the states still changing do so on round-off and ||F|| is at its round-off floor */
+PetscErrorCode SgSSNSetRevisited(SgSSN, PetscBool *);                           /* the active set at the last residual was the Jacobian's of an earlier step of this solve */
+PetscErrorCode SgSSNSetKeepPCOnSameSet(SgSSN, PetscBool);                       /* keep the preconditioner while gamma and the active set stay */
+PetscErrorCode SgSSNCountSetChanges(SgSSN, Vec, PetscInt *);                    /* vertices whose state at y differs from the last Jacobian's set beyond round-off */
 typedef enum {
   SG_SSN_MARGIN_OFF,
   SG_SSN_MARGIN_START,
@@ -602,11 +604,11 @@ PetscErrorCode SgTMGSetActiveSet(SgTMG, const char[]);
 PetscErrorCode SgTMGDestroy(SgTMG *);
 PetscErrorCode SgTMGL1GSSweep(Mat, PetscBool, PetscBool, Vec, Vec); /* tmg.c: one sweep of its several-rank smoother (tests/unit_tests.c) */
 /* frame.c: a frame (n, t1, t2) per contact vertex for the linear solves (-ssn_frame); NULL where every normal is an axis */
-PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *);     /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
-PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, PetscBool, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform); PETSC_TRUE: its products by MatPtAP (-ssn_pair_transform_ptap) */
-PetscBool      SgFramePairTransform(SgFrame);                                    /* the frame carries that transformation */
-PetscErrorCode SgFrameGetGlobalRotation(SgFrame, const PetscReal **);            /* -ssn_frame_global: the body's one rotation R, else NULL */
-PetscErrorCode SgFramePairInterpolation(SgFrame, Mat, Mat *);                    /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
+PetscErrorCode SgFrameCreate(SgElasticity, SgContact, PetscBool, SgFrame *);                                 /* PETSC_TRUE: the body in one frame where the normals agree (-ssn_frame_global) */
+PetscErrorCode SgFrameCreatePair(SgElasticity, SgContact, const char[], const char[], PetscBool, SgFrame *); /* two bodies: the dual-mortar transformation T, then the frames (-ssn_pair_transform); the advice of SgContactPairTransform; PETSC_TRUE: its products by MatPtAP (-ssn_pair_transform_ptap) */
+PetscBool      SgFramePairTransform(SgFrame);                                                                /* the frame carries that transformation */
+PetscErrorCode SgFrameGetGlobalRotation(SgFrame, const PetscReal **);                                        /* -ssn_frame_global: the body's one rotation R, else NULL */
+PetscErrorCode SgFramePairInterpolation(SgFrame, Mat, Mat *);                                                /* an interpolation of K's unknowns taken into the pair's basis, (T Q)^-1 P */
 PetscErrorCode SgFrameDestroy(SgFrame *);
 PetscErrorCode SgFrameToLocal(SgFrame, Vec);      /* x_i <- Q_i^T x_i at the rotated contact vertices (a pair's frame: x <- Q^T T^-1 x) */
 PetscErrorCode SgFrameForceToLocal(SgFrame, Vec); /* a force b_i <- Q_i^T b_i (a pair's frame: b <- Q^T T^T b) */

@@ -63,7 +63,7 @@ PetscErrorCode SgContCheckBaseline(SgCont ct)
 }
 
 /* The iterate of least KKT residual of this solve (a step at a larger gamma can be worse: round-off) */
-static PetscErrorCode KeepBest(SgCont ct)
+PetscErrorCode SgContKeepBest(SgCont ct)
 {
   PetscFunctionBeginUser;
   if (!PetscIsNormalReal(ct->kkt.residual) && ct->kkt.residual != 0) PetscFunctionReturn(0);
@@ -94,7 +94,7 @@ static PetscErrorCode AcceptFailedSSN(SgCont ct)
 
 /* A failed run ends on the best iterate rather than the last, when that is better; if it meets the tolerance, the run
    converged (at that outer step). */
-static PetscErrorCode RestoreBest(SgCont ct)
+PetscErrorCode SgContRestoreBest(SgCont ct)
 {
   PetscFunctionBeginUser;
   if (ct->converged || ct->outerbest <= 0 || !ct->ybest || !(ct->kktbest < ct->kkt.residual || PetscIsNanReal(ct->kkt.residual))) {
@@ -152,7 +152,7 @@ static PetscErrorCode CoulombShiftedPath(SgCont ct)
     PetscCall(SgContSSN(ct, gamma, &ok));
     PetscCall(SgContMeasure(ct));
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, NULL));
-    PetscCall(KeepBest(ct));
+    PetscCall(SgContKeepBest(ct));
     if (!ok) {
       PetscCall(AcceptFailedSSN(ct));
       break;
@@ -212,7 +212,7 @@ PetscErrorCode SgContSolveContinuation(SgCont ct)
     PetscCall(SgHistoryRowInit(&mdl));
     if (ct->ops.model) PetscCall(ct->ops.model(ct, &mdl));
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, &mdl));
-    PetscCall(KeepBest(ct));
+    PetscCall(SgContKeepBest(ct));
     if (!ok) {
       PetscCall(AcceptFailedSSN(ct));
       ssnfail = (PetscBool)!ct->converged;
@@ -230,7 +230,7 @@ PetscErrorCode SgContSolveContinuation(SgCont ct)
     /* the tolerance lies below what gamma can reach in double precision (a small load step's slip): the shift moves */
     PetscCall(CoulombShiftedPath(ct));
   }
-  PetscCall(RestoreBest(ct));
+  PetscCall(SgContRestoreBest(ct));
   if (ct->ops.finish) PetscCall(ct->ops.finish(ct));
   PetscFunctionReturn(0);
 }

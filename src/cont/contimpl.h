@@ -152,6 +152,8 @@ PetscErrorCode           SgContAddGamma(SgCont, PetscReal);
 PetscErrorCode           SgContFail(SgCont, const char[], ...);
 PetscErrorCode           SgContOuterRow(SgCont, PetscInt, const SgHistoryRow *);
 PetscErrorCode           SgContCheck(SgCont, PetscBool *);
+PetscErrorCode           SgContKeepBest(SgCont);    /* the iterate of least KKT residual of this solve, kept (cont_loop.c) ... */
+PetscErrorCode           SgContRestoreBest(SgCont); /* ... and made the result of a failed solve when it is better */
 PetscErrorCode           SgContCheckBaseline(SgCont);
 PetscErrorCode           SgContSolveContinuation(SgCont);                                                       /* cont_loop.c: the outer loop of the types without ops->solve */
 PetscErrorCode           SgContBoundFrame(SgCont, const char[], PetscBool, SgFrame *, PetscInt[], PetscReal[]); /* pdas.c: the contact frames of pdas and vi */

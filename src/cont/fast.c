@@ -10,7 +10,11 @@
    gamma: 10 ||lam~|| / (tol Y sqrt|Gamma_c|) as in IPF's cap, with lam~ = (normal diagonal stiffness) x (penetration
    of the start) / w, an estimate from above of the multiplier; if SSN settles with exact steps and only the
    infeasibility is above the tolerance, gamma is raised to IPF's cap from the multiplier found (fallback). If the
-   inexact steps fail (cycling, too many steps), the same gamma is solved again with exact steps.
+   inexact steps fail (cycling, too many steps), the same gamma is solved again with exact steps. The estimate is also
+   capped by the precision limit (SgContGammaPrecision) at the start; where an exact step leaves states that change on
+   round-off alone with ||F|| at its floor (a gamma too large for double precision: the SSN would cycle), the SSN stops
+   and gamma is lowered (at least 4x, to the cap from the multiplier found and below the precision limit there) until
+   the tolerance is met, or ends with PRECISION_LIMIT on the best iterate.
    With a direct solver (preonly, -ssn_condense included) every step is exact: no early stop; after too many steps
    the same gamma is continued once (with nu = 0.4999 in 2D the start's active set loses 1-2 vertices a step). */
 #include "cont/contimpl.h"
@@ -31,6 +35,7 @@ typedef struct {
   PetscReal kkt_next; /* the KKT test waits until ||r|| / ||r_0|| falls below this */
   PetscBool on, last_full, stopped;
   PetscBool retry;         /* a failed SSN may be continued once at the same gamma */
+  PetscBool raised;        /* gamma was raised (too small): no more lowering on round-off states */
   PetscInt  nearly, nfull; /* linear solves stopped early / run to -ksp_rtol or the KKT tolerance */
   PetscInt  nkkt;          /* linear solves stopped on the KKT tolerance */
 } Fast;
@@ -128,11 +133,12 @@ static PetscErrorCode KSPConverged_Fast(KSP ksp, PetscInt it, PetscReal rnorm, K
    more step (on an unchanged set with the same preconditioner), so loose -ksp_rtol only costs steps. */
 static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscBool settled, SNESConvergedReason *reason, void *ctx)
 {
-  Fast  *f = (Fast *)ctx;
-  SgKKT  kkt;
-  Vec    y;
-  SNES   snes;
-  SgCont ct = f->ct;
+  Fast     *f = (Fast *)ctx;
+  SgKKT     kkt;
+  Vec       y;
+  SNES      snes;
+  SgCont    ct = f->ct;
+  PetscBool roundoff, revisited = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   if (f->stopped) f->nearly++;
@@ -140,7 +146,9 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
   PetscCall(SgSSNGetSNES(s, &snes));
   PetscCall(SNESGetSolution(snes, &y));
   PetscCall(SgContactKKT(ct->c, y, &kkt));
-  PetscCall(PetscInfo(snes, "fast: SSN %" PetscInt_FMT " KKT %.3e (equilibrium %.3e dual %.3e infeasibility %.3e complementarity %.3e) settled %d last CG %s\n", it, (double)kkt.residual, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity, (int)settled, f->last_full ? "full" : "stopped early"));
+  PetscCall(SgSSNStatesAtRoundoff(s, fnorm, settled, &roundoff));
+  if (roundoff && f->last_full) PetscCall(SgSSNSetRevisited(s, &revisited)); /* collective: both flags are global */
+  PetscCall(PetscInfo(snes, "fast: SSN %" PetscInt_FMT " KKT %.3e (equilibrium %.3e dual %.3e infeasibility %.3e complementarity %.3e) settled %d round-off %d last CG %s\n", it, (double)kkt.residual, (double)kkt.equilibrium, (double)kkt.dual, (double)kkt.infeasibility, (double)kkt.complementarity, (int)settled, (int)roundoff, f->last_full ? "full" : "stopped early"));
   if (kkt.residual <= ct->kkt_tol) {
     *reason = SNES_CONVERGED_FNORM_ABS;
     PetscCall(SgSSNSetReason(s, SG_SSN_KKT));
@@ -148,6 +156,14 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
     /* only the infeasibility ||lam|| / gamma is left: gamma too small */
     *reason = SNES_CONVERGED_FNORM_ABS;
     PetscCall(SgSSNSetReason(s, SG_SSN_SETTLED));
+  } else if (roundoff && f->last_full && revisited) {
+    /* the states that still change do so on round-off, ||F|| is at its floor, and the set was an earlier step's: the
+       steps from here repeat the same sets in turn (a rim vertex let go and taken again, until -fast_max_it); the
+       controller decides what the KKT residual reached means (Solve_Fast). Not on round-off alone: at a large gamma
+       every change is within the round-off of a far iterate (Example 1 with nu = 0.4999999 at 2.6e19: the first step,
+       KKT 4e-2, then 14 steps to the tolerance) */
+    *reason = SNES_CONVERGED_FNORM_ABS;
+    PetscCall(SgSSNSetReason(s, SG_SSN_ROUNDOFF));
   } else if (it >= f->max_it) {
     *reason = SNES_DIVERGED_MAX_IT;
     PetscCall(SgSSNSetReason(s, SG_SSN_MAX_IT));
@@ -155,15 +171,16 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
   PetscFunctionReturn(0);
 }
 
-/* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i */
-static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
+/* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i; and
+   gdp, the largest gamma double precision resolves (SgContGammaPrecision) with lam~ for the multiplier */
+static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma, PetscReal *gdp)
 {
   const PetscScalar *ya;
-  PetscReal          s = 0, *g, *kn, E;
+  PetscReal          s = 0, *g, *kn, *lam, E;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
-  PetscCall(PetscMalloc2(ct->n, &g, ct->n, &kn));
+  PetscCall(PetscMalloc3(ct->n, &g, ct->n, &kn, ct->n + 1, &lam));
   PetscCall(SgContNormalStiffness(ct, kn));
   PetscCall(VecGetArrayRead(ct->y, &ya));
   PetscCall(SgContactGap(ct->c, ya, g));
@@ -171,10 +188,17 @@ static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma)
   for (PetscInt i = 0; i < ct->n; i++) {
     const PetscReal l = kn[i] * PetscMax(0, g[i]) / ct->w[i];
     s += ct->w[i] * l * l;
+    lam[i] = l;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPIU_REAL, MPI_SUM, ct->comm));
-  PetscCall(PetscFree2(g, kn));
   if (!(s > 0 && SgContGammaCap(ct, PetscSqrtReal(s), gamma))) *gamma = E;
+  { /* SgContGammaPrecision reads ct->lam: lam~ in its place for the call */
+    PetscReal *keep = ct->lam;
+    ct->lam         = lam;
+    PetscCall(SgContGammaPrecision(ct, gdp));
+    ct->lam = keep;
+  }
+  PetscCall(PetscFree3(g, kn, lam));
   PetscFunctionReturn(0);
 }
 
@@ -193,7 +217,8 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   PetscCall(SgSSNGetSNES(s, &snes));
   /* a direct solve (preonly; -ssn_condense sets it too) calls no convergence test: every step is a full one */
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &exact));
-  f->retry = (PetscBool)(f->early || exact);
+  f->retry  = (PetscBool)(f->early || exact);
+  f->raised = PETSC_FALSE;
   if (exact) {
     f->early     = PETSC_FALSE;
     f->last_full = PETSC_TRUE;
@@ -211,10 +236,15 @@ static PetscErrorCode Solve_Fast(SgCont ct)
   else {
     /* the estimate is from above: where it passes -cont_gamma_max, the largest gamma allowed is tried (a gamma that
        proves too small is raised, and past -cont_gamma_max the run stops with GAMMA_OVERFLOW) */
-    PetscCall(EstimateGamma(ct, &ct->gamma));
-    ct->gamma = PetscMin(ct->gamma, ct->gamma_max);
+    PetscReal gdp;
+    PetscCall(EstimateGamma(ct, &ct->gamma, &gdp));
+    PetscCall(PetscInfo(snes, "fast: gamma estimated %g, double precision's limit at the start %g\n", (double)ct->gamma, (double)gdp));
+    /* past the precision limit the SSN decides states on round-off from its first step and cycles on iterates whose
+       multipliers say nothing (the limit evaluated there was 3e24 on twobody_punch): the limit at the start, with the
+       estimated multiplier (from above too), caps the estimate */
+    ct->gamma = PetscMin(PetscMin(ct->gamma, gdp), ct->gamma_max);
   }
-  PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)", (double)ct->gamma, (double)ct->kkt.residual));
+  PetscCall(PetscInfo(snes, "fast: gamma %g (KKT residual of the start %g)\n", (double)ct->gamma, (double)ct->kkt.residual));
 
   f->ct = ct;
   PetscCall(VecDuplicate(ct->y, &f->w));
@@ -239,6 +269,7 @@ static PetscErrorCode Solve_Fast(SgCont ct)
     PetscCall(PetscLogEventEnd(SG_ContStep, 0, 0, 0, 0));
     PetscCall(SgContMeasure(ct));
     PetscCall(SgContOuterRow(ct, ct->ssn_its - its0, NULL));
+    PetscCall(SgContKeepBest(ct)); /* a lowered gamma's PRECISION_LIMIT can end on a worse iterate than an earlier one */
     PetscCall(SgSSNGetReason(s, &sr));
     if (!ok1 && f->retry && (sr == SG_SSN_MAX_IT || (f->early && sr == SG_SSN_CYCLING))) {
       /* fallback: the same gamma again, exact steps (already exact: only after MAX_IT, a revisited set would cycle) */
@@ -246,16 +277,39 @@ static PetscErrorCode Solve_Fast(SgCont ct)
       f->early = PETSC_FALSE;
       PetscCall(PetscInfo(snes, "fast: SSN failed (%s); the same gamma again, exact steps\n", SgSSNReasons[sr]));
     } else if (!ok1) break;
-    else if (ct->kkt.residual > ct->kkt_tol && sr == SG_SSN_SETTLED) {
-      /* gamma too small: IPF's cap from the multiplier found */
-      PetscReal l2 = 0, cap;
+    else if (ct->kkt.residual > ct->kkt_tol && (sr == SG_SSN_SETTLED || sr == SG_SSN_ROUNDOFF)) {
+      /* IPF's cap from the multiplier found */
+      PetscReal       l2         = 0, cap;
+      const PetscBool infeasible = (PetscBool)(PetscMax(PetscMax(ct->kkt.equilibrium, ct->kkt.dual), ct->kkt.complementarity) <= ct->kkt_tol);
+      PetscBool       hascap;
+      PetscReal       gdp = PETSC_MAX_REAL;
       for (PetscInt i = 0; i < ct->n; i++) l2 += ct->w[i] * PetscSqr(ct->lam[i]);
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &l2, 1, MPIU_REAL, MPI_SUM, ct->comm));
-      ct->gamma = PetscMax(10 * gamma, SgContGammaCap(ct, PetscSqrtReal(l2), &cap) ? cap : 10 * gamma);
-      PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+      hascap = SgContGammaCap(ct, PetscSqrtReal(l2), &cap);
+      /* the precision limit at this iterate (its states settled up to round-off: a usable multiplier, unlike a cycling
+         iterate's): a lowered gamma stays below it, else SgContCheck would lift it back to this gamma */
+      if (sr == SG_SSN_ROUNDOFF) PetscCall(SgContGammaPrecision(ct, &gdp));
+      if (sr == SG_SSN_SETTLED || infeasible) {
+        /* only the infeasibility ||lam|| / gamma is left: gamma too small */
+        ct->gamma = PetscMax(10 * gamma, hascap ? cap : 10 * gamma);
+        f->raised = PETSC_TRUE;
+        PetscCall(PetscInfo(snes, "fast: settled with KKT residual %g: gamma %g -> %g\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma));
+      } else if (!f->raised && hascap) {
+        /* the states change on round-off: gamma lowered, to the cap from the multiplier found where the estimate was
+           too large (it is from above; twobody_punch at -cont_kkt_tol 1e-12: 6.4e13 against 4.7e12), below the
+           precision limit at this iterate, and at least 4x (the cap's margin of 10 on the infeasibility is a margin,
+           not a need: twobody_punch meets 1e-13 at 2e13, where the cap asks for 4.6e13); never after a raise (no
+           back and forth: a raised gamma that decides on round-off again ends with PRECISION_LIMIT below) */
+        ct->gamma = PetscMin(PetscMin(cap, gdp), 0.25 * gamma);
+        PetscCall(PetscInfo(snes, "fast: states decided on round-off with KKT residual %g: gamma %g -> %g (the cap from the multiplier found %g, the precision limit here %g)\n", (double)ct->kkt.residual, (double)gamma, (double)ct->gamma, (double)cap, (double)gdp));
+      } else {
+        PetscCall(SgContFail(ct, "PRECISION_LIMIT: -cont_kkt_tol %.3e is not met at gamma %g, where the SSN's states change on round-off alone with ||F|| at its round-off floor (more Newton steps repeat the same sets); KKT residual reached %.3e (infeasibility %.3e, complementarity %.3e, equilibrium %.3e); -cont_type alm, which moves the shift instead of gamma, can get below it", (double)ct->kkt_tol, (double)gamma, (double)ct->kkt.residual, (double)ct->kkt.infeasibility, (double)ct->kkt.complementarity, (double)ct->kkt.equilibrium));
+        break;
+      }
     }
     PetscCall(SgContCheck(ct, &stop));
   }
+  PetscCall(SgContRestoreBest(ct));
   f->on = PETSC_FALSE;
   PetscCall(SgSSNSetStopTest(s, NULL, NULL));
   PetscCall(SgSSNSetKeepPCOnSameSet(s, PETSC_FALSE));

@@ -57,7 +57,7 @@ static PetscErrorCode SetFromOptions_PDAS(SgCont ct, PetscOptionItems *PetscOpti
    changes), else each vertex's dofs are rotated into its frame (n, t1, t2) where the normal is not an axis. With
    -ssn_frame false (the frames turned off) every normal must be an axis: the error names the option.
    Two bodies (pair: the caller takes them, pdas): the pair's dual-mortar basis with the frames, u = T Q v
-   (SgFrameCreatePair), always (also with -ssn_frame false: without T a condition couples the two sides), where
+   (SgFrameCreatePair), always (-ssn_frame false refused: without T a condition couples the two sides), where
    (B y)_j = D_j sign_j v_j[axis]; else (vi) refused by SgContactAxisAligned. */
 PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], PetscBool pairok, SgFrame *f, PetscInt axis[], PetscReal sign[])
 {
@@ -71,7 +71,9 @@ PetscErrorCode SgContBoundFrame(SgCont ct, const char who[], PetscBool pairok, S
     const PetscReal *fs;
     PetscBool        ptap = PETSC_FALSE;
     PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_pair_transform_ptap", &ptap, NULL));
-    PetscCall(SgFrameCreatePair(ct->prob, ct->c, ptap, f));
+    PetscCall(PetscOptionsGetBool(((PetscObject)ct)->options, ((PetscObject)ct)->prefix, "-ssn_frame", &frame, NULL));
+    PetscCheck(frame, ct->comm, PETSC_ERR_USER_INPUT, "-ssn_frame false: %s solves two bodies (-contact_master_ids) only in the pair's dual-mortar basis with the frames of the slave normals, u = T Q v, where each condition of the pair is a bound on one dof (Q = I where a normal is an axis); leave -ssn_frame out", who);
+    PetscCall(SgFrameCreatePair(ct->prob, ct->c, who, "it solves a pair only in that basis: use an SSN-based controller (fast, ipf, pf, alm) with MUMPS (-options_file options/solver/mumps.opts), which needs no transformation", ptap, f));
     PetscCall(SgFrameGetAxes(*f, &fa, &fs, NULL));
     PetscCall(PetscArraycpy(axis, fa, ct->n));
     PetscCall(PetscArraycpy(sign, fs, ct->n));

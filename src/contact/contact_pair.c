@@ -330,8 +330,9 @@ PetscErrorCode SgContactPairForce(SgContact c, const PetscReal lam[], PetscScala
    then (R T v)_j = v_j and (B T v)_j = D_j n_j . v_j: in v every condition of the pair is nodal, as against a rigid
    obstacle. T^-1 has -M_jk / D_j there (T = I + E with E^2 = 0: no master vertex of a contact row is a contact vertex
    of the pair itself, which is checked: such a mesh is refused). Rows of an obstacle besides the pair (R = e_j) and of
-   slave vertices left out (D_j <= 0: no row of R) stay the identity. The caller destroys both. */
-PetscErrorCode SgContactPairTransform(SgContact c, Mat *T, Mat *Tinv)
+   slave vertices left out (D_j <= 0: no row of R) stay the identity. The caller destroys both. who (the option or
+   controller that asked) and advice (what it can do without the transformation) make the refusal's message. */
+PetscErrorCode SgContactPairTransform(SgContact c, const char who[], const char advice[], Mat *T, Mat *Tinv)
 {
   PetscInt rstart, rend, maxc = 0;
   Mat      E, E2;
@@ -369,7 +370,7 @@ PetscErrorCode SgContactPairTransform(SgContact c, Mat *T, Mat *Tinv)
     PetscCall(MatNorm(E, NORM_INFINITY, &n1));
     PetscCall(MatDestroy(&E2));
     if (n2 > 0) PetscCall(MatDestroy(&E));
-    PetscCheck(n2 == 0, c->comm, PETSC_ERR_SUP, "-ssn_pair_transform: a master vertex of the pair (-contact_master_ids) is also a slave contact vertex (-contact_ids): the dual-mortar transformation needs the two sides apart (|E^2| = %g of |E| = %g); leave -ssn_pair_transform out", (double)n2, (double)n1);
+    PetscCheck(n2 == 0, c->comm, PETSC_ERR_SUP, "%s needs the dual-mortar transformation, and a master vertex of the pair (-contact_master_ids) is also a slave contact vertex (-contact_ids): the transformation needs the two sides apart (|E^2| = %g of |E| = %g); %s", who, (double)n2, (double)n1, advice);
   }
   PetscCall(MatDuplicate(E, MAT_COPY_VALUES, T));
   PetscCall(MatShift(*T, 1.0));

@@ -5,11 +5,35 @@
 
 const char *const SgSSNReasons[] = {"ITERATING", "ACTIVE_SET_SETTLED", "NEIGHBOURHOOD_REACHED", "INITIAL_RESIDUAL_ZERO", "ACTIVE_SET_CYCLING", "FNORM_NAN", "MAX_IT", "LINEAR_SOLVE_FAILED", "SNES_FAILED", "KKT_BELOW_TOL", "RESIDUAL_AT_ROUNDOFF"};
 
+/* Whether the states that still change at the last residual evaluation do so on round-off alone (SgSSNDecisionRoundoff:
+   s->nhard counts the others) while F(y), with the states of y itself, is zero to the round-off of its gamma-scaled
+   terms (s->ffloor): y solves (P_gamma) as far as double precision can tell, and more Newton steps only repeat the
+   same states (SG_SSN_ROUNDOFF; a controller's own stop test asks it too, cont/fast.c) */
+PetscErrorCode SgSSNStatesAtRoundoff(SgSSN s, PetscReal fnorm, PetscBool settled, PetscBool *flg)
+{
+  PetscFunctionBeginUser;
+  *flg = (PetscBool)(!settled && s->nhard == 0 && fnorm <= s->ffloor);
+  PetscFunctionReturn(0);
+}
+
+/* Whether the active set at the last residual evaluation was the Jacobian's set of an earlier Newton step of this
+   solve (the cycle test below): with exact solves the steps from here repeat */
+PetscErrorCode SgSSNSetRevisited(SgSSN s, PetscBool *flg)
+{
+  PetscInt64 h;
+
+  PetscFunctionBeginUser;
+  *flg = PETSC_FALSE;
+  PetscCall(SgContactActiveSetHash(s->c, s->act, &h));
+  for (PetscInt j = 0; j < s->nhash - 1 && !*flg; j++) *flg = (PetscBool)(s->hash[j] == h);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm, SNESConvergedReason *reason, void *ctx)
 {
   SgSSN     s = (SgSSN)ctx;
   PetscReal atol, rtol;
-  PetscBool settled, small;
+  PetscBool settled, small, roundoff;
 
   PetscFunctionBeginUser;
   *reason   = SNES_CONVERGED_ITERATING;
@@ -48,10 +72,11 @@ PetscErrorCode SgSSNConverged(SNES snes, PetscInt it, PetscReal xnorm, PetscReal
   s->stagnant     = (PetscBool)(s->cv.props.nonlinear && it > 1 && fnorm > 0.5 * s->prev_fnorm);
   s->prev_settled = settled;
   s->prev_fnorm   = fnorm;
+  PetscCall(SgSSNStatesAtRoundoff(s, fnorm, settled, &roundoff));
   if (settled && small) {
     *reason   = SNES_CONVERGED_FNORM_ABS;
     s->reason = SG_SSN_SETTLED;
-  } else if (!settled && s->nhard == 0 && fnorm <= s->ffloor) {
+  } else if (roundoff) {
     /* the states that still change do so on round-off (a gap of a few ulps, a vertex at the slip bound after a tiny
        load increment: s->nhard counts the others) and F(y) (with the states of y itself) is zero to the round-off of
        its gamma-scaled terms: y solves (P_gamma) as far as double precision can tell; more steps only repeat them */

@@ -566,7 +566,7 @@ static PetscErrorCode PairStiffness(Mat K, Mat G, Mat *Kr)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, PetscBool ptap, SgFrame *frame)
+PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, const char who[], const char advice[], PetscBool ptap, SgFrame *frame)
 {
   SgFrame  f;
   Mat      K, Qm, G;
@@ -585,7 +585,7 @@ PetscErrorCode SgFrameCreatePair(SgElasticity el, SgContact c, PetscBool ptap, S
   f->nrot = 0;
   for (PetscInt b = 0; b < f->nb; b++) f->nrot += f->bq[b] != -1;
   PetscCallMPI(MPI_Allreduce(&f->nrot, &f->nrot_global, 1, MPIU_INT, MPI_SUM, f->comm));
-  PetscCall(SgContactPairTransform(c, &f->T, &f->Tinv));
+  PetscCall(SgContactPairTransform(c, who, advice, &f->T, &f->Tinv));
   PetscCall(FrameMatrix(f, K, &Qm));
   PetscCall(MatMatMult(f->T, Qm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
   f->ptap = ptap;

@@ -267,7 +267,8 @@ PetscErrorCode SgSSNSetFromOptions(SgSSN s)
     PetscCall(SgContactIsPair(c, &pair));
     PetscCheck(pair, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform is for two-body contact (-contact_master_ids): this problem has no pair");
     PetscCheck(!condense, s->comm, PETSC_ERR_USER_INPUT, "-ssn_pair_transform with -ssn_condense: condensation is not available for two bodies; leave -ssn_condense out");
-    PetscCall(SgFrameCreatePair(p, c, s->pair_ptap, &s->frame));
+    /* the transformation refused: the SSN-based controllers solve the pair without it too */
+    PetscCall(SgFrameCreatePair(p, c, "-ssn_pair_transform", s->pair_transform_set ? "turn -ssn_pair_transform off (-ssn_pair_transform false)" : "-ssn_pair_transform is on by default with an iterative linear solver: turn it off (-ssn_pair_transform false), or solve with MUMPS (-options_file options/solver/mumps.opts), which does without it", s->pair_ptap, &s->frame));
   } else if (frame && c) PetscCall(SgFrameCreate(p, c, (PetscBool)!s->frame_local, &s->frame));
   if (s->frame) PetscCall(FrameSetUp(s, ksp));
   if (condense) PetscCall(SgCondenseCreate(s, &s->cond));
