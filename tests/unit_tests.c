@@ -1045,6 +1045,8 @@ static PetscErrorCode TestPair(SgSummary sum)
   PetscCall(SgSummarySetReal(sum, "area", pair->area));
   PetscCall(SgSummarySetReal(sum, "D_sum", Dsum));
   PetscCall(SgSummarySetInt(sum, "slave_rows", pair->nslave));
+  PetscCall(SgSummarySetInt(sum, "dropped_rows", pair->ndrop));
+  PetscCall(SgSummarySetReal(sum, "D_dropped", pair->Ddrop));
   PetscCall(SgSummarySetReal(sum, "translation_error", etr));
   PetscCall(SgSummarySetReal(sum, "linear_error", elin));
   PetscCall(SgSummarySetReal(sum, "gap_error", egap));

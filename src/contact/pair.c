@@ -440,6 +440,7 @@ static PetscErrorCode DropTinyD(SgContactPair p, Mat Ms, PetscInt dim, const Sid
       if (d < SG_PAIR_DMIN * f) {
         rows[nd++] = rstart + j;
         worst      = PetscMin(worst, d / f);
+        p->Ddrop += d;
         Da[j] = 0, ga[j] = 0;
       }
     }
@@ -451,6 +452,8 @@ static PetscErrorCode DropTinyD(SgContactPair p, Mat Ms, PetscInt dim, const Sid
   PetscCall(PetscFree(rows));
   PetscCall(VecDestroy(&F));
   PetscCallMPI(MPI_Allreduce(&nd, &ndrop, 1, MPIU_INT, MPI_SUM, p->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->Ddrop, 1, MPIU_REAL, MPI_SUM, p->comm));
+  p->ndrop = ndrop;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPIU_REAL, MPI_MIN, p->comm));
   PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " slave vertices partly covered with D_j below %g of int phi_j (the least %g) left without a row\n", ndrop, (double)SG_PAIR_DMIN, ndrop ? (double)worst : 1.0));
   PetscFunctionReturn(0);

@@ -28,6 +28,8 @@ struct _n_SgContactPair {
   MPI_Comm   comm;
   PetscInt   dim;
   PetscInt   nslave;  /* slave vertices opposite the master: the nonzero rows of B (all ranks) */
+  PetscInt   ndrop;   /* slave vertices left without a row for a tiny D_j (DropTinyD, all ranks) */
+  PetscReal  Ddrop;   /* the sum of their D_j (all ranks) */
   PetscReal  area;    /* covered measure of the slave surface */
   PetscBool *obsrow;  /* per owned free vertex: its row is an obstacle row (SgPairObstacleRows), or NULL */
   PetscInt   nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
