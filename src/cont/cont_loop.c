@@ -20,7 +20,7 @@ PetscErrorCode SgContCheck(SgCont ct, PetscBool *stop)
     PetscCall(SgContGammaPrecision(ct, &gdp));
     /* this step was at the cap and the type would take a larger gamma: a path-following type (lamhat = 0) can only
        repeat this step's solution */
-    atcap = (PetscBool)(gamma_now >= 0.999 * gdp && gamma_next > gamma_now && !ct->ops.shifts);
+    atcap = (PetscBool)(SgContAtGammaPrecision(gamma_now, gdp) && gamma_next > gamma_now && !ct->ops.shifts);
     if (gamma_next > gdp && !atcap) {
       SNES snes;
       PetscCall(SgSSNGetSNES(ct->ssn, &snes));

@@ -26,7 +26,7 @@ static PetscErrorCode PrepareWarm(SgCont ct)
        solve again at the same load factor keeps its gamma: its answer is the last one) */
     PetscReal gdp;
     PetscCall(SgContGammaPrecision(ct, &gdp));
-    if (ct->gamma >= 0.999 * gdp) ct->gamma = 1e-3 * gdp;
+    if (SgContAtGammaPrecision(ct->gamma, gdp)) ct->gamma = 1e-3 * gdp;
   }
   PetscFunctionReturn(0);
 }

@@ -167,6 +167,12 @@ PetscBool                SgModelFit(PetscReal, PetscReal, PetscReal, PetscReal, 
 PetscBool                SgContGammaCap(SgCont, PetscReal, PetscReal *);
 #define ValidCont(ct, arg) PetscCall(SgValidCont(ct, PETSC_FUNCTION_NAME, arg))
 PetscErrorCode SgContGammaPrecision(SgCont, PetscReal *);
+/* gamma at the double-precision cap gdp of SgContGammaPrecision: within 1e-3 below it (the cap is computed again from
+   each iterate, a step taken at the cap finds it moved a little) */
+static inline PetscBool SgContAtGammaPrecision(PetscReal gamma, PetscReal gdp)
+{
+  return (PetscBool)(gamma >= 0.999 * gdp);
+}
 PetscErrorCode SgContCreate_None(SgCont);
 PetscErrorCode SgContCreate_ALM(SgCont);
 PetscErrorCode SgContCreate_PF(SgCont);
