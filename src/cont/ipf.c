@@ -83,8 +83,10 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
   PetscReal       next, dJk, cap, gdp;
   PetscInt        cuts = 0;
   SNES            snes;
+  const PetscBool again = (PetscBool)(*nbhd < 0); /* this step solved the last problem again at its gamma */
 
   PetscFunctionBeginUser;
+  if (again) *nbhd = 0;
   /* ||lam||^2 = 2 gamma^2 dJ/dgamma, formula (7) */
   if (!SgContGammaCap(ct, PetscSqrtReal(2 * gamma * gamma * dJ), &cap)) cap = PETSC_MAX_REAL;
   /* and no further than double precision resolves (SgContGammaPrecision): the last problem there, solved exactly */
@@ -112,7 +114,7 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
     if (*nbhd > 0 && ct->nested_start) {
       next  = gamma;
       *nbhd = 0;
-    } else if (*nbhd == 0 && gamma < 0.999 * gdp) {
+    } else if (*nbhd == 0 && !again && !SgContAtGammaPrecision(gamma, gdp)) {
       /* the last problem, solved exactly, missed the tolerance: solved once more at the same gamma from its solution
          (a Newton step of the size of the remaining error, iterative refinement) before gamma grows. A jump to the
          cap ends its one Newton step with a round-off of the jump's size: the 2D punch on an elastic block at
@@ -125,7 +127,6 @@ static PetscErrorCode Update_IPF(SgCont ct, PetscReal *nextp)
       *nbhd = -1;
     } else *nbhd = 0;
   }
-  if (next > gamma) *nbhd = PetscMax(*nbhd, 0);
   PetscCall(SgSSNGetSNES(ct->ssn, &snes));
   PetscCall(PetscInfo(snes, "IPF step %" PetscInt_FMT ": gamma %g -> %g (rho_F %g, rho_C %g, %" PetscInt_FMT " safeguard cuts, cap %g)", ct->outer, (double)gamma, (double)next, (double)rhoF, (double)rhoC, cuts, (double)cap));
   *Jprev = J;
