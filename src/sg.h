@@ -168,6 +168,7 @@ PetscErrorCode               SgFileAbandon(MPI_Comm, const char[]);
 PetscErrorCode               SgFileOpen(MPI_Comm, const char[], const char[], FILE **);
 PetscErrorCode               SgFileClose(MPI_Comm, const char[], FILE **);
 PetscErrorCode               SgFileBegin(const char[]);
+PetscErrorCode               SgFileBeginHDF5(MPI_Comm, const char[], char[], size_t);
 void                         SgFileCleanup(void);
 const char                  *SgFileErrorCause(int, const char[]);
 PetscErrorCode               SgFileHDF5NameMax(MPI_Comm, size_t *);

@@ -2,7 +2,7 @@
 """File-handling cases of issue 10 (items 7-12), each a run of bin/signorini in a temporary directory with an expected
 outcome: the message (naming the option or file), the exit status, the files left and not left.
 
-usage: io_cases.py --group {paths,special,same,diskfull,cycles,checkpoint} --out PREFIX
+usage: io_cases.py --group {paths,special,same,stale,diskfull,cycles,checkpoint} --out PREFIX
 Writes PREFIX.json: {"cases": N, "failed": [...], "skipped": [...], "passed": [...]}. Nothing is written outside the
 temporary directory (a symlink to /dev/null or /dev/full is made there; the device itself is never a target of a
 rename with the fixed program, and the test then checks that the link is still a link).
@@ -15,6 +15,7 @@ import os
 import re
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 import time
@@ -94,8 +95,9 @@ def group_paths(c):
     d = c.t("d")
     os.makedirs(d)
     prefix = d + "/"
-    # the longest -output_file HDF5 (through OpenMPI-IO) accepts on 1 rank: 255 - len(".locktest.0") - len(".part")
-    h5max = 255 - len(".locktest.") - 1 - len(".part")
+    # the longest -output_file HDF5 (through OpenMPI-IO) accepts on 1 rank: 255 - len(".locktest.0") - the temporary
+    # file's suffix ".<8 hex digits>.part"
+    h5max = 255 - len(".locktest.") - 1 - len(".XXXXXXXX.part")
     ok_name = prefix + "x" * (h5max - len(prefix) - 3) + ".h5"
     long_name = prefix + "x" * (h5max - len(prefix) - 2) + ".h5"
     assert len(ok_name) == h5max and len(long_name) == h5max + 1
@@ -117,11 +119,12 @@ def group_paths(c):
         name = prefix + "z" * (n - len(prefix))
         c.check("summary_%d_chars" % n, BASE + ["-summary_file", name], error=r"-summary_file: the file name is %d characters long, at most 4089" % n)
     c.check("history_component_too_long", BASE + ["-history_file", prefix + "h" * 300], error=r"-history_file: cannot write '.*': File name too long")
-    # the restart file is read through HDF5 on one rank: the same library limit, without ".part"
-    rs = prefix + "q" * (h5max + 6 - len(prefix))
+    # the restart file is read through HDF5 on one rank: the same library limit, without the temporary file's suffix
+    h5in = 255 - len(".locktest.") - 1
+    rs = prefix + "q" * (h5in + 1 - len(prefix))
     open(rs, "w").close()
     c.check("restart_above_limit", BASE + ["-restart_file", rs], error=r"-restart_file: the file name .* is %d characters long" % len(rs))
-    rs = prefix + "q" * (h5max + 5 - len(prefix))
+    rs = prefix + "q" * (h5in - len(prefix))
     open(rs, "w").close()
     c.check("restart_at_limit_empty_file", BASE + ["-restart_file", rs], error=r"-restart_file: '.*' is not a readable HDF5 file")
 
@@ -205,6 +208,36 @@ def group_same(c):
             extra=lambda out: None if os.path.islink(c.t("n1")) and os.path.islink(c.t("n2")) else "a link was replaced")
 
 
+def group_stale(c):
+    """A run killed inside OpenMPI's MPI-IO file open leaves the machine-wide semaphore "OMPIO_<base name>" (in
+    /dev/shm) taken; every later open of a file of that base name waited for it for ever (the suite's CI run hung on
+    "ck.h5.part"). Such semaphores are made here, taken, for every name the program wrote an HDF5 file through before
+    (its results' "<name>.part" and the result names): the runs write, resume and finish as without them."""
+    shm = "/dev/shm"
+    if not (os.path.isdir(shm) and os.access(shm, os.W_OK)):
+        print("# skipping: %s is not a writable directory" % shm)
+        c.skipped.append("no writable " + shm)
+        return
+    base = "sgstale%d_%s" % (os.getpid(), os.urandom(4).hex())
+    ck, out = c.t(base + "_ck.h5"), c.t(base + "_r.h5")
+    taken = struct.pack("<QiI16x", 0, 128, 0)  # glibc's sem_t of a shared semaphore with the value 0 (nobody waiting)
+    sems = [os.path.join(shm, "sem.OMPIO_%s" % os.path.basename(f)) for f in (ck + ".part", out + ".part", out[:-3] + ".xmf.part")]
+    try:
+        for f in sems:
+            with open(f, "wb") as g:
+                g.write(taken)
+        args = BASE + ["-checkpoint_file", ck, "-output_file", out]
+        c.check("write_beside_taken_semaphores", args + ["-cont_max_it", "2"], error=r"MAX_IT", present=[ck])
+        c.check("resume_beside_taken_semaphores", args + ["-restart_file", ck], present=[ck, out, out[:-3] + ".xmf"],
+                extra=lambda out_: None if "ipf: CONVERGED" in out_ else "did not converge")
+        c.check("np2_beside_taken_semaphores", args, np=2, present=[ck, out],
+                extra=lambda out_: None if all(open(f, "rb").read(4) == b"\0\0\0\0" for f in sems) else "a planted semaphore is no longer taken: the test did not test")
+    finally:
+        for f in sems:
+            if os.path.exists(f):
+                os.remove(f)
+
+
 def can_mount(tmp):
     d = os.path.join(tmp, "probe")
     os.makedirs(d, exist_ok=True)
@@ -256,7 +289,7 @@ def group_diskfull(c):
     h5_before = open(os.path.join(r, "x.h5"), "rb").read()
     os.makedirs(os.path.join(r, "x.xmf.part"))
     c.check("xmf_fails_h5_not_committed", BASE + ["-output_file", os.path.join(r, "x.h5"), "-E", "2"], error=r"cannot write '.*x.xmf'",
-            extra=lambda out: None if open(os.path.join(r, "x.h5"), "rb").read() == h5_before and not os.path.exists(os.path.join(r, "x.h5.part")) else "the .h5 was replaced without its .xmf")
+            extra=lambda out: None if open(os.path.join(r, "x.h5"), "rb").read() == h5_before and not glob.glob(os.path.join(r, "x.h5*.part")) else "the .h5 was replaced without its .xmf")
     os.rmdir(os.path.join(r, "x.xmf.part"))
     # SIGTERM and SIGINT during the HDF5 output of a larger run: no .part left
     for sig in (signal.SIGTERM, signal.SIGINT):

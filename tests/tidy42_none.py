@@ -13,6 +13,7 @@ of them. Cases (tests/io_cases.py's runner: exit status, message, files left and
 usage: tidy42_none.py --out PREFIX     (writes PREFIX.json: {"cases": N, "failed": [...], "passed": [...]})
 """
 import argparse
+import glob
 import json
 import os
 import re
@@ -41,8 +42,15 @@ def same_summary(a, b):
     return None
 
 
+def left_parts():
+    """A temporary file of a result named none in the repository (an HDF5 result's is "none.<tag>.part"), or None."""
+    got = glob.glob(os.path.join(ROOT, "none*.part"))
+    return ("left behind: " + " ".join(os.path.basename(q) for q in got)) if got else None
+
+
 def cases(c, tmp):
     strays = [os.path.join(ROOT, n) for n in ("none", "none.xmf", "none.part", "none.xmf.part")]
+    strays += [q for q in glob.glob(os.path.join(ROOT, "none*.part")) if q not in strays]
     for p in strays:
         if os.path.lexists(p):
             c.failed.append("a file %s is in the repository before the runs: remove it" % os.path.basename(p))
@@ -55,16 +63,18 @@ def cases(c, tmp):
         f.write("-output_file %s\n-history_file %s\n-load_curve_file %s\n-checkpoint_file %s\n-summary_file %s\n" % (named[0], named[2], named[3], named[4], named[5]))
     off = ["-output_file", "none", "-history_file", "none", "-load_curve_file", "none", "-checkpoint_file", "none", "-restart_file", "none", "-dm_refine_geometry", "none"]
     c.check("off", BASE + ["-options_file", opts] + off + ["-summary_file", got], absent=strays + named, present=[got],
-            extra=lambda out: same_summary(ref, got) or ("Option left" in out and "an option was not used") or None)
+            extra=lambda out: same_summary(ref, got) or ("Option left" in out and "an option was not used") or left_parts())
     c.check("nosummary", BASE + ["-options_file", opts, "-output_file", "none", "-history_file", "none", "-load_curve_file", "none", "-checkpoint_file", "none", "-summary_file", "none"],
-            absent=strays + named)
-    c.check("cad", BASE + ["-obstacle_type", "cad", "-obstacle_cad_file", "none"], error=r"-obstacle_type cad: needs -obstacle_cad_file", absent=strays)
+            absent=strays + named, extra=lambda out: left_parts())
+    c.check("cad", BASE + ["-obstacle_type", "cad", "-obstacle_cad_file", "none"], error=r"-obstacle_type cad: needs -obstacle_cad_file", absent=strays,
+            extra=lambda out: left_parts())
     # -help prints bytes that are not UTF-8 (PETSc 3.18's -dm_plex_boundary_label default): read them as bytes
     p = subprocess.run(io_cases.sgrun.command(BASE + ["-help"], None), cwd=ROOT, env=io_cases.ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120)
     out = p.stdout.decode("utf-8", "replace")
     why = ["exit %d" % p.returncode] if p.returncode else []
     why += ["%s does not show none: no file" % o for o in FILES if not re.search(r"^\s*%s <now none : formerly none>: .*\(none: no file\)" % o, out, re.M)]
     why += ["left behind: " + os.path.basename(q) for q in strays if os.path.lexists(q)]
+    why += [left_parts()] if left_parts() else []
     if why:
         c.failed.append("help: " + "; ".join(why))
     else:

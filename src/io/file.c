@@ -6,36 +6,50 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/statvfs.h>
+#include <time.h>
 #include <unistd.h>
 
-/* Every result file is written to "<name>.part" and renamed once complete: a failed or killed run leaves
-   the previous result intact and never a half-written file under the final name.
+/* Every result file is written to "<name>.part" (an HDF5 file: "<name>.<tag>.part", SgFileBeginHDF5) and renamed once
+   complete: a failed or killed run leaves the previous result intact and never a half-written file under the final
+   name.
    The files of a run are registered before any work (registry.c, SgFileCheckWritable): a registered name may be
    written elsewhere (SgFileResolve: the target of a symbolic link, or a device written directly). */
 
-/* ".part" files being written: removed by SgFileCleanup on a signal or an error exit (async-signal-safe: static
-   storage, unlink only). */
+/* ".part" files being written, with the file each becomes: removed by SgFileCleanup on a signal or an error exit
+   (async-signal-safe: static storage, unlink only); SgFileCommit and SgFileAbandon find a file's temporary name here. */
 #define SG_PENDING_MAX 16
 static char                  Pending[SG_PENDING_MAX][PETSC_MAX_PATH_LEN];
+static char                  PendingPath[SG_PENDING_MAX][PETSC_MAX_PATH_LEN];
 static volatile sig_atomic_t PendingUsed[SG_PENDING_MAX];
 
-static void PendingAdd(const char tmp[])
+static PetscBool PendingAdd(const char path[], const char tmp[])
 {
   for (int i = 0; i < SG_PENDING_MAX; i++)
     if (!PendingUsed[i]) {
       size_t n = strlen(tmp);
       if (n > PETSC_MAX_PATH_LEN - 1) n = PETSC_MAX_PATH_LEN - 1;
       memcpy(Pending[i], tmp, n);
-      Pending[i][n]  = 0;
-      PendingUsed[i] = 1;
-      return;
+      Pending[i][n] = 0;
+      strncpy(PendingPath[i], path, PETSC_MAX_PATH_LEN - 1);
+      PendingPath[i][PETSC_MAX_PATH_LEN - 1] = 0;
+      PendingUsed[i]                         = 1;
+      return PETSC_TRUE;
     }
+  return PETSC_FALSE;
 }
 
 static void PendingRemove(const char tmp[])
 {
   for (int i = 0; i < SG_PENDING_MAX; i++)
     if (PendingUsed[i] && !strcmp(Pending[i], tmp)) PendingUsed[i] = 0;
+}
+
+/* the temporary file of path being written on this rank, or NULL */
+static const char *PendingFind(const char path[])
+{
+  for (int i = 0; i < SG_PENDING_MAX; i++)
+    if (PendingUsed[i] && !strcmp(PendingPath[i], path)) return Pending[i];
+  return NULL;
 }
 
 /* Remove every ".part" file still being written (called from signal handlers and at exit). */
@@ -94,19 +108,32 @@ PetscErrorCode SgFileInstallCleanup(void)
   PetscFunctionReturn(0);
 }
 
+/* The temporary file of name: the one being written (SgFileBegin, SgFileBeginHDF5), else "<name>.part" (a device is
+   written directly). */
 PetscErrorCode SgFileTmpName(const char name[], char tmp[], size_t len)
 {
-  const char *path;
+  const char *path, *pending;
   PetscBool   direct;
 
   PetscFunctionBeginUser;
   SgFileResolve(name, &path, &direct);
+  pending = direct ? NULL : PendingFind(path);
   if (direct) PetscCall(PetscStrncpy(tmp, path, len));
+  else if (pending) PetscCall(PetscStrncpy(tmp, pending, len));
   else PetscCall(PetscSNPrintf(tmp, len, "%s.part", path));
   PetscFunctionReturn(0);
 }
 
-/* Note that the temporary file of name is being written (rank-local; removed on a signal or an error exit). */
+static PetscErrorCode BeginTmp(const char path[], const char tmp[])
+{
+  PetscFunctionBeginUser;
+  while (Dying) pause(); /* a signal is ending the process: start no new file */
+  PetscCheck(PendingAdd(path, tmp), PETSC_COMM_SELF, PETSC_ERR_SUP, "cannot write '%s': %d result files are being written already (the most at once)", path, SG_PENDING_MAX);
+  PetscFunctionReturn(0);
+}
+
+/* Note that the temporary file of name ("<name>.part") is being written (rank-local; removed on a signal or an error
+   exit). */
 PetscErrorCode SgFileBegin(const char name[])
 {
   const char *path;
@@ -116,9 +143,40 @@ PetscErrorCode SgFileBegin(const char name[])
   PetscFunctionBeginUser;
   SgFileResolve(name, &path, &direct);
   if (direct) PetscFunctionReturn(0);
-  PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
-  while (Dying) pause(); /* a signal is ending the process: start no new file */
-  PendingAdd(tmp);
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+  PetscCall(BeginTmp(path, tmp));
+  PetscFunctionReturn(0);
+}
+
+/* Begin an HDF5 file of name on comm (collective): its temporary file is "<name>.<tag>.part", with a tag new for each
+   write, the same on every rank (rank 0's, broadcast). OpenMPI's MPI-IO (OMPIO, sharedfp/sm) guards every file it
+   opens with a POSIX semaphore named after the file's base name alone, "OMPIO_<base name>", in /dev/shm, shared by
+   every process of the machine: a process that dies between the semaphore's wait and post leaves it taken, and every
+   later open of a file of that base name then waits for ever (a killed run of the test suite hung every later run
+   writing a checkpoint "ck.h5"). A base name of its own for each write never meets such a semaphore again. */
+PetscErrorCode SgFileBeginHDF5(MPI_Comm comm, const char name[], char tmp[], size_t len)
+{
+  static unsigned count = 0;
+  const char     *path;
+  PetscBool       direct;
+  PetscMPIInt     rank;
+  unsigned        tag = 0;
+
+  PetscFunctionBeginUser;
+  SgFileResolve(name, &path, &direct);
+  if (direct) {
+    PetscCall(PetscStrncpy(tmp, path, len));
+    PetscFunctionReturn(0);
+  }
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_REALTIME, &ts);
+    tag = (unsigned)getpid() * 2654435761u ^ (unsigned)ts.tv_nsec ^ ((unsigned)ts.tv_sec << 9) ^ (++count * 0x9e3779b9u);
+  }
+  PetscCallMPI(MPI_Bcast(&tag, 1, MPI_UNSIGNED, 0, comm));
+  PetscCall(PetscSNPrintf(tmp, len, "%s.%08x.part", path, tag));
+  PetscCall(BeginTmp(path, tmp));
   PetscFunctionReturn(0);
 }
 

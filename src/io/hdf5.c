@@ -42,7 +42,7 @@ static void PartFailed(const char tmp[], const char path[], PetscBool direct, Pe
   if (rank == 0) (void)truncate(tmp, 0);
 }
 
-/* Write the HDF5 file of a result option through body(viewer, ctx) into its ".part" file and commit it (or leave it
+/* Write the HDF5 file of a result option through body(viewer, ctx) into its ".<tag>.part" file (SgFileBeginHDF5) and commit it (or leave it
    for SgFileCommit when commit is false). A failure (a full disk, say) does not raise an error here: the ".part" is
    removed and ok = PETSC_FALSE with a message naming the option, the file and the cause, so that the caller can
    still record it in the summary. HDF5's own error stack is silenced meanwhile. */
@@ -62,8 +62,7 @@ PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char na
   *ok = PETSC_TRUE;
   SgFileResolve(name, &path, &direct);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(SgFileTmpName(name, tmp, sizeof(tmp)));
-  PetscCall(SgFileBegin(name));
+  PetscCall(SgFileBeginHDF5(comm, name, tmp, sizeof(tmp)));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   (void)H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
   (void)H5Eset_auto2(H5E_DEFAULT, NULL, NULL);

@@ -10,7 +10,8 @@
 /* The result and input files of a run are registered here before any work (SgFileCheckWritable, SgFileCheckInput):
    that refuses names too long for the libraries, files that are not regular files where a rename would replace
    them, and two options naming the same file. A registered name may differ from the file written:
-   - a symbolic link to a regular file is written through: "<target>.part", renamed onto the target (the link stays);
+   - a symbolic link to a regular file is written through: "<target>.part" (HDF5: "<target>.<tag>.part"), renamed onto
+     the target (the link stays);
    - a character device or FIFO (text results only) is written directly, without a ".part" and a rename. */
 typedef struct {
   char      option[64];
@@ -132,9 +133,11 @@ static void FileInspect(SgFileEntry *e, PetscBool hdf5, size_t h5max, char msg[]
     return; /* a missing input is reported by the code that reads it */
   }
   if (hdf5) {
-    const size_t hl = strlen(e->path) + (e->input ? 0 : strlen(".part"));
+    const size_t sl = e->input ? 0 : SG_HDF5_PART_SUFFIX_LEN, hl = strlen(e->path) + sl;
     if (hl > h5max) {
-      snprintf(msg, len, "%s: the file name '%s' is %zu characters long; HDF5 through OpenMPI's MPI-IO accepts at most %zu here (%zu with the \".part\" suffix): use a shorter path (e.g. a relative one or a symbolic link to the directory)", e->option, e->name, n, h5max - (e->input ? 0 : strlen(".part")), h5max);
+      char with[96] = "";
+      if (sl) snprintf(with, sizeof(with), " (%zu with the temporary file's suffix \"%s\")", h5max, SG_HDF5_PART_SUFFIX);
+      snprintf(msg, len, "%s: the file name '%s' is %zu characters long; HDF5 through OpenMPI's MPI-IO accepts at most %zu here%s: use a shorter path (e.g. a relative one or a symbolic link to the directory)", e->option, e->name, n, h5max - sl, with);
       return;
     }
   }
