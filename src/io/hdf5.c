@@ -42,10 +42,10 @@ static void PartFailed(const char tmp[], const char path[], PetscBool direct, Pe
   if (rank == 0) (void)truncate(tmp, 0);
 }
 
-/* Write the HDF5 file of a result option through body(viewer, ctx) into its ".<tag>.part" file (SgFileBeginHDF5) and commit it (or leave it
-   for SgFileCommit when commit is false). A failure (a full disk, say) does not raise an error here: the ".part" is
-   removed and ok = PETSC_FALSE with a message naming the option, the file and the cause, so that the caller can
-   still record it in the summary. HDF5's own error stack is silenced meanwhile. */
+/* Write the HDF5 file of a result option through body(viewer, ctx) into its ".<tag>.part" file (SgFileBeginHDF5) and
+   commit it (or leave it for SgFileCommit when commit is false). A failure (a full disk, say) does not raise an error
+   here: the ".part" is removed and ok = PETSC_FALSE with a message naming the option, the file and the cause, so that
+   the caller can still record it in the summary. HDF5's own error stack is silenced meanwhile. */
 PetscErrorCode SgFileWriteHDF5(MPI_Comm comm, const char option[], const char name[], PetscErrorCode (*body)(PetscViewer, void *), void *ctx, PetscBool commit, PetscBool *ok, char msg[], size_t len)
 {
   char           tmp[PETSC_MAX_PATH_LEN];
