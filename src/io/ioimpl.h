@@ -16,10 +16,9 @@ struct _n_SgHistory {
 };
 
 /* The files of a result (registry.c, file.c, hdf5.c, xdmf.c, output.c) */
+/* the suffix of an HDF5 result's temporary file, ".<8 hex digits>.part" (SgFileBeginHDF5), for its length */
+#define SG_HDF5_PART_SUFFIX ".XXXXXXXX.part"
 /* how SgFileFinish ends a file after closing it: remove its .part, rename it, or keep it for a later SgFileCommit */
-/* the suffix of an HDF5 result's temporary file, ".<8 hex digits>.part" (SgFileBeginHDF5), and its length */
-#define SG_HDF5_PART_SUFFIX     ".XXXXXXXX.part"
-#define SG_HDF5_PART_SUFFIX_LEN 14
 typedef enum { SG_FILE_ABANDON,
                SG_FILE_COMMIT,
                SG_FILE_KEEP } SgFileEnd;

@@ -133,7 +133,7 @@ static void FileInspect(SgFileEntry *e, PetscBool hdf5, size_t h5max, char msg[]
     return; /* a missing input is reported by the code that reads it */
   }
   if (hdf5) {
-    const size_t sl = e->input ? 0 : SG_HDF5_PART_SUFFIX_LEN, hl = strlen(e->path) + sl;
+    const size_t sl = e->input ? 0 : strlen(SG_HDF5_PART_SUFFIX), hl = strlen(e->path) + sl;
     if (hl > h5max) {
       char with[96] = "";
       if (sl) snprintf(with, sizeof(with), " (%zu with the temporary file's suffix \"%s\")", h5max, SG_HDF5_PART_SUFFIX);
