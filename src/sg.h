@@ -169,6 +169,8 @@ PetscErrorCode               SgFileOpen(MPI_Comm, const char[], const char[], FI
 PetscErrorCode               SgFileClose(MPI_Comm, const char[], FILE **);
 PetscErrorCode               SgFileBegin(const char[]);
 PetscErrorCode               SgFileBeginHDF5(MPI_Comm, const char[], char[], size_t);
+PetscErrorCode               SgFileReadAliasBegin(const char[], size_t, char[], size_t, PetscBool *);
+PetscErrorCode               SgFileReadAliasEnd(const char[]);
 void                         SgFileCleanup(void);
 const char                  *SgFileErrorCause(int, const char[]);
 PetscErrorCode               SgFileHDF5NameMax(MPI_Comm, size_t *);

@@ -212,9 +212,8 @@ def group_stale(c):
     """A run killed inside OpenMPI's MPI-IO file open leaves the machine-wide semaphore "OMPIO_<base name>" (in
     /dev/shm) taken; every later open of a file of that base name waited for it for ever (the suite's CI run hung on
     "ck.h5.part"). Such semaphores are made here, taken, for the names the program wrote its HDF5 results through
-    before ("<name>.part" of the checkpoint and of the fields): the runs write, resume and finish as without them.
-    (The restart is read through MPI-IO under its own name: a semaphore of that name left taken by a run killed while
-    it opened its restart file would still hold the next run that reads it. Not planted here.)"""
+    before ("<name>.part" of the checkpoint and of the fields) and for the restart file's own name (read through
+    MPI-IO too): the runs write, resume (on 1 and 2 ranks) and finish as without them."""
     shm = "/dev/shm"
     if not (os.path.isdir(shm) and os.access(shm, os.W_OK)):
         print("# skipping: %s is not a writable directory" % shm)
@@ -223,7 +222,7 @@ def group_stale(c):
     base = "sgstale%d_%s" % (os.getpid(), os.urandom(4).hex())
     ck, out = c.t(base + "_ck.h5"), c.t(base + "_r.h5")
     taken = struct.pack("<QiI16x", 0, 128, 0)  # glibc's sem_t of a shared semaphore with the value 0 (nobody waiting)
-    sems = [os.path.join(shm, "sem.OMPIO_%s.part" % os.path.basename(f)) for f in (ck, out)]
+    sems = [os.path.join(shm, "sem.OMPIO_%s.part" % os.path.basename(f)) for f in (ck, out)] + [os.path.join(shm, "sem.OMPIO_%s" % os.path.basename(ck))]
     try:
         for f in sems:
             with open(f, "wb") as g:
@@ -232,8 +231,18 @@ def group_stale(c):
         c.check("write_beside_taken_semaphores", args + ["-cont_max_it", "2"], error=r"MAX_IT", present=[ck])
         c.check("resume_beside_taken_semaphores", args + ["-restart_file", ck], present=[ck, out, out[:-3] + ".xmf"],
                 extra=lambda out_: None if "ipf: CONVERGED" in out_ else "did not converge")
-        c.check("np2_beside_taken_semaphores", args, np=2, present=[ck, out],
-                extra=lambda out_: None if all(open(f, "rb").read(4) == b"\0\0\0\0" for f in sems) else "a planted semaphore is no longer taken: the test did not test")
+        c.check("np2_beside_taken_semaphores", args + ["-cont_max_it", "2"], np=2, error=r"MAX_IT", present=[ck])
+
+        def resumed(out_):
+            links = [f for f in os.listdir(os.path.dirname(ck) or ".") if f.endswith(".read")]
+            if "ipf: CONVERGED" not in out_:
+                return "did not converge"
+            if links:
+                return "links to the restart file left: %s" % links
+            if not all(open(f, "rb").read(4) == b"\0\0\0\0" for f in sems):
+                return "a planted semaphore is no longer taken: the test did not test"
+            return None
+        c.check("np2_resume_beside_taken_semaphores", args + ["-restart_file", ck], np=2, present=[ck, out], extra=resumed)
     finally:
         for f in sems:
             if os.path.exists(f):

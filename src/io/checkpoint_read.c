@@ -60,12 +60,21 @@ typedef struct {
   PetscReal         *buf; /* rows lo..hi-1 */
 } CkRows;
 
+/* each rank opens the file alone, through a link of its own (SgFileReadAliasBegin: OMPIO's semaphore of the name) */
 static PetscErrorCode ItemOpen(void *ctx)
 {
-  CkItem *it = (CkItem *)ctx;
+  CkItem        *it = (CkItem *)ctx;
+  char           alias[PETSC_MAX_PATH_LEN];
+  size_t         maxlen;
+  PetscBool      made;
+  PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5Open(PETSC_COMM_SELF, it->r->file, FILE_MODE_READ, &it->r->viewer));
+  PetscCall(SgFileHDF5NameMax(PETSC_COMM_SELF, &maxlen));
+  PetscCall(SgFileReadAliasBegin(it->r->file, maxlen, alias, sizeof(alias), &made));
+  ierr = PetscViewerHDF5Open(PETSC_COMM_SELF, alias, FILE_MODE_READ, &it->r->viewer);
+  if (made) PetscCall(SgFileReadAliasEnd(alias));
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 

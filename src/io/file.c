@@ -154,13 +154,22 @@ PetscErrorCode SgFileBegin(const char name[])
    every process of the machine: a process that dies between the semaphore's wait and post leaves it taken, and every
    later open of a file of that base name then waits for ever (a killed run of the test suite hung every later run
    writing a checkpoint "ck.h5"). A base name of its own for each write never meets such a semaphore again. */
-PetscErrorCode SgFileBeginHDF5(MPI_Comm comm, const char name[], char tmp[], size_t len)
+/* a tag of 8 hex digits for a new file name: this process's id, the clock and a count of the tags made */
+static unsigned NewTag(void)
 {
   static unsigned count = 0;
-  const char     *path;
-  PetscBool       direct;
-  PetscMPIInt     rank;
-  unsigned        tag = 0;
+  struct timespec ts;
+
+  (void)clock_gettime(CLOCK_REALTIME, &ts);
+  return (unsigned)getpid() * 2654435761u ^ (unsigned)ts.tv_nsec ^ ((unsigned)ts.tv_sec << 9) ^ (++count * 0x9e3779b9u);
+}
+
+PetscErrorCode SgFileBeginHDF5(MPI_Comm comm, const char name[], char tmp[], size_t len)
+{
+  const char *path;
+  PetscBool   direct;
+  PetscMPIInt rank;
+  unsigned    tag = 0;
 
   PetscFunctionBeginUser;
   SgFileResolve(name, &path, &direct);
@@ -169,14 +178,46 @@ PetscErrorCode SgFileBeginHDF5(MPI_Comm comm, const char name[], char tmp[], siz
     PetscFunctionReturn(0);
   }
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (!rank) {
-    struct timespec ts;
-    (void)clock_gettime(CLOCK_REALTIME, &ts);
-    tag = (unsigned)getpid() * 2654435761u ^ (unsigned)ts.tv_nsec ^ ((unsigned)ts.tv_sec << 9) ^ (++count * 0x9e3779b9u);
-  }
+  if (!rank) tag = NewTag();
   PetscCallMPI(MPI_Bcast(&tag, 1, MPI_UNSIGNED, 0, comm));
   PetscCall(PetscSNPrintf(tmp, len, "%s.%08x.part", path, tag));
   PetscCall(BeginTmp(path, tmp));
+  PetscFunctionReturn(0);
+}
+
+/* The name this rank opens an HDF5 file to be read under (rank-local). OMPIO's semaphore (SgFileBeginHDF5) is taken
+   by the open of a file read too: a run killed while it opened its restart file "ck.h5" would hold every later run
+   reading "ck.h5". The file is opened through a symbolic link of its own, "<dir>/.<base name>.<tag>.read", made here:
+   *made says so, and SgFileReadAliasEnd removes the link once the file is open (a signal or an error exit before
+   removes it too). No link (*made false, alias = path): the directory is not writable, the file system has no
+   symbolic links, or the link's name would be longer than maxlen (the longest name HDF5 may open here). */
+PetscErrorCode SgFileReadAliasBegin(const char path[], size_t maxlen, char alias[], size_t len, PetscBool *made)
+{
+  const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+  const int   dl = slash ? (int)(slash - path) + 1 : 0;
+
+  PetscFunctionBeginUser;
+  *made = PETSC_FALSE;
+  PetscCall(PetscStrncpy(alias, path, len));
+  if (!base[0] || strlen(path) + strlen("/..XXXXXXXX.read") > PetscMin(maxlen, len - 1)) PetscFunctionReturn(0);
+  while (Dying) pause();                  /* a signal is ending the process: make no new link */
+  for (int k = 0; k < 4 && !*made; k++) { /* another tag if the name is taken */
+    PetscCall(PetscSNPrintf(alias, len, "%.*s.%s.%08x.read", dl, path, base, NewTag()));
+    if (!PendingAdd(alias, alias)) break;
+    if (!symlink(base, alias)) *made = PETSC_TRUE;
+    else PendingRemove(alias);
+    if (!*made && errno != EEXIST) break;
+  }
+  if (!*made) PetscCall(PetscStrncpy(alias, path, len));
+  PetscFunctionReturn(0);
+}
+
+/* Remove the link SgFileReadAliasBegin made (the file opened through it stays open). */
+PetscErrorCode SgFileReadAliasEnd(const char alias[])
+{
+  PetscFunctionBeginUser;
+  (void)unlink(alias);
+  PendingRemove(alias);
   PetscFunctionReturn(0);
 }
 
