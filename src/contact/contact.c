@@ -611,7 +611,7 @@ PetscErrorCode SgContactGetFrictionSummary(SgContact c, SgFrictionSummary *fs)
 static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], const PetscReal lam[], PetscReal pen, KKTScales *sc)
 {
   const PetscInt dim = c->dim;
-  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
+  PetscReal      fmax, smax, ucur, ufull, bfull, floads, Knorm, diam, bnorm_inf, ynorm, yk, T[3], cm = 0, cs[4] = {0, 0, 0, 0}, E, nu, lambda, mu;
   PetscInt       nd;
 
   PetscFunctionBeginUser;
@@ -635,12 +635,13 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
   sc->l1 += cs[3];
   PetscCall(SgVecVertexNormMax(y, nd, &ynorm));
+  PetscCall(SgElasticityStiffnessDisplacementMax(c->prob, y, nd, &yk)); /* ynorm with one material */
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
   PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));
   PetscCall(SgLame(E, nu, &lambda, &mu));
-  sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * ynorm + bnorm_inf);
-  sc->F      = PetscMax(PetscMax(fmax, smax), PetscMax(cm, 2 * mu / (lambda + 2 * mu) * Knorm * ynorm));
+  sc->rnoise = PETSC_MACHINE_EPSILON * (Knorm * yk + bnorm_inf);
+  sc->F      = PetscMax(PetscMax(fmax, smax), PetscMax(cm, 2 * mu / (lambda + 2 * mu) * Knorm * yk));
   sc->Y      = PetscMax(PetscMax(ynorm, PetscMax(pen, 0)), ucur);
   sc->zero   = (PetscBool)(fmax == 0 && ucur == 0 && !(pen > 0));
   if (sc->zero) {
