@@ -171,17 +171,88 @@ static PetscErrorCode SSNStop_Fast(SgSSN s, PetscInt it, PetscReal fnorm, PetscB
   PetscFunctionReturn(0);
 }
 
+/* Two bodies: the master side's normal compliance opposite each contact vertex i (units of 1 / gamma),
+   C_i = sum_k (M_ik / D_i) w_k / (m_k^T K_kk m_k) over the master vertices k with a dof, where w_k m_k = (B^T 1)_k is
+   the master's weighted normal there (|m_k| = 1): a vertex held by the Dirichlet data and a rigid obstacle's row add no
+   compliance. C_i = (B z)_i / D_i with z_k = m_k w_k / (m_k^T K_kk m_k) on the master vertices (0 elsewhere). */
+static PetscErrorCode MasterCompliance(SgCont ct, PetscReal C[])
+{
+  PetscInt     dim, rstart, nloc;
+  Mat          K;
+  Vec          b, z;
+  PetscScalar *ba, *za;
+  PetscReal   *one, *g0;
+  PetscBool   *contact;
+
+  PetscFunctionBeginUser;
+  PetscCall(SgElasticityGetDimension(ct->prob, &dim));
+  PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
+  PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
+  PetscCall(VecDuplicate(ct->y, &b));
+  PetscCall(VecDuplicate(ct->y, &z));
+  PetscCall(VecGetLocalSize(b, &nloc));
+  PetscCall(PetscCalloc3(ct->n, &one, ct->n, &g0, nloc / dim + 1, &contact));
+  for (PetscInt i = 0; i < ct->n; i++) {
+    one[i]                    = 1;
+    contact[ct->off[i] / dim] = PETSC_TRUE;
+  }
+  PetscCall(VecGetArray(b, &ba));
+  PetscCall(SgContactAddForce(ct->c, one, ba)); /* b = B^T 1 */
+  PetscCall(VecGetArray(z, &za));
+  for (PetscInt v = 0; v < nloc / dim; v++) {
+    PetscReal   bn = 0, m[3], kn = 0;
+    PetscInt    idx[3];
+    PetscScalar Kb[9];
+    if (contact[v]) continue;
+    for (PetscInt a = 0; a < dim; a++) bn += PetscSqr(PetscRealPart(ba[v * dim + a]));
+    bn = PetscSqrtReal(bn);
+    if (!(bn > 0)) continue;
+    for (PetscInt a = 0; a < dim; a++) {
+      m[a]   = PetscRealPart(ba[v * dim + a]) / bn;
+      idx[a] = rstart + v * dim + a;
+    }
+    PetscCall(MatGetValues(K, dim, idx, dim, idx, Kb));
+    for (PetscInt a = 0; a < dim; a++)
+      for (PetscInt c = 0; c < dim; c++) kn += m[a] * PetscRealPart(Kb[a * dim + c]) * m[c];
+    if (kn > 0)
+      for (PetscInt a = 0; a < dim; a++) za[v * dim + a] = m[a] * bn / kn;
+  }
+  PetscCall(VecRestoreArray(b, &ba));
+  PetscCall(SgContactGap(ct->c, za, C)); /* (B z)_i / D_i - d_i */
+  PetscCall(VecRestoreArray(z, &za));
+  PetscCall(VecZeroEntries(b));
+  PetscCall(VecGetArray(b, &ba));
+  PetscCall(SgContactGap(ct->c, ba, g0)); /* - d_i */
+  PetscCall(VecRestoreArray(b, &ba));
+  for (PetscInt i = 0; i < ct->n; i++) C[i] = PetscMax(0, C[i] - g0[i]);
+  PetscCall(PetscFree3(one, g0, contact));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&z));
+  PetscFunctionReturn(0);
+}
+
 /* gamma from the start y: 10 ||lam~||_L2 / (tol Y sqrt|Gamma_c|), lam~_i = (n^T diag(K)_i n) max(0, g_i) / w_i; and
-   gdp, the largest gamma double precision resolves (SgContGammaPrecision) with lam~ for the multiplier */
+   gdp, the largest gamma double precision resolves (SgContGammaPrecision) with lam~ for the multiplier. Two bodies:
+   n^T diag(K)_i n / w_i is the slave's stiffness alone, as if the master were rigid; where the master is softer than
+   a tenth of it (its compliance C_i, MasterCompliance, above 10 w_i / kn_i) it is lowered to 10 / C_i. A slave 1e4
+   times stiffer than its master otherwise got a gamma 1e4 times too large, and the SSN did not converge there (a stiff
+   slave on a soft block); bodies of one material keep their gamma (a master at least a tenth as stiff). */
 static PetscErrorCode EstimateGamma(SgCont ct, PetscReal *gamma, PetscReal *gdp)
 {
   const PetscScalar *ya;
   PetscReal          s = 0, *g, *kn, *lam, E;
+  PetscBool          pair;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetMaterial(ct->prob, &E, NULL));
   PetscCall(PetscMalloc3(ct->n, &g, ct->n, &kn, ct->n + 1, &lam));
   PetscCall(SgContNormalStiffness(ct, kn));
+  PetscCall(SgContactIsPair(ct->c, &pair));
+  if (pair) {
+    PetscCall(MasterCompliance(ct, g));
+    for (PetscInt i = 0; i < ct->n; i++)
+      if (g[i] * kn[i] > 10 * ct->w[i]) kn[i] = 10 * ct->w[i] / g[i];
+  }
   PetscCall(VecGetArrayRead(ct->y, &ya));
   PetscCall(SgContactGap(ct->c, ya, g));
   PetscCall(VecRestoreArrayRead(ct->y, &ya));
