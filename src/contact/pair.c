@@ -474,6 +474,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&p));
+  *pair = p; /* the caller's from now on: an error below (sides of one body, overlap) leaves it to SgContactPairDestroy */
   PetscCall(SgElasticityGetComm(el, &p->comm));
   PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
   PetscCall(SgElasticityGetMesh(el, &m));
@@ -598,7 +599,6 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SideDestroy(&ml));
   PetscCall(SideDestroy(&mall));
   if (size > 1) PetscCall(SideDestroy(&sall));
-  *pair = p;
   PetscFunctionReturn(0);
 }
 
