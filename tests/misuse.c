@@ -3,7 +3,7 @@
    is used, the caller's DM changed after it was handed over. Each wrong call must return an error code (with a message
    naming what is wrong), never crash or touch freed memory; each right call around them must still work.
 
-   -case NAME runs one group of cases (problem, cont, options, files, order, refcount, dm_copy, materials), without it all of
+   -case NAME runs one group of cases (problem, cont, options, files, order, refcount, dm_copy, materials, pair), without it all of
    them in sequence (-case defaults, the default linear solver of two problems, only when named). PETSc's errors return to us meanwhile (an error handler that records the message). The JSON
    summary (-summary_file) holds the number of cases checked ("cases") and of cases that misbehaved ("bad"), and what
    the right calls computed; the program exits nonzero if any case misbehaved. */
@@ -901,6 +901,87 @@ static PetscErrorCode CasesDefaults(PetscReal res[4])
   PetscFunctionReturn(0);
 }
 
+/* Two bodies through SgProblemSetBoundary(SG_BOUNDARY_CONTACT_MASTER) on the caller's mesh (meshes/tb_stack2d.msh: two
+   blocks 0.01 apart, the slave side 20 the upper block's bottom, the master side 10 the lower block's top): master
+   sides that do not exist, lie on the slave's body, face away, or a slave side held by the Dirichlet data, and
+   overlapping blocks (meshes/tb_overlap2d.msh) are errors of SgProblemSetUp that leave nothing behind (-malloc_dump);
+   a problem whose SetUp failed refuses a second one; setters after SetUp are refused; the right pair solves the patch
+   test (exact energy 0.5 0.04^2 / 0.91). */
+static PetscErrorCode PairProblem(DM dm, PetscInt master, PetscBool held, SgProblem *p)
+{
+  const PetscInt  dids[5] = {1, 2, 3, 4, 20}, masks[5] = {SG_COMPONENT_Y, SG_COMPONENT_Y, SG_COMPONENT_X, SG_COMPONENT_X, SG_COMPONENT_X | SG_COMPONENT_Y}, slave = 20;
+  const PetscReal dvals[10] = {0, 0, 0, -0.05, 0, 0, 0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(SgProblemCreateFromDM(dm, p));
+  PetscCall(SgProblemSetBoundary(*p, SG_BOUNDARY_DIRICHLET, "Face Sets", held ? 5 : 4, dids, dvals));
+  PetscCall(SgProblemSetDirichletComponents(*p, held ? 5 : 4, masks));
+  PetscCall(SgProblemSetBoundary(*p, SG_BOUNDARY_CONTACT, "Face Sets", 1, &slave, NULL));
+  PetscCall(SgProblemSetBoundary(*p, SG_BOUNDARY_CONTACT_MASTER, "Face Sets", 1, &master, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadMesh(const char file[], DM *dm)
+{
+  DM dist = NULL;
+
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexCreateFromFile(PETSC_COMM_WORLD, file, "mesh", PETSC_TRUE, dm));
+  PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
+  if (dist) {
+    PetscCall(DMDestroy(dm));
+    *dm = dist;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CasesPair(PetscReal *energy)
+{
+  DM        dm, dmo;
+  SgProblem p;
+  SgCont    c;
+  PetscInt  bad = 99;
+  PetscReal V;
+
+  PetscFunctionBeginUser;
+  PetscCall(ReadMesh("meshes/tb_stack2d.msh", &dm));
+  PetscCall(PairProblem(dm, 99, PETSC_FALSE, &p));
+  WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "-contact_master_ids: label 'Face Sets' has no points with value 99");
+  WRONG(SgProblemSetUp(p), PETSC_ERR_ORDER, "an earlier call stopped with an error");
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(PairProblem(dm, 2, PETSC_FALSE, &p));
+  WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "the slave and the master side lie on the same body");
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(PairProblem(dm, 1, PETSC_FALSE, &p));
+  WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "no slave facet of 'Face Sets' faces a master facet");
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(PairProblem(dm, 10, PETSC_TRUE, &p));
+  WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "every slave vertex opposite it is a Dirichlet vertex");
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(ReadMesh("meshes/tb_overlap2d.msh", &dmo));
+  PetscCall(PairProblem(dmo, 10, PETSC_FALSE, &p));
+  WRONG(SgProblemSetUp(p), PETSC_ERR_USER_INPUT, "the bodies overlap at the start");
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(DMDestroy(&dmo));
+  /* the right pair; setters after SetUp are refused */
+  PetscCall(PairProblem(dm, 10, PETSC_FALSE, &p));
+  PetscCall(SgProblemSetUp(p));
+  WRONG(SgProblemSetBoundary(p, SG_BOUNDARY_CONTACT_MASTER, "Face Sets", 1, &bad, NULL), PETSC_ERR_ORDER, "before SgProblemSetFromOptions/SgProblemSetUp");
+  WRONG(SgProblemSetObstacleType(p, "plane"), PETSC_ERR_ORDER, "before SgProblemSetFromOptions/SgProblemSetUp");
+  PetscCall(SgContCreate(p, &c));
+  PetscCall(SgProblemDestroy(&p));
+  PetscCall(SgProblemDestroy(&p)); /* NULL: nothing to do */
+  PetscCall(SgContSetFromOptions(c));
+  PetscCall(SgContSolve(c));
+  PetscCall(SgContGetEnergy(c, &V));
+  PetscCall(Check("the pair set through SgProblemSetBoundary solves the patch test", (PetscBool)(PetscAbsReal(V / (0.5 * 0.04 * 0.04 / 0.91) - 1) < 1e-8)));
+  PetscCall(SgContDestroy(&c));
+  PetscCall(SgContDestroy(&c));
+  PetscCall(DMDestroy(&dm));
+  *energy = V;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode JSONReal(FILE *fp, const char key[], PetscReal v, const char end[])
 {
   PetscFunctionBeginUser;
@@ -913,7 +994,7 @@ int main(int argc, char **argv)
 {
   char      which[64] = "", file[PETSC_MAX_PATH_LEN] = "";
   PetscBool all, is;
-  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN}, matres[4] = {NAN, NAN, NAN, NAN}, defres[4] = {NAN, NAN, NAN, NAN};
+  PetscReal e_order = NAN, e_ref = NAN, e_ref2 = NAN, dmres[6] = {NAN, NAN, NAN, NAN, NAN, NAN}, matres[4] = {NAN, NAN, NAN, NAN}, defres[4] = {NAN, NAN, NAN, NAN}, e_pair = NAN;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-case", which, sizeof(which), NULL));
@@ -927,8 +1008,9 @@ int main(int argc, char **argv)
   if (PetscStrcmp(which, "refcount", &is) == 0 && (all || is)) PetscCall(CasesRefcount(&e_ref, &e_ref2));
   if (PetscStrcmp(which, "dm_copy", &is) == 0 && (all || is)) PetscCall(CasesDMCopy(dmres));
   if (PetscStrcmp(which, "materials", &is) == 0 && (all || is)) PetscCall(CasesMaterials(matres));
+  if (PetscStrcmp(which, "pair", &is) == 0 && (all || is)) PetscCall(CasesPair(&e_pair));
   if (PetscStrcmp(which, "defaults", &is) == 0 && is) PetscCall(CasesDefaults(defres)); /* only when asked: it needs -cont_direct_max_unknowns */
-  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy, materials, defaults)", which);
+  PetscCheck(Cases > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-case '%s': no such group (problem, cont, options, files, order, refcount, dm_copy, materials, pair, defaults)", which);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " cases, %" PetscInt_FMT " misbehaved\n", Cases, Bad));
   if (file[0]) {
     FILE *fp;
@@ -947,6 +1029,7 @@ int main(int argc, char **argv)
     PetscCall(JSONReal(fp, "energy_materials_options", matres[1], ", "));
     PetscCall(JSONReal(fp, "energy_equal_materials", matres[2], ", "));
     PetscCall(JSONReal(fp, "energy_one_material", matres[3], ", "));
+    PetscCall(JSONReal(fp, "energy_pair", e_pair, ", "));
     PetscCall(JSONReal(fp, "energy_default_large", defres[0], ", "));
     PetscCall(JSONReal(fp, "energy_default_large_again", defres[1], ", "));
     PetscCall(JSONReal(fp, "energy_default_small", defres[2], ", "));

@@ -60,7 +60,8 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscFunctionBeginUser;
   *contact = NULL;
   PetscCall(PetscNew(&c));
-  c->prob = p;
+  *contact = c; /* the caller's from now on: an error below leaves it to SgContactDestroy, not leaked */
+  c->prob  = p;
   PetscCall(SgElasticityGetComm(p, &c->comm));
   PetscCall(SgElasticityGetDimension(p, &c->dim));
   PetscCall(PetscStrallocpy(prefix, &c->prefix));
@@ -79,9 +80,7 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
   PetscCheck(!nset || !strcmp(nmode, "obstacle") || !strcmp(nmode, "body"), c->comm, PETSC_ERR_USER_INPUT, "-contact_normal: unknown value '%s' (obstacle, body)", nmode);
   PetscCheck(c->bnd.active || !c->tangpart, c->comm, PETSC_ERR_USER_INPUT, "-friction_type %s needs a contact boundary: give -contact_label and/or -contact_ids", c->law->type);
   if (!c->bnd.active) { /* no contact boundary: pure elasticity */
-    PetscCall(SgContactLawDestroy(&c->law));
-    PetscCall(PetscFree(c->prefix));
-    PetscCall(PetscFree(c));
+    PetscCall(SgContactDestroy(contact));
     PetscFunctionReturn(0);
   }
   PetscCall(SgObstacleCreate(c->comm, prefix, c->dim, c->obstype, &c->obs));
@@ -92,7 +91,6 @@ PetscErrorCode SgContactCreate(SgElasticity p, const char prefix[], const SgBoun
     PetscCheck(!c->master.nids || c->obnd.nids || !c->obsnormal, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: two-body contact (-contact_master_ids) takes the slave side's normals (-contact_normal body); with a rigid obstacle besides (-contact_obstacle_ids) it chooses the obstacle's conditions");
     PetscCheck(!c->obsnormal || has, c->comm, PETSC_ERR_USER_INPUT, "-contact_normal obstacle: the obstacle type '%s' has no signed distance; use -contact_normal body", c->obs->type);
   }
-  *contact = c;
   PetscFunctionReturn(0);
 }
 
@@ -185,6 +183,13 @@ static PetscErrorCode VerticesDone(SgContact c)
     char ids[256], mids[256];
     SgPairIdList(&c->bnd, ids, sizeof(ids));
     SgPairIdList(&c->master, mids, sizeof(mids));
+    if (c->pair->area > 0 && c->pair->ndrop == 0) { /* the sides face each other, but no slave vertex can move */
+      const SgBoundary *db;
+      char              dids[256] = "";
+      PetscCall(SgElasticityGetDirichletBoundary(c->prob, &db));
+      if (db->active) SgPairIdList(db, dids, sizeof(dids));
+      SETERRQ(c->comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the slave side faces the master side, but every slave vertex opposite it is a Dirichlet vertex (-dirichlet_label '%s'%s%s), or fixed along the side's normal (-dirichlet_components): nothing can come into contact; leave the slave side free, or make the held side the master (-contact_ids and -contact_master_ids swapped)", ids, mids, db->label, db->nids ? " -dirichlet_ids " : "", dids);
+    }
     PetscCheck(c->pair->nbeyond > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_ids/-contact_master_ids: no slave facet of '%s' faces a master facet (the two sides face away from each other, or do not lie opposite each other): -contact_ids %s, -contact_master_ids %s", c->bnd.label, ids, mids);
     PetscCall(PetscPrintf(c->comm, "WARNING: -contact_ids/-contact_master_ids: the slave side of '%s' faces the master side only farther away than -contact_pair_distance %g: the pair has no contact vertices, and the problem is solved without contact (give a larger -contact_pair_distance if the bodies can come that close): -contact_ids %s, -contact_master_ids %s\n", c->bnd.label, (double)c->pairdist, ids, mids));
   }
@@ -230,6 +235,13 @@ static PetscErrorCode PairSetUp(SgContact c)
   if (c->obnd.nids) {
     PetscCall(PetscStrncpy(c->obnd.label, c->bnd.label, sizeof(c->obnd.label)));
     PetscCall(ObstacleVertices(c, &c->obnd));
+    { /* as for one body (VerticesDone): faces whose every vertex is held cannot touch the obstacle */
+      PetscInt nglob = c->n;
+      char     oids[256];
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nglob, 1, MPIU_INT, MPI_SUM, c->comm));
+      SgPairIdList(&c->obnd, oids, sizeof(oids));
+      PetscCheck(nglob > 0, c->comm, PETSC_ERR_USER_INPUT, "-contact_obstacle_ids %s: every vertex of these faces of '%s' is a Dirichlet vertex, or fixed along the obstacle's normal (-dirichlet_components): nothing can come into contact with the obstacle", oids, c->obnd.label);
+    }
     n = c->n, vert = c->vert, off = c->off, nrm = c->normal, w = c->w, d = c->d, area = c->area;
     c->n = 0, c->vert = NULL, c->off = NULL, c->normal = NULL, c->w = NULL, c->d = NULL;
   }

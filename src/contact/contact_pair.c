@@ -64,6 +64,48 @@ static PetscBool PairRow(PetscInt dim, PetscScalar D, const PetscScalar n[])
 static PetscErrorCode PairBlocksProduct(SgContact, const PetscReal[], Mat *);
 
 
+/* A slave vertex that starts behind the master side by more than the master's bodies are wide along its normal lies
+   past them: the bodies overlap by more than a body (or one has gone through the other), and the pairing distance
+   (-contact_pair_distance, larger than such a depth) reached across a body. An overlap within the pairing distance
+   and less deep is solved (the bodies are pushed apart); one deeper than the distance is refused by the search
+   (pair.c, CheckSearch). Collective. */
+static PetscErrorCode CheckDepth(SgContact c)
+{
+  const PetscInt   dim = c->dim;
+  const PetscReal *lo = c->pair->mbox, *hi = c->pair->mbox + 3;
+  struct {
+    double v;
+    int    r;
+  } loc, glob;
+  PetscReal   info[5] = {0, 0, 0, 0, 0}; /* depth, width, the vertex */
+  PetscMPIInt rank;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(c->comm, &rank));
+  loc.v = -PETSC_MAX_REAL, loc.r = rank;
+  for (PetscInt i = 0; i < c->n; i++) {
+    PetscReal w = 0;
+    if (c->obsrow[i]) continue; /* a rigid obstacle's row */
+    for (PetscInt k = 0; k < dim; k++) w += PetscAbsReal(c->normal[i * dim + k]) * (hi[k] - lo[k]);
+    if (-c->d[i] - w > loc.v) {
+      loc.v   = (double)(-c->d[i] - w);
+      info[0] = -c->d[i], info[1] = w;
+      for (PetscInt k = 0; k < dim; k++) info[2 + k] = c->mesh->x[c->vert[i] * dim + k];
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, c->comm));
+  if (glob.v < 0) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Bcast(info, 5, MPIU_REAL, glob.r, c->comm));
+  {
+    char ids[256], mids[256], at[96];
+    SgPairIdList(&c->bnd, ids, sizeof(ids));
+    SgPairIdList(&c->master, mids, sizeof(mids));
+    if (dim == 3) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)info[2], (double)info[3], (double)info[4]));
+    else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)info[2], (double)info[3]));
+    SETERRQ(c->comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the bodies overlap at the start by more than a body: the slave vertex %s lies %g behind the master side, and the master's body is %g wide along its normal (the pairing distance -contact_pair_distance %g reaches across it; it must be smaller than a body's thickness): move the bodies apart in the mesh", ids, mids, at, (double)info[0], (double)info[1], (double)c->pairdist);
+  }
+}
+
 /* Two bodies: the pair of the slave side (the contact boundary) and the master side; the contact vertices are the
    owned slave vertices with D_j > 0 (a slave vertex whose facets are only partly opposite the master can get D_j <= 0
    from the dual basis: it is left out, as an uncovered one). The stiffness matrix gets the pattern of B^T B (explicit
@@ -119,6 +161,7 @@ PetscErrorCode SgContactPairSetUp(SgContact c, PetscInt nobs, const PetscInt oof
   PetscCall(VecRestoreArrayRead(c->pair->g0, &ga));
   PetscCall(VecRestoreArrayRead(c->pair->N, &Na));
   PetscCall(PetscFree(vof));
+  PetscCall(CheckDepth(c));
   /* the Jacobian's pattern: K's and B^T B's (with friction that of R^T diag(B_i) R with full dim x dim blocks B_i,
      which holds B^T B's: B = diag(D) N^T R) */
   PetscCall(SgPairLogEvent(SG_PAIR_PATTERN, PETSC_TRUE));

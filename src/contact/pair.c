@@ -313,14 +313,20 @@ static PetscErrorCode SideBodies(DM dm, const SgMesh *m, const SgBoundary *bnd, 
 
 /* Contact of a body with itself is out of scope (issue 28): the slave and the master side must lie on different
    bodies (connected parts of the mesh). Without this check such a pair ends in a message about overlap or about
-   sides that face away, which names the symptom, not the cause. Collective. */
-static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const SgBoundary *slave, const SgBoundary *master)
+   sides that face away, which names the symptom, not the cause. mbox: the bounding box of the bodies the master side
+   lies on (lower corner, upper corner; 0 beyond the dimension). Collective. */
+static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const SgBoundary *slave, const SgBoundary *master, PetscReal mbox[6])
 {
   MPI_Comm comm;
   PetscInt nb, *comp, *on, same = -1;
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetComm(el, &comm));
+  { /* a missing label or id is reported here, before the arrays below are taken (SideBodies would leave them) */
+    DMLabel lab;
+    PetscCall(SgBoundaryGetLabel(dm, slave, &lab));
+    PetscCall(SgBoundaryGetLabel(dm, master, &lab));
+  }
   PetscCall(PetscMalloc1(m->nv + 1, &comp));
   PetscCall(SgElasticityVertexBodies(el, &nb, comp));
   PetscCall(PetscCalloc1(2 * nb + 1, &on));
@@ -329,6 +335,18 @@ static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, on, (PetscMPIInt)(2 * nb), MPIU_INT, MPI_MAX, comm));
   for (PetscInt k = 0; k < nb && same < 0; k++)
     if (on[k] && on[nb + k]) same = k;
+  for (PetscInt d = 0; d < 6; d++) mbox[d] = PETSC_MAX_REAL; /* the lower corner and minus the upper one */
+  for (PetscInt v = 0; v < m->nv; v++)
+    if (on[nb + comp[v]])
+      for (PetscInt d = 0; d < m->dim; d++) {
+        mbox[d]     = PetscMin(mbox[d], m->x[v * m->dim + d]);
+        mbox[3 + d] = PetscMin(mbox[3 + d], -m->x[v * m->dim + d]);
+      }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mbox, 6, MPIU_REAL, MPIU_MIN, comm));
+  for (PetscInt d = 0; d < 3; d++) {
+    if (d < m->dim) mbox[3 + d] = -mbox[3 + d];
+    else mbox[d] = mbox[3 + d] = 0;
+  }
   PetscCall(PetscFree(on));
   PetscCall(PetscFree(comp));
   if (same >= 0) {
@@ -341,31 +359,37 @@ static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const
 }
 
 /* The slave facets that found no partner within dmax (mortar.h's search): one that lies deeper than dmax behind a
-   facing master facet means that the bodies overlap at the start: an error naming the sides, the depth and the place.
-   Those that face the master farther than dmax ahead are counted (nbeyond, all ranks): if no slave vertex gets a row,
-   the bodies are apart (the contact object warns and solves without contact), not facing away from each other. */
-static PetscErrorCode CheckSearch(MPI_Comm comm, PetscInt dim, const Side *sl, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, const SgMortarSearch *sr, PetscInt *nbeyond)
+   facing master facet means that the bodies overlap at the start: *depth > 0 (all ranks) and x the place, for the
+   error the caller raises once its arrays are freed (OverlapError). Those that face the master farther than dmax
+   ahead are counted (nbeyond, all ranks): if no slave vertex gets a row, the bodies are apart (the contact object
+   warns and solves without contact), not facing away from each other. */
+static PetscErrorCode CheckSearch(MPI_Comm comm, PetscInt dim, const Side *sl, const SgMortarSearch *sr, PetscInt *nbeyond, PetscReal *depth, PetscReal x[3])
 {
-  PetscReal depth = sr->overlap, x[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL};
-
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(&sr->nbeyond, nbeyond, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &depth, 1, MPIU_REAL, MPI_MAX, comm));
-  if (!(depth > 0)) PetscFunctionReturn(0);
-  if (sr->foverlap >= 0 && sr->overlap == depth) { /* the facet's centre, from the rank that has it */
+  *depth = sr->overlap;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, depth, 1, MPIU_REAL, MPI_MAX, comm));
+  for (PetscInt c = 0; c < 3; c++) x[c] = -PETSC_MAX_REAL;
+  if (!(*depth > 0)) PetscFunctionReturn(0);
+  if (sr->foverlap >= 0 && sr->overlap == *depth) { /* the facet's centre, from the rank that has it */
     for (PetscInt c = 0; c < dim; c++) x[c] = 0;
     for (PetscInt i = 0; i < dim; i++)
       for (PetscInt c = 0; c < dim; c++) x[c] += sl->x[(sr->foverlap * dim + i) * dim + c] / dim;
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x, 3, MPIU_REAL, MPI_MAX, comm));
-  {
-    char ids[256], mids[256], at[96];
-    SgPairIdList(slave, ids, sizeof(ids));
-    SgPairIdList(master, mids, sizeof(mids));
-    if (dim == 3) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]));
-    else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)x[0], (double)x[1]));
-    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the bodies overlap at the start: the slave side near %s lies %g inside the master side (behind a facing master facet, deeper than -contact_pair_distance %g): move the bodies apart in the mesh", ids, mids, at, (double)depth, (double)dmax);
-  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OverlapError(MPI_Comm comm, PetscInt dim, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscReal depth, const PetscReal x[3])
+{
+  char ids[256], mids[256], at[96];
+
+  PetscFunctionBeginUser;
+  SgPairIdList(slave, ids, sizeof(ids));
+  SgPairIdList(master, mids, sizeof(mids));
+  if (dim == 3) PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g, %g)", (double)x[0], (double)x[1], (double)x[2]));
+  else PetscCall(PetscSNPrintf(at, sizeof(at), "(%g, %g)", (double)x[0], (double)x[1]));
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the bodies overlap at the start: the slave side near %s lies %g inside the master side (behind a facing master facet, deeper than -contact_pair_distance %g): move the bodies apart in the mesh", ids, mids, at, (double)depth, (double)dmax);
 }
 
 /* The obstacle's rows (pair.h): at owned free vertices that have no row of the pair (no D, no M entry) */
@@ -470,10 +494,11 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   SgMortarSurface ss, ms;
   SgMortarSearch  search;
   PetscInt        dim, nloc, *sfac, *mfac, nM, *Mr, *Mc;
-  PetscReal      *Dl, *gl, *Mv;
+  PetscReal      *Dl, *gl, *Mv, depth, xdeep[3];
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&p));
+  *pair = p; /* the caller's from now on: an error below (sides of one body, overlap) leaves it to SgContactPairDestroy */
   PetscCall(SgElasticityGetComm(el, &p->comm));
   PetscCall(SgElasticityGetDMs(el, &dm, NULL, NULL, NULL));
   PetscCall(SgElasticityGetMesh(el, &m));
@@ -482,7 +507,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(MatGetLocalSize(K, &nloc, NULL));
   nloc /= dim;
   PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_TRUE));
-  PetscCall(CheckBodies(el, dm, m, slave, master));
+  PetscCall(CheckBodies(el, dm, m, slave, master, p->mbox));
   PetscCall(SideCollect(dm, m, slave, &sl));
   PetscCall(SideCollect(dm, m, master, &ml));
   PetscCall(SgPairLogEvent(SG_PAIR_COLLECT, PETSC_FALSE));
@@ -508,8 +533,21 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SgPairLogEvent(SG_PAIR_MORTAR, PETSC_FALSE));
   PetscCall(SgPairLogEvent(SG_PAIR_CHECK, PETSC_TRUE));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &p->area, 1, MPIU_REAL, MPI_SUM, p->comm));
-  PetscCall(CheckSearch(p->comm, dim, &work, slave, master, dmax, &search, &p->nbeyond));
+  PetscCall(CheckSearch(p->comm, dim, &work, &search, &p->nbeyond, &depth, xdeep));
   PetscCall(SgPairLogEvent(SG_PAIR_CHECK, PETSC_FALSE));
+  if (depth > 0) { /* the bodies overlap: the error once this function's arrays are freed */
+    PetscCall(PetscFree(Mr));
+    PetscCall(PetscFree(Mc));
+    PetscCall(PetscFree(Mv));
+    PetscCall(PetscFree2(Dl, gl));
+    PetscCall(PetscFree(sfac));
+    PetscCall(PetscFree(mfac));
+    PetscCall(SideDestroy(&sl));
+    PetscCall(SideDestroy(&ml));
+    PetscCall(SideDestroy(&mall));
+    if (size > 1) PetscCall(SideDestroy(&sall));
+    PetscCall(OverlapError(p->comm, dim, slave, master, dmax, depth, xdeep));
+  }
 
   PetscCall(SgPairLogEvent(SG_PAIR_ASSEMBLE, PETSC_TRUE));
   PetscCall(VecCreateMPI(p->comm, nloc, PETSC_DETERMINE, &p->D));
@@ -598,7 +636,6 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SideDestroy(&ml));
   PetscCall(SideDestroy(&mall));
   if (size > 1) PetscCall(SideDestroy(&sall));
-  *pair = p;
   PetscFunctionReturn(0);
 }
 

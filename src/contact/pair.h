@@ -33,6 +33,7 @@ struct _n_SgContactPair {
   PetscReal  area;    /* covered measure of the slave surface */
   PetscBool *obsrow;  /* per owned free vertex: its row is an obstacle row (SgPairObstacleRows), or NULL */
   PetscInt   nbeyond; /* slave facets without a partner that face the master farther than the pairing distance (all ranks) */
+  PetscReal  mbox[6]; /* the bounding box of the bodies the master side lies on: lower and upper corner (all ranks) */
   Vec        D, g0, N;
   Mat        B, R;
 };

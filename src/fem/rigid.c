@@ -453,19 +453,19 @@ PetscErrorCode SgElasticityCheckRigidMotions(SgElasticity p)
   PetscCall(SgMeshConstrainedDimension(p->comm, &p->mesh, &adim, p0, dir, &p->diam));
   /* the other extreme: a label of cells (or of every boundary part of a 1-layer mesh) leaves nothing to solve for */
   PetscCheck(p->mesh.nfree_glob > 0, p->comm, PETSC_ERR_USER_INPUT, "-dirichlet_label '%s': every vertex of the mesh is a Dirichlet vertex, nothing is left to solve for (give a label of boundary faces)", p->dirichlet.label);
+  /* a mesh of several bodies first: the message then names the body that is not held and its own free motions, also
+     when the whole mesh floats (the check of the whole mesh below named the motions left free for all bodies at once,
+     fewer than the body's, and said "the body" of a mesh of two) */
+  if (p->dirichlet.active && !p->rigid_shift_set) PetscCall(CheckBodies(p));
   if (p->dirichlet.ncomps) {
     PetscBool partial = PETSC_FALSE;
     for (PetscInt i = 0; i < p->dirichlet.ncomps; i++) partial = (PetscBool)(partial || p->dirichlet.comps[i] != (1 << dim) - 1);
     if (partial) {
       PetscCall(CheckRigidMotionsPartial(p));
-      if (!p->rigid_shift_set) PetscCall(CheckBodies(p));
       PetscFunctionReturn(0);
     }
   }
-  if (adim >= dim - 1) {
-    if (!p->rigid_shift_set) PetscCall(CheckBodies(p));
-    PetscFunctionReturn(0);
-  }
+  if (adim >= dim - 1) PetscFunctionReturn(0);
   if (p->rigid_shift_set) {
     PetscCall(PetscInfo(p->dm, "the Dirichlet part leaves rigid motions free (affine dimension %" PetscInt_FMT "): regularized with -elasticity_rigid_shift %g\n", adim, (double)p->rigid_shift));
     PetscFunctionReturn(0);
