@@ -311,14 +311,42 @@ static PetscErrorCode SideBodies(DM dm, const SgMesh *m, const SgBoundary *bnd, 
   PetscFunctionReturn(0);
 }
 
+/* The values of a side (each alone) with a facet on body k, as "a,b" (for the message of CheckBodies). Collective. */
+static PetscErrorCode SideIdsOnBody(DM dm, const SgMesh *m, const SgBoundary *bnd, const PetscInt comp[], PetscInt nb, PetscInt k, char buf[], size_t len)
+{
+  PetscInt  *on;
+  size_t     n = 0;
+  MPI_Comm   comm;
+  SgBoundary one = *bnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
+  PetscCall(PetscMalloc1(nb + 1, &on));
+  buf[0]   = 0;
+  one.nids = 1;
+  for (PetscInt i = 0; i < bnd->nids; i++) {
+    for (PetscInt b = 0; b < nb; b++) on[b] = 0;
+    one.ids[0] = bnd->ids[i];
+    PetscCall(SideBodies(dm, m, &one, comp, on));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, on, (PetscMPIInt)nb, MPIU_INT, MPI_MAX, comm));
+    if (on[k] && n + 24 < len) n += (size_t)snprintf(buf + n, len - n, "%s%" PetscInt_FMT, n ? "," : "", bnd->ids[i]);
+  }
+  PetscCall(PetscFree(on));
+  PetscFunctionReturn(0);
+}
+
 /* Contact of a body with itself is out of scope (issue 28): the slave and the master side must lie on different
    bodies (connected parts of the mesh). Without this check such a pair ends in a message about overlap or about
-   sides that face away, which names the symptom, not the cause. mbox: the bounding box of the bodies the master side
-   lies on (lower corner, upper corner; 0 beyond the dimension). Collective. */
+   sides that face away, which names the symptom, not the cause. The check is per body, not per facing pair: a body
+   with a slave side and a master side is refused even where they face other bodies (a middle body of a chain,
+   measured with three stacked blocks); the message names the values on that body and how to give a chain. mbox: the
+   bounding box of the bodies the master side lies on (lower corner, upper corner; 0 beyond the dimension).
+   Collective. */
 static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const SgBoundary *slave, const SgBoundary *master, PetscReal mbox[6])
 {
   MPI_Comm comm;
   PetscInt nb, *comp, *on, same = -1;
+  char     ids[256], mids[256], sk[256], mk[256];
 
   PetscFunctionBeginUser;
   PetscCall(SgElasticityGetComm(el, &comm));
@@ -348,12 +376,15 @@ static PetscErrorCode CheckBodies(SgElasticity el, DM dm, const SgMesh *m, const
     else mbox[d] = mbox[3 + d] = 0;
   }
   PetscCall(PetscFree(on));
+  if (same >= 0) {
+    PetscCall(SideIdsOnBody(dm, m, slave, comp, nb, same, sk, sizeof(sk)));
+    PetscCall(SideIdsOnBody(dm, m, master, comp, nb, same, mk, sizeof(mk)));
+  }
   PetscCall(PetscFree(comp));
   if (same >= 0) {
-    char ids[256], mids[256];
     SgPairIdList(slave, ids, sizeof(ids));
     SgPairIdList(master, mids, sizeof(mids));
-    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the slave and the master side lie on the same body (a connected part of the mesh; it has %" PetscInt_FMT "): contact of a body with itself is not supported; name a master side on another body", ids, mids, nb);
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "-contact_ids %s / -contact_master_ids %s: the slave and the master side lie on the same body (a connected part of the mesh; it has %" PetscInt_FMT "): its slave side %s and its master side %s; contact of a body with itself is not supported, and a body carries slave sides or master sides, not both: name a master side on another body (in a chain of bodies, give both sides of a middle body as slave sides, the facing sides of its neighbours as master sides)", ids, mids, nb, sk, mk);
   }
   PetscFunctionReturn(0);
 }
