@@ -514,6 +514,23 @@ static PetscErrorCode DropTinyD(SgContactPair p, Mat Ms, PetscInt dim, const Sid
   PetscFunctionReturn(0);
 }
 
+/* SgContactPairCreate's work arrays and sides, freed at its end or before its overlap error (sall: on several ranks) */
+static PetscErrorCode CreateWorkFree(PetscMPIInt size, PetscInt *Mr, PetscInt *Mc, PetscReal *Mv, PetscReal *Dl, PetscReal *gl, PetscInt *sfac, PetscInt *mfac, Side *sl, Side *ml, Side *mall, Side *sall)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(Mr));
+  PetscCall(PetscFree(Mc));
+  PetscCall(PetscFree(Mv));
+  PetscCall(PetscFree2(Dl, gl));
+  PetscCall(PetscFree(sfac));
+  PetscCall(PetscFree(mfac));
+  PetscCall(SideDestroy(sl));
+  PetscCall(SideDestroy(ml));
+  PetscCall(SideDestroy(mall));
+  if (size > 1) PetscCall(SideDestroy(sall));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, const SgBoundary *master, PetscReal dmax, PetscBool average, PetscBool brute, const SgPairObstacleRows *obst, SgContactPair *pair)
 {
   SgContactPair   p;
@@ -567,16 +584,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(CheckSearch(p->comm, dim, &work, &search, &p->nbeyond, &depth, xdeep));
   PetscCall(SgPairLogEvent(SG_PAIR_CHECK, PETSC_FALSE));
   if (depth > 0) { /* the bodies overlap: the error once this function's arrays are freed */
-    PetscCall(PetscFree(Mr));
-    PetscCall(PetscFree(Mc));
-    PetscCall(PetscFree(Mv));
-    PetscCall(PetscFree2(Dl, gl));
-    PetscCall(PetscFree(sfac));
-    PetscCall(PetscFree(mfac));
-    PetscCall(SideDestroy(&sl));
-    PetscCall(SideDestroy(&ml));
-    PetscCall(SideDestroy(&mall));
-    if (size > 1) PetscCall(SideDestroy(&sall));
+    PetscCall(CreateWorkFree(size, Mr, Mc, Mv, Dl, gl, sfac, mfac, &sl, &ml, &mall, &sall));
     PetscCall(OverlapError(p->comm, dim, slave, master, dmax, depth, xdeep));
   }
 
@@ -657,16 +665,7 @@ PetscErrorCode SgContactPairCreate(SgElasticity el, const SgBoundary *slave, con
   PetscCall(SgPairLogEvent(SG_PAIR_BUILDB, PETSC_FALSE));
 
   PetscCall(MatDestroy(&Ms));
-  PetscCall(PetscFree(Mr));
-  PetscCall(PetscFree(Mc));
-  PetscCall(PetscFree(Mv));
-  PetscCall(PetscFree2(Dl, gl));
-  PetscCall(PetscFree(sfac));
-  PetscCall(PetscFree(mfac));
-  PetscCall(SideDestroy(&sl));
-  PetscCall(SideDestroy(&ml));
-  PetscCall(SideDestroy(&mall));
-  if (size > 1) PetscCall(SideDestroy(&sall));
+  PetscCall(CreateWorkFree(size, Mr, Mc, Mv, Dl, gl, sfac, mfac, &sl, &ml, &mall, &sall));
   PetscFunctionReturn(0);
 }
 
