@@ -8,6 +8,7 @@
    summary (-summary_file) holds the number of cases checked ("cases") and of cases that misbehaved ("bad"), and what
    the right calls computed; the program exits nonzero if any case misbehaved. */
 #include <signorini.h>
+#include <stdlib.h>
 #include <petscdmda.h>
 
 static const char help[] = "Misuse of libsignorini's public functions: every wrong call must return an error.\n\n";
@@ -889,15 +890,20 @@ static PetscErrorCode SolveDefault(PetscInt nx, PetscInt ny, const char want_ksp
 
 static PetscErrorCode CasesDefaults(PetscReal res[4])
 {
-  PetscBool small_first = PETSC_FALSE; /* -defaults_small_first: the other order */
+  PetscBool small_first = PETSC_FALSE, given; /* -defaults_small_first: the other order */
 
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-defaults_small_first", &small_first, NULL));
+  /* the sizes below are chosen about -cont_direct_max_unknowns 300 (tests/features/solver_defaults.ini gives it): the
+     group sets it itself when run alone (tests/fuzz.py picks groups at random), and removes it afterwards */
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-cont_direct_max_unknowns", &given));
+  if (!given) PetscCall(PetscOptionsSetValue(NULL, "-cont_direct_max_unknowns", "300"));
   if (small_first) PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[2])); /* 90 unknowns */
   PetscCall(SolveDefault(24, 12, KSPCG, &res[0]));                     /* 650 */
   if (!small_first) PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[2]));
   PetscCall(SolveDefault(24, 12, KSPCG, &res[1]));
   PetscCall(SolveDefault(8, 4, KSPPREONLY, &res[3]));
+  if (!given) PetscCall(PetscOptionsClearValue(NULL, "-cont_direct_max_unknowns"));
   PetscFunctionReturn(0);
 }
 
@@ -921,12 +927,25 @@ static PetscErrorCode PairProblem(DM dm, PetscInt master, PetscBool held, SgProb
   PetscFunctionReturn(0);
 }
 
+/* file (relative to the repository) read from the working directory, else from the repository this program was built
+   in (bin/..: the random robustness test, tests/fuzz.py, runs it in a directory of its own) */
 static PetscErrorCode ReadMesh(const char file[], DM *dm)
 {
-  DM dist = NULL;
+  DM        dist = NULL;
+  char      path[PETSC_MAX_PATH_LEN], exe[PETSC_MAX_PATH_LEN];
+  PetscBool found;
 
   PetscFunctionBeginUser;
-  PetscCall(DMPlexCreateFromFile(PETSC_COMM_WORLD, file, "mesh", PETSC_TRUE, dm));
+  PetscCall(PetscStrncpy(path, file, sizeof(path)));
+  PetscCall(PetscTestFile(path, 'r', &found));
+  if (!found && realpath("/proc/self/exe", exe)) { /* <repository>/bin/misuse_tests */
+    char *slash = strrchr(exe, '/');
+    if (slash) *slash = 0;
+    slash = strrchr(exe, '/');
+    if (slash) *slash = 0;
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", exe, file));
+  }
+  PetscCall(DMPlexCreateFromFile(PETSC_COMM_WORLD, path, "mesh", PETSC_TRUE, dm));
   PetscCall(DMPlexDistribute(*dm, 0, NULL, &dist));
   if (dist) {
     PetscCall(DMDestroy(dm));
