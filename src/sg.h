@@ -122,10 +122,10 @@ PetscErrorCode SgElasticityGetDMs(SgElasticity, DM *, DM *, DM *, DM *); /* disp
 PetscErrorCode SgElasticityGetMesh(SgElasticity, const SgMesh **);
 PetscErrorCode SgElasticityGetOperators(SgElasticity, Mat *, Vec *); /* K and b */
 PetscErrorCode SgElasticityGetMass(SgElasticity, Vec *);
-PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *);                     /* NULL when not attached */
-PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *);     /* ||K|| (SgMatVertexNorm), ||b||_2, the largest nodal force */
-PetscErrorCode SgElasticityStiffnessDisplacementMax(SgElasticity, Vec, PetscInt, PetscReal *); /* max_v (E_v / E) |y_v|: times ||K|| it bounds an elastic nodal force (several materials) */
-PetscErrorCode SgElasticityGetNodalNormSize(SgElasticity, PetscInt *);                         /* -contact_kkt_scale: dim (vertex) or 1 (component) */
+PetscErrorCode SgElasticityGetNearNullSpace(SgElasticity, MatNullSpace *);                                /* NULL when not attached */
+PetscErrorCode SgElasticityGetScales(SgElasticity, PetscReal *, PetscReal *, PetscReal *);                /* ||K|| (SgMatVertexNorm), ||b||_2, the largest nodal force */
+PetscErrorCode SgElasticityStiffnessDisplacementMax(SgElasticity, Vec, PetscInt, PetscReal, PetscReal *); /* max_v (E_v / E) |y_v| (one material: the given max_v |y_v|): times ||K|| it bounds an elastic nodal force */
+PetscErrorCode SgElasticityGetNodalNormSize(SgElasticity, PetscInt *);                                    /* -contact_kkt_scale: dim (vertex) or 1 (component) */
 PetscErrorCode SgElasticityGetEnergyShift(SgElasticity, PetscReal *);
 PetscErrorCode SgElasticityGetMaterial(SgElasticity, PetscReal *, PetscReal *);                                                              /* the one material, or of several the stiffest (largest E, the first of equals) */
 PetscErrorCode SgElasticityGetMaterials(SgElasticity, const char **, PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **); /* -material_label, number of -material_ids (0: one material for every cell), the ids, E and nu of each */

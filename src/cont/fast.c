@@ -188,8 +188,10 @@ static PetscErrorCode MasterCompliance(SgCont ct, PetscReal C[])
   PetscCall(SgElasticityGetDimension(ct->prob, &dim));
   PetscCall(SgElasticityGetOperators(ct->prob, &K, NULL));
   PetscCall(MatGetOwnershipRange(K, &rstart, NULL));
-  PetscCall(VecDuplicate(ct->y, &b));
+  PetscCall(VecDuplicate(ct->y, &b)); /* VecDuplicate leaves the entries unset */
   PetscCall(VecDuplicate(ct->y, &z));
+  PetscCall(VecZeroEntries(b));
+  PetscCall(VecZeroEntries(z));
   PetscCall(VecGetLocalSize(b, &nloc));
   PetscCall(PetscCalloc3(ct->n, &one, ct->n, &g0, nloc / dim + 1, &contact));
   for (PetscInt i = 0; i < ct->n; i++) {

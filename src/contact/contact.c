@@ -647,7 +647,7 @@ static PetscErrorCode ComputeScales(SgContact c, Vec y, const PetscScalar ra[], 
   for (PetscInt k = 0; k < dim; k++) sc->res[k] += cs[k];
   sc->l1 += cs[3];
   PetscCall(SgVecVertexNormMax(y, nd, &ynorm));
-  PetscCall(SgElasticityStiffnessDisplacementMax(c->prob, y, nd, &yk)); /* ynorm with one material */
+  PetscCall(SgElasticityStiffnessDisplacementMax(c->prob, y, nd, ynorm, &yk)); /* ynorm with one material */
   PetscCall(SgElasticityGetScales(c->prob, &Knorm, NULL, &bnorm_inf));
   PetscCall(SgElasticityGetDataScales(c->prob, &ucur, &ufull, &bfull, &floads, &diam));
   PetscCall(SgElasticityGetMaterial(c->prob, &E, &nu));

@@ -272,12 +272,12 @@ PetscErrorCode SgElasticityFixedResidual(SgElasticity p, Vec y, Vec R)
 /* The displacement that, times ||K|| (the stiffest material's), bounds an elastic nodal force: the largest over the
    vertices of (E_v / E) |y_v|, with E_v the largest E of the cells at v, E the stiffest material's
    (SgElasticityGetMaterial) and |y_v| the length of the vertex's nd unknowns as in SgVecVertexNormMax (a fixed
-   component counts 0, as its unknown is). With one material it is SgVecVertexNormMax(y, nd). ||K|| times the largest
-   |y_v| alone put the stiff body's stiffness against the soft body's displacement: two bodies of E 1e8 and 1, the soft
-   one moved 1e-2, gave a force scale 1e6 times every force of the problem, and a KKT test that passed 15 % of the
-   contact force left as tension at one vertex. Each cell is on one rank, so the largest over the ranks is the same on
+   component counts 0, as its unknown is). With one material it is ynorm, the caller's SgVecVertexNormMax(y, nd),
+   not formed again. ||K|| times the largest |y_v| alone put the stiff body's stiffness against the soft body's
+   displacement: two bodies of E 1e8 and 1, the soft one moved 1e-2, gave a force scale 1e6 times every force of the
+   problem, and a KKT test that passed 15 % of the contact force left as tension at one vertex. Each cell is on one rank, so the largest over the ranks is the same on
    any partition. */
-PetscErrorCode SgElasticityStiffnessDisplacementMax(SgElasticity p, Vec y, PetscInt nd, PetscReal *s)
+PetscErrorCode SgElasticityStiffnessDisplacementMax(SgElasticity p, Vec y, PetscInt nd, PetscReal ynorm, PetscReal *s)
 {
   const SgMesh      *m   = &p->mesh;
   const PetscInt     dim = p->dim, nv = dim + 1;
@@ -287,7 +287,7 @@ PetscErrorCode SgElasticityStiffnessDisplacementMax(SgElasticity p, Vec y, Petsc
 
   PetscFunctionBeginUser;
   if (!p->cellmat) {
-    PetscCall(SgVecVertexNormMax(y, nd, s));
+    *s = ynorm;
     PetscFunctionReturn(0);
   }
   PetscCall(PetscCalloc1(m->nv, &fv));
